@@ -1,0 +1,27 @@
+# Every dependency is a Debian bookworm package installed by scripts/install-deps.sh.
+find_package(OpenCASCADE REQUIRED CONFIG)  # its version file accepts only exact versions
+if(OpenCASCADE_VERSION VERSION_LESS 7.6 OR OpenCASCADE_VERSION VERSION_GREATER_EQUAL 7.7)
+  message(FATAL_ERROR "hotmesh needs OpenCASCADE 7.6.x, found ${OpenCASCADE_VERSION}")
+endif()
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(CGAL 5.5 REQUIRED CONFIG)
+find_package(Boost 1.74 REQUIRED)
+find_package(OpenMP REQUIRED COMPONENTS CXX)
+find_package(yaml-cpp 0.7 REQUIRED CONFIG)
+find_package(CLI11 2.1 REQUIRED CONFIG)
+find_package(fmt 9 REQUIRED CONFIG)
+find_package(spdlog 1.10 REQUIRED CONFIG)
+find_package(nlohmann_json 3.11 REQUIRED CONFIG)
+if(HOTMESH_TESTS)
+  find_package(GTest 1.12 REQUIRED CONFIG)
+endif()
+
+# OpenCASCADE: its config names Draw toolkits Debian does not ship and forces -std=c++0x through
+# OpenCASCADE_CXX_FLAGS, so we link toolkits by name and add the include directory ourselves.
+# Only translation units that need OpenCASCADE headers see them (geometry's src/).
+add_library(hotmesh_occt INTERFACE)
+target_include_directories(hotmesh_occt SYSTEM INTERFACE ${OpenCASCADE_INCLUDE_DIR})
+target_link_libraries(hotmesh_occt INTERFACE
+  TKernel TKMath TKG2d TKG3d TKGeomBase TKGeomAlgo TKBRep TKTopAlgo TKPrim TKBO TKShHealing
+  TKXSBase TKSTEP TKSTEPBase TKSTEPAttr TKSTEP209 TKIGES)
+target_link_directories(hotmesh_occt INTERFACE ${OpenCASCADE_LIBRARY_DIR})

@@ -1,0 +1,22 @@
+# Warnings for hotmesh's own targets (never for third-party headers, which are SYSTEM includes).
+add_library(hotmesh_warnings INTERFACE)
+target_compile_options(hotmesh_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast -Wcast-align
+  -Wunused -Woverloaded-virtual -Wconversion -Wsign-conversion -Wnull-dereference
+  -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough)
+if(HOTMESH_WERROR)
+  target_compile_options(hotmesh_warnings INTERFACE -Werror)
+endif()
+
+# hotmesh_module(<name> SOURCES ... [PUBLIC_LIBS ...] [PRIVATE_LIBS ...])
+# One library per module, public headers in <module>/include/hotmesh/<module>/.
+function(hotmesh_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_LIBS;PRIVATE_LIBS" ${ARGN})
+  add_library(hotmesh_${name} ${ARG_SOURCES})
+  add_library(hotmesh::${name} ALIAS hotmesh_${name})
+  target_include_directories(hotmesh_${name}
+    PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+    PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(hotmesh_${name} PUBLIC ${ARG_PUBLIC_LIBS}
+                                        PRIVATE hotmesh_warnings ${ARG_PRIVATE_LIBS})
+endfunction()

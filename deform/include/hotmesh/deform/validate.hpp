@@ -1,0 +1,36 @@
+// hotmesh deform: checks a freshly loaded mesh before any work is done on it.
+// Rejected, with a message naming the node, cell or patch: references to missing nodes,
+// non-finite coordinates, a 2D mesh off its plane, nodes used by no cell, duplicate nodes,
+// folded or degenerate cells (a corner Jacobian <= 0 that is not a plain reversal), faces
+// shared by more than two cells or by two cells on the same side, boundary faces in no
+// patch, patch faces that are not cell faces, two patches with one name.
+// Cells whose corner Jacobians are all negative are valid cells numbered the other way
+// round: they are renumbered in place (a whole mesh written with the opposite orientation
+// convention is therefore accepted), provided the result is consistently oriented.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "hotmesh/deform/mesh.hpp"
+
+namespace hotmesh::deform {
+
+struct ValidationReport {
+  std::size_t reoriented_cells = 0;
+  std::size_t boundary_faces = 0;
+  std::size_t interior_patch_faces = 0;  ///< patch faces between two cells (baffles)
+  std::vector<std::string> notes;        ///< things worth a warning, not an error
+};
+
+struct ValidationOptions {
+  /// Two nodes closer than this fraction of the bounding-box diagonal are duplicates.
+  double duplicate_tolerance = 1e-10;
+};
+
+/// Validates `mesh`, reorients reversed cells and fills the patch node sets.
+/// Throws hotmesh::InputError describing the first class of problem found.
+ValidationReport validate_mesh(Mesh& mesh, const ValidationOptions& options = {});
+
+}  // namespace hotmesh::deform

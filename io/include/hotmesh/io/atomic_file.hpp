@@ -1,0 +1,41 @@
+// hotmesh io: every output file is written atomically. Content goes to a temporary file
+// beside the target; only commit() renames it over the target, so a reader (or a crash
+// midway) never sees a half-written file and an earlier valid file stays in place.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <string_view>
+
+namespace hotmesh::io {
+
+class AtomicFile {
+ public:
+  /// Opens a temporary file beside `target`. Throws hotmesh::InputError if it cannot.
+  explicit AtomicFile(std::filesystem::path target);
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  /// Removes the temporary file unless commit() succeeded.
+  ~AtomicFile();
+
+  std::ostream& stream() { return out_; }
+  const std::filesystem::path& target() const { return target_; }
+
+  /// Flushes, syncs to disk and renames over the target. Throws hotmesh::InputError on
+  /// failure (disk full, permissions), leaving the target as it was.
+  void commit();
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  std::ofstream out_;
+  bool committed_ = false;
+};
+
+/// Writes `content` to `target` atomically.
+void write_file_atomically(const std::filesystem::path& target, std::string_view content);
+
+/// Reads a whole file. Throws hotmesh::InputError naming the file if it cannot be read.
+std::string read_file(const std::filesystem::path& path);
+
+}  // namespace hotmesh::io

@@ -1,0 +1,73 @@
+// hotmesh io: the case file (YAML) that describes one deformation job. It is validated
+// completely before any work starts: unknown keys, wrong types, values out of range, missing
+// files and inconsistent patch roles are all reported together in one message naming each
+// YAML line. Paths are relative to the case file. Full schema: docs/case-file.md.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/solver_options.hpp"
+#include "hotmesh/geometry/axis.hpp"
+#include "hotmesh/geometry/deflection_samples.hpp"
+
+namespace hotmesh::io {
+
+enum class PatchRole {
+  fixed,       ///< u = 0
+  prescribed,  ///< u from a deflection table
+  slip,        ///< u . n = 0 on the original (planar) boundary
+  sliding,     ///< slides over the deflected shape (the paper's section 4)
+  passive,     ///< u from a surface-only spring solve driven by the patch's rim
+  periodic,    ///< u_slave = R(angle) u_master with the partner patch
+};
+std::string_view to_string(PatchRole role);
+
+struct DeflectionSpec {
+  std::filesystem::path file;           ///< resolved against the case file's folder
+  int degree = 1;                       ///< B-spline degree q of the reconstruction, 1..5
+  std::vector<int> faces;               ///< CAD face ids (1-based); needs `cad`
+  geometry::DeflectionSamples samples;  ///< the table, read during validation
+};
+
+struct PatchSpec {
+  std::string name;
+  PatchRole role = PatchRole::fixed;
+  std::optional<DeflectionSpec> deflection;  ///< prescribed (required), sliding (optional)
+  std::string partner;                       ///< periodic: the other patch of the pair
+  double angle_deg = 0.0;                    ///< periodic: rotation from this patch to partner
+  std::size_t line = 0;                      ///< line of this patch in the case file
+};
+
+struct Case {
+  std::filesystem::path file;                ///< the case file
+  std::filesystem::path mesh;
+  std::optional<std::filesystem::path> cad;
+  std::filesystem::path output;              ///< default: <case name>-out beside the case file
+  std::optional<geometry::Axis> axis;
+  deform::SolverOptions solver;
+  deform::MaterialOptions material;
+  std::vector<PatchSpec> patches;            ///< in the order of the case file
+  std::size_t patches_line = 0;              ///< line of the `patches:` key
+
+  const PatchSpec* find_patch(std::string_view name) const;
+  /// Every file the case reads: the case file, mesh, CAD file and deflection tables.
+  std::vector<std::filesystem::path> inputs() const;
+};
+
+/// Parses and validates a case file given as text; `file` is its path (for messages and to
+/// resolve relative paths). Reads the deflection tables it names. Throws hotmesh::InputError
+/// listing every problem found, each as "<file>:<line>: <key>: <what is wrong>".
+Case parse_case(std::string_view text, const std::filesystem::path& file);
+Case read_case(const std::filesystem::path& file);
+
+/// Checks the case against the mesh it names: every mesh patch has a role and every case
+/// patch exists in the mesh. Throws hotmesh::InputError listing each problem with its line.
+void check_case_against_mesh(const Case& c, const deform::Mesh& mesh);
+
+}  // namespace hotmesh::io

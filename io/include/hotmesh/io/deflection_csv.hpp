@@ -1,0 +1,23 @@
+// hotmesh io: FEM deflection tables. CSV with a header line naming the columns, in any order:
+//   x,y,dx,dy          2D cases                          (SampleFrame::planar)
+//   x,y,z,dx,dy,dz     3D cases                          (SampleFrame::cartesian)
+//   r,z,dr,dz          meridional, about the case's axis (SampleFrame::meridional)
+// plus an optional "id" column (the FEM node number, used in messages). Lines starting with
+// '#' (after blanks) and blank lines are skipped; a '#' after the values starts a comment.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+#include "hotmesh/geometry/deflection_samples.hpp"
+
+namespace hotmesh::io {
+
+/// Parses a deflection table; `source` names it in messages. Throws hotmesh::InputError with
+/// the line and column of the first problem (unknown or missing column, wrong field count,
+/// a value that is not a finite number, negative r, no data rows).
+geometry::DeflectionSamples parse_deflection_csv(std::string_view content, std::string_view source);
+
+geometry::DeflectionSamples read_deflection_csv(const std::filesystem::path& path);
+
+}  // namespace hotmesh::io

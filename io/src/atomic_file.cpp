@@ -1,0 +1,84 @@
+#include "hotmesh/io/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <algorithm>
+#include <string>
+#include <system_error>
+
+#include "hotmesh/geometry/input_error.hpp"
+
+namespace hotmesh::io {
+namespace {
+
+std::filesystem::path temporary_beside(const std::filesystem::path& target) {
+  static std::atomic<unsigned> counter{0};
+  std::filesystem::path tmp = target;
+  tmp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  return tmp;
+}
+
+void sync_to_disk(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(std::filesystem::path target)
+    : target_(std::move(target)), temporary_(temporary_beside(target_)) {
+  out_.open(temporary_, std::ios::binary | std::ios::trunc);
+  if (!out_) {
+    throw InputError::in(target_.string(), std::string("cannot create output file: ") + std::strerror(errno));
+  }
+}
+
+AtomicFile::~AtomicFile() {
+  if (committed_) return;
+  out_.close();
+  std::error_code ignored;
+  std::filesystem::remove(temporary_, ignored);
+}
+
+void AtomicFile::commit() {
+  out_.flush();
+  const bool written = static_cast<bool>(out_);
+  out_.close();
+  if (!written || out_.fail()) {
+    throw InputError::in(target_.string(), "could not write the output file (disk full?)");
+  }
+  sync_to_disk(temporary_);
+  std::error_code ec;
+  std::filesystem::rename(temporary_, target_, ec);
+  if (ec) throw InputError::in(target_.string(), "cannot replace the output file: " + ec.message());
+  committed_ = true;
+}
+
+void write_file_atomically(const std::filesystem::path& target, std::string_view content) {
+  AtomicFile file(target);
+  file.stream().write(content.data(), static_cast<std::streamsize>(content.size()));
+  file.commit();
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError::in(path.string(), "is a directory, not a file");
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw InputError::in(path.string(), std::string("cannot open: ") + std::strerror(errno));
+  const std::streamoff size = in.tellg();
+  std::string content(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)), '\0');
+  in.seekg(0);
+  in.read(content.data(), static_cast<std::streamsize>(content.size()));
+  if (in.gcount() != static_cast<std::streamsize>(content.size())) {
+    throw InputError::in(path.string(), "read error");
+  }
+  return content;
+}
+
+}  // namespace hotmesh::io

@@ -1,0 +1,35 @@
+// hotmesh tests: shared helpers (temporary folders, files, small meshes built in code).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "hotmesh/deform/mesh.hpp"
+
+namespace hotmesh::test {
+
+/// A fresh folder under the system temporary directory, removed with its content on exit.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(std::string_view name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+std::filesystem::path data_path(std::string_view name);  ///< tests/data/<name>
+std::string read_text(const std::filesystem::path& path);
+void write_text(const std::filesystem::path& path, std::string_view text);
+
+/// The unit square [0,1]^2 as nx x ny quads; patches xmin, xmax, ymin, ymax.
+deform::Mesh unit_square(int nx, int ny);
+/// The unit cube [0,1]^3 as n^3 hexes; patches xmin, xmax, ymin, ymax, zmin, zmax.
+deform::Mesh unit_cube(int n);
+
+}  // namespace hotmesh::test
