@@ -1,0 +1,44 @@
+// hotmesh io: VTK XML unstructured grids (.vtu) for ParaView, binary appended raw data with
+// UInt64 headers. Point and cell arrays are passed by the caller (displacement, node role,
+// scaled Jacobian, inverted flag, ...).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <span>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "hotmesh/deform/mesh.hpp"
+
+namespace hotmesh::io {
+
+/// One named data array: `components` values per point (or cell), stored interleaved.
+struct VtuArray {
+  std::string name;
+  int components = 1;
+  std::variant<std::vector<double>, std::vector<std::int32_t>, std::vector<std::uint8_t>> values;
+};
+
+struct VtuFields {
+  std::vector<VtuArray> point_data;
+  std::vector<VtuArray> cell_data;
+};
+
+/// VTK cell type number of a hotmesh element type (VTK_QUAD = 9, VTK_HEXAHEDRON = 12, ...).
+std::uint8_t vtk_cell_type(deform::ElementType type);
+
+/// Cell quality (scaled_jacobian, inverted) and, per node, the 1-based index of the first
+/// patch it lies on (0 inside): the arrays every VTU from hotmesh carries.
+VtuFields quality_fields(const deform::Mesh& mesh, std::span<const deform::Vec3> points);
+
+/// Writes the cells of `mesh` at coordinates `points` (mesh.points, or a deformed copy).
+/// Throws std::invalid_argument if an array has the wrong length.
+void write_vtu(std::ostream& out, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+               const VtuFields& fields);
+void write_vtu(const std::filesystem::path& path, const deform::Mesh& mesh,
+               std::span<const deform::Vec3> points, const VtuFields& fields);
+
+}  // namespace hotmesh::io

@@ -1,0 +1,54 @@
+// hotmesh io: reading, validating and writing mesh files chosen by extension.
+#include "hotmesh/io/mesh_files.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+#include <spdlog/spdlog.h>
+
+#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/io/gmsh.hpp"
+
+namespace hotmesh::io {
+
+MeshFormat mesh_format(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".msh") return MeshFormat::gmsh;
+  if (ext == ".vtu") return MeshFormat::vtu;
+  throw InputError::in(path.string(), "unknown mesh format '" + ext +
+                                          "': hotmesh reads Gmsh .msh files and writes .msh and .vtu");
+}
+
+LoadedMesh read_mesh(const std::filesystem::path& path) {
+  if (mesh_format(path) != MeshFormat::gmsh) {
+    throw InputError::in(path.string(), "hotmesh reads meshes from Gmsh .msh files only");
+  }
+  LoadedMesh loaded{read_gmsh(path), {}};
+  try {
+    loaded.validation = deform::validate_mesh(loaded.mesh);
+  } catch (const InputError& e) {
+    throw InputError::in(path.string(), e.what());
+  }
+  for (const auto& note : loaded.validation.notes) spdlog::warn("{}: {}", path.string(), note);
+  return loaded;
+}
+
+void write_mesh(const std::filesystem::path& path, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+                const VtuFields& fields) {
+  switch (mesh_format(path)) {
+    case MeshFormat::gmsh: {
+      if (points.data() == mesh.points.data()) {
+        write_gmsh(path, mesh);
+      } else {
+        deform::Mesh moved = mesh;
+        moved.points.assign(points.begin(), points.end());
+        write_gmsh(path, moved);
+      }
+      return;
+    }
+    case MeshFormat::vtu: write_vtu(path, mesh, points, fields); return;
+  }
+}
+
+}  // namespace hotmesh::io

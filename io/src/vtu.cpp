@@ -1,0 +1,144 @@
+// hotmesh io: VTK XML UnstructuredGrid writer (binary appended, raw encoding, UInt64 headers).
+#include "hotmesh/io/vtu.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <ostream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/io/atomic_file.hpp"
+
+namespace hotmesh::io {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the VTU writer declares LittleEndian data");
+
+/// A block of the appended section: its XML declaration and its raw bytes.
+struct Block {
+  std::string xml_open;  // "<DataArray type=... format="appended" offset="
+  const char* data = nullptr;
+  std::uint64_t bytes = 0;
+};
+
+template <class T>
+Block block(const std::string& type, const std::string& name, int components, const std::vector<T>& v) {
+  Block b;
+  b.xml_open = fmt::format(R"(<DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset=")",
+                           type, name, components);
+  b.data = reinterpret_cast<const char*>(v.data());
+  b.bytes = v.size() * sizeof(T);
+  return b;
+}
+
+Block array_block(const VtuArray& a, std::size_t count, const char* where) {
+  const auto expected = count * static_cast<std::size_t>(a.components);
+  return std::visit(
+      [&](const auto& v) {
+        using T = typename std::decay_t<decltype(v)>::value_type;
+        if (v.size() != expected) {
+          throw std::invalid_argument(fmt::format("{} array '{}' has {} values, expected {}", where, a.name,
+                                                  v.size(), expected));
+        }
+        const char* type = std::is_same_v<T, double> ? "Float64" : std::is_same_v<T, std::int32_t> ? "Int32" : "UInt8";
+        return block(type, a.name, a.components, v);
+      },
+      a.values);
+}
+
+}  // namespace
+
+std::uint8_t vtk_cell_type(deform::ElementType type) {
+  using deform::ElementType;
+  switch (type) {
+    case ElementType::line2: return 3;
+    case ElementType::tri3: return 5;
+    case ElementType::quad4: return 9;
+    case ElementType::tet4: return 10;
+    case ElementType::hex8: return 12;
+    case ElementType::wedge6: return 13;
+    case ElementType::pyramid5: return 14;
+  }
+  return 0;
+}
+
+void write_vtu(std::ostream& out, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+               const VtuFields& fields) {
+  if (points.size() != mesh.node_count()) throw std::invalid_argument("write_vtu: one point per mesh node expected");
+  const auto& cells = mesh.cells;
+  std::vector<double> coordinates(3 * points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    coordinates[3 * i] = points[i].x;
+    coordinates[3 * i + 1] = points[i].y;
+    coordinates[3 * i + 2] = points[i].z;
+  }
+  std::vector<std::int64_t> connectivity(cells.all_nodes().begin(), cells.all_nodes().end());
+  std::vector<std::int64_t> offsets(cells.size());
+  std::vector<std::uint8_t> types(cells.size());
+  std::int64_t end = 0;
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    end += static_cast<std::int64_t>(cells.nodes(c).size());
+    offsets[c] = end;
+    types[c] = vtk_cell_type(cells.type(c));
+  }
+
+  std::vector<Block> point_blocks, cell_blocks;
+  for (const auto& a : fields.point_data) point_blocks.push_back(array_block(a, points.size(), "point"));
+  for (const auto& a : fields.cell_data) cell_blocks.push_back(array_block(a, cells.size(), "cell"));
+  const Block points_block = block("Float64", "Points", 3, coordinates);
+  const Block cell_arrays[] = {block("Int64", "connectivity", 1, connectivity), block("Int64", "offsets", 1, offsets),
+                               block("UInt8", "types", 1, types)};
+
+  std::vector<const Block*> order;  // appended data follows declaration order
+  std::uint64_t offset = 0;
+  auto declare = [&](const Block& b) {
+    out << "        " << b.xml_open << offset << "\"/>\n";
+    offset += sizeof(std::uint64_t) + b.bytes;
+    order.push_back(&b);
+  };
+
+  out << "<?xml version=\"1.0\"?>\n"
+         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+         "  <UnstructuredGrid>\n";
+  out << "    <Piece NumberOfPoints=\"" << points.size() << "\" NumberOfCells=\"" << cells.size() << "\">\n";
+  out << "      <PointData>\n";
+  for (const auto& b : point_blocks) declare(b);
+  out << "      </PointData>\n      <CellData>\n";
+  for (const auto& b : cell_blocks) declare(b);
+  out << "      </CellData>\n      <Points>\n";
+  declare(points_block);
+  out << "      </Points>\n      <Cells>\n";
+  for (const auto& b : cell_arrays) declare(b);
+  out << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
+  for (const Block* b : order) {
+    out.write(reinterpret_cast<const char*>(&b->bytes), sizeof(b->bytes));
+    out.write(b->data, static_cast<std::streamsize>(b->bytes));
+  }
+  out << "\n  </AppendedData>\n</VTKFile>\n";
+}
+
+VtuFields quality_fields(const deform::Mesh& mesh, std::span<const deform::Vec3> points) {
+  VtuFields fields;
+  std::vector<double> quality = deform::scaled_jacobians(mesh.cells, points);
+  std::vector<std::uint8_t> inverted(quality.size());
+  std::transform(quality.begin(), quality.end(), inverted.begin(), [](double q) { return q <= 0.0 ? 1 : 0; });
+  fields.cell_data.push_back({"scaled_jacobian", 1, std::move(quality)});
+  fields.cell_data.push_back({"inverted", 1, std::move(inverted)});
+  std::vector<std::int32_t> patch(mesh.node_count(), 0);
+  for (std::size_t p = mesh.patches.size(); p-- > 0;) {
+    for (deform::NodeId n : mesh.patches[p].nodes) patch[static_cast<std::size_t>(n)] = static_cast<std::int32_t>(p + 1);
+  }
+  fields.point_data.push_back({"patch", 1, std::move(patch)});
+  return fields;
+}
+
+void write_vtu(const std::filesystem::path& path, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+               const VtuFields& fields) {
+  AtomicFile file(path);
+  write_vtu(file.stream(), mesh, points, fields);
+  file.commit();
+}
+
+}  // namespace hotmesh::io
