@@ -129,4 +129,24 @@ std::vector<double> geometric_line(double a, double b, int n, double ratio) {
   return line;
 }
 
+std::vector<double> stretched_line(double a, double b, int n, double first_spacing) {
+  const double length = b - a;
+  if (n < 1 || !(first_spacing > 0.0) || !(first_spacing * n < length)) {
+    throw std::invalid_argument("stretched_line: need 0 < first_spacing < (b - a) / n");
+  }
+  // Total length first * (r^n - 1) / (r - 1) grows with r: bisect for r in (1, rmax].
+  auto total = [&](double r) {
+    double sum = 0.0, h = first_spacing;
+    for (int i = 0; i < n; ++i, h *= r) sum += h;
+    return sum;
+  };
+  double lo = 1.0, hi = 2.0;
+  while (total(hi) < length) hi *= 2.0;
+  for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (total(mid) < length ? lo : hi) = mid;
+  }
+  return geometric_line(a, b, n, 0.5 * (lo + hi));
+}
+
 }  // namespace hotmesh::deform

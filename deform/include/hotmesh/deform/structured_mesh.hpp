@@ -26,5 +26,8 @@ Mesh structured_hexes(std::span<const double> xs, std::span<const double> ys, st
 std::vector<double> uniform_line(double a, double b, int n);
 /// n + 1 points from a to b whose spacing grows by `ratio` from one interval to the next.
 std::vector<double> geometric_line(double a, double b, int n, double ratio);
+/// n + 1 points from a to b, spacing growing geometrically from `first_spacing` at a
+/// (first_spacing < (b - a) / n; the growth ratio is solved for).
+std::vector<double> stretched_line(double a, double b, int n, double first_spacing);
 
 }  // namespace hotmesh::deform

@@ -1,0 +1,48 @@
+// hotmesh geometry: a boundary the mesh follows, as seen by the solver in deform.
+//
+// One interface for every kind of boundary (a curve in the x-y plane for 2D cases, a surface
+// of revolution described by its meridional curve, a plane). A shape has stages
+// lambda in [0, 1]: the undeformed boundary r(t) at lambda = 0, the fully deflected boundary
+// c(t) at lambda = 1, and between them the partial shapes of the increments,
+//     c_lambda(t) = r(t) + lambda (c(t) - r(t)),                                (section 4.3)
+// Points with the same parameter t on different stages are the same material point of the
+// boundary, so a prescribed node at parameter t moves by at(t, lambda) - at(t, 0).
+#pragma once
+
+#include <limits>
+
+#include "hotmesh/geometry/vec3.hpp"
+
+namespace hotmesh::geometry {
+
+/// A point on a boundary shape with its unit normal and curve parameter.
+struct ShapePoint {
+  Vec3 point;
+  /// Unit normal to the boundary at `point`: in the x-y plane for 2D shapes, in the meridional
+  /// plane through the point for axisymmetric ones. Its sign is the shape's convention
+  /// (consistent along the shape); users that need "outward" orient it themselves.
+  Vec3 normal;
+  double parameter = 0.0;  ///< t; for planes, 0
+  double distance = 0.0;   ///< distance from the point that was projected (0 for at())
+};
+
+inline constexpr double kNoHint = std::numeric_limits<double>::quiet_NaN();
+
+class BoundaryShape {
+ public:
+  virtual ~BoundaryShape() = default;
+
+  /// The closest point to p on the stage-lambda shape. Axisymmetric shapes project in the
+  /// meridional plane through p (keeping its angle theta). `hint` is the parameter of an
+  /// earlier projection of a nearby point (a warm start); with kNoHint the search is global.
+  /// Even with a hint the result is the global closest point, except where a point moved by
+  /// much more than its distance to a near branch of the curve since the hint was computed.
+  /// Const and thread-safe: called from parallel loops over nodes.
+  virtual ShapePoint project(const Vec3& p, double lambda, double hint = kNoHint) const = 0;
+
+  /// The point of the stage-lambda shape at parameter t. For axisymmetric shapes it lies in
+  /// the meridional plane through `reference` (any point off the axis).
+  virtual ShapePoint at(double t, double lambda, const Vec3& reference) const = 0;
+};
+
+}  // namespace hotmesh::geometry

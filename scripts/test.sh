@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# hotmesh: build and run the whole test suite on a fresh Debian machine.
+#   1. installs missing Debian packages (scripts/install-deps.sh),
+#   2. builds Release with warnings as errors in build/ and runs every test with ctest,
+#   3. builds with AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/ and runs the
+#      tests again.
+# Exits non-zero on any failure. Usage: scripts/test.sh [--no-sanitizers]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+sanitizers=1
+for arg in "$@"; do
+  case "$arg" in
+    --no-sanitizers) sanitizers=0 ;;
+    *) echo "usage: scripts/test.sh [--no-sanitizers]" >&2; exit 2 ;;
+  esac
+done
+
+scripts/install-deps.sh
+jobs=$(nproc)
+
+echo "== hotmesh: Release build (warnings are errors) and tests"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DHOTMESH_WERROR=ON
+cmake --build build -j "$jobs"
+ctest --test-dir build -j "$jobs" --output-on-failure --timeout 900
+
+if ((sanitizers)); then
+  echo "== hotmesh: AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
+        -DHOTMESH_WERROR=ON -DHOTMESH_SANITIZE=address,undefined
+  cmake --build build-asan -j "$jobs"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir build-asan -j "$jobs" --output-on-failure --timeout 1800 -LE no_sanitizer
+fi
+echo "== hotmesh: all tests passed"
