@@ -3,7 +3,10 @@ add_library(hotmesh_warnings INTERFACE)
 target_compile_options(hotmesh_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast -Wcast-align
   -Wunused -Woverloaded-virtual -Wconversion -Wsign-conversion -Wnull-dereference
-  -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough)
+  -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough
+  # Options structs with defaults are filled with designated initializers ({.binary = true}),
+  # which GCC 12 reports as missing initializers.
+  -Wno-missing-field-initializers)
 if(HOTMESH_WERROR)
   target_compile_options(hotmesh_warnings INTERFACE -Werror)
 endif()

@@ -14,6 +14,8 @@ packages=(
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   # case files, command line, logging
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
+  # pictures (PNG and SVG)
+  libcairo2-dev
   # tests: GoogleTest, plus real external tools that check our files
   # (gmsh writes every .msh flavour we read; VTK's XML reader is the one ParaView uses)
   libgtest-dev libgmock-dev gmsh python3 python3-vtk9 python3-numpy
