@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -49,6 +51,115 @@ deform::Mesh unit_square(int nx, int ny) {
 deform::Mesh unit_cube(int n) {
   const auto line = deform::uniform_line(0.0, 1.0, n);
   return deform::structured_hexes(line, line, line);
+}
+
+deform::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers, double depth) {
+  using deform::ElementType;
+  using deform::NodeId;
+  const int around = 4 * per_side;
+  // Point at perimeter position j (0..around) of the square with half side h, counter-clockwise
+  // from (h, -h).
+  auto on_square = [per_side](int j, double h) {
+    const int side = (j / per_side) % 4;
+    const double s = -h + 2.0 * h * (j % per_side) / per_side;
+    switch (side) {
+      case 0: return deform::Vec3{h, s, 0};
+      case 1: return deform::Vec3{-s, h, 0};
+      case 2: return deform::Vec3{-h, -s, 0};
+      default: return deform::Vec3{s, -h, 0};
+    }
+  };
+  deform::Mesh ring;
+  ring.dimension = 2;
+  for (int k = 0; k <= radial; ++k) {
+    const double h = inner + (outer - inner) * k / radial;
+    for (int j = 0; j < around; ++j) ring.points.push_back(on_square(j, h));
+  }
+  auto id = [around](int k, int j) { return static_cast<NodeId>(k * around + (j % around)); };
+  for (int k = 0; k < radial; ++k) {
+    for (int j = 0; j < around; ++j) ring.cells.add(ElementType::quad4, {id(k, j), id(k + 1, j), id(k + 1, j + 1), id(k, j + 1)});
+  }
+  ring.patches.resize(2);
+  ring.patches[0].name = "inner";
+  ring.patches[0].tag = 1;
+  ring.patches[1].name = "outer";
+  ring.patches[1].tag = 2;
+  for (int j = 0; j < around; ++j) {
+    ring.patches[0].faces.add(ElementType::line2, {id(0, j + 1), id(0, j)});
+    ring.patches[1].faces.add(ElementType::line2, {id(radial, j), id(radial, j + 1)});
+  }
+  ring.derive_node_sets();
+  if (layers == 0) return ring;
+
+  deform::Mesh mesh;
+  mesh.dimension = 3;
+  const auto plane = static_cast<NodeId>(ring.points.size());
+  for (int l = 0; l <= layers; ++l) {
+    for (deform::Vec3 p : ring.points) mesh.points.push_back({p.x, p.y, depth * l / layers});
+  }
+  for (int l = 0; l < layers; ++l) {
+    const NodeId lo = l * plane, hi = (l + 1) * plane;
+    for (std::size_t c = 0; c < ring.cells.size(); ++c) {
+      const auto q = ring.cells.nodes(c);
+      mesh.cells.add(ElementType::hex8, {lo + q[0], lo + q[1], lo + q[2], lo + q[3], hi + q[0], hi + q[1], hi + q[2], hi + q[3]});
+    }
+  }
+  const char* names[] = {"inner", "outer", "zmin", "zmax"};
+  mesh.patches.resize(4);
+  for (int p = 0; p < 4; ++p) {
+    mesh.patches[static_cast<std::size_t>(p)].name = names[p];
+    mesh.patches[static_cast<std::size_t>(p)].tag = p + 1;
+  }
+  for (int l = 0; l < layers; ++l) {
+    const NodeId lo = l * plane, hi = (l + 1) * plane;
+    for (int p = 0; p < 2; ++p) {
+      const auto& edges = ring.patches[static_cast<std::size_t>(p)].faces;
+      for (std::size_t e = 0; e < edges.size(); ++e) {
+        const auto n = edges.nodes(e);
+        mesh.patches[static_cast<std::size_t>(p)].faces.add(ElementType::quad4, {lo + n[0], lo + n[1], hi + n[1], hi + n[0]});
+      }
+    }
+  }
+  const NodeId top = layers * plane;
+  for (std::size_t c = 0; c < ring.cells.size(); ++c) {
+    const auto q = ring.cells.nodes(c);
+    mesh.patches[2].faces.add(ElementType::quad4, {q[0], q[3], q[2], q[1]});
+    mesh.patches[3].faces.add(ElementType::quad4, {top + q[0], top + q[1], top + q[2], top + q[3]});
+  }
+  mesh.derive_node_sets();
+  return mesh;
+}
+
+void jiggle_interior(deform::Mesh& mesh, double fraction) {
+  std::vector<char> on_boundary(mesh.node_count(), 0);
+  for (const auto& p : mesh.patches) {
+    for (auto n : p.nodes) on_boundary[static_cast<std::size_t>(n)] = 1;
+  }
+  std::vector<double> shortest(mesh.node_count(), 1e300);
+  for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
+    const auto nodes = mesh.cells.nodes(c);
+    for (auto a : nodes) {
+      for (auto b : nodes) {
+        if (a != b) {
+          const double d = distance(mesh.points[static_cast<std::size_t>(a)], mesh.points[static_cast<std::size_t>(b)]);
+          shortest[static_cast<std::size_t>(a)] = std::min(shortest[static_cast<std::size_t>(a)], d);
+        }
+      }
+    }
+  }
+  std::uint64_t state = 0x2545F4914F6CDD1Dull;
+  auto uniform = [&state] {  // xorshift64*, in [-1, 1)
+    state ^= state >> 12;
+    state ^= state << 25;
+    state ^= state >> 27;
+    return static_cast<double>((state * 0x2545F4914F6CDD1Dull) >> 11) / 4503599627370496.0 - 1.0;
+  };
+  for (std::size_t n = 0; n < mesh.node_count(); ++n) {
+    const double dx = uniform(), dy = uniform(), dz = uniform();
+    if (on_boundary[n]) continue;
+    const double r = fraction * shortest[n];
+    mesh.points[n] += deform::Vec3{r * dx, r * dy, mesh.dimension == 3 ? r * dz : 0.0};
+  }
 }
 
 }  // namespace hotmesh::test

@@ -12,13 +12,26 @@ struct SolverOptions {
   double pcg_tolerance = 1e-3;      ///< relative residual of each inner linear solve
   int max_pcg_iterations = 5000;
   int threads = 0;                  ///< OpenMP threads; 0: all available cores
+  /// An increment that inverts a cell or whose Newton iteration fails is retried as two
+  /// half increments, recursively, at most this many times in a row (0: never).
+  int max_increment_splits = 4;
 };
 
-/// Pseudo-material of the elastic medium: eq. (35), 2G = alpha_s |phi_s|,
-/// lambda + 2G/3 = alpha_v |phi_v|.
+/// How the pseudo-material's Lamé parameters vary from element to element.
+enum class StiffnessLaw {
+  shape_volume,    ///< eq. (35): 2G = alpha_s |phi_s|, lambda + 2G/3 = alpha_v |phi_v| (the paper)
+  uniform,         ///< 2G = alpha_s, lambda + 2G/3 = alpha_v everywhere
+  inverse_volume,  ///< both moduli scaled by V_median / V_e (stiff small cells)
+};
+
+/// Pseudo-material of the elastic medium (the paper's appendix).
 struct MaterialOptions {
+  StiffnessLaw law = StiffnessLaw::shape_volume;
   double alpha_s = 1.0;   ///< weight of shape (deviatoric) stiffness
   double alpha_v = 0.01;  ///< weight of volume stiffness; the paper keeps it 1-3 orders lower
+  /// Integrate K_e without the Jacobian determinant (Stein et al.), which makes small
+  /// elements stiffer. The paper does; standard finite elements (and the patch test) don't.
+  bool drop_jacobian = true;
 };
 
 }  // namespace hotmesh::deform

@@ -1,0 +1,109 @@
+// hotmesh deform: moving a mesh to follow its boundaries — the whole method of the paper.
+//
+// The prescribed motion is applied in N increments (stages lambda_k = k/N). Each increment
+// starts from the geometry reached by the previous one and solves the elastic-medium
+// analogy with geometric nonlinearity by the paper's Newton-Raphson cycle (eqs. 7-8):
+//     R(u) = K(x + u) u - f,      K(n) p = -R(n),      u(n+1) = u(n) + p,
+// K rebuilt at the current geometry every iteration, until ||R|| <= tol ||R0||. Each linear
+// system is solved by Jacobi-preconditioned CG on the free degrees of freedom. After every
+// increment the cells are checked; an increment that inverts a cell or whose Newton cycle
+// fails is retried as two half increments (recursively, up to a limit). If it still fails,
+// the run stops with the last valid mesh and a message naming the cell and increment.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/deform/solver_options.hpp"
+#include "hotmesh/geometry/boundary_shape.hpp"
+
+namespace hotmesh::deform {
+
+enum class BoundaryRole : std::uint8_t {
+  fixed,       ///< u = 0
+  prescribed,  ///< follows its deflected shape: a node at parameter t moves with c_lambda(t)
+  slip,        ///< u . n = 0 on the original planar boundary (eq. 11)
+  sliding,     ///< slides over its deflected shape (section 4)
+  passive,     ///< displacement from a surface-only spring solve (section 6.1)
+  periodic,    ///< u_slave = R u_master with its partner patch
+};
+std::string_view to_string(BoundaryRole role);
+
+/// What one mesh patch does during the motion.
+struct PatchMotion {
+  std::string patch;  ///< name of a patch of the mesh
+  BoundaryRole role = BoundaryRole::fixed;
+  /// prescribed: the boundary's undeformed and deflected shape (required).
+  std::shared_ptr<const geometry::BoundaryShape> shape;
+  /// Largest distance allowed between a patch node and the undeformed shape; 0 means
+  /// 1e-3 times the diagonal of the patch's bounding box.
+  double tolerance = 0.0;
+};
+
+/// Node roles as stored per node for output: 0 for interior nodes, 1 + BoundaryRole.
+using NodeRoleCode = std::uint8_t;
+
+struct NewtonStep {
+  double residual = 0.0;           ///< ||R|| before this step's linear solve
+  int pcg_iterations = 0;          ///< of the solve that followed (0 on the last entry)
+  bool pcg_converged = true;
+  double pcg_reduction = 0.0;      ///< ||r|| / ||r0|| reached by PCG
+};
+
+struct IncrementRecord {
+  int increment = 0;          ///< 1..N: the increment of the case this attempt belongs to
+  double lambda_begin = 0.0;
+  double lambda_end = 0.0;
+  int split_depth = 0;        ///< 0 for the increment itself, d for a 1/2^d piece of it
+  std::vector<NewtonStep> newton;
+  bool converged = false;     ///< the Newton cycle reached the tolerance
+  bool accepted = false;      ///< converged and no cell inverted
+  double residual_reduction = 0.0;  ///< final ||R|| / ||R0||
+  double min_scaled_jacobian = 0.0;
+  std::size_t inverted_cells = 0;
+  CellId worst_cell = -1;
+  double seconds = 0.0;
+  std::string failure;        ///< why it was not accepted
+};
+
+struct MotionTimings {
+  double setup = 0.0;     ///< material, shapes, constraints
+  double assembly = 0.0;  ///< element matrices
+  double solve = 0.0;     ///< PCG
+  double quality = 0.0;
+  double total = 0.0;
+};
+
+struct MotionResult {
+  bool success = false;
+  std::string message;                 ///< on failure: what failed, naming cell and increment
+  double lambda_reached = 0.0;         ///< stage of `points`
+  std::vector<Vec3> points;            ///< the last valid mesh (the final one on success)
+  std::vector<double> quality;         ///< scaled Jacobian per cell of `points`
+  QualitySummary summary;              ///< of `points`
+  std::vector<Vec3> failed_points;     ///< the rejected attempt on failure, else empty
+  std::vector<double> failed_quality;
+  std::vector<IncrementRecord> increments;  ///< every attempt, accepted or not, in order
+  std::vector<NodeRoleCode> node_roles;
+  std::vector<std::string> notes;      ///< things worth a warning (set-up conflicts, ...)
+  MotionTimings timings;
+};
+
+using IncrementObserver = std::function<void(const IncrementRecord&)>;
+
+/// Moves `mesh` (validated) as its patches prescribe. Every mesh patch needs an entry in
+/// `patches`. Throws hotmesh::InputError for a set-up the solver cannot take (unknown patch,
+/// missing shape, patch nodes off their shape, a slip patch that is not planar, cells other
+/// than quad4/hex8, nothing held in place); a failure of the motion itself is reported in
+/// the result.
+MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
+                       const SolverOptions& solver, const IncrementObserver& observer = {});
+
+}  // namespace hotmesh::deform

@@ -1,0 +1,72 @@
+// hotmesh deform: element stiffness matrices, eq. (28)-(30) (pointwise physics layer).
+#include "hotmesh/deform/element_stiffness.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hotmesh/geometry/input_error.hpp"
+#include "q1_element.hpp"
+
+namespace hotmesh::deform {
+namespace {
+
+template <std::size_t D>
+void q1_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, std::span<double> k) {
+  using Q = detail::Q1<D>;
+  constexpr std::size_t n = Q::kDofs;
+  std::fill(k.begin(), k.end(), 0.0);
+  for (const auto& xi : Q::gauss_points()) {
+    const auto dn = Q::reference_gradients(xi);
+    const auto j = Q::jacobian(e, dn);
+    const double det = Q::determinant(j);
+    if (det == 0.0 || !std::isfinite(det)) continue;  // a collapsed point carries no stiffness
+    const auto inv = Q::inverse(j, det);
+    // g_a = J^-T dN_a/dxi: g_a,i = sum_k dN_a/dxi_k (J^-1)_ki
+    std::array<std::array<double, D>, Q::kNodes> g{};
+    for (std::size_t a = 0; a < Q::kNodes; ++a) {
+      for (std::size_t i = 0; i < D; ++i) {
+        for (std::size_t m = 0; m < D; ++m) g[a][i] += dn[a][m] * inv[m][i];
+      }
+    }
+    const double w = drop_jacobian ? 1.0 : std::abs(det);  // Gauss weights are all 1
+    for (std::size_t a = 0; a < Q::kNodes; ++a) {
+      for (std::size_t b = 0; b < Q::kNodes; ++b) {
+        double gg = 0.0;
+        for (std::size_t m = 0; m < D; ++m) gg += g[a][m] * g[b][m];
+        for (std::size_t i = 0; i < D; ++i) {
+          double* row = k.data() + (a * D + i) * n + b * D;
+          for (std::size_t jj = 0; jj < D; ++jj) {
+            double v = lame.lambda * g[a][i] * g[b][jj] + lame.mu * g[a][jj] * g[b][i];
+            if (i == jj) v += lame.mu * gg;
+            row[jj] += w * v;
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+int element_dofs(ElementType type) {
+  switch (type) {
+    case ElementType::quad4: return 8;
+    case ElementType::hex8: return 24;
+    default:
+      throw InputError("the mesh-motion solver handles quad4 and hex8 cells; this mesh has " +
+                       std::string(name(type)) + " cells");
+  }
+}
+
+void element_stiffness(ElementType type, const ElementPoints& element, const Lame& lame, bool drop_jacobian,
+                       std::span<double> k) {
+  if (type == ElementType::quad4) {
+    q1_stiffness<2>(element, lame, drop_jacobian, k);
+  } else if (type == ElementType::hex8) {
+    q1_stiffness<3>(element, lame, drop_jacobian, k);
+  } else {
+    element_dofs(type);  // throws the solver's message
+  }
+}
+
+}  // namespace hotmesh::deform

@@ -1,0 +1,74 @@
+// hotmesh deform: eq. (35), per-element Lamé parameters from the original mesh.
+#include "hotmesh/deform/material.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hotmesh/geometry/input_error.hpp"
+#include "q1_element.hpp"
+
+namespace hotmesh::deform {
+namespace {
+
+template <std::size_t D>
+ElementShape q1_shape(const ElementPoints& e) {
+  using Q = detail::Q1<D>;
+  const auto dn = Q::reference_gradients({});
+  const auto j = Q::jacobian(e, dn);
+  const double det = Q::determinant(j);
+  ElementShape s;
+  s.volume = det * static_cast<double>(std::size_t{1} << D);
+  if (!(det > 0.0)) {
+    s.shape_measure = 1e12;  // a centre Jacobian <= 0 is as distorted as it gets
+    return s;
+  }
+  // ||Jh||_F ||Jh^-1||_F = ||J||_F ||J^-1||_F: the det(J)^(1/d) scaling cancels.
+  s.shape_measure = Q::frobenius(j) * Q::frobenius(Q::inverse(j, det)) / static_cast<double>(D);
+  return s;
+}
+
+}  // namespace
+
+ElementShape element_shape(ElementType type, const ElementPoints& element) {
+  switch (type) {
+    case ElementType::quad4: return q1_shape<2>(element);
+    case ElementType::hex8: return q1_shape<3>(element);
+    default:
+      throw InputError("the mesh-motion solver handles quad4 and hex8 cells; this mesh has " +
+                       std::string(name(type)) + " cells");
+  }
+}
+
+std::vector<Lame> element_lame(const Mesh& mesh, const MaterialOptions& options) {
+  const std::size_t n = mesh.cell_count();
+  std::vector<ElementShape> shapes(n);
+  for (std::size_t c = 0; c < n; ++c) shapes[c] = element_shape(mesh.cells.type(c), gather(mesh.cells.nodes(c), mesh.points));
+
+  std::vector<double> volumes(n);
+  std::transform(shapes.begin(), shapes.end(), volumes.begin(), [](const ElementShape& s) { return s.volume; });
+  const auto middle = volumes.begin() + static_cast<std::ptrdiff_t>(n / 2);
+  std::nth_element(volumes.begin(), middle, volumes.end());
+  const double median = n > 0 ? *middle : 1.0;
+
+  std::vector<Lame> lame(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    const double volume_ratio = shapes[c].volume > 0.0 ? median / shapes[c].volume : 1e12;  // |phi_v|
+    double two_g = options.alpha_s;  // 2G
+    double bulk = options.alpha_v;   // lambda + 2G/3
+    switch (options.law) {
+      case StiffnessLaw::shape_volume:
+        two_g *= shapes[c].shape_measure;
+        bulk *= volume_ratio;
+        break;
+      case StiffnessLaw::uniform: break;
+      case StiffnessLaw::inverse_volume:
+        two_g *= volume_ratio;
+        bulk *= volume_ratio;
+        break;
+    }
+    lame[c] = {bulk - two_g / 3.0, 0.5 * two_g};
+  }
+  return lame;
+}
+
+}  // namespace hotmesh::deform

@@ -1,0 +1,246 @@
+// hotmesh deform: increments, the Newton-Raphson cycle (eqs. 7-8), quality checks and
+// increment splitting.
+#include "hotmesh/deform/mesh_motion.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "boundary_conditions.hpp"
+#include "hotmesh/deform/material.hpp"
+#include "hotmesh/deform/pcg.hpp"
+#include "hotmesh/deform/stiffness_operator.hpp"
+
+namespace hotmesh::deform {
+
+std::string_view to_string(BoundaryRole role) {
+  switch (role) {
+    case BoundaryRole::fixed: return "fixed";
+    case BoundaryRole::prescribed: return "prescribed";
+    case BoundaryRole::slip: return "slip";
+    case BoundaryRole::sliding: return "sliding";
+    case BoundaryRole::passive: return "passive";
+    case BoundaryRole::periodic: return "periodic";
+  }
+  return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// P K P: the stiffness restricted to the admissible subspace (eq. 16: the normal component
+/// is removed after the element loop).
+class ConstrainedOperator final : public LinearOperator {
+ public:
+  ConstrainedOperator(const StiffnessOperator& k, const NodeConstraints& c) : k_(k), c_(c) {}
+  std::size_t size() const override { return k_.size(); }
+  void apply(std::span<const double> x, std::span<double> y) const override {
+    k_.apply(x, y);
+    c_.project(y);
+  }
+
+ private:
+  const StiffnessOperator& k_;
+  const NodeConstraints& c_;
+};
+
+/// Jacobi: y = P D^-1 x (apply, then project, so tangency is kept).
+class JacobiPreconditioner final : public LinearOperator {
+ public:
+  JacobiPreconditioner(const StiffnessOperator& k, const NodeConstraints& c) : inverse_(k.size()), c_(c) {
+    k.diagonal(inverse_);
+    for (double& d : inverse_) d = d > 0.0 ? 1.0 / d : 0.0;
+  }
+  std::size_t size() const override { return inverse_.size(); }
+  void apply(std::span<const double> x, std::span<double> y) const override {
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(x.size()); ++i) {
+      y[static_cast<std::size_t>(i)] = inverse_[static_cast<std::size_t>(i)] * x[static_cast<std::size_t>(i)];
+    }
+    c_.project(y);
+  }
+
+ private:
+  std::vector<double> inverse_;
+  const NodeConstraints& c_;
+};
+
+class Motion {
+ public:
+  Motion(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
+         const SolverOptions& solver, const IncrementObserver& observer)
+      : mesh_(mesh),
+        solver_(solver),
+        observer_(observer),
+        setup_(detail::set_up_boundaries(mesh, patches)),
+        stiffness_(mesh, element_lame(mesh, material), material.drop_jacobian),
+        dim_(static_cast<std::size_t>(mesh.dimension)) {}
+
+  MotionResult run() {
+    const auto start = Clock::now();
+    result_.node_roles = setup_.roles;
+    result_.notes = setup_.notes;
+    result_.points = mesh_.points;
+    const int n = std::max(solver_.increments, 1);
+    for (int k = 1; k <= n; ++k) {
+      if (!advance(k, double(k - 1) / n, double(k) / n, 0)) break;
+    }
+    result_.success = result_.failed_points.empty();
+    if (result_.success) result_.lambda_reached = 1.0;
+    const auto q = Clock::now();
+    result_.quality = scaled_jacobians(mesh_.cells, result_.points);
+    result_.summary = summarize_quality(result_.quality);
+    result_.timings.quality += seconds_since(q);
+    result_.timings.total = seconds_since(start) + result_.timings.setup;
+    return std::move(result_);
+  }
+
+  void set_setup_time(double s) { result_.timings.setup = s; }
+
+ private:
+  /// Moves the mesh from stage a to stage b, splitting the step on failure.
+  bool advance(int increment, double a, double b, int depth) {
+    IncrementRecord record;
+    std::vector<Vec3> moved = attempt(a, b, record);
+    record.increment = increment;
+    record.split_depth = depth;
+    result_.increments.push_back(record);
+    if (observer_) observer_(record);
+    if (record.accepted) {
+      result_.points = std::move(moved);
+      result_.lambda_reached = b;
+      return true;
+    }
+    if (depth < solver_.max_increment_splits) {
+      const double mid = 0.5 * (a + b);
+      return advance(increment, a, mid, depth + 1) && advance(increment, mid, b, depth + 1);
+    }
+    result_.failed_points = std::move(moved);
+    result_.failed_quality = scaled_jacobians(mesh_.cells, result_.failed_points);
+    result_.message = fmt::format("increment {} of {} failed (stage {:.6g} to {:.6g}{}): {}", increment,
+                                  std::max(solver_.increments, 1), a, b,
+                                  depth > 0 ? fmt::format(", after splitting it {} times", depth) : "", record.failure);
+    return false;
+  }
+
+  /// One increment: Newton-Raphson from the current mesh to stage b. Returns the new points.
+  std::vector<Vec3> attempt(double a, double b, IncrementRecord& record) {
+    const auto start = Clock::now();
+    record.lambda_begin = a;
+    record.lambda_end = b;
+    const std::vector<Vec3>& x = result_.points;
+    const std::size_t dofs = stiffness_.size();
+
+    // Initial u: the boundary's move to stage b on prescribed nodes, zero elsewhere.
+    std::vector<double> u(dofs, 0.0);
+    for (const auto& p : setup_.prescribed) {
+      const auto i = static_cast<std::size_t>(p.node);
+      const Vec3 target = detail::prescribed_position(p, mesh_.points[i], b);
+      for (std::size_t c = 0; c < dim_; ++c) u[i * dim_ + c] = target[c] - x[i][c];
+    }
+
+    std::vector<Vec3> trial(x.size());
+    std::vector<double> r(dofs), rhs(dofs), p(dofs);
+    double r0 = 0.0;
+    const ConstrainedOperator k(stiffness_, setup_.constraints);
+    for (int it = 0;; ++it) {
+      displace(x, u, trial);
+      auto t = Clock::now();
+      stiffness_.update(trial);  // K(n) at the current geometry (eq. 8)
+      result_.timings.assembly += seconds_since(t);
+      stiffness_.apply(u, r);  // R(n) = K(n) u(n) - f  (eq. 7): f is K's action on the boundary motion
+      setup_.constraints.project(r);
+      const double residual = norm2(r);
+      if (it == 0) r0 = residual;
+      record.newton.push_back({residual, 0, true, 0.0});
+      record.residual_reduction = r0 > 0.0 ? residual / r0 : 0.0;
+      if (!std::isfinite(residual) || residual > 1e6 * r0) {
+        record.failure = fmt::format("the Newton-Raphson cycle diverged (residual {:.3g} times the initial one)",
+                                     residual / r0);
+        break;
+      }
+      if (residual <= solver_.newton_tolerance * r0 || r0 == 0.0) {
+        record.converged = true;
+        break;
+      }
+      if (it == solver_.max_newton_iterations) {
+        record.failure = fmt::format("the Newton-Raphson cycle did not converge in {} iterations (residual reduced "
+                                     "to {:.3g}, tolerance {:.3g})",
+                                     solver_.max_newton_iterations, record.residual_reduction, solver_.newton_tolerance);
+        break;
+      }
+      // K(n) p = -R(n) on the free degrees of freedom, from p = 0 (eq. 8, section 3).
+      for (std::size_t i = 0; i < dofs; ++i) rhs[i] = -r[i];
+      std::fill(p.begin(), p.end(), 0.0);
+      t = Clock::now();
+      const JacobiPreconditioner m(stiffness_, setup_.constraints);
+      const auto cg = pcg(k, m, rhs, p,
+                          {.relative_tolerance = solver_.pcg_tolerance,
+                           .max_iterations = solver_.max_pcg_iterations,
+                           .record_history = false,
+                           .project = [this](std::span<double> v) { setup_.constraints.project(v); }});
+      result_.timings.solve += seconds_since(t);
+      auto& step = record.newton.back();
+      step.pcg_iterations = cg.iterations;
+      step.pcg_converged = cg.converged;
+      step.pcg_reduction = cg.initial_residual > 0.0 ? cg.final_residual / cg.initial_residual : 0.0;
+      if (cg.breakdown) {
+        record.failure = "the linear solver broke down (the stiffness is not positive definite on the free nodes)";
+        break;
+      }
+      axpy(1.0, p, u);
+    }
+    if (record.converged) {
+      const auto t = Clock::now();
+      const auto quality = scaled_jacobians(mesh_.cells, trial);
+      const auto summary = summarize_quality(quality);
+      result_.timings.quality += seconds_since(t);
+      record.min_scaled_jacobian = summary.min_scaled_jacobian;
+      record.inverted_cells = summary.inverted_cells;
+      record.worst_cell = summary.worst_cell;
+      if (summary.inverted_cells > 0) {
+        record.failure = fmt::format("{} cells inverted, the worst cell {} (scaled Jacobian {:.3g})",
+                                     summary.inverted_cells, mesh_.cell_id(summary.worst_cell),
+                                     summary.min_scaled_jacobian);
+      } else {
+        record.accepted = true;
+      }
+    }
+    record.seconds = seconds_since(start);
+    return trial;
+  }
+
+  void displace(const std::vector<Vec3>& x, std::span<const double> u, std::vector<Vec3>& out) const {
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t n = 0; n < static_cast<std::ptrdiff_t>(x.size()); ++n) {
+      const auto i = static_cast<std::size_t>(n);
+      Vec3 p = x[i];
+      for (std::size_t c = 0; c < dim_; ++c) p[c] += u[i * dim_ + c];
+      out[i] = p;
+    }
+  }
+
+  const Mesh& mesh_;
+  SolverOptions solver_;
+  const IncrementObserver& observer_;
+  detail::BoundarySetup setup_;
+  StiffnessOperator stiffness_;
+  std::size_t dim_;
+  MotionResult result_;
+};
+
+}  // namespace
+
+MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
+                       const SolverOptions& solver, const IncrementObserver& observer) {
+  const auto start = Clock::now();
+  Motion motion(mesh, patches, material, solver, observer);
+  motion.set_setup_time(seconds_since(start));
+  return motion.run();
+}
+
+}  // namespace hotmesh::deform

@@ -1,0 +1,99 @@
+// Tests of the matrix-free stiffness operator (eqs. 9-10): agreement with the assembled
+// matrix, colouring, and bit-identical results for any number of threads.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cstring>
+
+#include "hotmesh/deform/assembled_stiffness.hpp"
+#include "hotmesh/deform/material.hpp"
+#include "hotmesh/deform/stiffness_operator.hpp"
+#include "hotmesh/geometry/input_error.hpp"
+#include "test_support.hpp"
+
+namespace hotmesh::deform {
+namespace {
+
+std::vector<double> pseudo_random(std::size_t n) {
+  std::vector<double> v(n);
+  std::uint64_t s = 88172645463325252ull;
+  for (auto& x : v) {
+    s ^= s << 13;
+    s ^= s >> 7;
+    s ^= s << 17;
+    x = static_cast<double>(s % 2001) / 1000.0 - 1.0;
+  }
+  return v;
+}
+
+StiffnessOperator make_operator(const Mesh& mesh) {
+  StiffnessOperator k(mesh, element_lame(mesh, {}), true);
+  k.update(mesh.points);
+  return k;
+}
+
+TEST(StiffnessOperator, MatrixFreeAgreesWithAssembledMatrix) {
+  for (Mesh mesh : {test::square_ring(6, 4, 0.3, 1.0), test::square_ring(4, 3, 0.3, 1.0, 2, 0.5)}) {
+    test::jiggle_interior(mesh, 0.2);
+    const StiffnessOperator k = make_operator(mesh);
+    const auto a = assemble_sparse(k);
+    const auto x = pseudo_random(k.size());
+    std::vector<double> y(k.size());
+    k.apply(x, y);
+    const Eigen::VectorXd reference = a * Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+    const Eigen::Map<const Eigen::VectorXd> matrix_free(y.data(), static_cast<Eigen::Index>(y.size()));
+    EXPECT_LT((matrix_free - reference).norm(), 1e-12 * reference.norm());
+    std::vector<double> d(k.size());
+    k.diagonal(d);
+    for (std::size_t i = 0; i < d.size(); ++i) EXPECT_NEAR(d[i], a.coeff(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), 1e-12 * std::abs(d[i]));
+    EXPECT_LT((Eigen::SparseMatrix<double>(a.transpose()) - a).norm(), 1e-12 * a.norm());
+  }
+}
+
+TEST(StiffnessOperator, ColoursNeverShareANode) {
+  const Mesh mesh = test::square_ring(5, 3, 0.3, 1.0, 2, 1.0);
+  const CellColoring coloring = color_cells(mesh.cells, mesh.node_count());
+  EXPECT_LE(coloring.colors(), 10u);  // a structured hex mesh needs 8
+  std::size_t total = 0;
+  for (std::size_t k = 0; k < coloring.colors(); ++k) {
+    std::vector<char> used(mesh.node_count(), 0);
+    for (auto i = coloring.offsets[k]; i < coloring.offsets[k + 1]; ++i) {
+      for (NodeId n : mesh.cells.nodes(static_cast<std::size_t>(coloring.cells[static_cast<std::size_t>(i)]))) {
+        EXPECT_FALSE(used[static_cast<std::size_t>(n)]) << "colour " << k << " node " << n;
+        used[static_cast<std::size_t>(n)] = 1;
+      }
+      ++total;
+    }
+  }
+  EXPECT_EQ(total, mesh.cell_count());
+}
+
+TEST(StiffnessOperator, ProductIsBitIdenticalForAnyThreadCount) {
+  Mesh mesh = test::square_ring(8, 6, 0.3, 1.0, 3, 0.6);
+  test::jiggle_interior(mesh, 0.2);
+  const StiffnessOperator k = make_operator(mesh);
+  const auto x = pseudo_random(k.size());
+  std::vector<std::vector<double>> results;
+  const int saved = omp_get_max_threads();
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    std::vector<double> y(k.size());
+    k.apply(x, y);
+    results.push_back(y);
+  }
+  omp_set_num_threads(saved);
+  for (std::size_t r = 1; r < results.size(); ++r) {
+    EXPECT_EQ(std::memcmp(results[r].data(), results[0].data(), results[0].size() * sizeof(double)), 0);
+  }
+}
+
+TEST(StiffnessOperator, RejectsCellsTheSolverDoesNotHandle) {
+  Mesh mesh = test::unit_square(1, 1);
+  mesh.cells = {};
+  mesh.cells.add(ElementType::tri3, {0, 1, 2});
+  mesh.cells.add(ElementType::tri3, {0, 2, 3});
+  EXPECT_THROW(StiffnessOperator(mesh, std::vector<Lame>(2), true), InputError);
+}
+
+}  // namespace
+}  // namespace hotmesh::deform

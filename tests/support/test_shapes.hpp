@@ -1,0 +1,69 @@
+// hotmesh tests: boundary shapes defined in code. A polyline in the x-y plane (extruded along
+// z for 3D meshes: points are projected in their own z plane) whose vertices move with a
+// given function of the stage lambda, so tests can prescribe rigid rotations, affine maps
+// and ramps exactly.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "hotmesh/geometry/boundary_shape.hpp"
+
+namespace hotmesh::test {
+
+using geometry::ShapePoint;
+using geometry::Vec3;
+
+class TestCurveShape final : public geometry::BoundaryShape {
+ public:
+  using Motion = std::function<Vec3(const Vec3& p, double lambda)>;
+
+  TestCurveShape(std::vector<Vec3> vertices, Motion motion) : vertices_(std::move(vertices)), motion_(std::move(motion)) {}
+
+  ShapePoint project(const Vec3& p, double lambda, double /*hint*/) const override {
+    ShapePoint best;
+    best.distance = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i + 1 < vertices_.size(); ++i) {
+      const Vec3 a = moved(i, lambda, p.z), b = moved(i + 1, lambda, p.z);
+      const Vec3 ab = b - a;
+      const double s = std::clamp(dot(p - a, ab) / dot(ab, ab), 0.0, 1.0);
+      const Vec3 q = a + s * ab;
+      const double d = distance(p, q);
+      if (d < best.distance) {
+        best = {q, Vec3{ab.y, -ab.x, 0.0} / norm(ab), static_cast<double>(i) + s, d};
+      }
+    }
+    return best;
+  }
+
+  ShapePoint at(double t, double lambda, const Vec3& reference) const override {
+    const auto i = std::min(static_cast<std::size_t>(std::max(t, 0.0)), vertices_.size() - 2);
+    const double s = t - static_cast<double>(i);
+    const Vec3 a = moved(i, lambda, reference.z), b = moved(i + 1, lambda, reference.z);
+    const Vec3 ab = b - a;
+    return {a + s * ab, Vec3{ab.y, -ab.x, 0.0} / norm(ab), t, 0.0};
+  }
+
+ private:
+  Vec3 moved(std::size_t i, double lambda, double z) const {
+    Vec3 v = vertices_[i];
+    v.z = z;
+    return motion_(v, lambda);
+  }
+  std::vector<Vec3> vertices_;
+  Motion motion_;
+};
+
+/// Rotation about the z axis through `centre` by lambda * angle.
+inline TestCurveShape::Motion rotation(double angle, Vec3 centre = {}) {
+  return [=](const Vec3& p, double lambda) {
+    const double c = std::cos(lambda * angle), s = std::sin(lambda * angle);
+    const Vec3 r = p - centre;
+    return centre + Vec3{c * r.x - s * r.y, s * r.x + c * r.y, r.z};
+  };
+}
+
+}  // namespace hotmesh::test
