@@ -33,18 +33,22 @@ struct DeflectionSpec {
   int degree = 1;                       ///< B-spline degree q of the reconstruction, 1..5
   std::vector<int> faces;               ///< CAD face ids (1-based); needs `cad`
   geometry::DeflectionSamples samples;  ///< the table, read during validation
+  std::size_t line = 0;                 ///< line of the `deflection` key in the case file
 };
 
 struct PatchSpec {
   std::string name;
   PatchRole role = PatchRole::fixed;
   std::optional<DeflectionSpec> deflection;  ///< prescribed (required), sliding (optional)
-  std::string partner;                       ///< periodic: the other patch of the pair
-  double angle_deg = 0.0;                    ///< periodic: rotation from this patch to partner
+  std::string partner;                       ///< periodic: the other patch of the pair (set on both sides)
+  double angle_deg = 0.0;                    ///< periodic: rotation from this patch to partner;
+                                             ///< non-zero only on the side that declares the pair
   std::size_t line = 0;                      ///< line of this patch in the case file
 };
 
 struct Case {
+  // Every path is absolute and lexically normal; relative ones were resolved against the
+  // folder of the case file.
   std::filesystem::path file;                ///< the case file
   std::filesystem::path mesh;
   std::optional<std::filesystem::path> cad;
@@ -56,13 +60,15 @@ struct Case {
   std::size_t patches_line = 0;              ///< line of the `patches:` key
 
   const PatchSpec* find_patch(std::string_view name) const;
-  /// Every file the case reads: the case file, mesh, CAD file and deflection tables.
+  /// Every file the case reads: the case file, mesh, CAD file and deflection tables (each once,
+  /// in that order).
   std::vector<std::filesystem::path> inputs() const;
 };
 
 /// Parses and validates a case file given as text; `file` is its path (for messages and to
 /// resolve relative paths). Reads the deflection tables it names. Throws hotmesh::InputError
-/// listing every problem found, each as "<file>:<line>: <key>: <what is wrong>".
+/// listing every problem found, one per line in file order, each as
+/// "<file>:<line>: <key path>: <what is wrong>" with <file> the absolute case file path.
 Case parse_case(std::string_view text, const std::filesystem::path& file);
 Case read_case(const std::filesystem::path& file);
 

@@ -4,6 +4,8 @@
 //   r,z,dr,dz          meridional, about the case's axis (SampleFrame::meridional)
 // plus an optional "id" column (the FEM node number, used in messages). Lines starting with
 // '#' (after blanks) and blank lines are skipped; a '#' after the values starts a comment.
+// Windows line ends and a UTF-8 byte order mark are accepted; numbers are read with
+// std::from_chars, independent of the locale. Format reference: docs/case-file.md.
 #pragma once
 
 #include <filesystem>

@@ -1,0 +1,774 @@
+// hotmesh io: reader and validator of the case file (YAML, schema in docs/case-file.md).
+// The whole file is checked before anything is returned: every problem (unknown key, wrong
+// type, value out of range, missing file, bad deflection table, inconsistent patch roles or
+// periodic pairs) is collected and reported in one InputError, one line per problem, as
+// "<case file>:<line>: <key path>: <what is wrong, and what is expected>". yaml-cpp stays in
+// this file; its marks are 0-based, ours 1-based.
+#include "hotmesh/io/case_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <system_error>
+#include <type_traits>
+#include <utility>
+
+#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/io/atomic_file.hpp"
+#include "hotmesh/io/deflection_csv.hpp"
+
+namespace hotmesh::io {
+namespace {
+
+namespace fs = std::filesystem;
+using geometry::SampleFrame;
+
+constexpr std::array<std::string_view, 7> kTopKeys{"mesh", "cad", "output", "axis", "solver", "material", "patches"};
+constexpr std::array<std::string_view, 2> kAxisKeys{"origin", "direction"};
+constexpr std::array<std::string_view, 6> kSolverKeys{"increments",    "newton_tolerance",   "max_newton_iterations",
+                                                      "pcg_tolerance", "max_pcg_iterations", "threads"};
+constexpr std::array<std::string_view, 2> kMaterialKeys{"alpha_s", "alpha_v"};
+constexpr std::array<std::string_view, 4> kPatchKeys{"role", "deflection", "partner", "angle_deg"};
+constexpr std::array<std::string_view, 3> kDeflectionKeys{"file", "degree", "faces"};
+/// The names of the roles, in the order of enum PatchRole.
+constexpr std::array<std::string_view, 6> kRoleNames{"fixed", "prescribed", "slip", "sliding", "passive", "periodic"};
+constexpr std::string_view kRoleList = "fixed, prescribed, slip, sliding, passive, periodic";
+constexpr std::string_view kAxisExample = "axis: {origin: [0, 0, 0], direction: [0, 0, 1]}";
+
+/// Concatenates strings (GCC 12 warns wrongly about chains of std::string operator+).
+template <class... Parts>
+std::string cat(const Parts&... parts) {
+  std::string text;
+  (text.append(std::string_view(parts)), ...);
+  return text;
+}
+
+template <class Range>
+std::string join(const Range& items) {
+  std::string text;
+  for (const auto& item : items) text.append(text.empty() ? "" : ", ").append(std::string_view(item));
+  return text;
+}
+
+/// The allowed key a mistyped ("degre") or abbreviated ("newton_tol") key most likely meant.
+std::optional<std::string_view> closest_key(std::string_view name, std::span<const std::string_view> allowed) {
+  std::optional<std::string_view> best;
+  std::size_t best_distance = SIZE_MAX;
+  for (const std::string_view candidate : allowed) {
+    std::vector<std::size_t> row(candidate.size() + 1);  // Levenshtein distance, one row at a time
+    for (std::size_t j = 0; j < row.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= name.size(); ++i) {
+      std::size_t diagonal = std::exchange(row[0], i);
+      for (std::size_t j = 1; j < row.size(); ++j) {
+        const std::size_t change = diagonal + (name[i - 1] == candidate[j - 1] ? 0u : 1u);
+        diagonal = std::exchange(row[j], std::min({row[j] + 1, row[j - 1] + 1, change}));
+      }
+    }
+    const std::size_t distance = name.size() >= 3 && candidate.starts_with(name) ? 1 : row.back();
+    if (distance < best_distance && distance <= std::max<std::size_t>(2, candidate.size() / 3)) {
+      best = candidate;
+      best_distance = distance;
+    }
+  }
+  return best;
+}
+
+/// The problems found so far, each with its line (0: none) and key path.
+class Problems {
+ public:
+  void add(std::size_t line, std::string key, std::string message) {
+    list_.push_back({line, std::move(key), std::move(message)});
+  }
+  bool empty() const { return list_.empty(); }
+
+  /// Throws one InputError with a line per problem, in the order of the file.
+  [[noreturn]] void raise(const std::string& file) {
+    std::stable_sort(list_.begin(), list_.end(), [](const auto& a, const auto& b) { return a.line < b.line; });
+    std::string text;
+    for (const Problem& p : list_) {
+      text.append(text.empty() ? "" : "\n").append(file);
+      if (p.line > 0) text.append(":").append(std::to_string(p.line));
+      text.append(": ").append(p.key).append(p.key.empty() ? "" : ": ").append(p.message);
+    }
+    throw InputError(text);
+  }
+
+ private:
+  struct Problem {
+    std::size_t line;
+    std::string key;
+    std::string message;
+  };
+  std::vector<Problem> list_;
+};
+
+std::size_t line_of(const YAML::Mark& mark) { return mark.line < 0 ? 0 : static_cast<std::size_t>(mark.line) + 1; }
+std::size_t line_of(const YAML::Node& node) { return line_of(node.Mark()); }
+
+bool quoted(const YAML::Node& node) { return node.IsScalar() && node.Tag() == "!"; }
+
+/// What the user wrote, for "expected ..., got <describe>" messages.
+std::string describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Map: return "a map";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Scalar:
+      return quoted(node) ? cat("the text \"", node.Scalar(), "\"") : cat("'", node.Scalar(), "'");
+    default: return "nothing";
+  }
+}
+
+std::string lower(std::string text) {
+  for (char& ch : text) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return text;
+}
+
+/// A number as YAML writes it (std::from_chars, so no locale), plus a leading '+' and
+/// .inf/.nan. Too large reads as infinite (then reported), too small as 0.
+template <class T>
+std::optional<T> parse(std::string_view text) {
+  if constexpr (std::is_floating_point_v<T>) {
+    const std::string name = lower(std::string(text));
+    if (name == ".inf" || name == "+.inf" || name == "-.inf") return name[0] == '-' ? -HUGE_VAL : HUGE_VAL;
+    if (name == ".nan") return std::nan("");
+  }
+  if (text.size() > 1 && text.front() == '+' && text[1] != '-') text.remove_prefix(1);
+  T value{};
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || end != text.data() + text.size()) return std::nullopt;
+  if constexpr (std::is_floating_point_v<T>) {
+    if (ec == std::errc::result_out_of_range) {
+      const bool tiny = text.find("e-") != std::string_view::npos || text.find("E-") != std::string_view::npos;
+      return (text.front() == '-' ? -1.0 : 1.0) * (tiny ? 0.0 : HUGE_VAL);
+    }
+  }
+  return ec == std::errc() ? std::optional<T>(value) : std::nullopt;
+}
+
+/// A key of the case file with its value: `path` is the full key path ("solver.increments"),
+/// `line` the line of the key (values that are maps or lists may start on a later line).
+struct Entry {
+  std::string path;
+  YAML::Node value;
+  std::size_t line = 0;
+  std::string name;  ///< the last part of path
+
+  Entry child(const YAML::Node& key, const YAML::Node& child_value) const {
+    return {path.empty() ? key.Scalar() : cat(path, ".", key.Scalar()), child_value, line_of(key), key.Scalar()};
+  }
+  /// Item i of a list value, as "path[i]" on its own line.
+  Entry item(std::size_t i) const {
+    const YAML::Node node = value[i];
+    return {cat(path, "[", std::to_string(i), "]"), node, line_of(node), {}};
+  }
+  std::string sub(std::string_view key) const { return path.empty() ? std::string(key) : cat(path, ".", key); }
+};
+
+/// The keys of one map, in file order.
+struct MapEntries {
+  std::vector<Entry> entries;
+
+  const Entry* find(std::string_view name) const {
+    const auto it = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) { return e.name == name; });
+    return it == entries.end() ? nullptr : &*it;
+  }
+};
+
+/// Type and range checks of single values; each reports its problem and returns nothing.
+class Reader {
+ public:
+  explicit Reader(Problems& problems) : problems_(problems) {}
+
+  void error(const Entry& e, std::string message) { problems_.add(e.line, e.path, std::move(message)); }
+  void error(std::size_t line, std::string key, std::string message) {
+    problems_.add(line, std::move(key), std::move(message));
+  }
+
+  /// True if `e` is a map or empty (an empty value counts as a map without keys).
+  bool map_or_empty(const Entry& e, std::string_view expected) {
+    if (e.value.IsMap() || e.value.IsNull()) return true;
+    error(e, cat("expected ", expected, ", got ", describe(e.value)));
+    return false;
+  }
+
+  /// The keys of the map `e` (see map_or_empty); reports keys that are repeated, that are not
+  /// plain names, or (unless `allowed` is empty) that are not in `allowed`.
+  MapEntries keys(const Entry& e, std::span<const std::string_view> allowed) {
+    MapEntries map;
+    if (!e.value.IsMap()) return map;
+    for (const auto pair : e.value) {  // by value: yaml-cpp's iterators hand out temporaries
+      if (!pair.first.IsScalar() || pair.first.Scalar().empty()) {
+        error(line_of(pair.first), e.path, "keys must be plain names, got " + describe(pair.first));
+        continue;
+      }
+      Entry child = e.child(pair.first, pair.second);
+      if (const Entry* first = map.find(child.name)) {
+        error(child, cat("given twice (first on line ", std::to_string(first->line), "); keep one"));
+      } else if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), child.name) == allowed.end()) {
+        const auto guess = closest_key(child.name, allowed);
+        error(child, cat("unknown key", guess ? cat(" (did you mean '", *guess, "'?)") : "", "; allowed ",
+                         e.path.empty() ? "at the top level" : "in " + e.path, ": ", join(allowed)));
+      } else {
+        map.entries.push_back(std::move(child));
+      }
+    }
+    return map;
+  }
+
+  std::optional<std::string> text(const Entry& e, std::string_view expected) {
+    if (e.value.IsScalar() && !e.value.Scalar().empty()) return e.value.Scalar();
+    error(e, cat("expected ", expected, ", got ", describe(e.value)));
+    return std::nullopt;
+  }
+
+  std::optional<double> number(const Entry& e) {
+    const std::optional<double> value = scalar_number(e.value);
+    if (!value) {
+      error(e, "expected a number, got " + describe(e.value));
+    } else if (!std::isfinite(*value)) {
+      error(e, "must be a finite number, got " + e.value.Scalar());
+      return std::nullopt;
+    }
+    return value;
+  }
+
+  /// An integer in [low, high]; `high` = INT_MAX means no upper limit. 3.5 is not an integer.
+  std::optional<int> integer_in(const Entry& e, std::int64_t low, std::int64_t high = INT_MAX) {
+    const auto value = e.value.IsScalar() && !quoted(e.value) ? parse<std::int64_t>(e.value.Scalar()) : std::nullopt;
+    if (!value) {
+      const char* expected = scalar_number(e.value) ? "expected a whole number" : "expected an integer";
+      error(e, cat(expected, ", got ", describe(e.value)));
+      return std::nullopt;
+    }
+    if (*value < low || *value > high) {
+      const std::string range = high == INT_MAX ? cat(">= ", std::to_string(low))
+                                                : cat("from ", std::to_string(low), " to ", std::to_string(high));
+      error(e, cat("must be an integer ", range, ", got ", e.value.Scalar()));
+      return std::nullopt;
+    }
+    return static_cast<int>(*value);
+  }
+
+  /// A finite number for which `valid` holds; `range` says which values are allowed.
+  template <class Valid>
+  std::optional<double> number_where(const Entry& e, Valid valid, std::string_view range) {
+    const auto value = number(e);
+    if (value && !valid(*value)) {
+      error(e, cat("must be ", range, ", got ", e.value.Scalar()));
+      return std::nullopt;
+    }
+    return value;
+  }
+
+  std::optional<geometry::Vec3> vec3(const Entry& e) {
+    if (!e.value.IsSequence() || e.value.size() != 3) {
+      const std::string got = e.value.IsSequence() ? "a list of " + std::to_string(e.value.size()) : describe(e.value);
+      error(e, "expected a list of 3 numbers [x, y, z], got " + got);
+      return std::nullopt;
+    }
+    geometry::Vec3 v;
+    for (int i = 0; i < 3; ++i) {
+      const auto value = number(e.item(static_cast<std::size_t>(i)));
+      if (!value) return std::nullopt;
+      v[i] = *value;
+    }
+    return v;
+  }
+
+ private:
+  static std::optional<double> scalar_number(const YAML::Node& node) {
+    if (!node.IsScalar() || quoted(node)) return std::nullopt;
+    return parse<double>(node.Scalar());
+  }
+
+  Problems& problems_;
+};
+
+/// What the validation learns about a patch besides its PatchSpec.
+struct PatchNotes {
+  bool role_known = false;
+  bool has_angle = false;  ///< angle_deg given (even if its value was wrong)
+  std::size_t partner_line = 0;
+  std::size_t angle_line = 0;
+};
+
+class CaseParser {
+ public:
+  explicit CaseParser(const fs::path& file) : reader_(problems_) {
+    c_.file = fs::absolute(file).lexically_normal();
+    folder_ = c_.file.parent_path();
+  }
+
+  Case parse(std::string_view text) {
+    YAML::Node root;
+    try {
+      root = YAML::Load(std::string(text));
+    } catch (const YAML::Exception& e) {
+      throw InputError::at(c_.file.string(), line_of(e.mark), "invalid YAML: " + e.msg);
+    }
+    if (root.IsNull()) {
+      problems_.add(0, "", "the case file is empty; it needs at least `mesh:` and `patches:` (see docs/case-file.md)");
+    } else if (!root.IsMap()) {
+      problems_.add(line_of(root), "", "expected a map of keys (mesh, patches, ...), got " + describe(root));
+    } else {
+      read_top(Entry{"", root, line_of(root), ""});
+    }
+    if (!problems_.empty()) problems_.raise(c_.file.string());
+    return std::move(c_);
+  }
+
+ private:
+  void read_top(const Entry& root) {
+    const MapEntries top = reader_.keys(root, kTopKeys);
+    if (const Entry* e = top.find("mesh")) {
+      if (auto path = input_file(*e, "the mesh file name")) c_.mesh = *path;
+    } else {
+      reader_.error(root.line, "mesh", "missing; give the mesh file, e.g. `mesh: mesh.msh`");
+    }
+    has_cad_ = top.find("cad") != nullptr;
+    if (has_cad_) read_cad(*top.find("cad"));
+    c_.output = folder_ / (c_.file.stem().string() + "-out");
+    if (const Entry* e = top.find("output")) read_output(*e);
+    has_axis_ = top.find("axis") != nullptr;
+    if (has_axis_) read_axis(*top.find("axis"));
+    if (const Entry* e = top.find("solver")) read_solver(*e);
+    if (const Entry* e = top.find("material")) read_material(*e);
+    if (const Entry* e = top.find("patches")) {
+      read_patches(*e);
+    } else {
+      reader_.error(root.line, "patches",
+                    "missing; give every mesh patch a role, e.g. `patches: {wall: {role: fixed}}`");
+    }
+  }
+
+  fs::path resolve(const std::string& text) const {
+    const fs::path path(text);
+    return (path.is_absolute() ? path : folder_ / path).lexically_normal();
+  }
+
+  /// A path that must name an existing file.
+  std::optional<fs::path> input_file(const Entry& e, std::string_view what) {
+    const auto text = reader_.text(e, what);
+    if (!text) return std::nullopt;
+    const fs::path path = resolve(*text);
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status)) {
+      reader_.error(e, cat("file not found: ", path.string(), " (relative paths start from the case file's folder)"));
+    } else if (fs::is_directory(status)) {
+      reader_.error(e, cat(path.string(), " is a folder, expected a file"));
+    } else {
+      return path;
+    }
+    return std::nullopt;
+  }
+
+  void read_cad(const Entry& e) {
+    const auto path = input_file(e, "the CAD file name (.step, .stp, .iges or .igs)");
+    if (!path) return;
+    const std::string extension = lower(path->extension().string());
+    if (extension != ".step" && extension != ".stp" && extension != ".iges" && extension != ".igs") {
+      reader_.error(e, cat("'", path->filename().string(),
+                           "' is not a CAD file hotmesh reads; expected .step, .stp, .iges or .igs"));
+      return;
+    }
+    c_.cad = *path;
+  }
+
+  void read_output(const Entry& e) {
+    const auto text = reader_.text(e, "the output folder name");
+    if (!text) return;
+    const fs::path path = resolve(*text);
+    std::error_code ec;
+    if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
+      reader_.error(e, cat(path.string(), " exists and is not a folder; give a folder for the results"));
+      return;
+    }
+    c_.output = path;
+  }
+
+  void read_axis(const Entry& e) {
+    if (!reader_.map_or_empty(e, "a map {origin: [x, y, z], direction: [x, y, z]}")) return;
+    const MapEntries m = reader_.keys(e, kAxisKeys);
+    std::optional<geometry::Vec3> origin;
+    std::optional<geometry::Vec3> direction;
+    for (const std::string_view key : kAxisKeys) {
+      if (const Entry* item = m.find(key)) {
+        (key == "origin" ? origin : direction) = reader_.vec3(*item);
+      } else {
+        reader_.error(e.line, e.sub(key), cat("missing; the axis needs both, e.g. ", kAxisExample));
+      }
+    }
+    if (direction && norm(*direction) == 0.0) {
+      reader_.error(*m.find("direction"), "must not be [0, 0, 0]; give the direction of the axis, e.g. [0, 0, 1]");
+    } else if (origin && direction) {
+      try {
+        c_.axis = geometry::Axis(*origin, *direction);
+      } catch (const std::invalid_argument& ex) {
+        reader_.error(e, ex.what());
+      }
+    }
+  }
+
+  void read_solver(const Entry& e) {
+    if (!reader_.map_or_empty(e, cat("a map of solver options (", join(kSolverKeys), ")"))) return;
+    const MapEntries m = reader_.keys(e, kSolverKeys);
+    const auto integer = [&](std::string_view key, int& field, int low) {
+      if (const Entry* x = m.find(key)) field = reader_.integer_in(*x, low).value_or(field);
+    };
+    const auto fraction = [&](std::string_view key, double& field) {
+      const auto open_unit = [](double v) { return v > 0.0 && v < 1.0; };
+      if (const Entry* x = m.find(key)) {
+        field = reader_.number_where(*x, open_unit, "between 0 and 1 (exclusive)").value_or(field);
+      }
+    };
+    deform::SolverOptions& s = c_.solver;
+    integer("increments", s.increments, 1);
+    fraction("newton_tolerance", s.newton_tolerance);
+    integer("max_newton_iterations", s.max_newton_iterations, 1);
+    fraction("pcg_tolerance", s.pcg_tolerance);
+    integer("max_pcg_iterations", s.max_pcg_iterations, 1);
+    integer("threads", s.threads, 0);
+  }
+
+  void read_material(const Entry& e) {
+    if (!reader_.map_or_empty(e, "a map {alpha_s: <number>, alpha_v: <number>}")) return;
+    const MapEntries m = reader_.keys(e, kMaterialKeys);
+    deform::MaterialOptions& mat = c_.material;
+    if (const Entry* x = m.find("alpha_s")) {
+      mat.alpha_s = reader_.number_where(*x, [](double v) { return v > 0.0; }, "> 0").value_or(mat.alpha_s);
+    }
+    if (const Entry* x = m.find("alpha_v")) {
+      mat.alpha_v = reader_.number_where(*x, [](double v) { return v >= 0.0; }, ">= 0").value_or(mat.alpha_v);
+    }
+  }
+
+  void read_patches(const Entry& e) {
+    c_.patches_line = e.line;
+    if (!reader_.map_or_empty(e, "a map of patch names to {role: ...}")) return;
+    const MapEntries m = reader_.keys(e, {});
+    if (m.entries.empty()) {
+      reader_.error(e, "is empty; give every mesh patch a role, e.g. `wall: {role: fixed}`");
+      return;
+    }
+    for (const Entry& patch : m.entries) read_patch(patch);
+    check_periodic_pairs();
+    check_tables_agree();
+  }
+
+  /// Adds the patch to the case even when it has problems, so later checks can refer to it.
+  void read_patch(const Entry& e) {
+    PatchSpec spec;
+    spec.name = e.name;
+    spec.line = e.line;
+    PatchNotes& notes = notes_.emplace_back();
+    const MapEntries m = reader_.map_or_empty(e, "a map {role: ...}") ? reader_.keys(e, kPatchKeys) : MapEntries{};
+    if (const Entry* r = m.find("role")) {
+      if (const auto text = reader_.text(*r, cat("a role (one of ", kRoleList, ")"))) {
+        const auto it = std::find(kRoleNames.begin(), kRoleNames.end(), *text);
+        notes.role_known = it != kRoleNames.end();
+        if (notes.role_known) spec.role = static_cast<PatchRole>(it - kRoleNames.begin());
+        if (!notes.role_known) reader_.error(*r, cat("unknown role '", *text, "'; expected one of ", kRoleList));
+      }
+    } else if (e.value.IsMap() || e.value.IsNull()) {
+      reader_.error(e.line, e.sub("role"), cat("missing; expected one of ", kRoleList));
+    }
+    const bool known = notes.role_known;
+    const std::string_view role_name = to_string(spec.role);
+
+    const Entry* deflection = m.find("deflection");
+    const bool takes_table = spec.role == PatchRole::prescribed || spec.role == PatchRole::sliding;
+    if (deflection != nullptr && known && !takes_table) {
+      reader_.error(*deflection, cat("not allowed for role ", role_name,
+                                     "; only prescribed and sliding patches take a deflection table"));
+    } else if (deflection != nullptr) {
+      spec.deflection = read_deflection(*deflection, spec);
+    } else if (known && spec.role == PatchRole::prescribed) {
+      reader_.error(e.line, e.sub("deflection"), "missing; a prescribed patch needs `deflection: {file: <table.csv>}`");
+    }
+
+    for (const std::string_view key : {std::string_view("partner"), std::string_view("angle_deg")}) {
+      const Entry* item = m.find(key);
+      if (item == nullptr) continue;
+      if (known && spec.role != PatchRole::periodic) {
+        reader_.error(*item, cat("only periodic patches have ", key, " (this patch is ", role_name, ")"));
+      } else if (key == "partner") {
+        notes.partner_line = item->line;
+        spec.partner = reader_.text(*item, "the name of the other periodic patch").value_or("");
+      } else {
+        notes.has_angle = true;
+        notes.angle_line = item->line;
+        const auto valid = [](double a) { return a != 0.0 && std::abs(a) <= 180.0; };
+        spec.angle_deg =
+            reader_.number_where(*item, valid, "a non-zero angle in degrees with |angle_deg| <= 180").value_or(0.0);
+      }
+    }
+    c_.patches.push_back(std::move(spec));
+  }
+
+  std::optional<DeflectionSpec> read_deflection(const Entry& e, const PatchSpec& patch) {
+    if (!reader_.map_or_empty(e, "a map {file: <table.csv>, degree: <1..5>, faces: [...]}")) return std::nullopt;
+    const MapEntries m = reader_.keys(e, kDeflectionKeys);
+    DeflectionSpec spec;
+    spec.line = e.line;
+    bool table_read = false;
+    const Entry* file = m.find("file");
+    if (file == nullptr) {
+      reader_.error(e.line, e.sub("file"), "missing; give the deflection table, e.g. `file: deflections.csv`");
+    } else if (auto path = input_file(*file, "the deflection table file name (.csv)")) {
+      spec.file = *path;
+      try {
+        spec.samples = parse_deflection_csv(read_file(*path), path->string());
+        table_read = true;
+      } catch (const InputError& error) {
+        reader_.error(*file, error.what());
+      }
+    }
+    bool ok = table_read;
+    const Entry* degree = m.find("degree");
+    if (degree != nullptr) {
+      const auto value = reader_.integer_in(*degree, 1, 5);
+      ok = ok && value.has_value();
+      spec.degree = value.value_or(spec.degree);
+    }
+    if (ok && spec.samples.size() < static_cast<std::size_t>(spec.degree) + 1) {
+      reader_.error(degree != nullptr ? *degree : *file,
+                    cat("a degree-", std::to_string(spec.degree), " curve needs at least ",
+                        std::to_string(spec.degree + 1), " samples, the table has ",
+                        std::to_string(spec.samples.size())));
+      ok = false;
+    }
+    if (const Entry* faces = m.find("faces")) ok = read_faces(*faces, spec.faces) && ok;
+
+    if (table_read && spec.samples.frame == SampleFrame::meridional && !has_axis_) {
+      reader_.error(patch.line, "patches." + patch.name,
+                    cat("its deflection table is meridional (r, z), which needs the top-level axis, e.g. ",
+                        kAxisExample));
+    }
+    if (!ok) return std::nullopt;
+    return spec;
+  }
+
+  bool read_faces(const Entry& e, std::vector<int>& faces) {
+    if (!e.value.IsSequence() || e.value.size() == 0) {
+      const std::string got = e.value.IsSequence() ? "an empty list" : describe(e.value);
+      reader_.error(e, "expected a list of CAD face numbers (>= 1), e.g. [3, 4], got " + got);
+      return false;
+    }
+    bool ok = true;
+    for (std::size_t i = 0; i < e.value.size(); ++i) {
+      const Entry entry = e.item(i);
+      const auto face = reader_.integer_in(entry, 1);
+      if (face && std::find(faces.begin(), faces.end(), *face) != faces.end()) {
+        reader_.error(entry, cat("face ", std::to_string(*face), " is listed twice"));
+      } else if (face) {
+        faces.push_back(*face);
+        continue;
+      }
+      ok = false;
+    }
+    if (!has_cad_) {
+      reader_.error(e, "CAD face numbers need a CAD file; add `cad: <file.step>` at the top level");
+      ok = false;
+    }
+    return ok;
+  }
+
+  std::optional<std::size_t> index_of(std::string_view name) const {
+    const PatchSpec* p = c_.find_patch(name);
+    return p == nullptr ? std::nullopt : std::optional<std::size_t>(static_cast<std::size_t>(p - c_.patches.data()));
+  }
+
+  bool periodic(std::size_t i) const { return notes_[i].role_known && c_.patches[i].role == PatchRole::periodic; }
+
+  /// The periodic patch that declares patch `j` as its partner with an angle, if any.
+  const PatchSpec* declarer_of(std::size_t j) const {
+    for (std::size_t k = 0; k < c_.patches.size(); ++k) {
+      if (periodic(k) && notes_[k].has_angle && c_.patches[k].partner == c_.patches[j].name) return &c_.patches[k];
+    }
+    return nullptr;
+  }
+
+  /// Each periodic pair is declared on one side (partner + angle_deg); the other side names
+  /// no partner or the first one, and gives no angle. Every periodic patch is in one pair.
+  void check_periodic_pairs() {
+    const std::size_t n = c_.patches.size();
+    std::vector<std::vector<std::string>> pairs(n);  // partners of each patch
+    std::vector<bool> reported(n, false);            // a problem of its pairing was reported
+    std::vector<std::string> periodic_names;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (periodic(i)) periodic_names.push_back(c_.patches[i].name);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!periodic(i)) continue;
+      const PatchSpec& p = c_.patches[i];
+      const PatchNotes& pn = notes_[i];
+      const auto problem = [&](std::size_t line, std::string_view sub, const std::string& message) {
+        reader_.error(line, cat("patches.", p.name, sub), message);
+        reported[i] = true;
+      };
+      if (p.partner.empty()) {  // the other side of a pair, or a partner value already reported
+        if (pn.has_angle && pn.partner_line == 0) {
+          problem(pn.angle_line, ".angle_deg", "needs `partner: <other periodic patch>` beside it");
+        }
+        reported[i] = reported[i] || pn.partner_line != 0;
+        continue;
+      }
+      const auto j = index_of(p.partner);
+      if (!j) {
+        problem(pn.partner_line, ".partner",
+                cat("'", p.partner, "' is not a patch of this case; periodic patches: ", join(periodic_names)));
+        continue;
+      }
+      if (*j == i) {
+        problem(pn.partner_line, ".partner", "a patch cannot be its own partner; name the other side");
+        continue;
+      }
+      const PatchSpec& q = c_.patches[*j];
+      const PatchNotes& qn = notes_[*j];
+      if (!periodic(*j)) {
+        reported[i] = true;  // an unknown role of q was reported already
+        if (qn.role_known) {
+          problem(pn.partner_line, ".partner",
+                  cat("'", q.name, "' has role ", to_string(q.role), "; the partner must be periodic too"));
+        }
+        continue;
+      }
+      const bool back = q.partner == p.name;
+      const std::string elsewhere = cat("'", q.name, "' names '", q.partner, "' as its partner, not '", p.name, "'");
+      if (pn.has_angle && qn.has_angle && back) {
+        if (i > *j) {
+          problem(pn.angle_line, ".angle_deg",
+                  cat("'", q.name, "' gives angle_deg too; give it on one side of the pair only"));
+        }
+        reported[i] = true;
+      } else if (!q.partner.empty() && !back) {
+        problem(pn.partner_line, ".partner", elsewhere);
+      } else if (pn.has_angle) {
+        pairs[i].push_back(q.name);
+        pairs[*j].push_back(p.name);
+      } else if (back && qn.has_angle) {
+        continue;  // declared from the other side
+      } else if (const PatchSpec* other = back ? nullptr : declarer_of(*j)) {
+        problem(pn.partner_line, ".partner", cat("'", q.name, "' is already paired with '", other->name, "'"));
+      } else {
+        if (!back || i < *j) {
+          problem(p.line, "", cat("the periodic pair ", p.name, "/", q.name,
+                                  " has no angle_deg; add angle_deg (the rotation from one patch to the other, "
+                                  "in degrees) on one side"));
+        }
+        reported[i] = reported[*j] = true;
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!periodic(i)) continue;
+      PatchSpec& p = c_.patches[i];
+      const std::string key = "patches." + p.name;
+      if (pairs[i].size() > 1) {
+        reader_.error(p.line, key, cat("is in more than one periodic pair (with ", join(pairs[i]),
+                                       "); each periodic patch pairs with exactly one other"));
+      } else if (pairs[i].empty() && !reported[i]) {
+        reader_.error(p.line, key, "periodic patch without a partner; declare the pair on one side with "
+                                   "`partner: <other>` and `angle_deg: <degrees>`");
+      } else if (pairs[i].size() == 1 && !notes_[i].has_angle) {
+        p.partner = pairs[i][0];
+      } else if (pairs[i].size() == 1 && !has_axis_) {
+        reader_.error(p.line, key, cat("the periodic pair ", p.name, "/", pairs[i][0],
+                                       " needs the top-level axis (the axis of the rotation), e.g. ", kAxisExample));
+      }
+    }
+  }
+
+  /// A planar table belongs to a 2D mesh, cartesian and meridional ones to a 3D mesh.
+  void check_tables_agree() {
+    const PatchSpec* first = nullptr;
+    for (const PatchSpec& p : c_.patches) {
+      if (!p.deflection) continue;
+      if (first == nullptr) first = &p;
+      const SampleFrame mine = p.deflection->samples.frame;
+      const SampleFrame theirs = first->deflection->samples.frame;
+      if ((mine == SampleFrame::planar) != (theirs == SampleFrame::planar)) {
+        reader_.error(p.deflection->line, cat("patches.", p.name, ".deflection"),
+                      cat("its table is ", geometry::to_string(mine), " but the table of patch '", first->name,
+                          "' (line ", std::to_string(first->deflection->line), ") is ", geometry::to_string(theirs),
+                          "; planar tables are for 2D meshes, the others for 3D meshes"));
+      }
+    }
+  }
+
+  Case c_;
+  fs::path folder_;
+  Problems problems_;
+  Reader reader_;
+  std::vector<PatchNotes> notes_;  ///< parallel to c_.patches
+  bool has_cad_ = false;
+  bool has_axis_ = false;
+};
+
+}  // namespace
+
+std::string_view to_string(PatchRole role) {
+  const auto i = static_cast<std::size_t>(role);
+  return i < kRoleNames.size() ? kRoleNames[i] : "?";
+}
+
+const PatchSpec* Case::find_patch(std::string_view name) const {
+  const auto it = std::find_if(patches.begin(), patches.end(), [&](const PatchSpec& p) { return p.name == name; });
+  return it == patches.end() ? nullptr : &*it;
+}
+
+std::vector<std::filesystem::path> Case::inputs() const {
+  std::vector<std::filesystem::path> files{file, mesh};
+  if (cad) files.push_back(*cad);
+  for (const PatchSpec& p : patches) {
+    if (p.deflection && std::find(files.begin(), files.end(), p.deflection->file) == files.end()) {
+      files.push_back(p.deflection->file);
+    }
+  }
+  return files;
+}
+
+Case parse_case(std::string_view text, const std::filesystem::path& file) { return CaseParser(file).parse(text); }
+
+Case read_case(const std::filesystem::path& file) { return parse_case(read_file(file), file); }
+
+void check_case_against_mesh(const Case& c, const deform::Mesh& mesh) {
+  Problems problems;
+  std::vector<std::string> mesh_names;
+  for (const deform::Patch& p : mesh.patches) {
+    mesh_names.push_back(p.name);
+    if (c.find_patch(p.name) == nullptr) {
+      problems.add(c.patches_line, "patches",
+                   cat("mesh patch '", p.name, "' has no role; add `", p.name, ": {role: ...}` under patches"));
+    }
+  }
+  const auto dimension_name = [](int d) { return d == 2 ? "2D" : "3D"; };
+  for (const PatchSpec& spec : c.patches) {
+    const std::string key = "patches." + spec.name;
+    if (mesh.find_patch(spec.name) == nullptr) {
+      problems.add(spec.line, key,
+                   cat("no patch '", spec.name, "' in the mesh ", c.mesh.filename().string(), "; its patches are: ",
+                       mesh_names.empty() ? std::string("(none)") : join(mesh_names)));
+    }
+    if (!spec.deflection) continue;
+    const SampleFrame frame = spec.deflection->samples.frame;
+    const int wanted = frame == SampleFrame::planar ? 2 : 3;
+    if (mesh.dimension != wanted) {
+      problems.add(spec.deflection->line, key + ".deflection",
+                   cat("a ", geometry::to_string(frame), " table is for ", dimension_name(wanted),
+                       " meshes but the mesh is ", dimension_name(mesh.dimension), "; give its columns as ",
+                       mesh.dimension == 2 ? "x,y,dx,dy" : "x,y,z,dx,dy,dz or r,z,dr,dz"));
+    }
+  }
+  if (!problems.empty()) problems.raise(c.file.string());
+}
+
+}  // namespace hotmesh::io

@@ -1,0 +1,573 @@
+// Tests of hotmesh::io::read_case / parse_case / check_case_against_mesh: a full case parses
+// into the right values with absolute paths; defaults apply; every rule of the schema gives
+// "<case file>:<line>: <key path>: ..." and all problems of a file are reported together.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/io/case_file.hpp"
+#include "test_support.hpp"
+
+namespace hotmesh::io {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using ::testing::SizeIs;
+using ::testing::StartsWith;
+
+/// The smallest valid case; tests append keys from line 4 on.
+constexpr std::string_view kBase =
+    "mesh: mesh.msh\n"
+    "patches:\n"
+    "  wall: {role: fixed}\n";
+
+/// The same with the axis set, for tables and periodic pairs; appended patches start on line 5.
+constexpr std::string_view kBaseWithAxis =
+    "mesh: mesh.msh\n"
+    "axis: {origin: [0, 0, 0], direction: [0, 0, 1]}\n"
+    "patches:\n"
+    "  wall: {role: fixed}\n";
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+class CaseFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    test::write_text(dir / "mesh.msh", "$MeshFormat\n");
+    test::write_text(dir / "part.step", "ISO-10303-21;\n");
+    test::write_text(dir / "part.stl", "solid\n");
+    test::write_text(dir / "ramp.csv", "r,z,dr,dz\n1,0,0,0.1\n1,1,0,0.2\n");
+    test::write_text(dir / "blade.csv",
+                     "id,x,y,z,dx,dy,dz\n1,0,0,0,0,0,0.1\n2,1,0,0,0,0,0.1\n3,2,0,0,0,0,0.1\n4,3,0,0,0,0,0.1\n");
+    test::write_text(dir / "plane.csv", "x,y,dx,dy\n0,0,0,0.1\n1,0,0,0.1\n");
+    test::write_text(dir / "bad.csv", "x,y,dq,dy\n0,0,0,0\n");
+  }
+
+  fs::path case_path() const { return dir / "case.yaml"; }
+  /// "<case file>:<line>: ", the start of every problem on that line.
+  std::string at(int line) const { return case_path().string() + ":" + std::to_string(line) + ": "; }
+
+  Case parse(std::string_view yaml) {
+    test::write_text(case_path(), yaml);
+    return read_case(case_path());
+  }
+  std::string error_of(std::string_view yaml) {
+    try {
+      parse(yaml);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+  std::string error_with(std::string_view extra) { return error_of(std::string(kBase) + std::string(extra)); }
+  std::string error_with_axis(std::string_view extra) {
+    return error_of(std::string(kBaseWithAxis) + std::string(extra));
+  }
+
+  test::TempDir dir;
+};
+
+// The example of the project issue, with the partner per_hi added (a pair needs both sides).
+constexpr std::string_view kFullExample =
+    "# full example\n"
+    "mesh: mesh.msh\n"
+    "cad: part.step\n"
+    "output: out\n"
+    "axis: {origin: [0, 0, 1.5], direction: [1, 0, 0]}\n"
+    "solver: {increments: 8, newton_tolerance: 1.0e-5, max_newton_iterations: 20,\n"
+    "         pcg_tolerance: 1.0e-2, max_pcg_iterations: 1000, threads: 2}\n"
+    "material: {alpha_s: 2.0, alpha_v: 0.1}\n"
+    "patches:\n"
+    "  left:   {role: fixed}\n"
+    "  right:  {role: slip}\n"
+    "  top:    {role: sliding}\n"
+    "  bottom: {role: sliding, deflection: {file: ramp.csv, degree: 1}}\n"
+    "  blade:  {role: prescribed, deflection: {file: blade.csv, faces: [3, 4], degree: 3}}\n"
+    "  inlet:  {role: passive}\n"
+    "  per_lo: {role: periodic, partner: per_hi, angle_deg: 3.6}\n"
+    "  per_hi: {role: periodic}\n";
+
+TEST_F(CaseFile, ParsesFullExample) {
+  const Case c = parse(kFullExample);
+  EXPECT_EQ(c.file, case_path());
+  EXPECT_EQ(c.mesh, dir / "mesh.msh");
+  EXPECT_EQ(c.cad, dir / "part.step");
+  EXPECT_EQ(c.output, dir / "out");
+  ASSERT_TRUE(c.axis.has_value());
+  EXPECT_EQ(c.axis->origin(), (geometry::Vec3{0, 0, 1.5}));
+  EXPECT_EQ(c.axis->direction(), (geometry::Vec3{1, 0, 0}));
+  EXPECT_EQ(c.solver.increments, 8);
+  EXPECT_EQ(c.solver.newton_tolerance, 1e-5);
+  EXPECT_EQ(c.solver.max_newton_iterations, 20);
+  EXPECT_EQ(c.solver.pcg_tolerance, 1e-2);
+  EXPECT_EQ(c.solver.max_pcg_iterations, 1000);
+  EXPECT_EQ(c.solver.threads, 2);
+  EXPECT_EQ(c.material.alpha_s, 2.0);
+  EXPECT_EQ(c.material.alpha_v, 0.1);
+  EXPECT_EQ(c.patches_line, 9u);
+
+  ASSERT_THAT(c.patches, SizeIs(8));
+  std::vector<std::string> names;
+  std::vector<std::string_view> roles;
+  for (const PatchSpec& p : c.patches) {
+    names.push_back(p.name);
+    roles.push_back(to_string(p.role));
+  }
+  EXPECT_THAT(names, ElementsAre("left", "right", "top", "bottom", "blade", "inlet", "per_lo", "per_hi"));
+  EXPECT_THAT(roles, ElementsAre("fixed", "slip", "sliding", "sliding", "prescribed", "passive", "periodic", "periodic"));
+
+  const PatchSpec* top = c.find_patch("top");
+  ASSERT_NE(top, nullptr);
+  EXPECT_EQ(top->line, 12u);
+  EXPECT_FALSE(top->deflection.has_value());
+
+  const PatchSpec* bottom = c.find_patch("bottom");
+  ASSERT_TRUE(bottom->deflection.has_value());
+  EXPECT_EQ(bottom->deflection->file, dir / "ramp.csv");
+  EXPECT_EQ(bottom->deflection->degree, 1);
+  EXPECT_TRUE(bottom->deflection->faces.empty());
+  EXPECT_EQ(bottom->deflection->samples.frame, geometry::SampleFrame::meridional);
+  EXPECT_EQ(bottom->deflection->samples.size(), 2u);
+  EXPECT_EQ(bottom->deflection->line, 13u);
+
+  const PatchSpec* blade = c.find_patch("blade");
+  ASSERT_TRUE(blade->deflection.has_value());
+  EXPECT_EQ(blade->deflection->degree, 3);
+  EXPECT_THAT(blade->deflection->faces, ElementsAre(3, 4));
+  EXPECT_THAT(blade->deflection->samples.ids, ElementsAre(1, 2, 3, 4));
+  EXPECT_EQ(blade->deflection->samples.source, (dir / "blade.csv").string());
+
+  const PatchSpec* lo = c.find_patch("per_lo");
+  EXPECT_EQ(lo->partner, "per_hi");
+  EXPECT_EQ(lo->angle_deg, 3.6);
+  const PatchSpec* hi = c.find_patch("per_hi");
+  EXPECT_EQ(hi->partner, "per_lo");  // filled in from the declaring side
+  EXPECT_EQ(hi->angle_deg, 0.0);
+  EXPECT_EQ(c.find_patch("outlet"), nullptr);
+
+  EXPECT_THAT(c.inputs(), ElementsAre(case_path(), dir / "mesh.msh", dir / "part.step", dir / "ramp.csv",
+                                      dir / "blade.csv"));
+}
+
+TEST_F(CaseFile, AppliesDefaults) {
+  const Case c = parse(std::string(kBase) + "solver:\nmaterial: {}\n");
+  const deform::SolverOptions solver;
+  const deform::MaterialOptions material;
+  EXPECT_EQ(c.solver.increments, solver.increments);
+  EXPECT_EQ(c.solver.newton_tolerance, solver.newton_tolerance);
+  EXPECT_EQ(c.solver.max_newton_iterations, solver.max_newton_iterations);
+  EXPECT_EQ(c.solver.pcg_tolerance, solver.pcg_tolerance);
+  EXPECT_EQ(c.solver.max_pcg_iterations, solver.max_pcg_iterations);
+  EXPECT_EQ(c.solver.threads, solver.threads);
+  EXPECT_EQ(c.material.alpha_s, material.alpha_s);
+  EXPECT_EQ(c.material.alpha_v, material.alpha_v);
+  EXPECT_EQ(c.output, dir / "case-out");
+  EXPECT_FALSE(c.cad.has_value());
+  EXPECT_FALSE(c.axis.has_value());
+  ASSERT_THAT(c.patches, SizeIs(1));
+  EXPECT_EQ(c.patches[0].role, PatchRole::fixed);
+  EXPECT_EQ(c.patches_line, 2u);
+  EXPECT_THAT(c.inputs(), ElementsAre(case_path(), dir / "mesh.msh"));
+}
+
+TEST_F(CaseFile, AcceptsQuotedTextAndParsesWithoutCaseFileOnDisk) {
+  const Case c = parse_case("mesh: \"mesh.msh\"\npatches:\n  'wall': {role: 'slip'}\n", dir / "virtual.yaml");
+  EXPECT_EQ(c.file, dir / "virtual.yaml");
+  EXPECT_EQ(c.mesh, dir / "mesh.msh");
+  EXPECT_EQ(c.output, dir / "virtual-out");
+  EXPECT_EQ(c.find_patch("wall")->role, PatchRole::slip);
+}
+
+TEST_F(CaseFile, ResolvesPathsAgainstCaseFolderAndNormalisesThem) {
+  fs::create_directories(dir / "run" / "sub");
+  fs::create_directories(dir / "meshes");
+  test::write_text(dir / "meshes" / "m.msh", "x");
+  const fs::path table = dir / "plane.csv";
+  const std::string yaml = "mesh: ../meshes/./m.msh\noutput: results/../res\npatches:\n  wall: {role: sliding, "
+                           "deflection: {file: " + table.string() + "}}\n";
+  test::write_text(dir / "run" / "case.yaml", yaml);
+  const Case c = read_case(dir / "run" / "sub" / ".." / "case.yaml");
+  EXPECT_EQ(c.file, dir / "run" / "case.yaml");
+  EXPECT_EQ(c.mesh, dir / "meshes" / "m.msh");
+  EXPECT_EQ(c.output, dir / "run" / "res");
+  EXPECT_EQ(c.patches[0].deflection->file, table);  // absolute paths stay as they are
+  EXPECT_TRUE(c.mesh.is_absolute());
+}
+
+TEST_F(CaseFile, ReportsInvalidYamlWithParserLine) {
+  const std::string error = error_of("mesh: mesh.msh\npatches: {wall: [1, 2}\n");
+  EXPECT_THAT(error, StartsWith(at(2) + "invalid YAML: "));
+  EXPECT_THAT(lines_of(error), SizeIs(1));
+}
+
+TEST_F(CaseFile, RejectsEmptyFileAndNonMapDocument) {
+  EXPECT_THAT(error_of("# only a comment\n"), StartsWith(case_path().string() + ": the case file is empty"));
+  EXPECT_EQ(error_of("\n- mesh.msh\n"), at(2) + "expected a map of keys (mesh, patches, ...), got a list");
+}
+
+TEST_F(CaseFile, RequiresMeshAndPatches) {
+  const auto lines = lines_of(error_of("# c\ncad: part.step\n"));
+  ASSERT_THAT(lines, SizeIs(2));
+  EXPECT_EQ(lines[0], at(2) + "mesh: missing; give the mesh file, e.g. `mesh: mesh.msh`");
+  EXPECT_THAT(lines[1], StartsWith(at(2) + "patches: missing; give every mesh patch a role"));
+  EXPECT_THAT(error_of("mesh: mesh.msh\npatches: {}\n"), StartsWith(at(2) + "patches: is empty"));
+}
+
+TEST_F(CaseFile, RejectsUnknownTopLevelKey) {
+  EXPECT_EQ(error_with("mehs: x\n"), at(4) + "mehs: unknown key (did you mean 'mesh'?); allowed at the top level: "
+                                             "mesh, cad, output, axis, solver, material, patches");
+  EXPECT_EQ(error_with("colour: red\n"), at(4) + "colour: unknown key; allowed at the top level: mesh, cad, output, "
+                                                 "axis, solver, material, patches");
+}
+
+TEST_F(CaseFile, RejectsUnknownSolverKey) {
+  EXPECT_THAT(error_with("solver:\n  increments: 4\n  newton_tol: 1e-3\n"),
+              StartsWith(at(6) + "solver.newton_tol: unknown key (did you mean 'newton_tolerance'?); allowed in "
+                                 "solver: increments, newton_tolerance,"));
+  EXPECT_THAT(error_with("material: {alpha: 1}\n"), StartsWith(at(4) + "material.alpha: unknown key"));
+  EXPECT_THAT(error_with("axis: {origin: [0, 0, 0], direction: [0, 0, 1], up: [0, 1, 0]}\n"),
+              StartsWith(at(4) + "axis.up: unknown key; allowed in axis: origin, direction"));
+}
+
+TEST_F(CaseFile, RejectsUnknownPatchKey) {
+  EXPECT_EQ(error_with("  inlet: {role: passive, colour: red}\n"),
+            at(4) + "patches.inlet.colour: unknown key; allowed in patches.inlet: role, deflection, partner, angle_deg");
+}
+
+TEST_F(CaseFile, RejectsUnknownDeflectionKey) {
+  EXPECT_EQ(error_with("  ramp:\n    role: sliding\n    deflection:\n      file: plane.csv\n      degre: 2\n"),
+            at(8) + "patches.ramp.deflection.degre: unknown key (did you mean 'degree'?); allowed in "
+                    "patches.ramp.deflection: file, degree, faces");
+}
+
+TEST_F(CaseFile, RejectsRepeatedKeys) {
+  EXPECT_EQ(error_with("mesh: other.msh\n"), at(4) + "mesh: given twice (first on line 1); keep one");
+  EXPECT_EQ(error_with("  wall: {role: slip}\n"), at(4) + "patches.wall: given twice (first on line 3); keep one");
+}
+
+TEST_F(CaseFile, RejectsMissingFiles) {
+  const auto lines = lines_of(error_of(
+      "mesh: nowhere/mesh.msh\n"
+      "cad: part.stp\n"
+      "patches:\n"
+      "  ramp: {role: prescribed, deflection: {file: ramp2.csv}}\n"));
+  ASSERT_THAT(lines, SizeIs(3));
+  EXPECT_EQ(lines[0], at(1) + "mesh: file not found: " + (dir / "nowhere" / "mesh.msh").string() +
+                          " (relative paths start from the case file's folder)");
+  EXPECT_THAT(lines[1], StartsWith(at(2) + "cad: file not found: " + (dir / "part.stp").string()));
+  EXPECT_THAT(lines[2], StartsWith(at(4) + "patches.ramp.deflection.file: file not found: " +
+                                   (dir / "ramp2.csv").string()));
+}
+
+TEST_F(CaseFile, RejectsFolderAsFileAndWrongCadFormat) {
+  fs::create_directories(dir / "meshdir");
+  const auto lines = lines_of(error_of("mesh: meshdir\ncad: part.stl\noutput: mesh.msh\npatches: {w: {role: fixed}}\n"));
+  ASSERT_THAT(lines, SizeIs(3));
+  EXPECT_EQ(lines[0], at(1) + "mesh: " + (dir / "meshdir").string() + " is a folder, expected a file");
+  EXPECT_EQ(lines[1], at(2) + "cad: 'part.stl' is not a CAD file hotmesh reads; expected .step, .stp, .iges or .igs");
+  EXPECT_THAT(lines[2], StartsWith(at(3) + "output: " + (dir / "mesh.msh").string() + " exists and is not a folder"));
+}
+
+TEST_F(CaseFile, RejectsWrongTypes) {
+  const auto lines = lines_of(error_of(
+      "mesh: [a.msh, b.msh]\n"                       // 1
+      "solver: [1, 2]\n"                             // 2
+      "material: {alpha_s: \"2\", alpha_v: high}\n"  // 3
+      "axis: {origin: [0, 0], direction: 1}\n"       // 4
+      "patches:\n"                                   // 5
+      "  a: fixed\n"                                 // 6
+      "  b: {role: [fixed]}\n"                       // 7
+      "  c: {role: sliding, deflection: plane.csv}\n"  // 8
+      "  d: {role: prescribed, deflection: {file: plane.csv, faces: 3, degree: 2.0}}\n"  // 9
+      "cad: part.step\n"));                          // 10
+  ASSERT_THAT(lines, SizeIs(11));
+  EXPECT_EQ(lines[0], at(1) + "mesh: expected the mesh file name, got a list");
+  EXPECT_THAT(lines[1], StartsWith(at(2) + "solver: expected a map of solver options (increments, "));
+  EXPECT_THAT(lines[1], HasSubstr("got a list"));
+  EXPECT_EQ(lines[2], at(3) + "material.alpha_s: expected a number, got the text \"2\"");
+  EXPECT_EQ(lines[3], at(3) + "material.alpha_v: expected a number, got 'high'");
+  EXPECT_EQ(lines[4], at(4) + "axis.origin: expected a list of 3 numbers [x, y, z], got a list of 2");
+  EXPECT_EQ(lines[5], at(4) + "axis.direction: expected a list of 3 numbers [x, y, z], got '1'");
+  EXPECT_EQ(lines[6], at(6) + "patches.a: expected a map {role: ...}, got 'fixed'");
+  EXPECT_EQ(lines[7], at(7) + "patches.b.role: expected a role (one of fixed, prescribed, slip, sliding, passive, "
+                              "periodic), got a list");
+  EXPECT_THAT(lines[8], StartsWith(at(8) + "patches.c.deflection: expected a map {file: <table.csv>"));
+  EXPECT_EQ(lines[9], at(9) + "patches.d.deflection.degree: expected a whole number, got '2.0'");
+  EXPECT_EQ(lines[10], at(9) + "patches.d.deflection.faces: expected a list of CAD face numbers (>= 1), e.g. [3, 4], "
+                               "got '3'");
+}
+
+TEST_F(CaseFile, RejectsWrongTypeForPatchesAndNumbers) {
+  EXPECT_EQ(error_of("mesh: mesh.msh\npatches: [wall, inlet]\n"),
+            at(2) + "patches: expected a map of patch names to {role: ...}, got a list");
+  EXPECT_EQ(error_with("solver: {increments: \"16\"}\n"), at(4) + "solver.increments: expected an integer, got the text \"16\"");
+  EXPECT_EQ(error_with("solver: {threads: all}\n"), at(4) + "solver.threads: expected an integer, got 'all'");
+}
+
+TEST_F(CaseFile, RejectsValuesOutOfRange) {
+  const auto lines = lines_of(error_with(
+      "solver:\n"                        // 4
+      "  increments: 0\n"                // 5
+      "  newton_tolerance: 1\n"          // 6
+      "  max_newton_iterations: 3.5\n"   // 7
+      "  pcg_tolerance: -1e-3\n"         // 8
+      "  max_pcg_iterations: 0\n"        // 9
+      "  threads: -1\n"                  // 10
+      "material:\n"                      // 11
+      "  alpha_s: 0\n"                   // 12
+      "  alpha_v: -0.1\n"                // 13
+      "axis: {origin: [0, .nan, 0], direction: [0, 0, 0]}\n"));  // 14
+  ASSERT_THAT(lines, SizeIs(10));
+  EXPECT_EQ(lines[0], at(5) + "solver.increments: must be an integer >= 1, got 0");
+  EXPECT_EQ(lines[1], at(6) + "solver.newton_tolerance: must be between 0 and 1 (exclusive), got 1");
+  EXPECT_EQ(lines[2], at(7) + "solver.max_newton_iterations: expected a whole number, got '3.5'");
+  EXPECT_EQ(lines[3], at(8) + "solver.pcg_tolerance: must be between 0 and 1 (exclusive), got -1e-3");
+  EXPECT_EQ(lines[4], at(9) + "solver.max_pcg_iterations: must be an integer >= 1, got 0");
+  EXPECT_EQ(lines[5], at(10) + "solver.threads: must be an integer >= 0, got -1");
+  EXPECT_EQ(lines[6], at(12) + "material.alpha_s: must be > 0, got 0");
+  EXPECT_EQ(lines[7], at(13) + "material.alpha_v: must be >= 0, got -0.1");
+  EXPECT_EQ(lines[8], at(14) + "axis.origin[1]: must be a finite number, got .nan");
+  EXPECT_THAT(lines[9], StartsWith(at(14) + "axis.direction: must not be [0, 0, 0]"));
+}
+
+TEST_F(CaseFile, RejectsDeflectionOptionsOutOfRange) {
+  const auto lines = lines_of(error_with(
+      "  blade: {role: prescribed, deflection: {file: blade.csv, degree: 6, faces: [2, 0, 2]}}\n"
+      "cad: part.step\n"));
+  ASSERT_THAT(lines, SizeIs(3));
+  EXPECT_EQ(lines[0], at(4) + "patches.blade.deflection.degree: must be an integer from 1 to 5, got 6");
+  EXPECT_EQ(lines[1], at(4) + "patches.blade.deflection.faces[1]: must be an integer >= 1, got 0");
+  EXPECT_EQ(lines[2], at(4) + "patches.blade.deflection.faces[2]: face 2 is listed twice");
+}
+
+TEST_F(CaseFile, RejectsDegreeHigherThanSamplesAllow) {
+  EXPECT_EQ(error_with("  ramp: {role: sliding, deflection: {file: plane.csv, degree: 2}}\n"),
+            at(4) + "patches.ramp.deflection.degree: a degree-2 curve needs at least 3 samples, the table has 2");
+}
+
+TEST_F(CaseFile, ReportsAllProblemsInFileOrder) {
+  const auto lines = lines_of(error_of(
+      "patches:\n"                                         // 1
+      "  wall: {role: fixd}\n"                             // 2
+      "  blade: {role: prescribed}\n"                      // 3
+      "solver: {increments: 0, threads: 1.5}\n"            // 4
+      "mesh: missing.msh\n"                                // 5
+      "extra: 1\n"));                                      // 6
+  ASSERT_THAT(lines, SizeIs(6));
+  EXPECT_THAT(lines[0], StartsWith(at(2) + "patches.wall.role: unknown role 'fixd'; expected one of fixed, "));
+  EXPECT_EQ(lines[1], at(3) + "patches.blade.deflection: missing; a prescribed patch needs `deflection: {file: <table.csv>}`");
+  EXPECT_THAT(lines[2], StartsWith(at(4) + "solver.increments: "));
+  EXPECT_THAT(lines[3], StartsWith(at(4) + "solver.threads: "));
+  EXPECT_THAT(lines[4], StartsWith(at(5) + "mesh: file not found"));
+  EXPECT_THAT(lines[5], StartsWith(at(6) + "extra: unknown key"));
+}
+
+TEST_F(CaseFile, ChecksRolesAndWhereDeflectionsAreAllowed) {
+  const auto lines = lines_of(error_with(
+      "  a: {}\n"                                                        // 4
+      "  b: {role: fixed, deflection: {file: plane.csv}}\n"              // 5
+      "  c: {role: slip, deflection: {file: plane.csv}}\n"               // 6
+      "  d: {role: passive, deflection: {file: plane.csv}}\n"            // 7
+      "  e: {role: sliding, partner: a}\n"                               // 8
+      "  f: {role: fixed, angle_deg: 10}\n"                              // 9
+      "  g:\n"));                                                        // 10
+  ASSERT_THAT(lines, SizeIs(7));
+  EXPECT_EQ(lines[0], at(4) + "patches.a.role: missing; expected one of fixed, prescribed, slip, sliding, passive, periodic");
+  EXPECT_EQ(lines[1], at(5) + "patches.b.deflection: not allowed for role fixed; only prescribed and sliding patches "
+                              "take a deflection table");
+  EXPECT_THAT(lines[2], StartsWith(at(6) + "patches.c.deflection: not allowed for role slip"));
+  EXPECT_THAT(lines[3], StartsWith(at(7) + "patches.d.deflection: not allowed for role passive"));
+  EXPECT_EQ(lines[4], at(8) + "patches.e.partner: only periodic patches have partner (this patch is sliding)");
+  EXPECT_EQ(lines[5], at(9) + "patches.f.angle_deg: only periodic patches have angle_deg (this patch is fixed)");
+  EXPECT_THAT(lines[6], StartsWith(at(10) + "patches.g.role: missing"));
+  // Sliding without a table slides over its own undeformed shape.
+  EXPECT_EQ(parse(std::string(kBase) + "  s: {role: sliding}\n").find_patch("s")->role, PatchRole::sliding);
+}
+
+TEST_F(CaseFile, RejectsDeflectionOnPeriodicPatch) {
+  EXPECT_THAT(error_with_axis("  p: {role: periodic, partner: q, angle_deg: 5, deflection: {file: blade.csv}}\n"
+                              "  q: {role: periodic}\n"),
+              StartsWith(at(5) + "patches.p.deflection: not allowed for role periodic"));
+}
+
+TEST_F(CaseFile, IncludesDeflectionTableErrors) {
+  EXPECT_EQ(error_with("  ramp: {role: sliding, deflection: {file: bad.csv}}\n"),
+            at(4) + "patches.ramp.deflection.file: " + (dir / "bad.csv").string() +
+                ":1: unknown column 'dq'; expected x,y,dx,dy (planar), x,y,z,dx,dy,dz (cartesian) or r,z,dr,dz "
+                "(meridional), plus an optional id");
+}
+
+TEST_F(CaseFile, FacesNeedCad) {
+  EXPECT_EQ(error_with("  blade: {role: prescribed, deflection: {file: blade.csv, faces: [1]}}\n"),
+            at(4) + "patches.blade.deflection.faces: CAD face numbers need a CAD file; add `cad: <file.step>` at the "
+                    "top level");
+}
+
+TEST_F(CaseFile, RejectsPlanarTableBesideThreeDimensionalOne) {
+  EXPECT_EQ(error_with("  a: {role: sliding, deflection: {file: blade.csv}}\n"
+                       "  b: {role: sliding, deflection: {file: plane.csv}}\n"),
+            at(5) + "patches.b.deflection: its table is planar (x, y) but the table of patch 'a' (line 4) is "
+                    "cartesian (x, y, z); planar tables are for 2D meshes, the others for 3D meshes");
+}
+
+TEST_F(CaseFile, MeridionalTableNeedsAxis) {
+  EXPECT_EQ(error_with("  disc:\n    role: sliding\n    deflection: {file: ramp.csv}\n"),
+            at(4) + "patches.disc: its deflection table is meridional (r, z), which needs the top-level axis, e.g. "
+                    "axis: {origin: [0, 0, 0], direction: [0, 0, 1]}");
+  EXPECT_NO_THROW(parse(std::string(kBaseWithAxis) + "  disc: {role: sliding, deflection: {file: ramp.csv}}\n"));
+}
+
+TEST_F(CaseFile, AxisNeedsOriginAndDirection) {
+  EXPECT_EQ(error_with("axis: {direction: [0, 0, 1]}\n"),
+            at(4) + "axis.origin: missing; the axis needs both, e.g. axis: {origin: [0, 0, 0], direction: [0, 0, 1]}");
+}
+
+TEST_F(CaseFile, PeriodicPairNeedsAxis) {
+  EXPECT_THAT(error_with("  lo: {role: periodic}\n  hi: {role: periodic, partner: lo, angle_deg: -3.6}\n"),
+              StartsWith(at(5) + "patches.hi: the periodic pair hi/lo needs the top-level axis"));
+}
+
+TEST_F(CaseFile, AcceptsPeriodicPairDeclaredEitherWay) {
+  const Case c = parse(std::string(kBaseWithAxis) +
+                       "  a: {role: periodic, partner: b, angle_deg: 180}\n"
+                       "  b: {role: periodic, partner: a}\n"
+                       "  c: {role: periodic}\n"
+                       "  d: {role: periodic, partner: c, angle_deg: -10}\n");
+  EXPECT_EQ(c.find_patch("a")->angle_deg, 180.0);
+  EXPECT_EQ(c.find_patch("b")->partner, "a");
+  EXPECT_EQ(c.find_patch("c")->partner, "d");
+  EXPECT_EQ(c.find_patch("d")->angle_deg, -10.0);
+}
+
+TEST_F(CaseFile, RejectsBadPeriodicAngles) {
+  const auto lines = lines_of(error_with_axis(
+      "  a: {role: periodic, partner: b, angle_deg: 0}\n"       // 5
+      "  b: {role: periodic}\n"                                 // 6
+      "  c: {role: periodic, partner: d, angle_deg: 190}\n"     // 7
+      "  d: {role: periodic}\n"                                 // 8
+      "  e: {role: periodic, partner: f, angle_deg: .inf}\n"    // 9
+      "  f: {role: periodic}\n"));                              // 10
+  ASSERT_THAT(lines, SizeIs(3));
+  EXPECT_EQ(lines[0], at(5) + "patches.a.angle_deg: must be a non-zero angle in degrees with |angle_deg| <= 180, got 0");
+  EXPECT_EQ(lines[1], at(7) + "patches.c.angle_deg: must be a non-zero angle in degrees with |angle_deg| <= 180, got 190");
+  EXPECT_EQ(lines[2], at(9) + "patches.e.angle_deg: must be a finite number, got .inf");
+}
+
+TEST_F(CaseFile, RejectsBrokenPeriodicPairs) {
+  const auto lines = lines_of(error_with_axis(
+      "  a: {role: periodic}\n"                                  // 5  not paired
+      "  b: {role: periodic, angle_deg: 5}\n"                    // 6  angle without partner
+      "  c: {role: periodic, partner: c, angle_deg: 5}\n"        // 7  itself
+      "  d: {role: periodic, partner: nowhere, angle_deg: 5}\n"  // 8  not a patch
+      "  e: {role: periodic, partner: wall, angle_deg: 5}\n"     // 9  not periodic
+      "  f: {role: periodic, partner: g, angle_deg: 5}\n"        // 10 both give the angle
+      "  g: {role: periodic, partner: f, angle_deg: -5}\n"       // 11
+      "  h: {role: periodic, partner: i}\n"                      // 12 no angle in the pair
+      "  i: {role: periodic}\n"));                               // 13
+  ASSERT_THAT(lines, SizeIs(7));
+  EXPECT_EQ(lines[0], at(5) + "patches.a: periodic patch without a partner; declare the pair on one side with "
+                              "`partner: <other>` and `angle_deg: <degrees>`");
+  EXPECT_EQ(lines[1], at(6) + "patches.b.angle_deg: needs `partner: <other periodic patch>` beside it");
+  EXPECT_EQ(lines[2], at(7) + "patches.c.partner: a patch cannot be its own partner; name the other side");
+  EXPECT_EQ(lines[3], at(8) + "patches.d.partner: 'nowhere' is not a patch of this case; periodic patches: a, b, c, d, "
+                              "e, f, g, h, i");
+  EXPECT_EQ(lines[4], at(9) + "patches.e.partner: 'wall' has role fixed; the partner must be periodic too");
+  EXPECT_EQ(lines[5], at(11) + "patches.g.angle_deg: 'f' gives angle_deg too; give it on one side of the pair only");
+  EXPECT_EQ(lines[6], at(12) + "patches.h: the periodic pair h/i has no angle_deg; add angle_deg (the rotation "
+                               "from one patch to the other, in degrees) on one side");
+}
+
+TEST_F(CaseFile, RejectsPatchInTwoPairsAndConflictingPartners) {
+  const auto lines = lines_of(error_with_axis(
+      "  a: {role: periodic, partner: c, angle_deg: 5}\n"   // 5
+      "  b: {role: periodic, partner: c, angle_deg: 5}\n"   // 6
+      "  c: {role: periodic}\n"                             // 7 in two pairs
+      "  d: {role: periodic, partner: e, angle_deg: 5}\n"   // 8 e points elsewhere
+      "  e: {role: periodic, partner: f}\n"                 // 9
+      "  f: {role: periodic, partner: e, angle_deg: 5}\n"    // 10
+      "  g: {role: periodic, partner: h}\n"                  // 11 h is paired with i
+      "  h: {role: periodic}\n"                              // 12
+      "  i: {role: periodic, partner: h, angle_deg: 5}\n"));  // 13
+  ASSERT_THAT(lines, SizeIs(3));
+  EXPECT_EQ(lines[0], at(7) + "patches.c: is in more than one periodic pair (with a, b); each periodic patch pairs "
+                              "with exactly one other");
+  EXPECT_EQ(lines[1], at(8) + "patches.d.partner: 'e' names 'f' as its partner, not 'd'");
+  EXPECT_EQ(lines[2], at(11) + "patches.g.partner: 'h' is already paired with 'i'");
+}
+
+TEST_F(CaseFile, ReadCaseReportsUnreadableFile) {
+  EXPECT_THROW(read_case(dir / "absent.yaml"), InputError);
+}
+
+TEST_F(CaseFile, RoleNames) {
+  EXPECT_EQ(to_string(PatchRole::prescribed), "prescribed");
+  EXPECT_EQ(to_string(PatchRole::periodic), "periodic");
+}
+
+class CaseAgainstMesh : public CaseFile {
+ protected:
+  std::string mesh_error(std::string_view yaml, const deform::Mesh& mesh) {
+    const Case c = parse(yaml);
+    try {
+      check_case_against_mesh(c, mesh);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+};
+
+TEST_F(CaseAgainstMesh, AcceptsCaseCoveringEveryPatch) {
+  EXPECT_EQ(mesh_error("mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: slip}\n"
+                       "  ymin: {role: sliding, deflection: {file: plane.csv}}\n  ymax: {role: passive}\n",
+                       test::unit_square(2, 2)),
+            "no error");
+}
+
+TEST_F(CaseAgainstMesh, ReportsMeshPatchesWithoutRoleAndUnknownPatches) {
+  const auto lines = lines_of(mesh_error(
+      "mesh: mesh.msh\n"
+      "patches:\n"                       // 2
+      "  xmin: {role: fixed}\n"
+      "  outlet: {role: passive}\n"      // 4
+      "  ymin: {role: fixed}\n",
+      test::unit_square(2, 2)));
+  ASSERT_THAT(lines, SizeIs(3));
+  EXPECT_EQ(lines[0], at(2) + "patches: mesh patch 'xmax' has no role; add `xmax: {role: ...}` under patches");
+  EXPECT_EQ(lines[1], at(2) + "patches: mesh patch 'ymax' has no role; add `ymax: {role: ...}` under patches");
+  EXPECT_EQ(lines[2], at(4) + "patches.outlet: no patch 'outlet' in the mesh mesh.msh; its patches are: xmin, xmax, "
+                              "ymin, ymax");
+}
+
+TEST_F(CaseAgainstMesh, ChecksTableFrameAgainstMeshDimension) {
+  const std::string square = "mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n"
+                             "  ymax: {role: fixed}\n  ymin: {role: sliding, deflection: {file: blade.csv}}\n";
+  EXPECT_EQ(mesh_error(square, test::unit_square(2, 2)),
+            at(6) + "patches.ymin.deflection: a cartesian (x, y, z) table is for 3D meshes but the mesh is 2D; give "
+                    "its columns as x,y,dx,dy");
+  const std::string cube = "mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n"
+                           "  ymax: {role: fixed}\n  zmin: {role: fixed}\n  zmax: {role: fixed}\n"
+                           "  ymin: {role: sliding, deflection: {file: plane.csv}}\n";
+  EXPECT_EQ(mesh_error(cube, test::unit_cube(1)),
+            at(8) + "patches.ymin.deflection: a planar (x, y) table is for 2D meshes but the mesh is 3D; give its "
+                    "columns as x,y,z,dx,dy,dz or r,z,dr,dz");
+  const std::string meridional = "mesh: mesh.msh\naxis: {origin: [0, 0, 0], direction: [0, 1, 0]}\npatches:\n"
+                                 "  xmin: {role: fixed}\n  xmax: {role: fixed}\n  ymax: {role: fixed}\n"
+                                 "  ymin: {role: sliding, deflection: {file: ramp.csv}}\n";
+  EXPECT_THAT(mesh_error(meridional, test::unit_square(2, 2)),
+              StartsWith(at(7) + "patches.ymin.deflection: a meridional (r, z) table is for 3D meshes but the mesh is 2D"));
+}
+
+}  // namespace
+}  // namespace hotmesh::io
