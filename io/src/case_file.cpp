@@ -24,273 +24,31 @@
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
+#include "yaml_checks.hpp"
 
 namespace hotmesh::io {
 namespace {
 
+using namespace detail;  // NOLINT: the checking vocabulary of this file
+
 namespace fs = std::filesystem;
 using geometry::SampleFrame;
 
-constexpr std::array<std::string_view, 7> kTopKeys{"mesh", "cad", "output", "axis", "solver", "material", "patches"};
+constexpr std::array<std::string_view, 8> kTopKeys{"mesh",   "cad",      "output",  "axis",
+                                                  "solver", "material", "patches", "pictures"};
 constexpr std::array<std::string_view, 2> kAxisKeys{"origin", "direction"};
-constexpr std::array<std::string_view, 6> kSolverKeys{"increments",    "newton_tolerance",   "max_newton_iterations",
-                                                      "pcg_tolerance", "max_pcg_iterations", "threads"};
-constexpr std::array<std::string_view, 2> kMaterialKeys{"alpha_s", "alpha_v"};
+constexpr std::array<std::string_view, 7> kSolverKeys{
+    "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
+    "max_increment_splits"};
+constexpr std::array<std::string_view, 4> kMaterialKeys{"law", "alpha_s", "alpha_v", "drop_jacobian"};
+/// The names of the stiffness laws, in the order of enum deform::StiffnessLaw.
+constexpr std::array<std::string_view, 3> kLawNames{"shape_volume", "uniform", "inverse_volume"};
 constexpr std::array<std::string_view, 4> kPatchKeys{"role", "deflection", "partner", "angle_deg"};
 constexpr std::array<std::string_view, 3> kDeflectionKeys{"file", "degree", "faces"};
-/// The names of the roles, in the order of enum PatchRole.
+/// The names of the roles, in the order of enum deform::BoundaryRole.
 constexpr std::array<std::string_view, 6> kRoleNames{"fixed", "prescribed", "slip", "sliding", "passive", "periodic"};
 constexpr std::string_view kRoleList = "fixed, prescribed, slip, sliding, passive, periodic";
 constexpr std::string_view kAxisExample = "axis: {origin: [0, 0, 0], direction: [0, 0, 1]}";
-
-/// Concatenates strings (GCC 12 warns wrongly about chains of std::string operator+).
-template <class... Parts>
-std::string cat(const Parts&... parts) {
-  std::string text;
-  (text.append(std::string_view(parts)), ...);
-  return text;
-}
-
-template <class Range>
-std::string join(const Range& items) {
-  std::string text;
-  for (const auto& item : items) text.append(text.empty() ? "" : ", ").append(std::string_view(item));
-  return text;
-}
-
-/// The allowed key a mistyped ("degre") or abbreviated ("newton_tol") key most likely meant.
-std::optional<std::string_view> closest_key(std::string_view name, std::span<const std::string_view> allowed) {
-  std::optional<std::string_view> best;
-  std::size_t best_distance = SIZE_MAX;
-  for (const std::string_view candidate : allowed) {
-    std::vector<std::size_t> row(candidate.size() + 1);  // Levenshtein distance, one row at a time
-    for (std::size_t j = 0; j < row.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= name.size(); ++i) {
-      std::size_t diagonal = std::exchange(row[0], i);
-      for (std::size_t j = 1; j < row.size(); ++j) {
-        const std::size_t change = diagonal + (name[i - 1] == candidate[j - 1] ? 0u : 1u);
-        diagonal = std::exchange(row[j], std::min({row[j] + 1, row[j - 1] + 1, change}));
-      }
-    }
-    const std::size_t distance = name.size() >= 3 && candidate.starts_with(name) ? 1 : row.back();
-    if (distance < best_distance && distance <= std::max<std::size_t>(2, candidate.size() / 3)) {
-      best = candidate;
-      best_distance = distance;
-    }
-  }
-  return best;
-}
-
-/// The problems found so far, each with its line (0: none) and key path.
-class Problems {
- public:
-  void add(std::size_t line, std::string key, std::string message) {
-    list_.push_back({line, std::move(key), std::move(message)});
-  }
-  bool empty() const { return list_.empty(); }
-
-  /// Throws one InputError with a line per problem, in the order of the file.
-  [[noreturn]] void raise(const std::string& file) {
-    std::stable_sort(list_.begin(), list_.end(), [](const auto& a, const auto& b) { return a.line < b.line; });
-    std::string text;
-    for (const Problem& p : list_) {
-      text.append(text.empty() ? "" : "\n").append(file);
-      if (p.line > 0) text.append(":").append(std::to_string(p.line));
-      text.append(": ").append(p.key).append(p.key.empty() ? "" : ": ").append(p.message);
-    }
-    throw InputError(text);
-  }
-
- private:
-  struct Problem {
-    std::size_t line;
-    std::string key;
-    std::string message;
-  };
-  std::vector<Problem> list_;
-};
-
-std::size_t line_of(const YAML::Mark& mark) { return mark.line < 0 ? 0 : static_cast<std::size_t>(mark.line) + 1; }
-std::size_t line_of(const YAML::Node& node) { return line_of(node.Mark()); }
-
-bool quoted(const YAML::Node& node) { return node.IsScalar() && node.Tag() == "!"; }
-
-/// What the user wrote, for "expected ..., got <describe>" messages.
-std::string describe(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Map: return "a map";
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Scalar:
-      return quoted(node) ? cat("the text \"", node.Scalar(), "\"") : cat("'", node.Scalar(), "'");
-    default: return "nothing";
-  }
-}
-
-std::string lower(std::string text) {
-  for (char& ch : text) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return text;
-}
-
-/// A number as YAML writes it (std::from_chars, so no locale), plus a leading '+' and
-/// .inf/.nan. Too large reads as infinite (then reported), too small as 0.
-template <class T>
-std::optional<T> parse(std::string_view text) {
-  if constexpr (std::is_floating_point_v<T>) {
-    const std::string name = lower(std::string(text));
-    if (name == ".inf" || name == "+.inf" || name == "-.inf") return name[0] == '-' ? -HUGE_VAL : HUGE_VAL;
-    if (name == ".nan") return std::nan("");
-  }
-  if (text.size() > 1 && text.front() == '+' && text[1] != '-') text.remove_prefix(1);
-  T value{};
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || end != text.data() + text.size()) return std::nullopt;
-  if constexpr (std::is_floating_point_v<T>) {
-    if (ec == std::errc::result_out_of_range) {
-      const bool tiny = text.find("e-") != std::string_view::npos || text.find("E-") != std::string_view::npos;
-      return (text.front() == '-' ? -1.0 : 1.0) * (tiny ? 0.0 : HUGE_VAL);
-    }
-  }
-  return ec == std::errc() ? std::optional<T>(value) : std::nullopt;
-}
-
-/// A key of the case file with its value: `path` is the full key path ("solver.increments"),
-/// `line` the line of the key (values that are maps or lists may start on a later line).
-struct Entry {
-  std::string path;
-  YAML::Node value;
-  std::size_t line = 0;
-  std::string name;  ///< the last part of path
-
-  Entry child(const YAML::Node& key, const YAML::Node& child_value) const {
-    return {path.empty() ? key.Scalar() : cat(path, ".", key.Scalar()), child_value, line_of(key), key.Scalar()};
-  }
-  /// Item i of a list value, as "path[i]" on its own line.
-  Entry item(std::size_t i) const {
-    const YAML::Node node = value[i];
-    return {cat(path, "[", std::to_string(i), "]"), node, line_of(node), {}};
-  }
-  std::string sub(std::string_view key) const { return path.empty() ? std::string(key) : cat(path, ".", key); }
-};
-
-/// The keys of one map, in file order.
-struct MapEntries {
-  std::vector<Entry> entries;
-
-  const Entry* find(std::string_view name) const {
-    const auto it = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) { return e.name == name; });
-    return it == entries.end() ? nullptr : &*it;
-  }
-};
-
-/// Type and range checks of single values; each reports its problem and returns nothing.
-class Reader {
- public:
-  explicit Reader(Problems& problems) : problems_(problems) {}
-
-  void error(const Entry& e, std::string message) { problems_.add(e.line, e.path, std::move(message)); }
-  void error(std::size_t line, std::string key, std::string message) {
-    problems_.add(line, std::move(key), std::move(message));
-  }
-
-  /// True if `e` is a map or empty (an empty value counts as a map without keys).
-  bool map_or_empty(const Entry& e, std::string_view expected) {
-    if (e.value.IsMap() || e.value.IsNull()) return true;
-    error(e, cat("expected ", expected, ", got ", describe(e.value)));
-    return false;
-  }
-
-  /// The keys of the map `e` (see map_or_empty); reports keys that are repeated, that are not
-  /// plain names, or (unless `allowed` is empty) that are not in `allowed`.
-  MapEntries keys(const Entry& e, std::span<const std::string_view> allowed) {
-    MapEntries map;
-    if (!e.value.IsMap()) return map;
-    for (const auto pair : e.value) {  // by value: yaml-cpp's iterators hand out temporaries
-      if (!pair.first.IsScalar() || pair.first.Scalar().empty()) {
-        error(line_of(pair.first), e.path, "keys must be plain names, got " + describe(pair.first));
-        continue;
-      }
-      Entry child = e.child(pair.first, pair.second);
-      if (const Entry* first = map.find(child.name)) {
-        error(child, cat("given twice (first on line ", std::to_string(first->line), "); keep one"));
-      } else if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), child.name) == allowed.end()) {
-        const auto guess = closest_key(child.name, allowed);
-        error(child, cat("unknown key", guess ? cat(" (did you mean '", *guess, "'?)") : "", "; allowed ",
-                         e.path.empty() ? "at the top level" : "in " + e.path, ": ", join(allowed)));
-      } else {
-        map.entries.push_back(std::move(child));
-      }
-    }
-    return map;
-  }
-
-  std::optional<std::string> text(const Entry& e, std::string_view expected) {
-    if (e.value.IsScalar() && !e.value.Scalar().empty()) return e.value.Scalar();
-    error(e, cat("expected ", expected, ", got ", describe(e.value)));
-    return std::nullopt;
-  }
-
-  std::optional<double> number(const Entry& e) {
-    const std::optional<double> value = scalar_number(e.value);
-    if (!value) {
-      error(e, "expected a number, got " + describe(e.value));
-    } else if (!std::isfinite(*value)) {
-      error(e, "must be a finite number, got " + e.value.Scalar());
-      return std::nullopt;
-    }
-    return value;
-  }
-
-  /// An integer in [low, high]; `high` = INT_MAX means no upper limit. 3.5 is not an integer.
-  std::optional<int> integer_in(const Entry& e, std::int64_t low, std::int64_t high = INT_MAX) {
-    const auto value = e.value.IsScalar() && !quoted(e.value) ? parse<std::int64_t>(e.value.Scalar()) : std::nullopt;
-    if (!value) {
-      const char* expected = scalar_number(e.value) ? "expected a whole number" : "expected an integer";
-      error(e, cat(expected, ", got ", describe(e.value)));
-      return std::nullopt;
-    }
-    if (*value < low || *value > high) {
-      const std::string range = high == INT_MAX ? cat(">= ", std::to_string(low))
-                                                : cat("from ", std::to_string(low), " to ", std::to_string(high));
-      error(e, cat("must be an integer ", range, ", got ", e.value.Scalar()));
-      return std::nullopt;
-    }
-    return static_cast<int>(*value);
-  }
-
-  /// A finite number for which `valid` holds; `range` says which values are allowed.
-  template <class Valid>
-  std::optional<double> number_where(const Entry& e, Valid valid, std::string_view range) {
-    const auto value = number(e);
-    if (value && !valid(*value)) {
-      error(e, cat("must be ", range, ", got ", e.value.Scalar()));
-      return std::nullopt;
-    }
-    return value;
-  }
-
-  std::optional<geometry::Vec3> vec3(const Entry& e) {
-    if (!e.value.IsSequence() || e.value.size() != 3) {
-      const std::string got = e.value.IsSequence() ? "a list of " + std::to_string(e.value.size()) : describe(e.value);
-      error(e, "expected a list of 3 numbers [x, y, z], got " + got);
-      return std::nullopt;
-    }
-    geometry::Vec3 v;
-    for (int i = 0; i < 3; ++i) {
-      const auto value = number(e.item(static_cast<std::size_t>(i)));
-      if (!value) return std::nullopt;
-      v[i] = *value;
-    }
-    return v;
-  }
-
- private:
-  static std::optional<double> scalar_number(const YAML::Node& node) {
-    if (!node.IsScalar() || quoted(node)) return std::nullopt;
-    return parse<double>(node.Scalar());
-  }
-
-  Problems& problems_;
-};
 
 /// What the validation learns about a patch besides its PatchSpec.
 struct PatchNotes {
@@ -341,6 +99,7 @@ class CaseParser {
     if (has_axis_) read_axis(*top.find("axis"));
     if (const Entry* e = top.find("solver")) read_solver(*e);
     if (const Entry* e = top.find("material")) read_material(*e);
+    if (const Entry* e = top.find("pictures")) read_pictures(*e);
     if (const Entry* e = top.find("patches")) {
       read_patches(*e);
     } else {
@@ -437,17 +196,52 @@ class CaseParser {
     fraction("pcg_tolerance", s.pcg_tolerance);
     integer("max_pcg_iterations", s.max_pcg_iterations, 1);
     integer("threads", s.threads, 0);
+    integer("max_increment_splits", s.max_increment_splits, 0);
   }
 
   void read_material(const Entry& e) {
-    if (!reader_.map_or_empty(e, "a map {alpha_s: <number>, alpha_v: <number>}")) return;
+    if (!reader_.map_or_empty(e, cat("a map of material options (", join(kMaterialKeys), ")"))) return;
     const MapEntries m = reader_.keys(e, kMaterialKeys);
     deform::MaterialOptions& mat = c_.material;
+    if (const Entry* x = m.find("law")) {
+      if (const auto law = reader_.choice(*x, kLawNames)) mat.law = static_cast<deform::StiffnessLaw>(*law);
+    }
+    if (const Entry* x = m.find("drop_jacobian")) mat.drop_jacobian = reader_.boolean(*x).value_or(mat.drop_jacobian);
     if (const Entry* x = m.find("alpha_s")) {
       mat.alpha_s = reader_.number_where(*x, [](double v) { return v > 0.0; }, "> 0").value_or(mat.alpha_s);
     }
     if (const Entry* x = m.find("alpha_v")) {
       mat.alpha_v = reader_.number_where(*x, [](double v) { return v >= 0.0; }, ">= 0").value_or(mat.alpha_v);
+    }
+  }
+
+  void read_pictures(const Entry& e) {
+    if (!reader_.map_or_empty(e, "a map of picture names to views [xmin, xmax, ymin, ymax]")) return;
+    for (const Entry& view : reader_.keys(e, {}).entries) {
+      const bool plain = std::all_of(view.name.begin(), view.name.end(), [](char ch) {
+        return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-';
+      });
+      if (!plain) {
+        reader_.error(view, "picture names become file names: use letters, digits, '_' and '-'");
+        continue;
+      }
+      if (!view.value.IsSequence() || view.value.size() != 4) {
+        reader_.error(view, "expected a view [xmin, xmax, ymin, ymax], got " + describe(view.value));
+        continue;
+      }
+      std::array<double, 4> v{};
+      bool ok = true;
+      for (std::size_t i = 0; i < 4 && ok; ++i) {
+        const auto value = reader_.number(view.item(i));
+        ok = value.has_value();
+        v[i] = value.value_or(0.0);
+      }
+      if (!ok) continue;
+      if (!(v[0] < v[1] && v[2] < v[3])) {
+        reader_.error(view, "the view needs xmin < xmax and ymin < ymax");
+        continue;
+      }
+      c_.pictures.push_back({view.name, v[0], v[1], v[2], v[3], view.line});
     }
   }
 
@@ -714,11 +508,6 @@ class CaseParser {
 };
 
 }  // namespace
-
-std::string_view to_string(PatchRole role) {
-  const auto i = static_cast<std::size_t>(role);
-  return i < kRoleNames.size() ? kRoleNames[i] : "?";
-}
 
 const PatchSpec* Case::find_patch(std::string_view name) const {
   const auto it = std::find_if(patches.begin(), patches.end(), [&](const PatchSpec& p) { return p.name == name; });

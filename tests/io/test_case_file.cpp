@@ -172,6 +172,10 @@ TEST_F(CaseFile, AppliesDefaults) {
   EXPECT_EQ(c.solver.threads, solver.threads);
   EXPECT_EQ(c.material.alpha_s, material.alpha_s);
   EXPECT_EQ(c.material.alpha_v, material.alpha_v);
+  EXPECT_EQ(c.material.law, material.law);
+  EXPECT_EQ(c.material.drop_jacobian, material.drop_jacobian);
+  EXPECT_EQ(c.solver.max_increment_splits, solver.max_increment_splits);
+  EXPECT_TRUE(c.pictures.empty());
   EXPECT_EQ(c.output, dir / "case-out");
   EXPECT_FALSE(c.cad.has_value());
   EXPECT_FALSE(c.axis.has_value());
@@ -179,6 +183,33 @@ TEST_F(CaseFile, AppliesDefaults) {
   EXPECT_EQ(c.patches[0].role, PatchRole::fixed);
   EXPECT_EQ(c.patches_line, 2u);
   EXPECT_THAT(c.inputs(), ElementsAre(case_path(), dir / "mesh.msh"));
+}
+
+TEST_F(CaseFile, ReadsStiffnessLawSplitsAndPictures) {
+  const Case c = parse(std::string(kBase) +
+                       "material: {law: inverse_volume, drop_jacobian: false}\n"
+                       "solver: {max_increment_splits: 0}\n"
+                       "pictures:\n  ramp: [0.8, 1.2, 0, 0.6]\n  all-of_it: [0, 2, 0, 1]\n");
+  EXPECT_EQ(c.material.law, deform::StiffnessLaw::inverse_volume);
+  EXPECT_FALSE(c.material.drop_jacobian);
+  EXPECT_EQ(c.solver.max_increment_splits, 0);
+  ASSERT_THAT(c.pictures, SizeIs(2));
+  EXPECT_EQ(c.pictures[0].name, "ramp");
+  EXPECT_EQ(c.pictures[0].xmax, 1.2);
+  EXPECT_EQ(c.pictures[0].ymax, 0.6);
+  EXPECT_EQ(c.pictures[0].line, 7u);
+  EXPECT_EQ(c.pictures[1].name, "all-of_it");
+}
+
+TEST_F(CaseFile, RejectsBadLawFlagAndPictures) {
+  const std::string error = error_with(
+      "material: {law: spring, drop_jacobian: maybe}\n"
+      "pictures:\n  bad/name: [0, 1, 0, 1]\n  flat: [0, 1, 1, 1]\n  short: [0, 1]\n");
+  EXPECT_THAT(error, HasSubstr(at(4) + "material.law: expected one of shape_volume, uniform, inverse_volume, got 'spring'"));
+  EXPECT_THAT(error, HasSubstr(at(4) + "material.drop_jacobian: expected true or false, got 'maybe'"));
+  EXPECT_THAT(error, HasSubstr(at(6) + "pictures.bad/name: picture names become file names"));
+  EXPECT_THAT(error, HasSubstr(at(7) + "pictures.flat: the view needs xmin < xmax and ymin < ymax"));
+  EXPECT_THAT(error, HasSubstr(at(8) + "pictures.short: expected a view [xmin, xmax, ymin, ymax], got a list"));
 }
 
 TEST_F(CaseFile, AcceptsQuotedTextAndParsesWithoutCaseFileOnDisk) {
@@ -226,9 +257,9 @@ TEST_F(CaseFile, RequiresMeshAndPatches) {
 
 TEST_F(CaseFile, RejectsUnknownTopLevelKey) {
   EXPECT_EQ(error_with("mehs: x\n"), at(4) + "mehs: unknown key (did you mean 'mesh'?); allowed at the top level: "
-                                             "mesh, cad, output, axis, solver, material, patches");
+                                             "mesh, cad, output, axis, solver, material, patches, pictures");
   EXPECT_EQ(error_with("colour: red\n"), at(4) + "colour: unknown key; allowed at the top level: mesh, cad, output, "
-                                                 "axis, solver, material, patches");
+                                                 "axis, solver, material, patches, pictures");
 }
 
 TEST_F(CaseFile, RejectsUnknownSolverKey) {

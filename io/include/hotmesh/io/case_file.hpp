@@ -12,21 +12,15 @@
 #include <vector>
 
 #include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/deflection_samples.hpp"
 
 namespace hotmesh::io {
 
-enum class PatchRole {
-  fixed,       ///< u = 0
-  prescribed,  ///< u from a deflection table
-  slip,        ///< u . n = 0 on the original (planar) boundary
-  sliding,     ///< slides over the deflected shape (the paper's section 4)
-  passive,     ///< u from a surface-only spring solve driven by the patch's rim
-  periodic,    ///< u_slave = R(angle) u_master with the partner patch
-};
-std::string_view to_string(PatchRole role);
+/// The role of a patch (fixed, prescribed, slip, sliding, passive, periodic): the solver's.
+using PatchRole = deform::BoundaryRole;
 
 struct DeflectionSpec {
   std::filesystem::path file;           ///< resolved against the case file's folder
@@ -46,6 +40,13 @@ struct PatchSpec {
   std::size_t line = 0;                      ///< line of this patch in the case file
 };
 
+/// A picture of the deformed 2D mesh to write, named `<name>.png`, showing a world window.
+struct PictureView {
+  std::string name;
+  double xmin = 0.0, xmax = 0.0, ymin = 0.0, ymax = 0.0;
+  std::size_t line = 0;
+};
+
 struct Case {
   // Every path is absolute and lexically normal; relative ones were resolved against the
   // folder of the case file.
@@ -58,6 +59,7 @@ struct Case {
   deform::MaterialOptions material;
   std::vector<PatchSpec> patches;            ///< in the order of the case file
   std::size_t patches_line = 0;              ///< line of the `patches:` key
+  std::vector<PictureView> pictures;         ///< close-ups to draw (2D meshes)
 
   const PatchSpec* find_patch(std::string_view name) const;
   /// Every file the case reads: the case file, mesh, CAD file and deflection tables (each once,
