@@ -53,7 +53,8 @@ deform::Mesh unit_cube(int n) {
   return deform::structured_hexes(line, line, line);
 }
 
-deform::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers, double depth) {
+deform::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers, double depth,
+                         double growth) {
   using deform::ElementType;
   using deform::NodeId;
   const int around = 4 * per_side;
@@ -71,8 +72,9 @@ deform::Mesh square_ring(int per_side, int radial, double inner, double outer, i
   };
   deform::Mesh ring;
   ring.dimension = 2;
+  const auto half_sides = deform::geometric_line(inner, outer, radial, growth);
   for (int k = 0; k <= radial; ++k) {
-    const double h = inner + (outer - inner) * k / radial;
+    const double h = half_sides[static_cast<std::size_t>(k)];
     for (int j = 0; j < around; ++j) ring.points.push_back(on_square(j, h));
   }
   auto id = [around](int k, int j) { return static_cast<NodeId>(k * around + (j % around)); };

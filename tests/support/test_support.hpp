@@ -33,10 +33,11 @@ deform::Mesh unit_square(int nx, int ny);
 deform::Mesh unit_cube(int n);
 
 /// The region between two concentric squares centred at the origin (half sides `inner` and
-/// `outer`) as an O-grid of quads: 4 * per_side cells around, `radial` across. Patches
-/// "inner" and "outer". With layers > 0, extruded to hexes over z in [0, depth] with
-/// patches "zmin" and "zmax" too.
-deform::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers = 0, double depth = 0.0);
+/// `outer`) as an O-grid of quads: 4 * per_side cells around, `radial` across, each ring
+/// `growth` times wider than the one inside it. Patches "inner" and "outer". With
+/// layers > 0, extruded to hexes over z in [0, depth] with patches "zmin" and "zmax" too.
+deform::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers = 0, double depth = 0.0,
+                         double growth = 1.0);
 
 /// Moves interior nodes (those on no patch) pseudo-randomly by up to `fraction` of the
 /// smallest edge length around them, keeping the mesh valid; deterministic.

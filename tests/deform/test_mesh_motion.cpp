@@ -1,0 +1,242 @@
+// Tests of the mesh motion (eqs. 7-8, increments, quality checks, splitting): the patch
+// test, the rotating inner body that geometric nonlinearity is for, the paper's 2D ramp
+// without sliding, determinism, and honest failure.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cstring>
+#include <numbers>
+
+#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/geometry/input_error.hpp"
+#include "test_shapes.hpp"
+#include "test_support.hpp"
+
+namespace hotmesh::deform {
+namespace {
+
+using ::testing::HasSubstr;
+
+/// Every point lies on this shape and moves by the affine map x -> x + lambda (G x + g).
+class AffineShape final : public geometry::BoundaryShape {
+ public:
+  AffineShape(std::array<Vec3, 3> g, Vec3 shift) : g_(g), shift_(shift) {}
+  geometry::ShapePoint project(const Vec3& p, double, double) const override { return {p, {1, 0, 0}, 0.0, 0.0}; }
+  geometry::ShapePoint at(double t, double lambda, const Vec3& x) const override {
+    const Vec3 gx{dot(g_[0], x), dot(g_[1], x), dot(g_[2], x)};
+    return {x + lambda * (gx + shift_), {1, 0, 0}, t, 0.0};
+  }
+  Vec3 moved(const Vec3& x) const { return at(0, 1, x).point; }
+
+ private:
+  std::array<Vec3, 3> g_;
+  Vec3 shift_;
+};
+
+std::vector<PatchMotion> all_patches(const Mesh& mesh, BoundaryRole role, std::shared_ptr<const geometry::BoundaryShape> shape = {}) {
+  std::vector<PatchMotion> motions;
+  for (const Patch& p : mesh.patches) motions.push_back({p.name, role, shape, 0.0});
+  return motions;
+}
+
+SolverOptions tight() {
+  SolverOptions s;
+  s.increments = 2;
+  s.newton_tolerance = 1e-12;
+  s.pcg_tolerance = 1e-14;
+  s.max_pcg_iterations = 20000;
+  return s;
+}
+
+void expect_patch_test_passes(Mesh mesh, const std::array<Vec3, 3>& g) {
+  test::jiggle_interior(mesh, 0.3);
+  validate_mesh(mesh);
+  const auto shape = std::make_shared<AffineShape>(g, Vec3{0.05, -0.02, mesh.dimension == 3 ? 0.03 : 0.0});
+  const MaterialOptions uniform{StiffnessLaw::uniform, 1.0, 0.5, false};
+  const MotionResult r = move_mesh(mesh, all_patches(mesh, BoundaryRole::prescribed, shape), uniform, tight());
+  ASSERT_TRUE(r.success) << r.message;
+  double error = 0.0;
+  for (std::size_t n = 0; n < mesh.node_count(); ++n) error = std::max(error, distance(r.points[n], shape->moved(mesh.points[n])));
+  EXPECT_LT(error, 1e-10);
+}
+
+TEST(MeshMotion, PatchTestReproducesAffineMotionInsideDistortedQuads) {
+  expect_patch_test_passes(test::unit_square(7, 6), {{{0.1, 0.05, 0}, {-0.08, 0.12, 0}, {0, 0, 0}}});
+}
+
+TEST(MeshMotion, PatchTestReproducesAffineMotionInsideDistortedHexes) {
+  expect_patch_test_passes(test::unit_cube(4), {{{0.1, 0.05, -0.03}, {-0.08, 0.12, 0.02}, {0.04, -0.05, 0.09}}});
+}
+
+/// The inner square of a square ring rotated by 45 degrees about z; outer boundary fixed.
+std::vector<PatchMotion> rotating_inner_square(const Mesh& mesh, double inner) {
+  const std::vector<Vec3> square{{inner, -inner, 0}, {inner, inner, 0}, {-inner, inner, 0}, {-inner, -inner, 0},
+                                 {inner, -inner, 0}};
+  auto shape = std::make_shared<test::TestCurveShape>(square, test::rotation(std::numbers::pi / 4));
+  std::vector<PatchMotion> motions{{"inner", BoundaryRole::prescribed, shape, 0.0}, {"outer", BoundaryRole::fixed, nullptr, 0.0}};
+  if (mesh.dimension == 3) {
+    motions.push_back({"zmin", BoundaryRole::slip, nullptr, 0.0});
+    motions.push_back({"zmax", BoundaryRole::slip, nullptr, 0.0});
+  }
+  return motions;
+}
+
+/// A boundary-layer-like O-grid around the inner square: rings 30% wider one after the other.
+Mesh clustered_ring(int layers = 0) {
+  return layers == 0 ? test::square_ring(8, 12, 0.25, 1.0, 0, 0.0, 1.3) : test::square_ring(6, 10, 0.25, 1.0, layers, 0.4, 1.3);
+}
+
+void expect_nonlinear_beats_one_linear_step(const Mesh& mesh) {
+  const auto motions = rotating_inner_square(mesh, 0.25);
+  SolverOptions nonlinear;  // 16 increments, the paper's tolerances
+  const MotionResult r = move_mesh(mesh, motions, {}, nonlinear);
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_EQ(r.summary.inverted_cells, 0u);
+  EXPECT_EQ(r.increments.size(), 16u) << "no increment needed splitting";
+
+  SolverOptions linear;
+  linear.increments = 1;
+  linear.max_newton_iterations = 1;  // one linear solve at the original geometry
+  linear.pcg_tolerance = 1e-10;
+  linear.max_increment_splits = 0;
+  const MotionResult l = move_mesh(mesh, motions, {}, linear);
+  const auto& linear_quality = l.success ? l.quality : l.failed_quality;
+  const double linear_min = *std::min_element(linear_quality.begin(), linear_quality.end());
+  EXPECT_LT(linear_min, r.summary.min_scaled_jacobian);
+  // The rotation really happened: the inner corner (h, -h) ended on the x axis.
+  const Vec3 corner = r.points[0];
+  EXPECT_NEAR(corner.x, std::sqrt(2.0) * 0.25, 1e-12);
+  EXPECT_NEAR(corner.y, 0.0, 1e-12);
+}
+
+TEST(MeshMotion, RotatedInnerSquareStaysValidWithGeometricNonlinearity) {
+  expect_nonlinear_beats_one_linear_step(clustered_ring());
+}
+
+TEST(MeshMotion, RotatedInnerSquareStaysValidIn3D) {
+  expect_nonlinear_beats_one_linear_step(clustered_ring(2));
+}
+
+TEST(MeshMotion, SlipNodesStayOnTheirPlane) {
+  const Mesh mesh = clustered_ring(2);
+  const MotionResult r = move_mesh(mesh, rotating_inner_square(mesh, 0.25), {}, {});
+  ASSERT_TRUE(r.success);
+  for (NodeId n : mesh.find_patch("zmax")->nodes) EXPECT_NEAR(r.points[static_cast<std::size_t>(n)].z, 0.4, 1e-13);
+  for (NodeId n : mesh.find_patch("zmin")->nodes) EXPECT_NEAR(r.points[static_cast<std::size_t>(n)].z, 0.0, 1e-13);
+}
+
+/// The paper's Fig. 6 ramp: h = 1, box 2h x h, dx = 2h/57, first cell 0.001h at the wall.
+struct Ramp {
+  static constexpr double a = 0.975, b = 1.025, height = 0.5;
+  static double lift(double x) { return x <= a ? 0.0 : x >= b ? height : height * (x - a) / (b - a); }
+};
+
+TEST(MeshMotion, PaperRampWithoutSlidingCompletesWithoutInvertedCells) {
+  const auto xs = uniform_line(0.0, 2.0, 57);
+  const auto ys = stretched_line(0.0, 1.0, 40, 0.001);
+  const Mesh mesh = structured_quads(xs, ys, {"left", "right", "bottom", "top"});
+  auto bottom = std::make_shared<test::TestCurveShape>(
+      std::vector<Vec3>{{0, 0, 0}, {Ramp::a, 0, 0}, {Ramp::b, 0, 0}, {2, 0, 0}},
+      [](const Vec3& p, double lambda) { return p + Vec3{0.0, lambda * Ramp::lift(p.x), 0.0}; });
+  const std::vector<PatchMotion> motions{{"left", BoundaryRole::fixed, nullptr, 0.0},
+                                         {"right", BoundaryRole::slip, nullptr, 0.0},
+                                         {"bottom", BoundaryRole::prescribed, bottom, 0.0},
+                                         {"top", BoundaryRole::fixed, nullptr, 0.0}};
+  const MotionResult r = move_mesh(mesh, motions, {}, {});
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_EQ(r.summary.inverted_cells, 0u);
+  EXPECT_GT(r.summary.min_scaled_jacobian, 0.0);
+  for (NodeId n : mesh.find_patch("bottom")->nodes) {
+    const Vec3 x0 = mesh.points[static_cast<std::size_t>(n)];
+    EXPECT_NEAR(r.points[static_cast<std::size_t>(n)].y, Ramp::lift(x0.x), 1e-12);
+  }
+  for (NodeId n : mesh.find_patch("right")->nodes) EXPECT_NEAR(r.points[static_cast<std::size_t>(n)].x, 2.0, 1e-12);
+  for (const auto& inc : r.increments) {
+    EXPECT_TRUE(inc.converged);
+    EXPECT_LE(inc.residual_reduction, 1e-4);
+  }
+}
+
+TEST(MeshMotion, ResultIsBitIdenticalForAnyThreadCount) {
+  Mesh mesh = clustered_ring();
+  test::jiggle_interior(mesh, 0.2);
+  const auto motions = rotating_inner_square(mesh, 0.25);
+  SolverOptions options;
+  options.increments = 4;
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const MotionResult one = move_mesh(mesh, motions, {}, options);
+  omp_set_num_threads(2);
+  const MotionResult two = move_mesh(mesh, motions, {}, options);
+  omp_set_num_threads(saved);
+  ASSERT_TRUE(one.success);
+  ASSERT_EQ(one.points.size(), two.points.size());
+  EXPECT_EQ(std::memcmp(one.points.data(), two.points.data(), one.points.size() * sizeof(Vec3)), 0);
+}
+
+TEST(MeshMotion, ImpossibleMotionStopsWithLastValidMeshNamingCellAndIncrement) {
+  // The top wall is pushed down through the bottom wall: some increment must fail.
+  const Mesh mesh = test::unit_square(6, 6);
+  auto top = std::make_shared<test::TestCurveShape>(std::vector<Vec3>{{0, 1, 0}, {1, 1, 0}},
+                                                    [](const Vec3& p, double lambda) { return p - Vec3{0, 1.5 * lambda, 0}; });
+  const std::vector<PatchMotion> motions{{"xmin", BoundaryRole::slip, nullptr, 0.0},
+                                         {"xmax", BoundaryRole::slip, nullptr, 0.0},
+                                         {"ymin", BoundaryRole::fixed, nullptr, 0.0},
+                                         {"ymax", BoundaryRole::prescribed, top, 0.0}};
+  SolverOptions options;
+  options.increments = 4;
+  options.max_increment_splits = 2;
+  const MotionResult r = move_mesh(mesh, motions, {}, options);
+  EXPECT_FALSE(r.success);
+  EXPECT_THAT(r.message, HasSubstr("increment"));
+  EXPECT_THAT(r.message, HasSubstr("of 4 failed"));
+  EXPECT_THAT(r.message, HasSubstr("after splitting it 2 times"));
+  EXPECT_LT(r.lambda_reached, 1.0);
+  EXPECT_EQ(r.summary.inverted_cells, 0u);  // the mesh kept is valid
+  EXPECT_FALSE(r.failed_points.empty());
+  EXPECT_TRUE(std::any_of(r.failed_quality.begin(), r.failed_quality.end(), [](double q) { return q <= 0.0; }) ||
+              r.message.find("Newton") != std::string::npos);
+  EXPECT_FALSE(r.increments.back().accepted);
+  EXPECT_EQ(r.increments.back().split_depth, 2);
+}
+
+TEST(MeshMotion, SetUpErrorsAreInputErrors) {
+  const Mesh mesh = test::unit_square(3, 3);
+  auto motions = all_patches(mesh, BoundaryRole::fixed);
+  motions.pop_back();
+  EXPECT_THROW(move_mesh(mesh, motions, {}, {}), InputError);  // a patch without role
+  motions = all_patches(mesh, BoundaryRole::fixed);
+  motions[0].role = BoundaryRole::prescribed;  // without a shape
+  EXPECT_THROW(move_mesh(mesh, motions, {}, {}), InputError);
+  motions = all_patches(mesh, BoundaryRole::slip);  // nothing holds the mesh
+  EXPECT_THROW(move_mesh(mesh, motions, {}, {}), InputError);
+  // Nodes far from the prescribed shape.
+  motions = all_patches(mesh, BoundaryRole::fixed);
+  motions[0].role = BoundaryRole::prescribed;
+  motions[0].shape = std::make_shared<test::TestCurveShape>(std::vector<Vec3>{{5, 0, 0}, {5, 1, 0}},
+                                                            [](const Vec3& p, double) { return p; });
+  try {
+    move_mesh(mesh, motions, {}, {});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("patch 'xmin': 2 nodes lie farther than"));
+  }
+}
+
+TEST(MeshMotion, SlipOnCurvedPatchIsRefused) {
+  Mesh mesh = test::square_ring(4, 3, 0.3, 1.0);
+  for (NodeId n : mesh.find_patch("outer")->nodes) mesh.points[static_cast<std::size_t>(n)] *= 1.0;
+  std::vector<PatchMotion> motions{{"inner", BoundaryRole::fixed, nullptr, 0.0}, {"outer", BoundaryRole::slip, nullptr, 0.0}};
+  try {
+    move_mesh(mesh, motions, {}, {});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("patch 'outer' has role slip but is not planar"));
+  }
+}
+
+}  // namespace
+}  // namespace hotmesh::deform
