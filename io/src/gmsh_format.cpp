@@ -16,20 +16,20 @@ struct KnownType {
 constexpr KnownType kKnownTypes[] = {
     {8, "second-order line", true},
     {9, "second-order triangle", true},
-    {10, "second-order quadrangle (9 nodes)", true},
+    {10, "second-order quadrangle", true},
     {11, "second-order tetrahedron", true},
     {12, "second-order hexahedron", true},
     {13, "second-order prism", true},
     {14, "second-order pyramid", true},
-    {16, "second-order quadrangle (8 nodes)", true},
-    {17, "second-order hexahedron (20 nodes)", true},
-    {18, "second-order prism (15 nodes)", true},
-    {19, "second-order pyramid (13 nodes)", true},
-    {20, "third-order triangle (9 nodes)", true},
+    {16, "8-node second-order quadrangle", true},
+    {17, "20-node second-order hexahedron", true},
+    {18, "15-node second-order prism", true},
+    {19, "13-node second-order pyramid", true},
+    {20, "9-node third-order triangle", true},
     {21, "third-order triangle", true},
-    {22, "fourth-order triangle (12 nodes)", true},
+    {22, "12-node fourth-order triangle", true},
     {23, "fourth-order triangle", true},
-    {24, "fifth-order triangle (15 nodes)", true},
+    {24, "15-node fifth-order triangle", true},
     {25, "fifth-order triangle", true},
     {26, "third-order line", true},
     {27, "fourth-order line", true},
@@ -53,10 +53,9 @@ std::string unsupported_type_message(int gmsh) {
     if (known.number != gmsh) continue;
     std::string text(known.name);
     text += " (type " + std::to_string(gmsh) + ") is not supported: ";
-    text += known.higher_order
-                ? "hotmesh needs linear elements (mesh with Mesh.ElementOrder = 1)"
-                : "hotmesh reads lines, triangles, quadrangles, tetrahedra, hexahedra, prisms "
-                  "and pyramids";
+    text += known.higher_order ? "hotmesh needs linear elements (mesh with Mesh.ElementOrder = 1)"
+                               : "hotmesh reads lines, triangles, quadrangles, tetrahedra, hexahedra, prisms "
+                                 "and pyramids";
     return text;
   }
   return "unknown element type " + std::to_string(gmsh);

@@ -3,13 +3,14 @@
 // skips sections it does not need, and assembles the mesh (MeshBuilder): cells are the
 // elements of the highest dimension d, physical groups of dimension d become cell groups and
 // those of dimension d-1 patches, named by $PhysicalNames.
+#include "gmsh_reader.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
 
 #include "gmsh_format.hpp"
-#include "gmsh_reader.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
@@ -43,7 +44,8 @@ bool NodeTagMap::insert(std::int64_t tag, deform::NodeId index) {
   const auto t = static_cast<std::uint64_t>(tag);
   if (tag >= 0 && t < dense_limit_) {
     if (t >= dense_.size()) {
-      const std::uint64_t grown = std::max<std::uint64_t>(t + 1, std::min<std::uint64_t>(2 * dense_.size(), dense_limit_));
+      const std::uint64_t grown =
+          std::max<std::uint64_t>(t + 1, std::min<std::uint64_t>(2 * dense_.size(), dense_limit_));
       dense_.resize(static_cast<std::size_t>(grown), -1);
     }
     deform::NodeId& slot = dense_[static_cast<std::size_t>(t)];
@@ -231,10 +233,10 @@ deform::Mesh MeshBuilder::finish() {
   for (const deform::Patch& patch : mesh_.patches) {
     const auto [it, added] = tag_of_name.try_emplace(patch.name, patch.tag);
     if (!added) {
-      scanner_.fail_at(names_.at({d - 1, patch.tag}).at,
-                       "physical groups " + std::to_string(it->second) + " and " + std::to_string(patch.tag) +
-                           " (dimension " + std::to_string(d - 1) + ") are both named '" + patch.name +
-                           "'; patch names must be unique");
+      const std::string message = "physical groups " + std::to_string(it->second) + " and " +
+                                  std::to_string(patch.tag) + " (dimension " + std::to_string(d - 1) +
+                                  ") are both named '" + patch.name + "'; patch names must be unique";
+      scanner_.fail_at(names_.at({d - 1, patch.tag}).at, message);
     }
   }
 
@@ -287,8 +289,9 @@ Version read_format(Scanner& s) {
     const std::size_t marker_at = s.position();
     const auto one = s.binary_value<std::int32_t>("the binary byte-order marker");
     if (one == 0x01000000) {
-      s.fail_at(marker_at, "the binary file has the other byte order (written on a big-endian machine); "
-                           "save it as ASCII");
+      s.fail_at(marker_at,
+                "the binary file has the other byte order (written on a big-endian machine); "
+                "save it as ASCII");
     }
     if (one != 1) s.fail_at(marker_at, "bad binary byte-order marker " + std::to_string(one) + " (expected 1)");
   }
@@ -338,8 +341,9 @@ deform::Mesh parse_gmsh(std::string_view content, std::string_view source) {
     } else if (name == "PhysicalNames") {
       read_physical_names(s, builder);
     } else if (name == "PartitionedEntities") {
-      s.fail_at(at, "partitioned meshes are not supported: save the mesh without partitions "
-                    "(Mesh.NbPartitions = 0, no -part)");
+      s.fail_at(at,
+                "partitioned meshes are not supported: save the mesh without partitions "
+                "(Mesh.NbPartitions = 0, no -part)");
     } else if (name == "Entities" && version == Version::v4) {
       if (have_entities || builder.has_nodes()) s.fail_at(at, "$Entities must come once, before $Nodes");
       read_entities_v4(s, builder, entities);
@@ -369,8 +373,6 @@ deform::Mesh parse_gmsh(std::string_view content, std::string_view source) {
   return builder.finish();
 }
 
-deform::Mesh read_gmsh(const std::filesystem::path& path) {
-  return parse_gmsh(read_file(path), path.string());
-}
+deform::Mesh read_gmsh(const std::filesystem::path& path) { return parse_gmsh(read_file(path), path.string()); }
 
 }  // namespace hotmesh::io

@@ -71,8 +71,8 @@ class MeshBuilder {
   }
 
   // ---- elements ----
-  void add_element(deform::ElementType type, std::int64_t tag, std::span<const deform::NodeId> nodes,
-                   std::uint32_t set, std::size_t at);
+  void add_element(deform::ElementType type, std::int64_t tag, std::span<const deform::NodeId> nodes, std::uint32_t set,
+                   std::size_t at);
   /// Gmsh 2.2 writes an element once per physical group it is in, in consecutive lines:
   /// true if `nodes` of `type` repeat the last element of that dimension.
   bool repeats_last(deform::ElementType type, std::span<const deform::NodeId> nodes) const;
@@ -123,8 +123,8 @@ inline std::int64_t entity_key(int dimension, int tag) {
 }
 
 /// An element line or record with too few (`found` < `needed`) or too many node tags.
-[[noreturn]] void wrong_node_count(const Scanner& s, std::size_t at, std::int64_t tag, int gmsh_type,
-                                   std::size_t found, std::size_t needed);
+[[noreturn]] void wrong_node_count(const Scanner& s, std::size_t at, std::int64_t tag, int gmsh_type, std::size_t found,
+                                   std::size_t needed);
 
 void read_nodes_v2(Scanner& s, MeshBuilder& b);
 void read_elements_v2(Scanner& s, MeshBuilder& b);

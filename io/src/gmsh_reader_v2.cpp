@@ -114,8 +114,8 @@ void read_elements_binary(Scanner& s, MeshBuilder& b, std::size_t n) {
     const std::int32_t count = s.binary_value<std::int32_t>("number of elements of the block");
     const std::int32_t tag_count = s.binary_value<std::int32_t>("number of element tags");
     if (count < 1 || static_cast<std::size_t>(count) > n - done) {
-      s.fail_at(header_at, "element block of " + std::to_string(count) + " elements, but " +
-                               std::to_string(n - done) + " remain of the section's count");
+      s.fail_at(header_at, "element block of " + std::to_string(count) + " elements, but " + std::to_string(n - done) +
+                               " remain of the section's count");
     }
     if (tag_count < 0) s.fail_at(header_at, "negative number of element tags " + std::to_string(tag_count));
     const std::size_t needed = nodes_of(type);

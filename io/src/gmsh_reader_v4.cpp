@@ -73,8 +73,7 @@ void read_entity(Scanner& s, MeshBuilder& b, EntityGroups& entities, int dimensi
     s.end_line("the entity");
   }
   if (!entities.emplace(entity_key(dimension, tag), b.membership(physical)).second) {
-    s.fail_at(at, "entity " + std::to_string(tag) + " of dimension " + std::to_string(dimension) +
-                      " is defined twice");
+    s.fail_at(at, "entity " + std::to_string(tag) + " of dimension " + std::to_string(dimension) + " is defined twice");
   }
 }
 
@@ -166,8 +165,7 @@ void read_nodes_v4(Scanner& s, MeshBuilder& b) {
     done += n;
   }
   if (done != total) {
-    s.fail("the $Nodes header announces " + std::to_string(total) + " nodes, its blocks hold " +
-           std::to_string(done));
+    s.fail("the $Nodes header announces " + std::to_string(total) + " nodes, its blocks hold " + std::to_string(done));
   }
   b.end_nodes();
   s.expect_end("Nodes");
@@ -235,7 +233,8 @@ void read_elements_v4(Scanner& s, MeshBuilder& b, const EntityGroups* entities) 
           if (record[k] > kMaxTag) s.fail_at(element_at, "element or node tag out of range");
         }
         tag = static_cast<std::int64_t>(record[0]);
-        for (std::size_t k = 0; k < needed; ++k) nodes[k] = b.node(static_cast<std::int64_t>(record[k + 1]), element_at);
+        for (std::size_t k = 0; k < needed; ++k)
+          nodes[k] = b.node(static_cast<std::int64_t>(record[k + 1]), element_at);
       } else {
         s.skip_blank();
         element_at = s.position();

@@ -98,8 +98,8 @@ void Scanner::bad_token(const char* first, const char* last, std::string_view wh
 }
 
 void Scanner::out_of_range(std::size_t at, std::string_view what, std::int64_t value, int low, int high) const {
-  fail_at(at, std::string(what) + " " + std::to_string(value) + " is out of range (" + std::to_string(low) +
-                  " to " + std::to_string(high) + ")");
+  fail_at(at, std::string(what) + " " + std::to_string(value) + " is out of range (" + std::to_string(low) + " to " +
+                  std::to_string(high) + ")");
 }
 
 void Scanner::too_large(std::size_t at, std::string_view what, std::uint64_t value) const {

@@ -148,8 +148,7 @@ class Scanner {
   }
 
   /// A binary count read at `at`, each item needing at least `min_bytes`.
-  std::size_t checked_count(std::uint64_t value, std::size_t min_bytes, std::size_t at,
-                            std::string_view what) const {
+  std::size_t checked_count(std::uint64_t value, std::size_t min_bytes, std::size_t at, std::string_view what) const {
     if (min_bytes > 0 && value > remaining() / min_bytes) too_large(at, what, value);
     return static_cast<std::size_t>(value);
   }
@@ -178,10 +177,8 @@ class Scanner {
     return p;
   }
 
-  [[noreturn]] void bad_token(const char* first, const char* last, std::string_view what,
-                              bool out_of_range) const;
-  [[noreturn]] void out_of_range(std::size_t at, std::string_view what, std::int64_t value,
-                                 int low, int high) const;
+  [[noreturn]] void bad_token(const char* first, const char* last, std::string_view what, bool out_of_range) const;
+  [[noreturn]] void out_of_range(std::size_t at, std::string_view what, std::int64_t value, int low, int high) const;
   [[noreturn]] void too_large(std::size_t at, std::string_view what, std::uint64_t value) const;
   [[noreturn]] void cut_short(std::string_view what) const;
   [[noreturn]] void line_ends(std::string_view what) const;

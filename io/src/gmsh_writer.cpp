@@ -120,18 +120,20 @@ void check_name(const std::string& name) {
 void check_elements(const ElementList& list, int dimension, std::size_t nodes, const std::string& what) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     if (deform::dimension(list.type(i)) != dimension) {
-      misuse(what + " " + std::to_string(i) + " is a " + std::string(deform::name(list.type(i))) + ", not of dimension " +
-             std::to_string(dimension));
+      misuse(what + " " + std::to_string(i) + " is a " + std::string(deform::name(list.type(i))) +
+             ", not of dimension " + std::to_string(dimension));
     }
   }
   for (deform::NodeId n : list.all_nodes()) {
-    if (n < 0 || static_cast<std::size_t>(n) >= nodes) misuse(what + " refers to missing node index " + std::to_string(n));
+    if (n < 0 || static_cast<std::size_t>(n) >= nodes)
+      misuse(what + " refers to missing node index " + std::to_string(n));
   }
 }
 
 void check_mesh(const Mesh& mesh) {
   if (mesh.dimension != 2 && mesh.dimension != 3) misuse("mesh dimension must be 2 or 3");
-  if (!mesh.node_ids.empty() && mesh.node_ids.size() != mesh.points.size()) misuse("node_ids and points differ in size");
+  if (!mesh.node_ids.empty() && mesh.node_ids.size() != mesh.points.size())
+    misuse("node_ids and points differ in size");
   if (!mesh.cell_ids.empty() && mesh.cell_ids.size() != mesh.cells.size()) misuse("cell_ids and cells differ in size");
   check_elements(mesh.cells, mesh.dimension, mesh.points.size(), "cell");
   for (const deform::Patch& patch : mesh.patches) {

@@ -38,8 +38,10 @@ struct Flavour {
   bool binary;
   const char* label;
 };
-constexpr Flavour kFlavours[] = {
-    {"msh22", false, "2.2 ASCII"}, {"msh22", true, "2.2 binary"}, {"msh41", false, "4.1 ASCII"}, {"msh41", true, "4.1 binary"}};
+constexpr Flavour kFlavours[] = {{"msh22", false, "2.2 ASCII"},
+                                 {"msh22", true, "2.2 binary"},
+                                 {"msh41", false, "4.1 ASCII"},
+                                 {"msh41", true, "4.1 binary"}};
 
 /// A path quoted for the shell.
 std::string quoted(const std::filesystem::path& path) {
@@ -56,14 +58,13 @@ void run_gmsh(const std::string& arguments, const TempDir& dir) {
   const int status = std::system(command.c_str());
   std::string output;
   if (std::filesystem::exists(log)) output = test::read_text(log);
-  ASSERT_EQ(status, 0) << "gmsh is a required test dependency (scripts/install-deps.sh); `" << command
-                       << "` failed:\n"
+  ASSERT_EQ(status, 0) << "gmsh is a required test dependency (scripts/install-deps.sh); `" << command << "` failed:\n"
                        << output;
 }
 
 /// Meshes tests/data/gmsh/<name>.geo in `dimension` with gmsh and returns the file it wrote.
-std::filesystem::path mesh_with_gmsh(const std::string& name, int dimension, const Flavour& flavour,
-                                     const TempDir& dir, const std::string& extra = "") {
+std::filesystem::path mesh_with_gmsh(const std::string& name, int dimension, const Flavour& flavour, const TempDir& dir,
+                                     const std::string& extra = "") {
   const auto out = dir / (name + "-" + flavour.format + (flavour.binary ? "-bin" : "") + ".msh");
   run_gmsh("-" + std::to_string(dimension) + " -nt 1 " + quoted(test::data_path("gmsh/" + name + ".geo")) +
                " -format " + flavour.format + (flavour.binary ? " -bin " : " ") + extra + " -o " + quoted(out),
@@ -120,7 +121,8 @@ Geometry geometry_of(const Mesh& mesh) {
   }
   for (const deform::CellGroup& group : mesh.cell_groups) {
     ElementList cells;
-    for (deform::CellId c : group.cells) cells.add(mesh.cells.type(static_cast<std::size_t>(c)), mesh.cells.nodes(static_cast<std::size_t>(c)));
+    for (deform::CellId c : group.cells)
+      cells.add(mesh.cells.type(static_cast<std::size_t>(c)), mesh.cells.nodes(static_cast<std::size_t>(c)));
     g.groups[group.name] = shapes(cells, mesh.points);
     g.tags["group " + group.name] = group.tag;
   }
@@ -229,7 +231,7 @@ TEST(GmshFromGmsh, ExtrudedHexBoxIsTheSameInAllFourFormats) {
 TEST(GmshFromGmsh, MixedHexPrismMeshIsTheSameInAllFourFormats) {
   TempDir dir;
   Mesh mesh = read_all_flavours("hex_prism", 3, dir);
-  EXPECT_EQ(count_type(mesh, ElementType::hex8), 12u);  // 2 x 2 quads x 3 layers (hex_prism.geo)
+  EXPECT_EQ(count_type(mesh, ElementType::hex8), 12u);    // 2 x 2 quads x 3 layers (hex_prism.geo)
   EXPECT_EQ(count_type(mesh, ElementType::wedge6), 24u);  // 8 triangles x 3 layers
   EXPECT_EQ(mesh.cell_count(), 36u);
   ASSERT_EQ(mesh.patches.size(), 6u);
@@ -309,8 +311,8 @@ Mesh with_default_ids(Mesh mesh) {
 }
 
 /// A 3D mesh exercising what the writer must keep: sparse node tags (some far beyond the node
-/// count, but below 2^31: gmsh 4.8.4 crashes on larger ones), cell tags out of order, hexes and prisms interleaved, cells in zero, one and two
-/// groups, a patch of mixed quads and triangles, a patch and a group without elements,
+/// count, but below 2^31: gmsh 4.8.4 crashes on larger ones), cell tags out of order, hexes and prisms interleaved,
+/// cells in zero, one and two groups, a patch of mixed quads and triangles, a patch and a group without elements,
 /// non-round coordinates.
 Mesh awkward_mesh() {
   Mesh mesh = test::unit_cube(2);  // 27 nodes, 8 hexes, 6 patches
@@ -339,8 +341,8 @@ Mesh awkward_mesh() {
   for (std::size_t c = 0; c < mesh.cells.size(); ++c) mesh.cell_ids.push_back(100 - 3 * static_cast<std::int64_t>(c));
   mesh.patches[5].faces.add(ElementType::tri3, {a, a + 1, a + 2});
   mesh.patches.push_back({"empty", 40, {}, {}});
-  mesh.cell_groups = {{"first_half", 2, {0, 1, 2, 3, 4}}, {"prisms", 5, {4, 7}}, {"nothing", 6, {}},
-                      {"middle", 9, {3, 4, 5, 6}}};
+  mesh.cell_groups = {
+      {"first_half", 2, {0, 1, 2, 3, 4}}, {"prisms", 5, {4, 7}}, {"nothing", 6, {}}, {"middle", 9, {3, 4, 5, 6}}};
   mesh.derive_node_sets();
   return mesh;
 }
@@ -401,7 +403,8 @@ TEST(GmshRoundTrip, AsciiLayoutIsPlain41) {
   const std::string text = gmsh_string(test::unit_square(1, 1), false);
   EXPECT_THAT(text, ::testing::StartsWith("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n4\n1 1 \"xmin\"\n"));
   EXPECT_THAT(text, ::testing::HasSubstr("$Entities\n0 4 1 0\n"));
-  EXPECT_THAT(text, ::testing::HasSubstr("$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n$EndNodes\n"));
+  EXPECT_THAT(text,
+              ::testing::HasSubstr("$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n$EndNodes\n"));
   // One quad (tag 1), then the four patch edges with tags 2..5.
   EXPECT_THAT(text, ::testing::HasSubstr("$Elements\n5 5 1 5\n2 1 3 1\n1 1 2 4 3\n1 1 1 1\n2 3 1\n"));
   EXPECT_THAT(text, ::testing::EndsWith("$EndElements\n"));
