@@ -1,9 +1,50 @@
-// hotmesh: command line entry point.
+// hotmesh: command line entry point. Parses the command line, sets up logging and turns
+// errors into exit codes: 0 success, 1 the work failed, 2 bad input (files, case keys,
+// options), 3 internal error.
 #include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <exception>
+#include <vector>
+
+#include "commands.hpp"
+#include "hotmesh/geometry/input_error.hpp"
+#include "logging.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"hotmesh: moves a CFD mesh onto the hot running geometry"};
+  CLI::App app{"hotmesh: moves a CFD mesh onto the hot running geometry computed by an FEM code.\n"
+               "Run 'hotmesh <command> --help' for the options of a command."};
   app.set_version_flag("--version", HOTMESH_VERSION);
-  CLI11_PARSE(app, argc, argv);
-  return 0;
+  app.require_subcommand(1);
+  int verbose = 0;
+  bool quiet = false;
+  app.add_flag("-v,--verbose", verbose, "More log output on stderr (-vv: trace)");
+  app.add_flag("-q,--quiet", quiet, "Only warnings and errors on stderr");
+
+  using Entry = std::pair<CLI::App*, hotmesh::app::Command>;
+  std::vector<Entry> commands;
+  auto remember = [&](hotmesh::app::Command run) { commands.emplace_back(app.get_subcommands({}).back(), std::move(run)); };
+  remember(hotmesh::app::add_info_command(app));
+  remember(hotmesh::app::add_convert_command(app));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  hotmesh::app::configure_logging(quiet ? -1 : verbose);
+
+  try {
+    for (auto& [sub, run] : commands) {
+      if (sub->parsed()) return run();
+    }
+    return 2;
+  } catch (const hotmesh::InputError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::critical("internal error: {} (please report this with the command line and input files)", e.what());
+    return 3;
+  }
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "hotmesh/geometry/input_error.hpp"
+#include "parallel.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {
@@ -134,7 +135,7 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
           if (owner[static_cast<std::size_t>(n)] == static_cast<int>(p)) nodes.push_back(n);
         }
         std::vector<geometry::ShapePoint> found(nodes.size());
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= detail::kParallelNodes)
         for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
           const auto k = static_cast<std::size_t>(i);
           found[k] = m.shape->project(mesh.points[static_cast<std::size_t>(nodes[k])], 0.0);

@@ -12,6 +12,7 @@
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/pcg.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
+#include "parallel.hpp"
 
 namespace hotmesh::deform {
 
@@ -57,7 +58,7 @@ class JacobiPreconditioner final : public LinearOperator {
   }
   std::size_t size() const override { return inverse_.size(); }
   void apply(std::span<const double> x, std::span<double> y) const override {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(x.size()) >= detail::kParallelVector)
     for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(x.size()); ++i) {
       y[static_cast<std::size_t>(i)] = inverse_[static_cast<std::size_t>(i)] * x[static_cast<std::size_t>(i)];
     }
@@ -215,7 +216,7 @@ class Motion {
   }
 
   void displace(const std::vector<Vec3>& x, std::span<const double> u, std::vector<Vec3>& out) const {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(x.size()) >= detail::kParallelNodes)
     for (std::ptrdiff_t n = 0; n < static_cast<std::ptrdiff_t>(x.size()); ++n) {
       const auto i = static_cast<std::size_t>(n);
       Vec3 p = x[i];

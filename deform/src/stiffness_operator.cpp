@@ -6,6 +6,7 @@
 
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/geometry/input_error.hpp"
+#include "parallel.hpp"
 
 namespace hotmesh::deform {
 
@@ -72,7 +73,7 @@ StiffnessOperator::StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, b
 void StiffnessOperator::update(std::span<const Vec3> points) {
   const auto n = static_cast<std::ptrdiff_t>(cells_->size());
   const auto block = static_cast<std::size_t>(element_dofs_ * element_dofs_);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= detail::kParallelCells)
   for (std::ptrdiff_t c = 0; c < n; ++c) {
     const auto i = static_cast<std::size_t>(c);
     element_stiffness(cells_->type(i), gather(cells_->nodes(i), points), lame_[i], drop_jacobian_,
@@ -92,7 +93,7 @@ template <std::size_t N, std::size_t D>
 void apply_color(const ElementList& cells, std::span<const CellId> color, const double* matrices,
                  std::span<const double> x, std::span<double> y) {
   constexpr std::size_t kNodes = N / D;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(color.size()) >= detail::kParallelCells)
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(color.size()); ++k) {
     const auto c = static_cast<std::size_t>(color[static_cast<std::size_t>(k)]);
     const auto nodes = cells.nodes(c);

@@ -12,6 +12,7 @@
 #include "hotmesh/deform/mesh_topology.hpp"
 #include "hotmesh/deform/quality.hpp"
 #include "hotmesh/geometry/input_error.hpp"
+#include "parallel.hpp"
 
 namespace hotmesh::deform {
 namespace {
@@ -214,7 +215,7 @@ void check_duplicate_nodes(const Mesh& mesh, double relative_tolerance) {
 std::size_t orient_cells(Mesh& mesh) {
   const std::size_t n = mesh.cells.size();
   std::vector<Orientation> orientations(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(n) >= detail::kParallelCells)
   for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(n); ++c) {
     const auto i = static_cast<std::size_t>(c);
     orientations[i] = orientation(mesh.cells.type(i), gather(mesh.cells.nodes(i), mesh.points));

@@ -69,7 +69,8 @@ TEST(StiffnessOperator, ColoursNeverShareANode) {
 }
 
 TEST(StiffnessOperator, ProductIsBitIdenticalForAnyThreadCount) {
-  Mesh mesh = test::square_ring(8, 6, 0.3, 1.0, 3, 0.6);
+  // Large enough that the element loops run in parallel (deform/src/parallel.hpp).
+  Mesh mesh = test::square_ring(16, 12, 0.3, 1.0, 4, 0.6);
   test::jiggle_interior(mesh, 0.2);
   const StiffnessOperator k = make_operator(mesh);
   const auto x = pseudo_random(k.size());

@@ -1,0 +1,24 @@
+// hotmesh app: what a user wants to know about a mesh, as JSON (for `info --json` and the
+// report.json of every run) and as text.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/io/mesh_files.hpp"
+
+namespace hotmesh::app {
+
+/// Counts, bounds, patches, cell groups, validation notes and the quality summary.
+nlohmann::json mesh_summary(const io::LoadedMesh& loaded, const std::filesystem::path& file);
+
+/// A quality summary (deform::QualitySummary) as JSON.
+nlohmann::json quality_json(const deform::Mesh& mesh, const deform::QualitySummary& quality);
+
+/// The summary as aligned text for a terminal.
+std::string mesh_summary_text(const nlohmann::json& summary);
+
+}  // namespace hotmesh::app
