@@ -30,6 +30,7 @@ if ((sanitizers)); then
         -DHOTMESH_WERROR=ON -DHOTMESH_SANITIZE=address,undefined
   cmake --build build-asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
+  LSAN_OPTIONS=suppressions="$(pwd)/tests/lsan.supp" \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan -j "$jobs" --output-on-failure --timeout 1800 -LE no_sanitizer
 fi
