@@ -177,11 +177,13 @@ CurveProjector::Local CurveProjector::newton(const Vec2& p, double lambda, doubl
       break;
     }
     const auto& piece = pieces[k];
+    bool clipped = false;
     if (t + step <= piece.begin || t + step >= piece.end) {
       const bool left = t + step <= piece.begin;
       const double edge = left ? piece.begin : piece.end;
       if (t != edge) {
         step = edge - t;  // go to the end of the piece first
+        clipped = true;
       } else {
         const bool last = left ? k == 0 : k + 1 == pieces.size();
         if (last) {
@@ -219,7 +221,7 @@ CurveProjector::Local CurveProjector::newton(const Vec2& p, double lambda, doubl
     e = e_new;
     f = f_new;
     // Quadratic convergence: after a step this short the next one would be below rounding.
-    if (std::abs(step) * std::sqrt(gg) <= kFinalStep * scale_) {
+    if (!clipped && std::abs(step) * std::sqrt(gg) <= kFinalStep * scale_) {
       converged = true;
       break;
     }

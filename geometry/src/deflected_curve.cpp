@@ -42,7 +42,16 @@ void DeflectedCurve::build_pieces() {
     const std::vector<double> more = interpolant_->breakpoints();
     breaks.insert(breaks.end(), more.begin(), more.end());
     std::sort(breaks.begin(), breaks.end());
-    breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+    // Knots of the two curves that differ by rounding only would make slivers of pieces that
+    // Newton cannot cross: keep one of them (a polynomial piece evaluated that far beyond its
+    // span is the same to rounding).
+    const double sliver = 1e-12 * (breaks.back() - breaks.front());
+    std::vector<double> kept{breaks.front()};
+    for (std::size_t i = 1; i + 1 < breaks.size(); ++i) {
+      if (breaks[i] - kept.back() > sliver && breaks.back() - breaks[i] > sliver) kept.push_back(breaks[i]);
+    }
+    kept.push_back(breaks.back());
+    breaks = std::move(kept);
   }
   pieces_.clear();
   for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {

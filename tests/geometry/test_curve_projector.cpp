@@ -118,6 +118,33 @@ TEST(CurveProjector, WarmStartFromANearbyProjectionAgreesWithColdStart) {
   EXPECT_LE(total_iterations, 450);  // large moves along the S here: 4.5 per projection at most
 }
 
+TEST(CurveProjector, CrossesKnotsThatDifferOnlyByRounding) {
+  // r has a knot at 20/60; the cubic interpolant through 400 nodes has one within rounding of
+  // it. Newton must not stall on the sliver between them.
+  std::vector<Vec2> poles;
+  for (int i = 0; i < 63; ++i) poles.push_back({0.5 + 0.05 * std::sin(0.7 * i), 0.02 * i});
+  std::vector<double> knots(4, 0.0);
+  for (int i = 1; i < 60; ++i) knots.push_back(i / 60.0);
+  knots.insert(knots.end(), 4, 1.0);
+  const BSplineCurve2d r(3, std::move(knots), std::move(poles));
+  // The interpolation parameters come from projecting the nodes on r, as in reconstruct().
+  const CurveProjector on_r{DeflectedCurve(r)};
+  std::vector<double> t;
+  std::vector<Vec2> d;
+  for (int j = 0; j < 400; ++j) {
+    t.push_back(on_r.project(r.point(j / 399.0), 0.0).parameter);
+    d.push_back(r.point(t.back()) + Vec2{0.01 * std::sin(9.0 * t.back()), 0.005 * std::cos(5.0 * t.back())});
+  }
+  const CurveProjector projector{DeflectedCurve(r, interpolate(t, d, 3), DeflectionForm::curve)};
+  for (const auto& piece : projector.curve().pieces()) EXPECT_GT(piece.end - piece.begin, 1e-12);
+  for (const Vec2 p : {Vec2{0.541398, 0.421465}, Vec2{0.535505, 0.416783}, Vec2{0.539121, 0.419293}}) {
+    const CurveProjection cold = projector.project(p, 0.5);
+    const CurveProjection warm = projector.project(p, 0.5, 20.0 / 60.0);
+    EXPECT_NEAR(warm.parameter, cold.parameter, 1e-12);
+    EXPECT_NEAR(dot(warm.point - p, projector.curve().derivatives(warm.parameter, 0.5).first), 0.0, 1e-12);
+  }
+}
+
 TEST(CurveProjector, ConcurrentProjectionsMatchSerialOnes) {
   const CurveProjector projector{DeflectedCurve(test::hairpin(0.01))};
   std::vector<Vec2> points;
