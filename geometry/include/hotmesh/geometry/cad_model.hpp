@@ -1,0 +1,119 @@
+// hotmesh geometry: CAD files (STEP, IGES) read with OpenCASCADE, seen as a list of faces and
+// as the source of meridional curves (section 4.2: "the intersection of a CAD surface with a
+// meridional plane is a B-Spline curve r(t)").
+//
+// Faces are numbered 1, 2, ... in the order OpenCASCADE explores the transferred shape, which
+// follows the file; a face used by several instances of an assembly appears once per instance.
+// Coordinates are converted on import to the length unit asked for (metres by default), so
+// FEM tables and meshes in that unit match. Surfaces of revolution are recognised from their
+// type (revolved curves, cylinders, cones, spheres, tori: the axis is the file's) or, for
+// B-spline and other free-form faces, by fitting an axis to their normals and checking that
+// every normal meets it (see docs/geometry.md).
+//
+// OpenCASCADE's readers are not thread-safe; hotmesh serialises them. A CadModel itself is
+// meant for one thread at a time.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hotmesh/geometry/axis.hpp"
+#include "hotmesh/geometry/bspline_curve.hpp"
+#include "hotmesh/geometry/bspline_surface.hpp"
+
+namespace hotmesh::geometry {
+
+enum class LengthUnit { metre, millimetre, centimetre, micrometre, inch, foot };
+
+const char* to_string(LengthUnit unit);  ///< "m", "mm", "cm", "um", "in", "ft"
+/// The unit named by one of those abbreviations; empty if none.
+std::optional<LengthUnit> parse_length_unit(std::string_view text);
+
+enum class SurfaceKind { plane, cylinder, cone, sphere, torus, revolution, extrusion, bspline, bezier, offset, other };
+
+const char* to_string(SurfaceKind kind);  ///< "plane", "cylinder", ..., "bspline", ...
+
+/// Where the axis of a face comes from.
+enum class AxisSource {
+  none,      ///< not a surface of revolution (or no unique axis: planes, free-form spheres)
+  analytic,  ///< the file's own definition (revolved curve, cylinder, cone, sphere, torus)
+  fitted,    ///< fitted to a free-form (B-spline, ...) face that is rotational within tolerance
+};
+
+const char* to_string(AxisSource source);
+
+struct Box3 {
+  Vec3 min;
+  Vec3 max;
+};
+
+struct FaceInfo {
+  int id = 0;        ///< 1-based, file order
+  std::string name;  ///< from the file (STEP item name, IGES name or label); empty if none
+  SurfaceKind kind = SurfaceKind::other;
+  std::optional<Axis> axis;
+  AxisSource axis_source = AxisSource::none;
+  Box3 bounds;       ///< axis-aligned bounding box
+};
+
+struct CadReadOptions {
+  LengthUnit unit = LengthUnit::metre;  ///< unit of every coordinate hotmesh gets back
+};
+
+struct MeridionalOptions {
+  /// The axis of revolution. Without it, the faces' own axes are used (they must agree).
+  std::optional<Axis> axis;
+  /// Tolerance relative to the size of the faces (their bounding-box diagonal): for axes to
+  /// agree, for a face to be rotational about the axis, and for curve ends to meet.
+  double relative_tolerance = 1e-4;
+};
+
+/// The meridional curve of some faces: (r, z) about `axis`, parameter [0, 1].
+struct MeridionalCurve {
+  BSplineCurve2d curve;
+  Axis axis;
+  std::vector<int> faces;           ///< the faces in order along the curve
+  std::vector<double> face_breaks;  ///< parameter where each of `faces` starts, then 1
+  double tolerance = 0.0;           ///< the absolute tolerance used
+};
+
+class CadModel {
+ public:
+  /// Reads a STEP (.step, .stp) or IGES (.iges, .igs) file. Throws hotmesh::InputError naming
+  /// the file if it cannot be read, is empty, is not STEP/IGES, or holds no faces.
+  static CadModel read(const std::filesystem::path& path, const CadReadOptions& options = {});
+
+  CadModel(CadModel&&) noexcept;
+  CadModel& operator=(CadModel&&) noexcept;
+  ~CadModel();
+
+  const std::filesystem::path& path() const;
+  LengthUnit unit() const;
+  const std::vector<FaceInfo>& faces() const;
+  /// Throws hotmesh::InputError if there is no face `id`.
+  const FaceInfo& face(int id) const;
+
+  /// The face's surface as a B-spline, trimmed to the face's parameter bounds.
+  BSplineSurface face_bspline(int id) const;
+
+  /// Section 4.2, eq. (20): the meridional curve r(t) of the faces, in (r, z) about the axis:
+  /// the basis curve for surfaces of revolution (exact, rational where it is), the section by
+  /// a meridional plane otherwise (planes and free-form faces, checked to be rotational). The
+  /// curves of several faces are joined end to end, ordered along the profile, oriented so that
+  /// z (then r) grows from start to end, with a parameter proportional to arc length per face.
+  /// Throws hotmesh::InputError naming the faces when there is no common axis, a face is not
+  /// rotational about the axis, or the curves do not form one connected profile.
+  MeridionalCurve meridional_curve(std::span<const int> face_ids, const MeridionalOptions& options = {}) const;
+
+ private:
+  struct Impl;
+  explicit CadModel(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace hotmesh::geometry

@@ -1,0 +1,90 @@
+// hotmesh geometry: closest point on a stage c_lambda(t) of a deflected curve (section 4.2:
+// "the problem of projecting a point to the curve c(t) is solved using Newton iterations ...
+// using the De Boor algorithm").
+//
+// Warm start (a hint t from an earlier projection of a nearby point): safeguarded Newton on
+// the squared distance from the hint. Cold start (no hint): a global search first. At
+// construction every stage is sampled densely enough that the chord polyline between samples
+// deviates from the curve by at most `sampling_deviation()` (for every lambda, because c_lambda
+// is affine in lambda); boxes around the sample segments of r and c_1 hold the segments of every
+// stage, so one tree of boxes serves all lambda. A query finds the nearest polyline segment,
+// then every run of segments within twice the deviation of it, and runs Newton from each run:
+// the true closest point lies near one of them, so near-touching branches cannot fool it.
+//
+// project() and at() are const, lock-free and allocation-free: safe and cheap inside parallel
+// loops over mesh nodes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "hotmesh/geometry/boundary_shape.hpp"
+#include "hotmesh/geometry/deflected_curve.hpp"
+
+namespace hotmesh::geometry {
+
+struct CurveProjection {
+  Vec2 point;
+  /// Unit normal: the unit tangent turned by +90 degrees, i.e. to the left when walking along
+  /// increasing t. At a corner of the curve (a C0 knot), the bisector of the two one-sided
+  /// normals.
+  Vec2 normal;
+  Vec2 tangent;  ///< unit tangent along increasing t (at a corner: normal turned by -90 degrees)
+  double parameter = 0.0;
+  double distance = 0.0;  ///< from the projected point (0 for at())
+  int iterations = 0;     ///< Newton iterations used (0 for at())
+};
+
+class CurveProjector {
+ public:
+  explicit CurveProjector(DeflectedCurve curve);
+
+  const DeflectedCurve& curve() const { return curve_; }
+  /// Diagonal of the box that holds every stage: the length scale of tolerances.
+  double length_scale() const { return scale_; }
+  std::size_t sample_count() const { return samples_.size(); }
+  /// Bound on the distance between the sample polyline and the curve, for every stage.
+  double sampling_deviation() const { return deviation_; }
+
+  /// Closest point to p on c_lambda (lambda clamped to [0, 1]); with kNoHint, global.
+  CurveProjection project(const Vec2& p, double lambda, double hint = kNoHint) const;
+  /// The point of c_lambda at parameter t (clamped to the range), with tangent and normal.
+  CurveProjection at(double t, double lambda) const;
+
+ private:
+  struct Sample {
+    double t;
+    Vec2 r;  // on the undeformed curve, lambda = 0
+    Vec2 c;  // on the fully deflected curve, lambda = 1
+  };
+  struct Box {
+    Vec2 lo;
+    Vec2 hi;
+  };
+  struct Local {
+    double t;
+    std::size_t piece;
+    CurveDerivatives2d value;
+    double squared_distance;
+    int iterations;
+    bool converged;
+  };
+
+  void sample_pieces();
+  void build_tree();
+  Local newton(const Vec2& p, double lambda, double t, std::size_t piece) const;
+  CurveProjection global_search(const Vec2& p, double lambda) const;
+  CurveProjection finish(const Vec2& p, double lambda, const Local& local) const;
+
+  DeflectedCurve curve_;
+  std::vector<Sample> samples_;
+  std::vector<std::uint32_t> segment_piece_;  // piece of the segment from sample i to i + 1
+  std::vector<Box> tree_;                     // implicit binary tree, leaves from index leaves_
+  std::size_t leaves_ = 1;
+  double scale_ = 1.0;
+  double deviation_ = 0.0;
+  double newton_tolerance_ = 0.0;
+};
+
+}  // namespace hotmesh::geometry

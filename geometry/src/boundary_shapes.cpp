@@ -1,0 +1,55 @@
+// hotmesh geometry: planar curves, surfaces of revolution (projection in the meridional
+// plane, Fig. 4) and planes behind the BoundaryShape interface.
+#include "hotmesh/geometry/boundary_shapes.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace hotmesh::geometry {
+
+ShapePoint PlanarCurveShape::project(const Vec3& p, double lambda, double hint) const {
+  const CurveProjection q = projector_.project({p.x, p.y}, lambda, hint);
+  return {{q.point.x, q.point.y, p.z}, {q.normal.x, q.normal.y, 0.0}, q.parameter, q.distance};
+}
+
+ShapePoint PlanarCurveShape::at(double t, double lambda, const Vec3& reference) const {
+  const CurveProjection q = projector_.at(t, lambda);
+  return {{q.point.x, q.point.y, reference.z}, {q.normal.x, q.normal.y, 0.0}, q.parameter, 0.0};
+}
+
+ShapePoint RevolvedShape::to_cartesian(const CurveProjection& q, double theta) const {
+  return {axis_.to_cartesian({q.point.x, theta, q.point.y}), axis_.meridional_vector(theta, q.normal.x, q.normal.y),
+          q.parameter, q.distance};
+}
+
+// Fig. 4-b: P' = (r + dr, theta + dtheta, z + dz) is projected in its meridional plane onto the
+// meridional curve, giving (r_F, z_F); P_F = (r_F, theta + dtheta, z_F).
+ShapePoint RevolvedShape::project(const Vec3& p, double lambda, double hint) const {
+  const Cylindrical c = axis_.to_cylindrical(p);
+  return to_cartesian(projector_.project({c.r, c.z}, lambda, hint), c.theta);
+}
+
+ShapePoint RevolvedShape::at(double t, double lambda, const Vec3& reference) const {
+  return to_cartesian(projector_.at(t, lambda), axis_.to_cylindrical(reference).theta);
+}
+
+PlaneShape::PlaneShape(const Vec3& origin, const Vec3& normal) : origin_(origin) {
+  const double length = norm(normal);
+  if (!is_finite(origin) || !std::isfinite(length) || length == 0.0) {
+    throw std::invalid_argument("plane needs a finite origin and a non-zero normal");
+  }
+  normal_ = normal / length;
+}
+
+ShapePoint PlaneShape::project(const Vec3& p, double /*lambda*/, double /*hint*/) const {
+  const double height = dot(p - origin_, normal_);
+  return {p - height * normal_, normal_, 0.0, std::abs(height)};
+}
+
+ShapePoint PlaneShape::at(double /*t*/, double lambda, const Vec3& reference) const {
+  ShapePoint q = project(reference, lambda);
+  q.distance = 0.0;
+  return q;
+}
+
+}  // namespace hotmesh::geometry

@@ -1,0 +1,23 @@
+// hotmesh geometry (internal): what a CadModel holds: the transferred OpenCASCADE shape and its
+// faces in id order, next to their descriptions.
+#pragma once
+
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+
+#include <filesystem>
+#include <vector>
+
+#include "hotmesh/geometry/cad_model.hpp"
+
+namespace hotmesh::geometry {
+
+struct CadModel::Impl {
+  std::filesystem::path path;
+  LengthUnit unit = LengthUnit::metre;
+  TopoDS_Shape shape;
+  std::vector<TopoDS_Face> faces;  // faces[id - 1]
+  std::vector<FaceInfo> info;      // info[id - 1]
+};
+
+}  // namespace hotmesh::geometry

@@ -1,0 +1,245 @@
+// hotmesh geometry: reading STEP and IGES files into a CadModel: the transfer (serialised,
+// in the caller's length unit), the faces in file order with their names, kinds, bounds and
+// axes, and clear errors for files that are not CAD, are empty or hold no faces.
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomConvert.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESData_IGESEntity.hxx>
+#include <STEPControl_Reader.hxx>
+#include <Standard_Failure.hxx>
+#include <StepRepr_RepresentationItem.hxx>
+#include <TCollection_HAsciiString.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <string>
+
+#include "cad_model_impl.hpp"
+#include "face_analysis.hpp"
+#include "hotmesh/geometry/input_error.hpp"
+#include "occt_convert.hpp"
+#include "occt_session.hpp"
+
+namespace hotmesh::geometry {
+
+namespace {
+
+enum class Format { step, iges };
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+std::string trimmed(std::string text) {
+  const auto space = [](unsigned char c) { return std::isspace(c) != 0; };
+  text.erase(text.begin(), std::find_if_not(text.begin(), text.end(), space));
+  text.erase(std::find_if_not(text.rbegin(), text.rend(), space).base(), text.end());
+  return text;
+}
+
+Format format_of(const std::filesystem::path& path) {
+  const std::string extension = lower(path.extension().string());
+  if (extension == ".step" || extension == ".stp") return Format::step;
+  if (extension == ".iges" || extension == ".igs") return Format::iges;
+  throw InputError::in(path.string(), "unknown CAD format '" + path.extension().string() +
+                                          "' (hotmesh reads STEP .step/.stp and IGES .iges/.igs)");
+}
+
+/// Checks what OpenCASCADE's parsers report badly: missing, unreadable, empty, not STEP.
+void check_file(const std::filesystem::path& path, Format format) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw InputError::in(path.string(), "no such CAD file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError::in(path.string(), "cannot open the CAD file");
+  std::string head(256, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (trimmed(head).empty()) throw InputError::in(path.string(), "the CAD file is empty");
+  if (format == Format::step && trimmed(head).rfind("ISO-10303-21", 0) != 0) {
+    throw InputError::in(path.string(), "not a STEP file: it does not start with ISO-10303-21");
+  }
+}
+
+/// A face's name as the file gives it: the STEP item's name or the IGES entity's name/label.
+std::string face_name(const Handle(XSControl_TransferReader)& transfer, const TopoDS_Face& face) {
+  Handle(Standard_Transient) entity = transfer->EntityFromShapeResult(face, 1);
+  if (entity.IsNull()) entity = transfer->EntityFromShapeResult(face, -1);
+  std::string name;
+  if (const auto item = Handle(StepRepr_RepresentationItem)::DownCast(entity); !item.IsNull() && !item->Name().IsNull()) {
+    name = item->Name()->ToCString();
+  } else if (const auto iges = Handle(IGESData_IGESEntity)::DownCast(entity); !iges.IsNull()) {
+    if (iges->HasName()) {
+      name = iges->NameValue()->ToCString();
+    } else if (iges->HasShortLabel()) {
+      name = iges->ShortLabel()->ToCString();
+    }
+  }
+  name = trimmed(name);
+  return name == "NONE" ? std::string() : name;  // STEP writers' word for "no name"
+}
+
+std::string status_text(IFSelect_ReturnStatus status) {
+  switch (status) {
+    case IFSelect_RetVoid: return "nothing could be read";
+    case IFSelect_RetDone: return "read";
+    case IFSelect_RetError: return "it has syntax errors or is truncated";
+    case IFSelect_RetFail: return "the reader failed (is the file complete?)";
+    case IFSelect_RetStop: return "the reader stopped";
+  }
+  return "unknown reader status";
+}
+
+/// Reads and transfers the file; fills the faces in exploration order and their names (while
+/// the reader, which owns the entity records, is alive).
+template <class Reader>
+void transfer(Reader& reader, const std::filesystem::path& path, const char* format_name, TopoDS_Shape& shape,
+              std::vector<TopoDS_Face>& faces, std::vector<std::string>& names) {
+  const IFSelect_ReturnStatus status = reader.ReadFile(path.string().c_str());
+  if (status != IFSelect_RetDone) {
+    throw InputError::in(path.string(), std::string("cannot be read as ") + format_name + ": " + status_text(status));
+  }
+  if (reader.NbRootsForTransfer() == 0) {
+    throw InputError::in(path.string(), std::string("the ") + format_name + " file holds no shapes");
+  }
+  reader.TransferRoots();
+  shape = reader.OneShape();
+  TopTools_IndexedMapOfShape map;
+  TopExp::MapShapes(shape, TopAbs_FACE, map);
+  if (map.IsEmpty()) {
+    TopTools_IndexedMapOfShape edges;
+    TopExp::MapShapes(shape, TopAbs_EDGE, edges);
+    throw InputError::in(path.string(), "the file holds no faces (" + std::to_string(edges.Extent()) +
+                                            " edges): hotmesh needs the boundary's surfaces");
+  }
+  const Handle(XSControl_TransferReader) records = reader.WS()->TransferReader();
+  for (Standard_Integer i = 1; i <= map.Extent(); ++i) {
+    faces.push_back(TopoDS::Face(map(i)));
+    names.push_back(face_name(records, faces.back()));
+  }
+}
+
+}  // namespace
+
+const char* to_string(LengthUnit unit) {
+  switch (unit) {
+    case LengthUnit::metre: return "m";
+    case LengthUnit::millimetre: return "mm";
+    case LengthUnit::centimetre: return "cm";
+    case LengthUnit::micrometre: return "um";
+    case LengthUnit::inch: return "in";
+    case LengthUnit::foot: return "ft";
+  }
+  return "?";
+}
+
+std::optional<LengthUnit> parse_length_unit(std::string_view text) {
+  for (const LengthUnit unit : {LengthUnit::metre, LengthUnit::millimetre, LengthUnit::centimetre,
+                                LengthUnit::micrometre, LengthUnit::inch, LengthUnit::foot}) {
+    if (text == to_string(unit)) return unit;
+  }
+  return std::nullopt;
+}
+
+const char* to_string(SurfaceKind kind) {
+  switch (kind) {
+    case SurfaceKind::plane: return "plane";
+    case SurfaceKind::cylinder: return "cylinder";
+    case SurfaceKind::cone: return "cone";
+    case SurfaceKind::sphere: return "sphere";
+    case SurfaceKind::torus: return "torus";
+    case SurfaceKind::revolution: return "revolution";
+    case SurfaceKind::extrusion: return "extrusion";
+    case SurfaceKind::bspline: return "bspline";
+    case SurfaceKind::bezier: return "bezier";
+    case SurfaceKind::offset: return "offset";
+    case SurfaceKind::other: return "other";
+  }
+  return "?";
+}
+
+const char* to_string(AxisSource source) {
+  switch (source) {
+    case AxisSource::none: return "none";
+    case AxisSource::analytic: return "analytic";
+    case AxisSource::fitted: return "fitted";
+  }
+  return "?";
+}
+
+CadModel::CadModel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+CadModel::CadModel(CadModel&&) noexcept = default;
+CadModel& CadModel::operator=(CadModel&&) noexcept = default;
+CadModel::~CadModel() = default;
+
+const std::filesystem::path& CadModel::path() const { return impl_->path; }
+LengthUnit CadModel::unit() const { return impl_->unit; }
+const std::vector<FaceInfo>& CadModel::faces() const { return impl_->info; }
+
+const FaceInfo& CadModel::face(int id) const {
+  if (id < 1 || static_cast<std::size_t>(id) > impl_->info.size()) {
+    throw InputError::in(impl_->path.string(), "no face " + std::to_string(id) + ": the faces are 1 to " +
+                                                   std::to_string(impl_->info.size()));
+  }
+  return impl_->info[static_cast<std::size_t>(id - 1)];
+}
+
+CadModel CadModel::read(const std::filesystem::path& path, const CadReadOptions& options) {
+  const Format format = format_of(path);
+  check_file(path, format);
+  auto impl = std::make_unique<Impl>();
+  impl->path = path;
+  impl->unit = options.unit;
+  std::vector<std::string> names;
+  try {
+    detail::OcctSession session;
+    session.use_unit(options.unit);
+    if (format == Format::step) {
+      STEPControl_Reader reader;
+      transfer(reader, path, "STEP", impl->shape, impl->faces, names);
+    } else {
+      IGESControl_Reader reader;
+      transfer(reader, path, "IGES", impl->shape, impl->faces, names);
+    }
+    for (std::size_t i = 0; i < impl->faces.size(); ++i) {
+      const TopoDS_Face& face = impl->faces[i];
+      FaceInfo info;
+      info.id = static_cast<int>(i) + 1;
+      info.name = names[i];
+      info.kind = detail::surface_kind(face);
+      info.bounds = detail::face_bounds(face);
+      const detail::FaceAxis axis = detail::face_axis(face, info.kind);
+      info.axis = axis.axis;
+      info.axis_source = axis.source;
+      impl->info.push_back(std::move(info));
+    }
+  } catch (const Standard_Failure& e) {
+    throw InputError::in(path.string(), std::string("OpenCASCADE could not read the file: ") + e.GetMessageString());
+  }
+  return CadModel(std::move(impl));
+}
+
+BSplineSurface CadModel::face_bspline(int id) const {
+  face(id);
+  const TopoDS_Face& f = impl_->faces[static_cast<std::size_t>(id - 1)];
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  try {
+    const Handle(Geom_Surface) bounded = new Geom_RectangularTrimmedSurface(BRep_Tool::Surface(f), u0, u1, v0, v1);
+    return detail::to_surface(GeomConvert::SurfaceToBSplineSurface(bounded));
+  } catch (const Standard_Failure& e) {
+    throw InputError::in(impl_->path.string(), "face " + std::to_string(id) +
+                                                   " has no B-spline form: " + e.GetMessageString());
+  }
+}
+
+}  // namespace hotmesh::geometry

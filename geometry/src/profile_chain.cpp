@@ -1,0 +1,189 @@
+// hotmesh geometry (internal): ordering, orienting and concatenating meridional curve pieces
+// into one B-spline profile.
+#include "profile_chain.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "hotmesh/geometry/curve_projector.hpp"
+#include "hotmesh/geometry/input_error.hpp"
+#include "occt_convert.hpp"
+
+namespace hotmesh::geometry::detail {
+
+namespace {
+
+Vec2 start_of(const BSplineCurve2d& c) { return c.point(c.first_parameter()); }
+Vec2 end_of(const BSplineCurve2d& c) { return c.point(c.last_parameter()); }
+
+double length_of(const BSplineCurve2d& c) {
+  constexpr int kSamples = 256;
+  double length = 0.0;
+  Vec2 previous = start_of(c);
+  for (int i = 1; i <= kSamples; ++i) {
+    const Vec2 next = c.point(c.first_parameter() + (c.last_parameter() - c.first_parameter()) * i / kSamples);
+    length += distance(previous, next);
+    previous = next;
+  }
+  return length;
+}
+
+/// Every point of `a` lies within the tolerance of `b`: `a` repeats (part of) `b`, as the
+/// meridians of the two halves of a revolved face, or of faces cut apart by a slot, do.
+bool covered_by(const BSplineCurve2d& a, const CurveProjector& b, double tolerance) {
+  constexpr int kSamples = 16;
+  for (int i = 0; i <= kSamples; ++i) {
+    const double t = a.first_parameter() + (a.last_parameter() - a.first_parameter()) * i / kSamples;
+    if (b.project(a.point(t), 0.0).distance > tolerance) return false;
+  }
+  return true;
+}
+
+std::string face_list(const std::vector<ProfilePiece>& pieces) {
+  std::vector<int> faces;
+  for (const auto& piece : pieces) faces.push_back(piece.face);
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  std::string text;
+  for (std::size_t i = 0; i < faces.size(); ++i) text += (i ? ", " : "") + std::to_string(faces[i]);
+  return text;
+}
+
+BSplineCurve2d with_degree(const BSplineCurve2d& curve, int degree) {
+  if (curve.degree() == degree) return curve;
+  const Handle(Geom2d_BSplineCurve) occt = to_occt(curve);
+  occt->IncreaseDegree(degree);
+  return to_curve(occt);
+}
+
+}  // namespace
+
+bool runs_backwards(const Vec2& start, const Vec2& end, double tolerance) {
+  if (std::abs(end.y - start.y) > tolerance) return end.y < start.y;
+  return end.x < start.x;
+}
+
+Profile join_profile(std::vector<ProfilePiece> pieces, double tolerance, const std::string& source) {
+  if (pieces.empty()) throw InputError::in(source, "the faces have no meridional curve");
+  // 1. Drop pieces that repeat (part of) another one, longest first.
+  std::stable_sort(pieces.begin(), pieces.end(), [](const ProfilePiece& a, const ProfilePiece& b) {
+    return length_of(a.curve) > length_of(b.curve);
+  });
+  std::vector<ProfilePiece> distinct;
+  std::vector<CurveProjector> kept;
+  for (auto& piece : pieces) {
+    const bool repeated = std::any_of(kept.begin(), kept.end(), [&](const CurveProjector& other) {
+      return covered_by(piece.curve, other, tolerance);
+    });
+    if (repeated) continue;
+    kept.emplace_back(DeflectedCurve(piece.curve));
+    distinct.push_back(std::move(piece));
+  }
+  // 2. Chain them, starting from an end that no other piece touches (any, if closed).
+  const auto touches = [&](const Vec2& p, std::size_t self) {
+    for (std::size_t k = 0; k < distinct.size(); ++k) {
+      if (k == self) continue;
+      if (distance(p, start_of(distinct[k].curve)) <= tolerance || distance(p, end_of(distinct[k].curve)) <= tolerance) {
+        return true;
+      }
+    }
+    return false;
+  };
+  std::vector<char> used(distinct.size(), 0);
+  std::vector<ProfilePiece> chain;
+  for (std::size_t k = 0; k < distinct.size() && chain.empty(); ++k) {
+    if (!touches(start_of(distinct[k].curve), k)) {
+      chain.push_back(distinct[k]);
+    } else if (!touches(end_of(distinct[k].curve), k)) {
+      chain.push_back({distinct[k].curve.reversed(), distinct[k].face});
+    }
+    if (!chain.empty()) used[k] = 1;
+  }
+  if (chain.empty()) {
+    chain.push_back(distinct[0]);
+    used[0] = 1;
+  }
+  for (;;) {
+    const Vec2 end = end_of(chain.back().curve);
+    std::size_t best = distinct.size();
+    bool reverse = false;
+    double best_gap = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < distinct.size(); ++k) {
+      if (used[k]) continue;
+      const double to_start = distance(end, start_of(distinct[k].curve));
+      const double to_end = distance(end, end_of(distinct[k].curve));
+      if (std::min(to_start, to_end) < best_gap) {
+        best_gap = std::min(to_start, to_end);
+        best = k;
+        reverse = to_end < to_start;
+      }
+    }
+    if (best == distinct.size()) break;
+    if (best_gap > tolerance) {
+      throw InputError::in(source, "the meridional curves of faces " + face_list(distinct) +
+                                       " do not form one connected profile: face " +
+                                       std::to_string(distinct[best].face) + " is " + std::to_string(best_gap) +
+                                       " away from the end of the others (tolerance " + std::to_string(tolerance) +
+                                       ")");
+    }
+    used[best] = 1;
+    chain.push_back({reverse ? distinct[best].curve.reversed() : distinct[best].curve, distinct[best].face});
+  }
+  // 3. Orientation, then parameters proportional to length on [0, 1] and a common degree.
+  if (runs_backwards(start_of(chain.front().curve), end_of(chain.back().curve), tolerance)) {
+    std::reverse(chain.begin(), chain.end());
+    for (auto& piece : chain) piece.curve = piece.curve.reversed();
+  }
+  std::vector<double> breaks{0.0};
+  double total = 0.0;
+  for (const auto& piece : chain) {
+    total += length_of(piece.curve);
+    breaks.push_back(total);
+  }
+  if (!(total > 0.0)) throw InputError::in(source, "the meridional curve of faces " + face_list(chain) + " has no length");
+  for (double& b : breaks) b /= total;
+  breaks.back() = 1.0;
+  int degree = 1;
+  bool rational = false;
+  for (const auto& piece : chain) {
+    degree = std::max(degree, piece.curve.degree());
+    rational = rational || piece.curve.is_rational();
+  }
+  // 4. Concatenation: shared end poles averaged, weights of each piece scaled (which leaves
+  //    a rational curve unchanged) to match at the joints, knot multiplicity = degree there.
+  const auto p = static_cast<std::size_t>(degree);
+  std::vector<double> knots;
+  std::vector<Vec2> poles;
+  std::vector<double> weights;
+  Profile profile{chain.front().curve, {}, {}};
+  for (std::size_t k = 0; k < chain.size(); ++k) {
+    if (breaks[k + 1] <= breaks[k]) {
+      throw InputError::in(source, "face " + std::to_string(chain[k].face) + " has a meridional curve of no length");
+    }
+    const BSplineCurve2d c = with_degree(chain[k].curve, degree).reparametrized(breaks[k], breaks[k + 1]);
+    std::vector<double> w = c.is_rational() ? c.weights() : std::vector<double>(c.poles().size(), 1.0);
+    if (k > 0) {
+      const double scale = weights.back() / w.front();
+      for (double& x : w) x *= scale;
+    }
+    const std::size_t first = k == 0 ? 0 : 1;
+    if (k > 0) {
+      poles.back() = 0.5 * (poles.back() + c.poles().front());
+      knots.pop_back();  // multiplicity degree + 1 -> degree at the joint
+    }
+    knots.insert(knots.end(), c.knots().begin() + static_cast<std::ptrdiff_t>(k == 0 ? 0 : p + 1), c.knots().end());
+    poles.insert(poles.end(), c.poles().begin() + static_cast<std::ptrdiff_t>(first), c.poles().end());
+    weights.insert(weights.end(), w.begin() + static_cast<std::ptrdiff_t>(first), w.end());
+    if (profile.faces.empty() || profile.faces.back() != chain[k].face) {
+      profile.faces.push_back(chain[k].face);
+      profile.face_breaks.push_back(breaks[k]);
+    }
+  }
+  profile.face_breaks.push_back(1.0);
+  if (!rational) weights.clear();
+  profile.curve = BSplineCurve2d(degree, std::move(knots), std::move(poles), std::move(weights));
+  return profile;
+}
+
+}  // namespace hotmesh::geometry::detail

@@ -1,0 +1,34 @@
+// hotmesh geometry (internal): joining the meridional curves of several faces (or several
+// pieces of one face's section) into one profile curve. Pieces that repeat part of a longer
+// one (the halves of a revolved face, faces split by a slot) are dropped; the rest are ordered
+// end to end and oriented, each given a parameter interval proportional to its length, raised
+// to a common degree, and concatenated into one B-spline with parameter [0, 1], C0 where the
+// pieces meet.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hotmesh/geometry/bspline_curve.hpp"
+
+namespace hotmesh::geometry::detail {
+
+struct ProfilePiece {
+  BSplineCurve2d curve;
+  int face = 0;
+};
+
+struct Profile {
+  BSplineCurve2d curve;
+  std::vector<int> faces;           ///< in order along the curve (a face once)
+  std::vector<double> face_breaks;  ///< parameter where each of `faces` starts, then 1
+};
+
+/// Throws hotmesh::InputError (naming `source` and the faces) if the pieces do not form one
+/// chain with ends within `tolerance`.
+Profile join_profile(std::vector<ProfilePiece> pieces, double tolerance, const std::string& source);
+
+/// Orientation rule of profiles: z grows from start to end; at equal z, r grows.
+bool runs_backwards(const Vec2& start, const Vec2& end, double tolerance);
+
+}  // namespace hotmesh::geometry::detail

@@ -1,0 +1,131 @@
+// hotmesh tests: OpenCASCADE-built CAD fixtures (see occt_fixtures.hpp).
+#include "occt_fixtures.hpp"
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeRevol.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <GeomConvert.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_SurfaceOfRevolution.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESControl_Writer.hxx>
+#include <Interface_Static.hxx>
+#include <Precision.hxx>
+#include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <UnitsMethods.hxx>
+#include <gp_Ax2.hxx>
+
+#include <stdexcept>
+
+namespace hotmesh::geometry::test {
+
+namespace {
+
+gp_Pnt pnt(const Vec3& p) { return gp_Pnt(p.x, p.y, p.z); }
+gp_Dir dir(const Vec3& d) { return gp_Dir(d.x, d.y, d.z); }
+
+/// The profile as a 3D curve in the meridional half-plane theta = 0 of the axis.
+Handle(Geom_BSplineCurve) profile_3d(const Axis& axis) {
+  const BSplineCurve2d c = profile();
+  TColgp_Array1OfPnt poles(1, static_cast<int>(c.poles().size()));
+  for (int i = 1; i <= poles.Upper(); ++i) {
+    const Vec2 q = c.poles()[static_cast<std::size_t>(i - 1)];
+    poles(i) = pnt(axis.to_cartesian({q.x, 0.0, q.y}));
+  }
+  TColStd_Array1OfReal knots(1, 3);
+  TColStd_Array1OfInteger mults(1, 3);
+  knots(1) = 0.0, knots(2) = 0.5, knots(3) = 1.0;
+  mults(1) = 4, mults(2) = 1, mults(3) = 4;
+  return new Geom_BSplineCurve(poles, knots, mults, 3);
+}
+
+TopoDS_Shape build(Primitive primitive, const Axis& axis) {
+  const gp_Ax2 frame(pnt(axis.origin()), dir(axis.direction()));
+  switch (primitive) {
+    case Primitive::cylinder: return BRepPrimAPI_MakeCylinder(frame, 2.0, 5.0).Shape();
+    case Primitive::cone: return BRepPrimAPI_MakeCone(frame, 3.0, 1.0, 4.0).Shape();
+    case Primitive::torus: return BRepPrimAPI_MakeTorus(frame, 5.0, 1.0).Shape();
+    case Primitive::revolved_profile:
+      return BRepPrimAPI_MakeRevol(BRepBuilderAPI_MakeEdge(profile_3d(axis)).Edge(),
+                                   gp_Ax1(pnt(axis.origin()), dir(axis.direction())))
+          .Shape();
+    case Primitive::bspline_revolved: {
+      const Handle(Geom_Surface) revolved =
+          new Geom_SurfaceOfRevolution(profile_3d(axis), gp_Ax1(pnt(axis.origin()), dir(axis.direction())));
+      const Handle(Geom_Surface) nurbs = GeomConvert::SurfaceToBSplineSurface(revolved);
+      return BRepBuilderAPI_MakeFace(nurbs, Precision::Confusion()).Shape();
+    }
+  }
+  throw std::logic_error("unknown primitive");
+}
+
+}  // namespace
+
+BSplineCurve2d profile() {
+  return BSplineCurve2d(3, {0, 0, 0, 0, 0.5, 1, 1, 1, 1}, {{2, 0}, {3, 1}, {2.5, 2}, {3.5, 2.5}, {4, 3}});
+}
+
+void write_primitive(const std::filesystem::path& path, Primitive primitive, const Axis& axis) {
+  const TopoDS_Shape shape = build(primitive, axis);
+  // Writers scale from the process-wide unit that readers leave behind: millimetres here.
+  UnitsMethods::SetCasCadeLengthUnit(1.0, UnitsMethods_LengthUnit_Millimeter);
+  if (path.extension() == ".igs" || path.extension() == ".iges") {
+    IGESControl_Controller::Init();
+    IGESControl_Writer writer("MM", 1);
+    writer.AddShape(shape);
+    writer.ComputeModel();
+    if (!writer.Write(path.string().c_str())) throw std::runtime_error("IGES fixture not written");
+    return;
+  }
+  STEPControl_Writer writer;
+  Interface_Static::SetCVal("xstep.cascade.unit", "MM");
+  Interface_Static::SetCVal("write.step.unit", "MM");
+  if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone ||
+      writer.Write(path.string().c_str()) != IFSelect_RetDone) {
+    throw std::runtime_error("STEP fixture not written");
+  }
+}
+
+std::vector<std::vector<Vec3>> edge_points(const std::filesystem::path& path, int samples) {
+  TopoDS_Shape shape;
+  if (path.extension() == ".igs") {
+    IGESControl_Reader reader;
+    Interface_Static::SetCVal("xstep.cascade.unit", "M");
+    if (reader.ReadFile(path.string().c_str()) != IFSelect_RetDone) throw std::runtime_error("IGES not read");
+    reader.TransferRoots();
+    shape = reader.OneShape();
+  } else {
+    STEPControl_Reader reader;
+    Interface_Static::SetCVal("xstep.cascade.unit", "M");
+    if (reader.ReadFile(path.string().c_str()) != IFSelect_RetDone) throw std::runtime_error("STEP not read");
+    reader.TransferRoots();
+    shape = reader.OneShape();
+  }
+  std::vector<std::vector<Vec3>> result;
+  for (TopExp_Explorer it(shape, TopAbs_EDGE); it.More(); it.Next()) {
+    const BRepAdaptor_Curve curve(TopoDS::Edge(it.Current()));
+    std::vector<Vec3> points;
+    for (int i = 0; i <= samples; ++i) {
+      const gp_Pnt p = curve.Value(curve.FirstParameter() + (curve.LastParameter() - curve.FirstParameter()) * i / samples);
+      points.push_back({p.X(), p.Y(), p.Z()});
+    }
+    result.push_back(std::move(points));
+  }
+  return result;
+}
+
+}  // namespace hotmesh::geometry::test
