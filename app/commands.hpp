@@ -16,5 +16,6 @@ using Command = std::function<int()>;
 
 Command add_info_command(CLI::App& parent);
 Command add_convert_command(CLI::App& parent);
+Command add_deform_command(CLI::App& parent);
 
 }  // namespace hotmesh::app

@@ -93,7 +93,7 @@ template <std::size_t N, std::size_t D>
 void apply_color(const ElementList& cells, std::span<const CellId> color, const double* matrices,
                  std::span<const double> x, std::span<double> y) {
   constexpr std::size_t kNodes = N / D;
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(color.size()) >= detail::kParallelCells)
+#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(color.size() * N * N) >= detail::kParallelProduct)
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(color.size()); ++k) {
     const auto c = static_cast<std::size_t>(color[static_cast<std::size_t>(k)]);
     const auto nodes = cells.nodes(c);
