@@ -143,4 +143,20 @@ void StiffnessOperator::diagonal(std::span<double> d) const {
   }
 }
 
+void StiffnessOperator::diagonal_blocks(std::span<double> blocks) const {
+  std::fill(blocks.begin(), blocks.end(), 0.0);
+  const auto n = static_cast<std::size_t>(element_dofs_);
+  const auto dim = static_cast<std::size_t>(dim_);
+  for (std::size_t c = 0; c < cells_->size(); ++c) {
+    const auto ke = element_matrix(static_cast<CellId>(c));
+    const auto nodes = cells_->nodes(c);
+    for (std::size_t a = 0; a < nodes.size(); ++a) {
+      double* block = blocks.data() + static_cast<std::size_t>(nodes[a]) * dim * dim;
+      for (std::size_t i = 0; i < dim; ++i) {
+        for (std::size_t j = 0; j < dim; ++j) block[i * dim + j] += ke[(a * dim + i) * n + a * dim + j];
+      }
+    }
+  }
+}
+
 }  // namespace hotmesh::deform
