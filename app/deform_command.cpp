@@ -1,14 +1,15 @@
 // hotmesh deform CASE.yaml [-o DIR] [--threads N] [--force] [--binary]: the main job. Reads and
 // validates everything first, moves the mesh increment by increment, and writes the deformed
-// mesh (.msh, .vtu), pictures for 2D meshes and report.json to the output folder. If the
-// motion fails it keeps the last valid mesh, writes failed.vtu marking the failed cells and
-// exits with code 1.
+// mesh (.msh, .vtu), pictures for 2D meshes, report.json and restart.hmr (the state the next
+// coupling iteration continues from) to the output folder. If the motion fails it keeps the
+// last valid mesh, writes failed.vtu marking the failed cells and exits with code 1.
 #include <CLI/CLI.hpp>
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "deform_outputs.hpp"
@@ -17,6 +18,7 @@
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/io/output_folder.hpp"
+#include "hotmesh/io/restart_file.hpp"
 
 namespace hotmesh::app {
 namespace {
@@ -75,11 +77,20 @@ Command add_deform_command(CLI::App& parent) {
     for (const auto& name : output_names(c, mesh)) io::refuse_overwriting_input(output / name, inputs);
     const int threads = options->threads >= 0 ? options->threads : c.solver.threads;
     if (threads > 0) omp_set_num_threads(threads);
+
+    // A restarted run continues from the state a previous run saved (section 4.3).
+    std::optional<io::RestartState> previous;
+    std::optional<deform::MotionStart> resume;
+    if (c.restart) {
+      previous = io::read_restart(*c.restart, mesh);
+      resume = deform::MotionStart{previous->points, previous->sliding};
+      spdlog::info("restarting from {} ({} sliding nodes)", c.restart->string(), previous->sliding.size());
+    }
     timings.read = seconds_since(t);
 
     // 2. The deflected shapes, from the FEM tables (section 4.2).
     t = Clock::now();
-    const io::CaseSetup setup = io::set_up_case(c, mesh);
+    const io::CaseSetup setup = io::set_up_case(c, mesh, previous ? &*previous : nullptr);
     for (const auto& s : setup.shapes) {
       spdlog::info("patch {}: deflected shape through {} FEM nodes (degree {})", s.patch, s.reconstruction.used_nodes,
                    s.reconstruction.degree);
@@ -90,12 +101,16 @@ Command add_deform_command(CLI::App& parent) {
     spdlog::info("moving the mesh in {} increments on {} threads", c.solver.increments, omp_get_max_threads());
     const deform::MotionResult result = deform::move_mesh(
         mesh, setup.motions, c.material, c.solver,
-        [&c](const deform::IncrementRecord& r) { log_increment(r, c.solver.increments); });
+        [&c](const deform::IncrementRecord& r) { log_increment(r, c.solver.increments); }, resume ? &*resume : nullptr);
     for (const auto& note : result.notes) spdlog::warn("{}", note);
 
     // 4. Outputs, each written atomically; on failure the last valid mesh.
     t = Clock::now();
     RunOutputs outputs = write_outputs(output, c, mesh, setup, result, options->binary);
+    if (result.success) {  // the state the next coupling iteration restarts from
+      io::write_restart(output / "restart.hmr", io::restart_state(c, mesh, result));
+      outputs.files.push_back(output / "restart.hmr");
+    }
     timings.write = seconds_since(t);
     timings.wall = seconds_since(start);
     write_report(output, c, loaded, setup, result, timings, outputs);

@@ -49,7 +49,7 @@ void picture(const std::filesystem::path& path, const std::string& title, const 
 }  // namespace
 
 std::vector<std::string> output_names(const io::Case& c, const deform::Mesh& mesh) {
-  std::vector<std::string> names{"deformed.msh", "deformed.vtu", "failed.vtu", "report.json"};
+  std::vector<std::string> names{"deformed.msh", "deformed.vtu", "failed.vtu", "report.json", "restart.hmr"};
   if (mesh.dimension == 2) {
     names.push_back("deformed.png");
     names.push_back("failed.png");
@@ -127,9 +127,10 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["increments"] = json::array();
   std::size_t newton_total = 0, pcg_total = 0;
   for (const auto& r : result.increments) {
-    json pcg = json::array(), residuals = json::array();
+    json pcg = json::array(), residuals = json::array(), projections = json::array();
     for (std::size_t i = 0; i < r.newton.size(); ++i) {
       residuals.push_back(r.newton[i].residual);
+      if (i + 1 < r.newton.size() && result.sliding_nodes > 0) projections.push_back(r.newton[i].max_projection);
       if (i + 1 < r.newton.size()) pcg.push_back(r.newton[i].pcg_iterations);
       pcg_total += static_cast<std::size_t>(r.newton[i].pcg_iterations);
     }
@@ -144,6 +145,8 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
                                {"residuals", residuals},
                                {"residual_reduction", r.residual_reduction},
                                {"min_scaled_jacobian", r.min_scaled_jacobian},
+                               {"max_projection_distance", projections},
+                               {"max_normal_slip", r.max_normal_slip},
                                {"inverted_cells", r.inverted_cells},
                                {"seconds", r.seconds},
                                {"failure", r.failure}});
@@ -151,14 +154,18 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["newton_iterations"] = newton_total;
   j["pcg_iterations"] = pcg_total;
   j["stage_reached"] = result.lambda_reached;
+  j["sliding_nodes"] = result.sliding_nodes;
+  j["max_sliding_projection_distance"] = result.max_sliding_projection_distance;
+  j["max_normal_slip"] = result.max_normal_slip;
+  if (c.restart) j["restarted_from"] = c.restart->string();
   j["min_scaled_jacobian"] = result.summary.min_scaled_jacobian;
   j["inverted_cells"] = result.summary.inverted_cells;
   j["quality"] = quality_json(mesh, result.summary);
   j["notes"] = result.notes;
   const auto& m = result.timings;
-  j["seconds"] = {{"read", timings.read},         {"shapes", timings.shapes}, {"setup", m.setup},
-                  {"assembly", m.assembly},       {"solve", m.solve},         {"quality", m.quality},
-                  {"motion", m.total},            {"write", timings.write}};
+  j["seconds"] = {{"read", timings.read},   {"shapes", timings.shapes},         {"setup", m.setup},
+                  {"assembly", m.assembly}, {"solve", m.solve},                {"projection", m.projection},
+                  {"quality", m.quality},   {"motion", m.total},               {"write", timings.write}};
   j["wall_seconds"] = timings.wall;
   outputs.files.push_back(folder / "report.json");
   j["outputs"] = json::array();

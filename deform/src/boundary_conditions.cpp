@@ -73,7 +73,7 @@ std::vector<double> locate(const Mesh& mesh, std::span<const Vec3> points, const
                            std::span<const NodeId> nodes) {
   const double tolerance = m.tolerance > 0.0 ? m.tolerance : 1e-3 * bounding_diagonal(mesh, patch.nodes);
   std::vector<geometry::ShapePoint> found(nodes.size());
-#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelNodes)
+#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
     const auto k = static_cast<std::size_t>(i);
     found[k] = m.shape->project(points[static_cast<std::size_t>(nodes[k])], 0.0);

@@ -25,7 +25,7 @@ void SlidingNodes::begin_increment(double a, double b, std::span<const Vec3> x, 
   forcing_.assign(nodes.size(), {});
 
   const double share = (b - a) / (1.0 - a);  // 1 / (N - k + 1) for equal increments (eq. 22)
-#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelNodes)
+#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
     const auto k = static_cast<std::size_t>(i);
     SlidingNode& s = nodes[k];
@@ -41,7 +41,7 @@ double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double
   auto& nodes = setup_.sliding;
   double largest = 0.0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : largest) \
-    if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelNodes)
+    if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
     SlidingNode& s = nodes[static_cast<std::size_t>(i)];
     const Vec3& start = x[static_cast<std::size_t>(s.node)];
@@ -65,7 +65,7 @@ double SlidingNodes::normal_component(std::span<const double> p) const {
 
 void SlidingNodes::end_increment(std::span<const double> u) {
   auto& nodes = setup_.sliding;
-#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelNodes)
+#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
     const auto k = static_cast<std::size_t>(i);
     SlidingNode& s = nodes[k];

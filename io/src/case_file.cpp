@@ -34,8 +34,9 @@ using namespace detail;  // NOLINT: the checking vocabulary of this file
 namespace fs = std::filesystem;
 using geometry::SampleFrame;
 
-constexpr std::array<std::string_view, 8> kTopKeys{"mesh",   "cad",      "output",  "axis",
-                                                  "solver", "material", "patches", "pictures"};
+constexpr std::array<std::string_view, 10> kTopKeys{"mesh",     "cad",     "length_unit", "output",  "axis",
+                                                   "solver",   "material", "patches",    "pictures", "restart"};
+constexpr std::array<std::string_view, 6> kUnitNames{"m", "mm", "cm", "um", "in", "ft"};
 constexpr std::array<std::string_view, 2> kAxisKeys{"origin", "direction"};
 constexpr std::array<std::string_view, 7> kSolverKeys{
     "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
@@ -44,7 +45,9 @@ constexpr std::array<std::string_view, 4> kMaterialKeys{"law", "alpha_s", "alpha
 /// The names of the stiffness laws, in the order of enum deform::StiffnessLaw.
 constexpr std::array<std::string_view, 3> kLawNames{"shape_volume", "uniform", "inverse_volume"};
 constexpr std::array<std::string_view, 4> kPatchKeys{"role", "deflection", "partner", "angle_deg"};
-constexpr std::array<std::string_view, 3> kDeflectionKeys{"file", "degree", "faces"};
+constexpr std::array<std::string_view, 4> kDeflectionKeys{"file", "degree", "faces", "form"};
+/// The names of the deflection forms, in the order of enum geometry::DeflectionForm.
+constexpr std::array<std::string_view, 2> kFormNames{"curve", "displacement"};
 /// The names of the roles, in the order of enum deform::BoundaryRole.
 constexpr std::array<std::string_view, 6> kRoleNames{"fixed", "prescribed", "slip", "sliding", "passive", "periodic"};
 constexpr std::string_view kRoleList = "fixed, prescribed, slip, sliding, passive, periodic";
@@ -93,6 +96,9 @@ class CaseParser {
     }
     has_cad_ = top.find("cad") != nullptr;
     if (has_cad_) read_cad(*top.find("cad"));
+    if (const Entry* e = top.find("length_unit")) {
+      if (const auto unit = reader_.choice(*e, kUnitNames)) c_.length_unit = *geometry::parse_length_unit(kUnitNames[*unit]);
+    }
     c_.output = folder_ / (c_.file.stem().string() + "-out");
     if (const Entry* e = top.find("output")) read_output(*e);
     has_axis_ = top.find("axis") != nullptr;
@@ -100,6 +106,9 @@ class CaseParser {
     if (const Entry* e = top.find("solver")) read_solver(*e);
     if (const Entry* e = top.find("material")) read_material(*e);
     if (const Entry* e = top.find("pictures")) read_pictures(*e);
+    if (const Entry* e = top.find("restart")) {
+      if (auto path = input_file(*e, "the restart file of a previous run (restart.hmr)")) c_.restart = *path;
+    }
     if (const Entry* e = top.find("patches")) {
       read_patches(*e);
     } else {
@@ -341,6 +350,11 @@ class CaseParser {
       ok = false;
     }
     if (const Entry* faces = m.find("faces")) ok = read_faces(*faces, spec.faces) && ok;
+    if (const Entry* form = m.find("form")) {
+      const auto value = reader_.choice(*form, kFormNames);
+      ok = ok && value.has_value();
+      if (value) spec.form = static_cast<geometry::DeflectionForm>(*value);
+    }
 
     if (table_read && spec.samples.frame == SampleFrame::meridional && !has_axis_) {
       reader_.error(patch.line, "patches." + patch.name,
@@ -517,6 +531,7 @@ const PatchSpec* Case::find_patch(std::string_view name) const {
 std::vector<std::filesystem::path> Case::inputs() const {
   std::vector<std::filesystem::path> files{file, mesh};
   if (cad) files.push_back(*cad);
+  if (restart) files.push_back(*restart);
   for (const PatchSpec& p : patches) {
     if (p.deflection && std::find(files.begin(), files.end(), p.deflection->file) == files.end()) {
       files.push_back(p.deflection->file);

@@ -1,31 +1,27 @@
-// hotmesh io: case + mesh -> patch motions with reconstructed deflected shapes.
+// hotmesh io: case + mesh (+ restart state) -> patch motions with their boundary shapes.
 #include "hotmesh/io/case_setup.hpp"
 
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "hotmesh/geometry/boundary_shapes.hpp"
+#include "hotmesh/geometry/cad_model.hpp"
+#include "hotmesh/geometry/curve_projector.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 
 namespace hotmesh::io {
 namespace {
 
-geometry::Reconstruction reconstruct(const DeflectionSpec& d, const geometry::CurveSamples& samples) {
-  geometry::ReconstructionOptions options;
-  options.degree = d.degree;
-  return geometry::reconstruct_from_nodes(samples, options);
-}
+using geometry::DeflectedCurve;
 
-std::vector<geometry::Vec2> outline(const geometry::DeflectedCurve& curve) {
-  constexpr int kSamples = 2000;
-  std::vector<geometry::Vec2> points;
-  const double a = curve.first_parameter(), b = curve.last_parameter();
-  for (int i = 0; i <= kSamples; ++i) points.push_back(curve.point(a + (b - a) * i / kSamples, 1.0));
-  return points;
-}
+struct Curve {
+  DeflectedCurve curve;
+  geometry::ReconstructionReport report;
+};
 
 /// The nodes of a 2D patch in order along it, following its edges; closed curves repeat their
 /// first node at the end.
@@ -46,19 +42,19 @@ std::vector<deform::NodeId> chain_patch(const deform::Patch& patch, const deform
   }
   std::vector<deform::NodeId> chain{start};
   deform::NodeId previous = -1, current = start;
-  while (true) {
+  while (chain.size() <= next.size()) {
     const auto& neighbours = next[current];
     const auto it = std::find_if(neighbours.begin(), neighbours.end(), [&](deform::NodeId n) { return n != previous; });
-    if (it == neighbours.end() || (*it == start && chain.size() > 2)) {
-      if (it != neighbours.end()) chain.push_back(start);  // closed
+    if (it == neighbours.end()) break;
+    if (*it == start) {  // closed
+      chain.push_back(start);
       break;
     }
     previous = current;
     current = *it;
     chain.push_back(current);
-    if (chain.size() > next.size() + 1) break;
   }
-  const std::size_t distinct = chain.front() == chain.back() ? chain.size() - 1 : chain.size();
+  const std::size_t distinct = chain.size() > 1 && chain.front() == chain.back() ? chain.size() - 1 : chain.size();
   if (distinct != next.size()) {
     throw InputError(fmt::format("patch '{}' is made of several separate curves: give each its own patch to slide on",
                                  patch.name));
@@ -66,76 +62,151 @@ std::vector<deform::NodeId> chain_patch(const deform::Patch& patch, const deform
   return chain;
 }
 
-/// The patch's own undeformed shape, for a sliding patch without deflection table: the
-/// polyline through its nodes (2D), or the meridional polyline of its nodes about the axis.
-std::shared_ptr<const geometry::BoundaryShape> own_shape(const Case& c, const PatchSpec& spec,
-                                                         const deform::Mesh& mesh) {
-  const deform::Patch& patch = *mesh.find_patch(spec.name);
-  if (mesh.dimension == 2) {
-    const auto chain = chain_patch(patch, mesh);
-    std::vector<geometry::Vec2> points;
-    std::vector<double> parameters{0.0};
-    for (deform::NodeId n : chain) {
-      const auto& p = mesh.points[static_cast<std::size_t>(n)];
-      if (!points.empty()) parameters.push_back(parameters.back() + distance(points.back(), {p.x, p.y}));
-      points.push_back({p.x, p.y});
-    }
-    for (double& t : parameters) t /= parameters.back();
-    return std::make_shared<geometry::PlanarCurveShape>(
-        geometry::DeflectedCurve(geometry::BSplineCurve2d::polyline(parameters, points)));
-  }
-  if (!c.axis) {
-    throw InputError::in(c.file.string(), fmt::format("patch '{}': a 3D sliding patch slides over a surface of "
-                                                      "revolution; give the case's axis",
-                                                      spec.name));
-  }
-  geometry::CurveSamples samples;
-  samples.source = fmt::format("the nodes of patch '{}'", spec.name);
-  for (deform::NodeId n : patch.nodes) {
-    const auto cyl = c.axis->to_cylindrical(mesh.points[static_cast<std::size_t>(n)]);
-    samples.points.push_back({cyl.r, cyl.z});
-    samples.deflections.push_back({0.0, 0.0});
-  }
-  auto rebuilt = geometry::reconstruct_from_nodes(samples, {});
-  return std::make_shared<geometry::RevolvedShape>(std::move(rebuilt.curve), *c.axis);
+std::vector<geometry::Vec2> outline(const DeflectedCurve& curve) {
+  constexpr int kSamples = 2000;
+  std::vector<geometry::Vec2> points;
+  const double a = curve.first_parameter(), b = curve.last_parameter();
+  for (int i = 0; i <= kSamples; ++i) points.push_back(curve.point(a + (b - a) * i / kSamples, 1.0));
+  return points;
 }
 
-std::shared_ptr<const geometry::BoundaryShape> deflected_shape(const Case& c, const PatchSpec& spec,
-                                                               const deform::Mesh& mesh, ShapeReport& report) {
-  const DeflectionSpec& d = *spec.deflection;
-  if (mesh.dimension == 2) {
-    auto rebuilt = reconstruct(d, geometry::planar_samples(d.samples));
-    report.reconstruction = rebuilt.report;
-    report.deflected_outline = outline(rebuilt.curve);
-    return std::make_shared<geometry::PlanarCurveShape>(std::move(rebuilt.curve));
+/// Builds the curves of a case's patches: undeformed from CAD, FEM nodes or the patch itself,
+/// deflected through the tables, rebased on a previous run's curves for a restart.
+class CurveBuilder {
+ public:
+  CurveBuilder(const Case& c, const deform::Mesh& mesh) : c_(c), mesh_(mesh) {}
+
+  /// The patch's curve as the case describes it (cold undeformed r, deflection D).
+  Curve curve(const PatchSpec& spec, const std::optional<DeflectionSpec>& deflection) {
+    if (!deflection) return {own_curve(spec), {}};
+    const geometry::CurveSamples samples = curve_samples(*deflection);
+    const geometry::ReconstructionOptions options = reconstruction_options(*deflection);
+    geometry::Reconstruction rebuilt = deflection->faces.empty()
+                                           ? geometry::reconstruct_from_nodes(samples, options)
+                                           : geometry::reconstruct(cad_curve(*deflection), samples, options);
+    return {std::move(rebuilt.curve), std::move(rebuilt.report)};
   }
-  if (!c.axis) {
-    throw InputError::in(c.file.string(), fmt::format("patch '{}': 3D deflections describe surfaces of revolution; "
-                                                      "give the case's axis (axis: {{origin: [...], direction: [...]}})",
-                                                      spec.name));
+
+  /// Section 4.3, re-start: the curve from `previous`'s deflected state (stage 0) to the
+  /// deflection of `next` (stage 1), in the parameter of the undeformed curve. A patch
+  /// without table deflects by zero.
+  Curve rebased(const PatchSpec& spec, const DeflectionSpec& previous, const std::optional<DeflectionSpec>& next) {
+    const Curve before = curve(spec, previous);
+    DeflectionSpec target = next ? *next : previous;
+    if (!next) {
+      for (auto& d : target.samples.deflections) d = {};
+    }
+    const geometry::CurveSamples samples = curve_samples(target);
+    const geometry::CurveProjector cold(DeflectedCurve(before.curve.undeformed()));
+    geometry::CurveSamples moved = samples;  // points on the previous deflected curve, deflections from there
+    for (std::size_t j = 0; j < samples.size(); ++j) {
+      const double t = cold.project(samples.points[j], 0.0).parameter;
+      moved.points[j] = before.curve.point(t, 1.0);
+      moved.deflections[j] = samples.points[j] + samples.deflections[j] - moved.points[j];
+    }
+    // With the same nodes and form, the result's stage 1 is the curve a straight run would
+    // reconstruct from `next`: interpolation is linear in the data.
+    geometry::Reconstruction rebuilt = geometry::reconstruct(before.curve.stage(1.0), moved, reconstruction_options(target));
+    return {std::move(rebuilt.curve), std::move(rebuilt.report)};
   }
-  auto rebuilt = reconstruct(d, geometry::meridional_samples(d.samples, *c.axis));
-  report.reconstruction = rebuilt.report;
-  report.deflected_outline = outline(rebuilt.curve);
-  return std::make_shared<geometry::RevolvedShape>(std::move(rebuilt.curve), *c.axis);
+
+  std::shared_ptr<const geometry::BoundaryShape> shape(DeflectedCurve curve) const {
+    if (mesh_.dimension == 2) return std::make_shared<geometry::PlanarCurveShape>(std::move(curve));
+    return std::make_shared<geometry::RevolvedShape>(std::move(curve), axis());
+  }
+
+ private:
+  const geometry::Axis& axis() const {
+    if (!c_.axis) {
+      throw InputError::in(c_.file.string(), "3D boundaries are surfaces of revolution: give the case's axis, "
+                                             "e.g. axis: {origin: [0, 0, 0], direction: [0, 0, 1]}");
+    }
+    return *c_.axis;
+  }
+
+  geometry::CurveSamples curve_samples(const DeflectionSpec& d) const {
+    return mesh_.dimension == 2 ? geometry::planar_samples(d.samples) : geometry::meridional_samples(d.samples, axis());
+  }
+
+  static geometry::ReconstructionOptions reconstruction_options(const DeflectionSpec& d) {
+    geometry::ReconstructionOptions options;
+    options.degree = d.degree;
+    options.form = d.form;
+    return options;
+  }
+
+  geometry::BSplineCurve2d cad_curve(const DeflectionSpec& d) {
+    if (mesh_.dimension == 2) throw InputError("CAD faces describe surfaces of revolution: 3D cases only");
+    if (!cad_) cad_ = geometry::CadModel::read(*c_.cad, {.unit = c_.length_unit});
+    return cad_->meridional_curve(d.faces, {.axis = axis()}).curve;
+  }
+
+  /// A sliding patch without table slides over its own undeformed shape: the polyline through
+  /// its nodes in 2D, their meridional polyline about the axis in 3D.
+  DeflectedCurve own_curve(const PatchSpec& spec) const {
+    const deform::Patch& patch = *mesh_.find_patch(spec.name);
+    if (mesh_.dimension == 2) {
+      std::vector<geometry::Vec2> points;
+      std::vector<double> parameters{0.0};
+      for (deform::NodeId n : chain_patch(patch, mesh_)) {
+        const auto& p = mesh_.points[static_cast<std::size_t>(n)];
+        if (!points.empty()) parameters.push_back(parameters.back() + distance(points.back(), {p.x, p.y}));
+        points.push_back({p.x, p.y});
+      }
+      for (double& t : parameters) t /= parameters.back();
+      return DeflectedCurve(geometry::BSplineCurve2d::polyline(parameters, points));
+    }
+    geometry::CurveSamples samples;
+    samples.source = fmt::format("the nodes of patch '{}'", spec.name);
+    for (deform::NodeId n : patch.nodes) {
+      const auto cyl = axis().to_cylindrical(mesh_.points[static_cast<std::size_t>(n)]);
+      samples.points.push_back({cyl.r, cyl.z});
+      samples.deflections.push_back({0.0, 0.0});
+    }
+    return geometry::reconstruct_from_nodes(samples, {}).curve;
+  }
+
+  const Case& c_;
+  const deform::Mesh& mesh_;
+  std::optional<geometry::CadModel> cad_;
+};
+
+const RestartPatch& previous_patch(const RestartState& previous, const PatchSpec& spec, const Case& c) {
+  const auto it = std::find_if(previous.patches.begin(), previous.patches.end(),
+                               [&](const RestartPatch& p) { return p.name == spec.name; });
+  if (it == previous.patches.end()) {
+    throw InputError::at(c.file.string(), spec.line, fmt::format("patches.{}: the run being restarted ({}) has no such "
+                                                                 "patch",
+                                                                 spec.name, previous.case_file));
+  }
+  if (it->role != spec.role) {
+    throw InputError::at(c.file.string(), spec.line,
+                         fmt::format("patches.{}: it was {} in the run being restarted ({}); a restart keeps the "
+                                     "roles",
+                                     spec.name, deform::to_string(it->role), previous.case_file));
+  }
+  return *it;
 }
 
 }  // namespace
 
-CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh) {
+CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh, const RestartState* previous) {
   CaseSetup setup;
+  CurveBuilder builder(c, mesh);
   for (const PatchSpec& spec : c.patches) {
     deform::PatchMotion motion{spec.name, spec.role, nullptr, 0.0};
-    if (spec.deflection) {
-      ShapeReport report{spec.name, {}};
+    const bool follows = spec.role == PatchRole::prescribed || spec.role == PatchRole::sliding;
+    const RestartPatch* before = previous ? &previous_patch(*previous, spec, c) : nullptr;
+    if (follows) {
+      const std::string source = spec.deflection ? spec.deflection->file.string() : "patch " + spec.name;
       try {
-        motion.shape = deflected_shape(c, spec, mesh, report);
+        Curve curve = before && before->deflection ? builder.rebased(spec, *before->deflection, spec.deflection)
+                                                   : builder.curve(spec, spec.deflection);
+        if (spec.deflection) setup.shapes.push_back({spec.name, curve.report, outline(curve.curve)});
+        motion.shape = builder.shape(std::move(curve.curve));
       } catch (const InputError& e) {
-        throw InputError(fmt::format("{}: patch '{}': {}", spec.deflection->file.string(), spec.name, e.what()));
+        throw InputError(fmt::format("{}: patch '{}': {}", source, spec.name, e.what()));
       }
-      setup.shapes.push_back(std::move(report));
-    } else if (spec.role == PatchRole::sliding) {
-      motion.shape = own_shape(c, spec, mesh);
     }
     setup.motions.push_back(std::move(motion));
   }

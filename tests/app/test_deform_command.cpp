@@ -6,6 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <fmt/format.h>
+
+#include "hotmesh/deform/structured_mesh.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/deform/quality.hpp"
 #include "run_command.hpp"
@@ -117,6 +120,84 @@ TEST(DeformCommand, RefusesOutputFolderHoldingInputsUnlessForced) {
   EXPECT_EQ(forced.exit_code, 0) << forced.output;
   EXPECT_EQ(test::read_text(ramp.dir / "ramp2d.msh"), before);  // inputs untouched
   EXPECT_TRUE(std::filesystem::exists(ramp.dir / "deformed.msh"));
+}
+
+}  // namespace
+}  // namespace hotmesh::app
+
+namespace hotmesh::app {
+namespace {
+
+/// A coarse ramp channel written to `dir`, with tables for the half and the full ramp.
+void write_coarse_ramp(const std::filesystem::path& dir) {
+  const auto xs = deform::uniform_line(0.0, 2.0, 21);
+  const auto ys = deform::stretched_line(0.0, 1.0, 12, 0.004);
+  io::write_gmsh(dir / "ramp.msh", deform::structured_quads(xs, ys, {"left", "right", "bottom", "top"}));
+  for (const auto& [name, height] : {std::pair{"half.csv", 0.25}, std::pair{"full.csv", 0.5}}) {
+    test::write_text(dir / name, fmt::format("x,y,dx,dy\n0,0,0,0\n0.975,0,0,0\n1.025,0,0,{}\n2,0,0,{}\n", height, height));
+  }
+}
+
+std::string ramp_case(const std::string& table, int increments, const std::string& extra = "") {
+  return fmt::format(
+      "mesh: ramp.msh\nsolver: {{increments: {}, newton_tolerance: 1.0e-6, pcg_tolerance: 1.0e-6}}\n{}"
+      "patches:\n  left: {{role: fixed}}\n  right: {{role: slip}}\n  top: {{role: sliding}}\n"
+      "  bottom: {{role: sliding, deflection: {{file: {}}}}}\n",
+      increments, extra, table);
+}
+
+TEST(DeformCommand, RestartFromSavedStateMatchesAStraightRun) {
+  test::TempDir dir;
+  write_coarse_ramp(dir.path());
+  test::write_text(dir / "straight.yaml", ramp_case("full.csv", 8));
+  test::write_text(dir / "first.yaml", ramp_case("half.csv", 4));
+  test::write_text(dir / "second.yaml", ramp_case("full.csv", 4, "restart: first-out/restart.hmr\n"));
+  for (const char* name : {"straight", "first", "second"}) {
+    const auto r = hotmesh(fmt::format("-q deform {}", shell_quote((dir / (std::string(name) + ".yaml")).string())));
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.output;
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "first-out" / "restart.hmr"));
+  const deform::Mesh straight = io::read_gmsh(dir / "straight-out" / "deformed.msh");
+  const deform::Mesh restarted = io::read_gmsh(dir / "second-out" / "deformed.msh");
+  double largest = 0.0;
+  for (std::size_t n = 0; n < straight.node_count(); ++n) {
+    largest = std::max(largest, distance(straight.points[n], restarted.points[n]));
+  }
+  EXPECT_LT(largest, 1e-5);
+  const auto report = read_json(dir / "second-out" / "report.json");
+  EXPECT_THAT(report["restarted_from"].get<std::string>(), HasSubstr("first-out/restart.hmr"));
+  EXPECT_GT(report["sliding_nodes"].get<int>(), 0);
+  EXPECT_LT(report["max_normal_slip"].get<double>(), 1e-12);
+}
+
+TEST(DeformCommand, RestartRefusesAnotherMeshOrChangedRoles) {
+  test::TempDir dir;
+  write_coarse_ramp(dir.path());
+  test::write_text(dir / "first.yaml", ramp_case("half.csv", 2));
+  ASSERT_EQ(hotmesh("-q deform " + shell_quote((dir / "first.yaml").string())).exit_code, 0);
+  // Another role for the top wall.
+  std::string changed = ramp_case("full.csv", 2, "restart: first-out/restart.hmr\n");
+  changed.replace(changed.find("top: {role: sliding}"), 20, "top: {role: fixed}  ");
+  test::write_text(dir / "roles.yaml", changed);
+  const auto roles = hotmesh("deform " + shell_quote((dir / "roles.yaml").string()));
+  EXPECT_EQ(roles.exit_code, 2);
+  EXPECT_THAT(roles.output, HasSubstr("patches.top: it was sliding in the run being restarted"));
+  // Another mesh.
+  io::write_gmsh(dir / "other.msh", deform::structured_quads(deform::uniform_line(0, 2, 20), deform::uniform_line(0, 1, 12),
+                                                            {"left", "right", "bottom", "top"}));
+  std::string other = ramp_case("full.csv", 2, "restart: first-out/restart.hmr\n");
+  other.replace(other.find("ramp.msh"), 8, "other.msh");
+  test::write_text(dir / "other.yaml", other);
+  const auto mesh = hotmesh("deform " + shell_quote((dir / "other.yaml").string()));
+  EXPECT_EQ(mesh.exit_code, 2);
+  EXPECT_THAT(mesh.output, HasSubstr("this restart file was written for another mesh"));
+  // Not a restart file at all.
+  test::write_text(dir / "junk.hmr", "hello");
+  std::string junk = ramp_case("full.csv", 2, "restart: junk.hmr\n");
+  test::write_text(dir / "junk.yaml", junk);
+  const auto bad = hotmesh("deform " + shell_quote((dir / "junk.yaml").string()));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.output, HasSubstr("not a hotmesh restart file"));
 }
 
 }  // namespace

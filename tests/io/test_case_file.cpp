@@ -201,6 +201,23 @@ TEST_F(CaseFile, ReadsStiffnessLawSplitsAndPictures) {
   EXPECT_EQ(c.pictures[1].name, "all-of_it");
 }
 
+TEST_F(CaseFile, ReadsDeflectionFormAndRestart) {
+  test::write_text(dir / "restart.hmr", "x");
+  const Case c = parse(std::string(kBase) + "  ramp: {role: sliding, deflection: {file: plane.csv, form: displacement}}\n" +
+                       "restart: restart.hmr\n");
+  EXPECT_EQ(c.find_patch("ramp")->deflection->form, geometry::DeflectionForm::displacement);
+  EXPECT_EQ(c.find_patch("wall")->deflection, std::nullopt);
+  ASSERT_TRUE(c.restart.has_value());
+  EXPECT_EQ(*c.restart, dir / "restart.hmr");
+  EXPECT_THAT(c.inputs(), ::testing::Contains(dir / "restart.hmr"));
+  EXPECT_EQ(c.length_unit, geometry::LengthUnit::metre);
+  EXPECT_EQ(parse(std::string(kBase) + "length_unit: mm\n").length_unit, geometry::LengthUnit::millimetre);
+  EXPECT_THAT(error_with("length_unit: furlong\n"), HasSubstr("length_unit: expected one of m, mm, cm, um, in, ft"));
+  const std::string error = error_with("  ramp: {role: sliding, deflection: {file: plane.csv, form: spline}}\nrestart: nowhere.hmr\n");
+  EXPECT_THAT(error, HasSubstr(at(5) + "restart: "));
+  EXPECT_THAT(error, HasSubstr("patches.ramp.deflection.form: expected one of curve, displacement, got 'spline'"));
+}
+
 TEST_F(CaseFile, RejectsBadLawFlagAndPictures) {
   const std::string error = error_with(
       "material: {law: spring, drop_jacobian: maybe}\n"
@@ -257,9 +274,9 @@ TEST_F(CaseFile, RequiresMeshAndPatches) {
 
 TEST_F(CaseFile, RejectsUnknownTopLevelKey) {
   EXPECT_EQ(error_with("mehs: x\n"), at(4) + "mehs: unknown key (did you mean 'mesh'?); allowed at the top level: "
-                                             "mesh, cad, output, axis, solver, material, patches, pictures");
-  EXPECT_EQ(error_with("colour: red\n"), at(4) + "colour: unknown key; allowed at the top level: mesh, cad, output, "
-                                                 "axis, solver, material, patches, pictures");
+                                             "mesh, cad, length_unit, output, axis, solver, material, patches, pictures, restart");
+  EXPECT_EQ(error_with("colour: red\n"), at(4) + "colour: unknown key; allowed at the top level: mesh, cad, "
+                                                 "length_unit, output, axis, solver, material, patches, pictures, restart");
 }
 
 TEST_F(CaseFile, RejectsUnknownSolverKey) {
@@ -279,7 +296,7 @@ TEST_F(CaseFile, RejectsUnknownPatchKey) {
 TEST_F(CaseFile, RejectsUnknownDeflectionKey) {
   EXPECT_EQ(error_with("  ramp:\n    role: sliding\n    deflection:\n      file: plane.csv\n      degre: 2\n"),
             at(8) + "patches.ramp.deflection.degre: unknown key (did you mean 'degree'?); allowed in "
-                    "patches.ramp.deflection: file, degree, faces");
+                    "patches.ramp.deflection: file, degree, faces, form");
 }
 
 TEST_F(CaseFile, RejectsRepeatedKeys) {

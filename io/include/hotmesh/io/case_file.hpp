@@ -15,6 +15,8 @@
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/geometry/axis.hpp"
+#include "hotmesh/geometry/cad_model.hpp"
+#include "hotmesh/geometry/deflected_curve.hpp"
 #include "hotmesh/geometry/deflection_samples.hpp"
 
 namespace hotmesh::io {
@@ -25,6 +27,7 @@ using PatchRole = deform::BoundaryRole;
 struct DeflectionSpec {
   std::filesystem::path file;           ///< resolved against the case file's folder
   int degree = 1;                       ///< B-spline degree q of the reconstruction, 1..5
+  geometry::DeflectionForm form = geometry::DeflectionForm::curve;  ///< eq. (21), or c = r + d
   std::vector<int> faces;               ///< CAD face ids (1-based); needs `cad`
   geometry::DeflectionSamples samples;  ///< the table, read during validation
   std::size_t line = 0;                 ///< line of the `deflection` key in the case file
@@ -53,6 +56,8 @@ struct Case {
   std::filesystem::path file;                ///< the case file
   std::filesystem::path mesh;
   std::optional<std::filesystem::path> cad;
+  /// Unit of the mesh and the deflection tables; the CAD file is converted to it on import.
+  geometry::LengthUnit length_unit = geometry::LengthUnit::metre;
   std::filesystem::path output;              ///< default: <case name>-out beside the case file
   std::optional<geometry::Axis> axis;
   deform::SolverOptions solver;
@@ -60,6 +65,9 @@ struct Case {
   std::vector<PatchSpec> patches;            ///< in the order of the case file
   std::size_t patches_line = 0;              ///< line of the `patches:` key
   std::vector<PictureView> pictures;         ///< close-ups to draw (2D meshes)
+  /// The state of a previous run to continue from (its restart.hmr): the next coupling
+  /// iteration with new deflections (section 4.3).
+  std::optional<std::filesystem::path> restart;
 
   const PatchSpec* find_patch(std::string_view name) const;
   /// Every file the case reads: the case file, mesh, CAD file and deflection tables (each once,

@@ -1,9 +1,13 @@
 // hotmesh io: from a validated case and its mesh to what the solver needs. For every patch
-// its role and, for patches that follow an FEM deflection, the deflected boundary shape
-// reconstructed from the table (the paper's section 4.2): in 2D a curve in the x-y plane
-// through the FEM nodes; in 3D a surface of revolution about the case's axis, its meridional
-// curve r(t) taken from the CAD faces named in the case or, without them, the curve through
-// the FEM nodes.
+// its role and, for patches that follow a boundary, the boundary's shape (the paper's section
+// 4.2): in 2D a curve in the x-y plane, in 3D a surface of revolution about the case's axis.
+// The undeformed curve r(t) comes from the CAD faces named in the case, else from the FEM
+// nodes of the table (or, for a sliding patch without table, from the patch's own nodes); the
+// deflected curve is reconstructed through the FEM deflections (eq. 21).
+//
+// A restarted run (section 4.3) continues from where the previous one left the boundaries:
+// each shape then goes from the previous deflected curve (stage 0) to the new one (stage 1),
+// in the parameter of the undeformed curve.
 #pragma once
 
 #include <string>
@@ -13,6 +17,7 @@
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/case_file.hpp"
+#include "hotmesh/io/restart_file.hpp"
 
 namespace hotmesh::io {
 
@@ -20,8 +25,8 @@ namespace hotmesh::io {
 struct ShapeReport {
   std::string patch;
   geometry::ReconstructionReport reconstruction;
-  /// The fully deflected curve c(t), densely sampled in its plane ((x, y) in 2D, (r, z) about
-  /// the axis in 3D), for pictures.
+  /// The deflected curve at the end of the run, densely sampled in its plane ((x, y) in 2D,
+  /// (r, z) about the axis in 3D), for pictures.
   std::vector<geometry::Vec2> deflected_outline;
 };
 
@@ -31,7 +36,8 @@ struct CaseSetup {
 };
 
 /// Throws hotmesh::InputError (naming the patch and the table) when a table cannot describe
-/// its patch: wrong frame for the mesh, FEM nodes off the CAD curve, too few nodes, ...
-CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh);
+/// its patch: wrong frame for the mesh, FEM nodes off the CAD curve, too few nodes, patch
+/// roles that differ from the run being restarted, ...
+CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh, const RestartState* previous = nullptr);
 
 }  // namespace hotmesh::io
