@@ -272,25 +272,31 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
     if (s.shape_count + s.plane_count > 1 && !start) s.target = place_sliding_node(s, s.target, 1.0, setup.slip_planes).point;
   }
 
-  // Fixed wins over prescribed: say so where the deflection would have moved a fixed node.
+  // Where a stronger role overrules a patch's deflection at shared nodes (a fixed wall beside a
+  // moving one), say so if the two disagree about where the node goes.
+  const auto final_position = [&](const PatchMotion& m, NodeId n) {
+    const Vec3& x = x0[static_cast<std::size_t>(n)];
+    if (m.role == BoundaryRole::fixed || !m.shape) return x;
+    return prescribed_position({n, m.shape->project(x, 0.0).parameter, m.shape.get()}, x, 1.0);
+  };
   for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
     const PatchMotion& m = *motion_of[p];
     if (m.role != BoundaryRole::prescribed && m.role != BoundaryRole::sliding) continue;
     std::size_t overruled = 0;
     double largest = 0.0;
+    const double tolerance = 1e-6 * bounding_diagonal(mesh, mesh.patches[p].nodes);
     for (NodeId n : mesh.patches[p].nodes) {
       if (role_priority(n) <= priority(m.role)) continue;
-      const Vec3& x = x0[static_cast<std::size_t>(n)];
-      const auto at = m.shape->project(x, 0.0);
-      const double moved = distance(prescribed_position({n, at.parameter, m.shape.get()}, x, 1.0), x);
-      if (moved > 0.0) {
+      const PatchMotion& winner = *motion_of[static_cast<std::size_t>(owner[static_cast<std::size_t>(n)])];
+      const double gap = distance(final_position(m, n), final_position(winner, n));
+      if (gap > tolerance) {
         ++overruled;
-        largest = std::max(largest, moved);
+        largest = std::max(largest, gap);
       }
     }
     if (overruled > 0) {
       setup.notes.push_back(fmt::format("patch '{}': {} nodes shared with fixed or prescribed patches follow those, "
-                                        "although this patch's deflection moves them by up to {:.3g}",
+                                        "{:.3g} away at most from where this patch's deflection would take them",
                                         mesh.patches[p].name, overruled, largest));
     }
   }
