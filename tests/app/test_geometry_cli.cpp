@@ -57,6 +57,15 @@ std::vector<std::vector<double>> read_csv(const std::filesystem::path& path, std
   return rows;
 }
 
+TEST(CadCli, CadAndCurveHaveHelp) {
+  for (const std::string command : {"cad", "curve"}) {
+    const auto r = hotmesh(command + " --help");
+    EXPECT_EQ(r.exit_code, 0) << command;
+    EXPECT_THAT(r.output, HasSubstr("Usage:")) << command;
+  }
+  EXPECT_THAT(hotmesh("curve --help").output, HasSubstr("--drop-far-nodes"));
+}
+
 TEST(CadCli, ListsFacesWithKindsAndAxes) {
   const auto text = hotmesh("cad --unit mm " + cad("OCC8842_cone_CATIA.igs"));
   ASSERT_EQ(text.exit_code, 0) << text.output;
