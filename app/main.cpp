@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   auto remember = [&](hotmesh::app::Command run) { commands.emplace_back(app.get_subcommands({}).back(), std::move(run)); };
   remember(hotmesh::app::add_info_command(app));
   remember(hotmesh::app::add_convert_command(app));
+  remember(hotmesh::app::add_deform_command(app));
   remember(hotmesh::app::add_cad_command(app));
   remember(hotmesh::app::add_curve_command(app));
 

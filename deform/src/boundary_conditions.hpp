@@ -1,8 +1,11 @@
 // hotmesh deform (internal): from patch roles to what each node does. Every node takes the
-// strongest role of the patches it lies on: fixed > prescribed > slip > interior, so a node
-// is never moved twice. Slip nodes collect the normals of all their slip patches.
+// strongest role of the patches it lies on, fixed > prescribed > sliding > slip > interior, so
+// a node is never moved twice. A sliding node keeps the shapes of all its sliding patches
+// (two or three where sliding walls meet: it then moves along their intersection, or stays
+// put where they meet in a point) and the planes of its slip patches.
 #pragma once
 
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
@@ -19,17 +22,51 @@ struct PrescribedNode {
   const geometry::BoundaryShape* shape = nullptr;
 };
 
+/// The plane a slip patch keeps its nodes on (u . n = 0, eq. 11).
+struct SlipPlane {
+  Vec3 origin;
+  Vec3 normal;  ///< unit
+};
+
+/// A node on a sliding boundary (section 4): u = u0s + us (eq. 13), u0s the forcing
+/// displacement of the increment, us tangential to the deformed boundary.
+struct SlidingNode {
+  static constexpr int kMaxShapes = 3;
+  NodeId node = 0;
+  std::array<const geometry::BoundaryShape*, kMaxShapes> shapes{};
+  int shape_count = 0;
+  std::array<double, kMaxShapes> hints{};  ///< parameter of the last projection on each shape
+  std::array<int, 2> planes{};             ///< indices into BoundarySetup::slip_planes
+  int plane_count = 0;
+  Vec3 target;  ///< x_F: where the node is to end on the fully deflected boundary (section 4.3)
+  double origin = 0.0;  ///< t0: its material parameter on shapes[0] (SlidingOrigin)
+};
+
 struct BoundarySetup {
+  /// Positions the shapes' stage 0 refers to: the mesh's, or those a restarted run starts from.
+  std::vector<Vec3> reference;
   NodeConstraints constraints;
   std::vector<PrescribedNode> prescribed;
+  std::vector<SlidingNode> sliding;
+  std::vector<SlipPlane> slip_planes;
   std::vector<NodeRoleCode> roles;
   std::vector<std::string> notes;
 };
 
 /// Throws hotmesh::InputError for set-ups the solver cannot take.
-BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> patches);
+BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> patches, const MotionStart* start);
 
 /// Position of a prescribed node at stage lambda.
 Vec3 prescribed_position(const PrescribedNode& p, const Vec3& original, double lambda);
+
+/// Where a sliding node at p lands on its boundary at stage lambda (Fig. 4): projected on
+/// each of its shapes and planes in turn (repeatedly where several meet). Updates the hints
+/// and writes the normals of its shapes and planes (the directions it may not move in).
+struct Placement {
+  Vec3 point;
+  std::array<Vec3, SlidingNode::kMaxShapes + 2> normals{};
+  int normal_count = 0;
+};
+Placement place_sliding_node(SlidingNode& node, const Vec3& p, double lambda, std::span<const SlipPlane> planes);
 
 }  // namespace hotmesh::deform::detail

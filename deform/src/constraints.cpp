@@ -40,6 +40,28 @@ void NodeConstraints::constrain(NodeId n, const Vec3& normal) {
   p.normals[static_cast<std::size_t>(p.count++)] = v / rest;
 }
 
+void NodeConstraints::track(NodeId n) {
+  auto& s = state_[static_cast<std::size_t>(n)];
+  if (s != kFree) return;
+  s = static_cast<std::int32_t>(partial_.size());
+  partial_.push_back({n, 0, {}});
+}
+
+void NodeConstraints::set_normals(NodeId n, std::span<const Vec3> normals) {
+  const auto s = state_[static_cast<std::size_t>(n)];
+  if (s < 0) return;  // fixed (or not tracked)
+  Partial& p = partial_[static_cast<std::size_t>(s)];
+  p.count = 0;
+  for (Vec3 v : normals) {
+    if (p.count + 1 >= dim_) break;
+    if (dim_ == 2) v.z = 0.0;
+    for (int k = 0; k < p.count; ++k) v -= dot(v, p.normals[static_cast<std::size_t>(k)]) * p.normals[static_cast<std::size_t>(k)];
+    const double length = norm(v);
+    if (length < 1e-8) continue;
+    p.normals[static_cast<std::size_t>(p.count++)] = v / length;
+  }
+}
+
 void NodeConstraints::release(NodeId n) {
   const auto s = state_[static_cast<std::size_t>(n)];
   if (s >= 0) partial_[static_cast<std::size_t>(s)].count = 0;

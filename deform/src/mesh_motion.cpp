@@ -2,6 +2,7 @@
 // increment splitting.
 #include "hotmesh/deform/mesh_motion.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -9,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "boundary_conditions.hpp"
+#include "sliding.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/pcg.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
@@ -31,6 +33,12 @@ std::string_view to_string(BoundaryRole role) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// A Newton residual this many times the initial one means the cycle has blown up: better to
+/// split the increment at once than to iterate on. Large transients are normal: the stiffness
+/// of the thinnest cells scales with 1/h^2 and follows the geometry, so the ramp case passes
+/// through residuals 1e5 times the initial one on its way to converging.
+constexpr double kDivergence = 1e10;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 /// P K P: the stiffness restricted to the admissible subspace (eq. 16: the normal component
@@ -49,43 +57,121 @@ class ConstrainedOperator final : public LinearOperator {
   const NodeConstraints& c_;
 };
 
-/// Jacobi: y = P D^-1 x (apply, then project, so tangency is kept).
-class JacobiPreconditioner final : public LinearOperator {
+/// Nodal (block) Jacobi: y_i = M_i x_i with M_i the inverse of the node's d x d diagonal block
+/// B_i of K on the directions the node may move in: M_i = P (P B_i P + I - P)^-1 P, P the
+/// projector that removes the node's constrained normals (zero for fixed nodes). For a free
+/// node it is B_i^-1; for a sliding node it inverts the stiffness along the boundary only, so
+/// the result stays tangential ("apply, then project" in one step). It takes the coupling of
+/// a node's components into account, which point Jacobi does not: in the stretched cells of a
+/// boundary layer, or on a sliding wall at an angle, that roughly halves the PCG iterations.
+class NodalJacobi final : public LinearOperator {
  public:
-  JacobiPreconditioner(const StiffnessOperator& k, const NodeConstraints& c) : inverse_(k.size()), c_(c) {
-    k.diagonal(inverse_);
-    for (double& d : inverse_) d = d > 0.0 ? 1.0 / d : 0.0;
+  NodalJacobi(const StiffnessOperator& k, const NodeConstraints& c)
+      : dim_(static_cast<std::size_t>(k.dofs_per_node())), blocks_(k.size() * dim_) {
+    k.diagonal_blocks(blocks_);
+    const auto nodes = static_cast<std::ptrdiff_t>(c.node_count());
+#pragma omp parallel for schedule(static) if (nodes >= detail::kParallelNodes)
+    for (std::ptrdiff_t i = 0; i < nodes; ++i) invert(static_cast<NodeId>(i), c);
   }
-  std::size_t size() const override { return inverse_.size(); }
+  std::size_t size() const override { return blocks_.size() / dim_; }
   void apply(std::span<const double> x, std::span<double> y) const override {
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(x.size()) >= detail::kParallelVector)
-    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(x.size()); ++i) {
-      y[static_cast<std::size_t>(i)] = inverse_[static_cast<std::size_t>(i)] * x[static_cast<std::size_t>(i)];
+    const auto nodes = static_cast<std::ptrdiff_t>(size() / dim_);
+#pragma omp parallel for schedule(static) if (nodes >= detail::kParallelNodes)
+    for (std::ptrdiff_t i = 0; i < nodes; ++i) {
+      const auto base = static_cast<std::size_t>(i) * dim_;
+      const double* m = blocks_.data() + base * dim_;
+      for (std::size_t r = 0; r < dim_; ++r) {
+        double s = 0.0;
+        for (std::size_t j = 0; j < dim_; ++j) s += m[r * dim_ + j] * x[base + j];
+        y[base + r] = s;
+      }
     }
-    c_.project(y);
   }
 
  private:
-  std::vector<double> inverse_;
-  const NodeConstraints& c_;
+  void invert(NodeId n, const NodeConstraints& c) {
+    double* b = blocks_.data() + static_cast<std::size_t>(n) * dim_ * dim_;
+    if (c.is_fixed(n)) {
+      std::fill(b, b + dim_ * dim_, 0.0);
+      return;
+    }
+    // P = I - sum n n^T; A = P B P + (I - P).
+    std::array<double, 9> p{}, a{}, inv{};
+    for (std::size_t i = 0; i < dim_; ++i) p[i * dim_ + i] = 1.0;
+    for (const Vec3& normal : c.normals(n)) {
+      for (std::size_t i = 0; i < dim_; ++i) {
+        for (std::size_t j = 0; j < dim_; ++j) p[i * dim_ + j] -= normal[i] * normal[j];
+      }
+    }
+    const auto at = [this](const std::array<double, 9>& m, std::size_t i, std::size_t j) { return m[i * dim_ + j]; };
+    std::array<double, 9> bp{};
+    for (std::size_t i = 0; i < dim_; ++i) {
+      for (std::size_t j = 0; j < dim_; ++j) {
+        for (std::size_t k = 0; k < dim_; ++k) bp[i * dim_ + j] += b[i * dim_ + k] * at(p, k, j);
+      }
+    }
+    for (std::size_t i = 0; i < dim_; ++i) {
+      for (std::size_t j = 0; j < dim_; ++j) {
+        double s = (i == j ? 1.0 : 0.0) - at(p, i, j);
+        for (std::size_t k = 0; k < dim_; ++k) s += at(p, i, k) * at(bp, k, j);
+        a[i * dim_ + j] = s;
+      }
+    }
+    if (!invert_small(a, inv)) {
+      std::fill(b, b + dim_ * dim_, 0.0);
+      return;
+    }
+    for (std::size_t i = 0; i < dim_; ++i) {  // M = P A^-1 P
+      for (std::size_t j = 0; j < dim_; ++j) {
+        double s = 0.0;
+        for (std::size_t k = 0; k < dim_; ++k) {
+          for (std::size_t l = 0; l < dim_; ++l) s += at(p, i, k) * at(inv, k, l) * at(p, l, j);
+        }
+        b[i * dim_ + j] = s;
+      }
+    }
+  }
+
+  bool invert_small(const std::array<double, 9>& a, std::array<double, 9>& inv) const {
+    if (dim_ == 2) {
+      const double det = a[0] * a[3] - a[1] * a[2];
+      if (!(std::abs(det) > 0.0)) return false;
+      inv = {a[3] / det, -a[1] / det, -a[2] / det, a[0] / det};
+      return true;
+    }
+    const double det = a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) +
+                       a[2] * (a[3] * a[7] - a[4] * a[6]);
+    if (!(std::abs(det) > 0.0)) return false;
+    inv = {(a[4] * a[8] - a[5] * a[7]) / det, (a[2] * a[7] - a[1] * a[8]) / det, (a[1] * a[5] - a[2] * a[4]) / det,
+           (a[5] * a[6] - a[3] * a[8]) / det, (a[0] * a[8] - a[2] * a[6]) / det, (a[2] * a[3] - a[0] * a[5]) / det,
+           (a[3] * a[7] - a[4] * a[6]) / det, (a[1] * a[6] - a[0] * a[7]) / det, (a[0] * a[4] - a[1] * a[3]) / det};
+    return true;
+  }
+
+  std::size_t dim_;
+  std::vector<double> blocks_;  ///< B_i, then M_i, row-major per node
 };
 
 class Motion {
  public:
   Motion(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
-         const SolverOptions& solver, const IncrementObserver& observer)
+         const SolverOptions& solver, const IncrementObserver& observer, const MotionStart* start)
       : mesh_(mesh),
         solver_(solver),
         observer_(observer),
-        setup_(detail::set_up_boundaries(mesh, patches)),
+        setup_(detail::set_up_boundaries(mesh, patches, start)),
+        sliding_(setup_, static_cast<std::size_t>(mesh.dimension)),
         stiffness_(mesh, element_lame(mesh, material), material.drop_jacobian),
-        dim_(static_cast<std::size_t>(mesh.dimension)) {}
+        dim_(static_cast<std::size_t>(mesh.dimension)),
+        size_(bounding_diagonal(mesh.points)) {}
 
   MotionResult run() {
     const auto start = Clock::now();
     result_.node_roles = setup_.roles;
     result_.notes = setup_.notes;
-    result_.points = mesh_.points;
+    result_.sliding_nodes = sliding_.size();
+    for (const auto& s : setup_.sliding) result_.sliding_origins.push_back({s.node, s.origin});
+    result_.points = setup_.reference;
     const int n = std::max(solver_.increments, 1);
     for (int k = 1; k <= n; ++k) {
       if (!advance(k, double(k - 1) / n, double(k) / n, 0)) break;
@@ -122,9 +208,14 @@ class Motion {
     }
     result_.failed_points = std::move(moved);
     result_.failed_quality = scaled_jacobians(mesh_.cells, result_.failed_points);
+    const auto worst = summarize_quality(result_.failed_quality);
     result_.message = fmt::format("increment {} of {} failed (stage {:.6g} to {:.6g}{}): {}", increment,
                                   std::max(solver_.increments, 1), a, b,
                                   depth > 0 ? fmt::format(", after splitting it {} times", depth) : "", record.failure);
+    if (record.inverted_cells == 0) {  // name the cell that suffered most in the failed attempt
+      result_.message += fmt::format("; worst cell {} (scaled Jacobian {:.3g})", mesh_.cell_id(worst.worst_cell),
+                                     worst.min_scaled_jacobian);
+    }
     return false;
   }
 
@@ -136,13 +227,17 @@ class Motion {
     const std::vector<Vec3>& x = result_.points;
     const std::size_t dofs = stiffness_.size();
 
-    // Initial u: the boundary's move to stage b on prescribed nodes, zero elsewhere.
+    // Initial u: the boundary's move to stage b on prescribed nodes, the forcing
+    // displacement u0s on sliding nodes (eqs. 13, 22), zero elsewhere.
     std::vector<double> u(dofs, 0.0);
     for (const auto& p : setup_.prescribed) {
       const auto i = static_cast<std::size_t>(p.node);
-      const Vec3 target = detail::prescribed_position(p, mesh_.points[i], b);
+      const Vec3 target = detail::prescribed_position(p, setup_.reference[i], b);
       for (std::size_t c = 0; c < dim_; ++c) u[i * dim_ + c] = target[c] - x[i][c];
     }
+    auto t = Clock::now();
+    sliding_.begin_increment(a, b, x, u);
+    result_.timings.projection += seconds_since(t);
 
     std::vector<Vec3> trial(x.size());
     std::vector<double> r(dofs), rhs(dofs), p(dofs);
@@ -150,16 +245,18 @@ class Motion {
     const ConstrainedOperator k(stiffness_, setup_.constraints);
     for (int it = 0;; ++it) {
       displace(x, u, trial);
-      auto t = Clock::now();
+      t = Clock::now();
       stiffness_.update(trial);  // K(n) at the current geometry (eq. 8)
       result_.timings.assembly += seconds_since(t);
-      stiffness_.apply(u, r);  // R(n) = K(n) u(n) - f  (eq. 7): f is K's action on the boundary motion
+      // R(n) = K(n) u(n) - f (eq. 7; f is K's action on the boundary motion), with only its
+      // tangential part F_t at sliding nodes (eq. 17).
+      stiffness_.apply(u, r);
       setup_.constraints.project(r);
       const double residual = norm2(r);
       if (it == 0) r0 = residual;
       record.newton.push_back({residual, 0, true, 0.0});
       record.residual_reduction = r0 > 0.0 ? residual / r0 : 0.0;
-      if (!std::isfinite(residual) || residual > 1e6 * r0) {
+      if (!std::isfinite(residual) || residual > kDivergence * r0) {
         record.failure = fmt::format("the Newton-Raphson cycle diverged (residual {:.3g} times the initial one)",
                                      residual / r0);
         break;
@@ -174,11 +271,12 @@ class Motion {
                                      solver_.max_newton_iterations, record.residual_reduction, solver_.newton_tolerance);
         break;
       }
-      // K(n) p = -R(n) on the free degrees of freedom, from p = 0 (eq. 8, section 3).
+      // K(n) p = -R(n) on the free degrees of freedom, from p = 0 (eq. 8, section 3); at
+      // sliding nodes the projected operator solves eq. (16) and keeps p . n = 0 (eq. 19).
       for (std::size_t i = 0; i < dofs; ++i) rhs[i] = -r[i];
       std::fill(p.begin(), p.end(), 0.0);
       t = Clock::now();
-      const JacobiPreconditioner m(stiffness_, setup_.constraints);
+      const NodalJacobi m(stiffness_, setup_.constraints);
       const auto cg = pcg(k, m, rhs, p,
                           {.relative_tolerance = solver_.pcg_tolerance,
                            .max_iterations = solver_.max_pcg_iterations,
@@ -193,10 +291,15 @@ class Motion {
         record.failure = "the linear solver broke down (the stiffness is not positive definite on the free nodes)";
         break;
       }
+      record.max_normal_slip = std::max(record.max_normal_slip, sliding_.normal_component(p));
       axpy(1.0, p, u);
+      // Every sliding node back onto the partial boundary c_b, with its new normal (4.2).
+      t = Clock::now();
+      step.max_projection = sliding_.project(b, x, u);
+      result_.timings.projection += seconds_since(t);
     }
     if (record.converged) {
-      const auto t = Clock::now();
+      t = Clock::now();
       const auto quality = scaled_jacobians(mesh_.cells, trial);
       const auto summary = summarize_quality(quality);
       result_.timings.quality += seconds_since(t);
@@ -209,6 +312,10 @@ class Motion {
                                      summary.min_scaled_jacobian);
       } else {
         record.accepted = true;
+        sliding_.end_increment(u);
+        result_.max_normal_slip = std::max(result_.max_normal_slip, record.max_normal_slip);
+        const auto steps = record.newton.size();
+        result_.max_sliding_projection_distance = steps >= 2 ? record.newton[steps - 2].max_projection / size_ : 0.0;
       }
     }
     record.seconds = seconds_since(start);
@@ -225,22 +332,33 @@ class Motion {
     }
   }
 
+  static double bounding_diagonal(std::span<const Vec3> points) {
+    Vec3 lo = points.front(), hi = lo;
+    for (const Vec3& p : points) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    return std::max(norm(hi - lo), 1e-300);
+  }
+
   const Mesh& mesh_;
   SolverOptions solver_;
   const IncrementObserver& observer_;
   detail::BoundarySetup setup_;
+  detail::SlidingNodes sliding_;
   StiffnessOperator stiffness_;
   std::size_t dim_;
+  double size_;
   MotionResult result_;
 };
 
 }  // namespace
 
 MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
-                       const SolverOptions& solver, const IncrementObserver& observer) {
-  const auto start = Clock::now();
-  Motion motion(mesh, patches, material, solver, observer);
-  motion.set_setup_time(seconds_since(start));
+                       const SolverOptions& solver, const IncrementObserver& observer, const MotionStart* start) {
+  const auto begin = Clock::now();
+  Motion motion(mesh, patches, material, solver, observer, start);
+  motion.set_setup_time(seconds_since(begin));
   return motion.run();
 }
 

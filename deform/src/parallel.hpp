@@ -7,7 +7,9 @@
 namespace hotmesh::deform::detail {
 
 inline constexpr std::ptrdiff_t kParallelVector = 16384;  ///< entries of a vector kernel
-inline constexpr std::ptrdiff_t kParallelCells = 256;     ///< cells of an element loop
+inline constexpr std::ptrdiff_t kParallelCells = 256;     ///< cells of an element-matrix loop
+/// Multiply-adds of a product with stored element matrices (cells x dofs^2).
+inline constexpr std::ptrdiff_t kParallelProduct = 1 << 18;
 inline constexpr std::ptrdiff_t kParallelNodes = 2048;    ///< nodes of a nodal loop
 
 }  // namespace hotmesh::deform::detail

@@ -93,7 +93,7 @@ template <std::size_t N, std::size_t D>
 void apply_color(const ElementList& cells, std::span<const CellId> color, const double* matrices,
                  std::span<const double> x, std::span<double> y) {
   constexpr std::size_t kNodes = N / D;
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(color.size()) >= detail::kParallelCells)
+#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(color.size() * N * N) >= detail::kParallelProduct)
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(color.size()); ++k) {
     const auto c = static_cast<std::size_t>(color[static_cast<std::size_t>(k)]);
     const auto nodes = cells.nodes(c);
@@ -140,6 +140,22 @@ void StiffnessOperator::diagonal(std::span<double> d) const {
     const auto ke = element_matrix(static_cast<CellId>(c));
     const auto nodes = cells_->nodes(c);
     for (std::size_t r = 0; r < n; ++r) d[static_cast<std::size_t>(nodes[r / dim]) * dim + r % dim] += ke[r * n + r];
+  }
+}
+
+void StiffnessOperator::diagonal_blocks(std::span<double> blocks) const {
+  std::fill(blocks.begin(), blocks.end(), 0.0);
+  const auto n = static_cast<std::size_t>(element_dofs_);
+  const auto dim = static_cast<std::size_t>(dim_);
+  for (std::size_t c = 0; c < cells_->size(); ++c) {
+    const auto ke = element_matrix(static_cast<CellId>(c));
+    const auto nodes = cells_->nodes(c);
+    for (std::size_t a = 0; a < nodes.size(); ++a) {
+      double* block = blocks.data() + static_cast<std::size_t>(nodes[a]) * dim * dim;
+      for (std::size_t i = 0; i < dim; ++i) {
+        for (std::size_t j = 0; j < dim; ++j) block[i * dim + j] += ke[(a * dim + i) * n + a * dim + j];
+      }
+    }
   }
 }
 

@@ -20,7 +20,7 @@ const std::string kRamp = std::string(HOTMESH_SOURCE_DIR) + "/samples/ramp2d/ram
 test::CommandResult hotmesh(const std::string& arguments) { return run_command(std::string(HOTMESH_EXE) + " " + arguments); }
 
 TEST(Cli, EveryCommandHasHelp) {
-  for (const std::string command : {"", "info ", "convert "}) {
+  for (const std::string command : {"", "info ", "convert ", "deform "}) {
     const auto r = hotmesh(command + "--help");
     EXPECT_EQ(r.exit_code, 0) << command;
     EXPECT_THAT(r.output, HasSubstr("Usage:")) << command;

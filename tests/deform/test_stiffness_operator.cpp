@@ -70,7 +70,7 @@ TEST(StiffnessOperator, ColoursNeverShareANode) {
 
 TEST(StiffnessOperator, ProductIsBitIdenticalForAnyThreadCount) {
   // Large enough that the element loops run in parallel (deform/src/parallel.hpp).
-  Mesh mesh = test::square_ring(16, 12, 0.3, 1.0, 4, 0.6);
+  Mesh mesh = test::square_ring(16, 16, 0.3, 1.0, 4, 0.6);
   test::jiggle_interior(mesh, 0.2);
   const StiffnessOperator k = make_operator(mesh);
   const auto x = pseudo_random(k.size());

@@ -27,6 +27,12 @@ class NodeConstraints {
   void constrain(NodeId n, const Vec3& normal);
   /// Removes every direction of a node that is not fixed (before setting new normals).
   void release(NodeId n);
+  /// Prepares node n for set_normals (call once, single-threaded, before any parallel use).
+  void track(NodeId n);
+  /// Replaces the directions of a tracked node by `normals` (orthonormalised; at most d - 1 are
+  /// kept, so the node is never fixed here). Does nothing for fixed nodes. Safe to call from
+  /// several threads for different nodes.
+  void set_normals(NodeId n, std::span<const Vec3> normals);
 
   bool is_fixed(NodeId n) const { return state_[static_cast<std::size_t>(n)] == kFixed; }
   /// Number of constrained directions of node n (d if fixed).

@@ -55,6 +55,7 @@ struct NewtonStep {
   int pcg_iterations = 0;          ///< of the solve that followed (0 on the last entry)
   bool pcg_converged = true;
   double pcg_reduction = 0.0;      ///< ||r|| / ||r0|| reached by PCG
+  double max_projection = 0.0;     ///< largest move of a sliding node back onto its boundary after the step
 };
 
 struct IncrementRecord {
@@ -69,16 +70,37 @@ struct IncrementRecord {
   double min_scaled_jacobian = 0.0;
   std::size_t inverted_cells = 0;
   CellId worst_cell = -1;
+  double max_normal_slip = 0.0;     ///< largest |p . n| of a Newton step at a sliding node (eq. 19)
   double seconds = 0.0;
   std::string failure;        ///< why it was not accepted
 };
 
 struct MotionTimings {
-  double setup = 0.0;     ///< material, shapes, constraints
-  double assembly = 0.0;  ///< element matrices
-  double solve = 0.0;     ///< PCG
+  double setup = 0.0;       ///< material, shapes, constraints
+  double assembly = 0.0;    ///< element matrices
+  double solve = 0.0;       ///< PCG
+  double projection = 0.0;  ///< sliding nodes onto their boundaries
   double quality = 0.0;
   double total = 0.0;
+};
+
+/// Where a sliding node came from: its parameter t0 on its first sliding shape in the
+/// undeformed (cold) geometry. A restarted run needs it to set the node's new target.
+struct SlidingOrigin {
+  NodeId node = 0;
+  double parameter = 0.0;
+};
+
+/// The state a run continues from (section 4.3, re-start): the positions a previous run
+/// reached, and the origins of its sliding nodes. The shapes of a restarted run go from the
+/// previous run's deflected boundary (stage 0) to the new one (stage 1), in the same parameter
+/// as the undeformed boundary; each sliding node's target is then moved once, beforehand, by
+/// the slide it made in the previous runs: x_F = P(x1 + c_1(t0) - c_0(t0)), the node's
+/// position plus the change of deflection at its material point, projected on the new
+/// boundary (P).
+struct MotionStart {
+  std::vector<Vec3> points;
+  std::vector<SlidingOrigin> sliding;
 };
 
 struct MotionResult {
@@ -92,6 +114,12 @@ struct MotionResult {
   std::vector<double> failed_quality;
   std::vector<IncrementRecord> increments;  ///< every attempt, accepted or not, in order
   std::vector<NodeRoleCode> node_roles;
+  std::size_t sliding_nodes = 0;
+  /// Largest projection distance of a sliding node in the last Newton step of the last
+  /// accepted increment, relative to the diagonal of the mesh's bounding box.
+  double max_sliding_projection_distance = 0.0;
+  double max_normal_slip = 0.0;        ///< largest |u_s . n| (per Newton step) over accepted increments
+  std::vector<SlidingOrigin> sliding_origins;  ///< for restarting from this result
   std::vector<std::string> notes;      ///< things worth a warning (set-up conflicts, ...)
   MotionTimings timings;
 };
@@ -103,7 +131,10 @@ using IncrementObserver = std::function<void(const IncrementRecord&)>;
 /// missing shape, patch nodes off their shape, a slip patch that is not planar, cells other
 /// than quad4/hex8, nothing held in place); a failure of the motion itself is reported in
 /// the result.
+/// With `start`, the run continues from a previous one (see MotionStart): the patch shapes
+/// must then start (stage 0) where the previous run ended.
 MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
-                       const SolverOptions& solver, const IncrementObserver& observer = {});
+                       const SolverOptions& solver, const IncrementObserver& observer = {},
+                       const MotionStart* start = nullptr);
 
 }  // namespace hotmesh::deform

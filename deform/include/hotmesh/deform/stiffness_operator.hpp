@@ -40,6 +40,8 @@ class StiffnessOperator final : public LinearOperator {
   void apply(std::span<const double> x, std::span<double> y) const override;
   /// The diagonal of K.
   void diagonal(std::span<double> d) const;
+  /// The d x d diagonal blocks of K, one per node, row-major, node after node.
+  void diagonal_blocks(std::span<double> blocks) const;
 
   int dofs_per_node() const { return dim_; }
   int element_size() const { return element_dofs_; }

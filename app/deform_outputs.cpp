@@ -1,0 +1,169 @@
+#include "deform_outputs.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <nlohmann/json.hpp>
+
+#include "hotmesh/io/atomic_file.hpp"
+#include "hotmesh/io/figure.hpp"
+#include "hotmesh/io/gmsh.hpp"
+#include "hotmesh/io/mesh_picture.hpp"
+#include "hotmesh/io/vtu.hpp"
+#include "mesh_summary.hpp"
+
+namespace hotmesh::app {
+namespace {
+
+io::VtuFields deform_fields(const deform::Mesh& mesh, const std::vector<deform::Vec3>& points,
+                            const deform::MotionResult& result) {
+  io::VtuFields fields = io::quality_fields(mesh, points);
+  std::vector<double> displacement;
+  displacement.reserve(3 * points.size());
+  for (std::size_t n = 0; n < points.size(); ++n) {
+    const deform::Vec3 d = points[n] - mesh.points[n];
+    displacement.insert(displacement.end(), {d.x, d.y, d.z});
+  }
+  fields.point_data.push_back({"displacement", 3, std::move(displacement)});
+  std::vector<std::int32_t> roles(result.node_roles.begin(), result.node_roles.end());
+  fields.point_data.push_back({"node_role", 1, std::move(roles)});
+  return fields;
+}
+
+/// A picture of a 2D mesh coloured by quality, with the deflected boundaries as given by the
+/// FEM tables drawn in blue over it (as in the paper's figures).
+void picture(const std::filesystem::path& path, const std::string& title, const deform::Mesh& mesh,
+             const std::vector<deform::Vec3>& points, const std::vector<double>& quality,
+             const io::CaseSetup& setup, const io::PictureView* view) {
+  io::Figure figure({.width = 1400, .height = 900, .title = title, .x_label = "x", .y_label = "y"});
+  io::draw_mesh(figure, mesh, points, {.edges = {io::colors::black, view ? 0.8 : 0.4}, .quality = quality});
+  for (const auto& shape : setup.shapes) {
+    std::vector<io::PlotPoint> line;
+    for (const auto& p : shape.deflected_outline) line.push_back({p.x, p.y});
+    figure.polyline(line, {io::colors::blue, 2.0});
+  }
+  if (!setup.shapes.empty()) figure.legend("deflected wall (FEM)", {io::colors::blue, 2.0});
+  if (view) figure.set_view(view->xmin, view->xmax, view->ymin, view->ymax);
+  figure.save(path);
+}
+
+}  // namespace
+
+std::vector<std::string> output_names(const io::Case& c, const deform::Mesh& mesh) {
+  std::vector<std::string> names{"deformed.msh", "deformed.vtu", "failed.vtu", "report.json"};
+  if (mesh.dimension == 2) {
+    names.push_back("deformed.png");
+    names.push_back("failed.png");
+    for (const auto& p : c.pictures) names.push_back(p.name + ".png");
+  }
+  return names;
+}
+
+RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const deform::Mesh& mesh,
+                         const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh) {
+  RunOutputs out;
+  deform::Mesh moved = mesh;
+  moved.points = result.points;
+  io::write_gmsh(folder / "deformed.msh", moved, {.binary = binary_msh});
+  out.files.push_back(folder / "deformed.msh");
+  io::write_vtu(folder / "deformed.vtu", mesh, result.points, deform_fields(mesh, result.points, result));
+  out.files.push_back(folder / "deformed.vtu");
+  if (!result.success) {
+    io::write_vtu(folder / "failed.vtu", mesh, result.failed_points, deform_fields(mesh, result.failed_points, result));
+    out.files.push_back(folder / "failed.vtu");
+  }
+  if (mesh.dimension == 2) {
+    const std::string name = c.file.stem().string();
+    const std::string stage = result.success ? "" : fmt::format(" at stage {:.3f} (last valid)", result.lambda_reached);
+    const std::string title =
+        fmt::format("{}: deformed mesh{}, min scaled Jacobian {:.3f}", name, stage, result.summary.min_scaled_jacobian);
+    picture(folder / "deformed.png", title, mesh, result.points, result.quality, setup, nullptr);
+    out.files.push_back(folder / "deformed.png");
+    for (const auto& view : c.pictures) {
+      picture(folder / (view.name + ".png"), fmt::format("{}: {}", name, view.name), mesh, result.points,
+              result.quality, setup, &view);
+      out.files.push_back(folder / (view.name + ".png"));
+    }
+    if (!result.success) {
+      picture(folder / "failed.png", fmt::format("{}: the failed increment (inverted cells dark red)", name), mesh,
+              result.failed_points, result.failed_quality, setup, nullptr);
+      out.files.push_back(folder / "failed.png");
+    }
+  }
+  return out;
+}
+
+void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
+                  const io::CaseSetup& setup, const deform::MotionResult& result, const RunTimings& timings,
+                  RunOutputs& outputs) {
+  using nlohmann::json;
+  const deform::Mesh& mesh = loaded.mesh;
+  json j;
+  j["hotmesh_version"] = HOTMESH_VERSION;
+  j["command"] = "deform";
+  j["case"] = c.file.string();
+  j["status"] = result.success ? "success" : "failed";
+  j["message"] = result.message;
+  j["mesh"] = mesh_summary(loaded, c.mesh);
+  j["patches"] = json::array();
+  for (const auto& m : setup.motions) j["patches"].push_back({{"name", m.patch}, {"role", deform::to_string(m.role)}});
+  j["deflections"] = json::array();
+  for (const auto& s : setup.shapes) {
+    const auto& r = s.reconstruction;
+    j["deflections"].push_back({{"patch", s.patch},
+                                {"nodes", r.nodes},
+                                {"used_nodes", r.used_nodes},
+                                {"merged_duplicates", r.merged_duplicates},
+                                {"degree", r.degree},
+                                {"form", geometry::to_string(r.form)},
+                                {"max_node_distance_to_cad", r.max_node_distance_to_cad},
+                                {"max_node_residual", r.max_node_residual}});
+  }
+  j["solver"] = {{"increments", c.solver.increments},
+                 {"newton_tolerance", c.solver.newton_tolerance},
+                 {"max_newton_iterations", c.solver.max_newton_iterations},
+                 {"pcg_tolerance", c.solver.pcg_tolerance},
+                 {"max_pcg_iterations", c.solver.max_pcg_iterations},
+                 {"max_increment_splits", c.solver.max_increment_splits}};
+  j["increments"] = json::array();
+  std::size_t newton_total = 0, pcg_total = 0;
+  for (const auto& r : result.increments) {
+    json pcg = json::array(), residuals = json::array();
+    for (std::size_t i = 0; i < r.newton.size(); ++i) {
+      residuals.push_back(r.newton[i].residual);
+      if (i + 1 < r.newton.size()) pcg.push_back(r.newton[i].pcg_iterations);
+      pcg_total += static_cast<std::size_t>(r.newton[i].pcg_iterations);
+    }
+    newton_total += r.newton.empty() ? 0 : r.newton.size() - 1;
+    j["increments"].push_back({{"increment", r.increment},
+                               {"stage", {r.lambda_begin, r.lambda_end}},
+                               {"split_depth", r.split_depth},
+                               {"accepted", r.accepted},
+                               {"converged", r.converged},
+                               {"newton_iterations", r.newton.empty() ? 0 : r.newton.size() - 1},
+                               {"pcg_iterations", pcg},
+                               {"residuals", residuals},
+                               {"residual_reduction", r.residual_reduction},
+                               {"min_scaled_jacobian", r.min_scaled_jacobian},
+                               {"inverted_cells", r.inverted_cells},
+                               {"seconds", r.seconds},
+                               {"failure", r.failure}});
+  }
+  j["newton_iterations"] = newton_total;
+  j["pcg_iterations"] = pcg_total;
+  j["stage_reached"] = result.lambda_reached;
+  j["min_scaled_jacobian"] = result.summary.min_scaled_jacobian;
+  j["inverted_cells"] = result.summary.inverted_cells;
+  j["quality"] = quality_json(mesh, result.summary);
+  j["notes"] = result.notes;
+  const auto& m = result.timings;
+  j["seconds"] = {{"read", timings.read},         {"shapes", timings.shapes}, {"setup", m.setup},
+                  {"assembly", m.assembly},       {"solve", m.solve},         {"quality", m.quality},
+                  {"motion", m.total},            {"write", timings.write}};
+  j["wall_seconds"] = timings.wall;
+  outputs.files.push_back(folder / "report.json");
+  j["outputs"] = json::array();
+  for (const auto& f : outputs.files) j["outputs"].push_back(f.string());
+  io::write_file_atomically(folder / "report.json", j.dump(2) + "\n");
+}
+
+}  // namespace hotmesh::app

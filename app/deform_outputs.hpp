@@ -1,0 +1,39 @@
+// hotmesh app: what `hotmesh deform` writes to its output folder: deformed.msh and
+// deformed.vtu (the final mesh, or the last valid one), failed.vtu when the motion failed,
+// PNG pictures for 2D meshes, and report.json.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/io/case_file.hpp"
+#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/io/mesh_files.hpp"
+
+namespace hotmesh::app {
+
+struct RunTimings {
+  double read = 0.0;    ///< case, mesh and tables, with validation
+  double shapes = 0.0;  ///< deflected shapes
+  double write = 0.0;   ///< outputs
+  double wall = 0.0;    ///< the whole run
+};
+
+struct RunOutputs {
+  std::vector<std::filesystem::path> files;
+};
+
+/// The names of every file a run may write (to check none would replace an input).
+std::vector<std::string> output_names(const io::Case& c, const deform::Mesh& mesh);
+
+RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const deform::Mesh& mesh,
+                         const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh);
+
+/// report.json: status, increments with Newton and PCG iterations, quality, times per phase.
+void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
+                  const io::CaseSetup& setup, const deform::MotionResult& result, const RunTimings& timings,
+                  RunOutputs& outputs);
+
+}  // namespace hotmesh::app

@@ -1,0 +1,51 @@
+// hotmesh deform (internal): the sliding boundary nodes of the paper's section 4 across one
+// increment (stage a to b):
+//  - begin: each node gets its forcing displacement u0s (eq. 13), its share of the way to its
+//    target x_F on the fully deflected boundary, (x_F - x_I) (b - a) / (1 - a), which is
+//    (x_F - x_I) / (N - k + 1) for increment k of N (eq. 22); it is placed on the partial
+//    boundary c_b and constrained along the normals there;
+//  - after every Newton step: the nodes, moved tangentially by the projected PCG (eqs.
+//    16-19), are projected back onto c_b (Fig. 4) and their normals updated;
+//  - end (increment accepted): the slide vector a = dx2 - dx1 moves the target, which is
+//    projected onto the fully deflected boundary (section 4.3).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "boundary_conditions.hpp"
+
+namespace hotmesh::deform::detail {
+
+class SlidingNodes {
+ public:
+  SlidingNodes(BoundarySetup& setup, std::size_t dofs_per_node) : setup_(setup), dim_(dofs_per_node) {}
+
+  std::size_t size() const { return setup_.sliding.size(); }
+
+  /// Writes the forcing displacements of the increment into u (dofs of the sliding nodes),
+  /// with the nodes placed on c_b, and sets their constraint normals.
+  void begin_increment(double a, double b, std::span<const Vec3> x, std::span<double> u);
+
+  /// Projects the sliding nodes at x + u onto c_b, writes the new u and normals; returns the
+  /// largest distance a node was moved by the projection.
+  double project(double b, std::span<const Vec3> x, std::span<double> u);
+
+  /// The largest |p . n| of a Newton step p over the sliding nodes, n their current normals:
+  /// zero up to round-off when the projected PCG keeps u_s tangential (eq. 19).
+  double normal_component(std::span<const double> p) const;
+
+  /// After an accepted increment with final displacement u: moves the targets by the slide
+  /// vectors a = dx2 - dx1 and projects them on the fully deflected boundary.
+  void end_increment(std::span<const double> u);
+
+ private:
+  Vec3 displacement(std::span<const double> u, NodeId n) const;
+  void set_displacement(std::span<double> u, NodeId n, const Vec3& d) const;
+
+  BoundarySetup& setup_;
+  std::size_t dim_;
+  std::vector<Vec3> forcing_;  ///< dx1 = u0s of the current increment, per sliding node
+};
+
+}  // namespace hotmesh::deform::detail

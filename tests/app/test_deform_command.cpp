@@ -1,0 +1,123 @@
+// Tests of `hotmesh deform`, the main job, end to end on the ramp sample: outputs and
+// report, a motion that fails (last valid mesh kept, exit code 1), and bad input (exit code 2,
+// nothing written).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "hotmesh/io/gmsh.hpp"
+#include "hotmesh/deform/quality.hpp"
+#include "run_command.hpp"
+#include "test_support.hpp"
+
+namespace hotmesh::app {
+namespace {
+
+using ::testing::HasSubstr;
+using test::run_command;
+using test::shell_quote;
+
+const std::filesystem::path kSample = std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "ramp2d";
+
+test::CommandResult hotmesh(const std::string& arguments) { return run_command(std::string(HOTMESH_EXE) + " " + arguments); }
+
+nlohmann::json read_json(const std::filesystem::path& p) { return nlohmann::json::parse(test::read_text(p)); }
+
+/// A copy of the ramp sample in a temporary folder, with its case file replaced by `yaml`.
+struct RampCase {
+  test::TempDir dir;
+  explicit RampCase(const std::string& yaml) {
+    std::filesystem::copy_file(kSample / "ramp2d.msh", dir / "ramp2d.msh");
+    std::filesystem::copy_file(kSample / "ramp.csv", dir / "ramp.csv");
+    test::write_text(dir / "case.yaml", yaml);
+  }
+  std::string case_file() const { return shell_quote((dir / "case.yaml").string()); }
+};
+
+TEST(DeformCommand, RampSampleCompletesWithEveryOutputAndReport) {
+  test::TempDir out;
+  const auto r = hotmesh("deform " + shell_quote((kSample / "ramp2d.yaml").string()) + " -o " + shell_quote(out.path().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("increment 16/16"));
+  for (const char* f : {"deformed.msh", "deformed.vtu", "deformed.png", "ramp.png", "corner_a.png", "corner_b.png",
+                        "mid_ramp.png", "report.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out / "failed.vtu"));
+  const auto report = read_json(out / "report.json");
+  EXPECT_EQ(report["status"], "success");
+  EXPECT_EQ(report["increments"].size(), 16u);
+  EXPECT_EQ(report["inverted_cells"], 0);
+  EXPECT_GT(report["min_scaled_jacobian"].get<double>(), 0.2);
+  EXPECT_GT(report["wall_seconds"].get<double>(), 0.0);
+  for (const auto& inc : report["increments"]) {
+    EXPECT_TRUE(inc["converged"].get<bool>());
+    EXPECT_LE(inc["residual_reduction"].get<double>(), 1e-4);
+    EXPECT_EQ(inc["pcg_iterations"].size(), inc["newton_iterations"].get<std::size_t>());
+  }
+  // The deformed mesh: the lower wall lies on the ramp, and no cell is inverted.
+  const deform::Mesh moved = io::read_gmsh(out / "deformed.msh");
+  for (deform::NodeId n : moved.find_patch("bottom")->nodes) {
+    const double x = moved.points[static_cast<std::size_t>(n)].x;
+    const double y = moved.points[static_cast<std::size_t>(n)].y;
+    const double ramp = x <= 0.975 ? 0.0 : x >= 1.025 ? 0.5 : 0.5 * (x - 0.975) / 0.05;
+    EXPECT_NEAR(y, ramp, 1e-9) << "x = " << x;
+  }
+  const auto q = deform::summarize_quality(deform::scaled_jacobians(moved.cells, moved.points));
+  EXPECT_EQ(q.inverted_cells, 0u);
+}
+
+TEST(DeformCommand, FailedMotionKeepsLastValidMeshAndMarksFailedCells) {
+  // The ramp pushed through the top wall: cannot be done.
+  RampCase ramp(
+      "mesh: ramp2d.msh\nsolver: {increments: 2, max_increment_splits: 1}\n"
+      "patches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: fixed}\n"
+      "  bottom: {role: prescribed, deflection: {file: steep.csv}}\n");
+  test::write_text(ramp.dir / "steep.csv", "x,y,dx,dy\n0,0,0,0\n0.9,0,0,0\n1.1,0,0,1.4\n2,0,0,1.4\n");
+  const auto r = hotmesh("deform " + ramp.case_file());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("increment 1 of 2 failed"));
+  const auto out = ramp.dir / "case-out";
+  EXPECT_TRUE(std::filesystem::exists(out / "failed.vtu"));
+  EXPECT_TRUE(std::filesystem::exists(out / "failed.png"));
+  const auto report = read_json(out / "report.json");
+  EXPECT_EQ(report["status"], "failed");
+  EXPECT_LT(report["stage_reached"].get<double>(), 1.0);
+  EXPECT_THAT(report["message"].get<std::string>(), HasSubstr("cell"));
+  const deform::Mesh kept = io::read_gmsh(out / "deformed.msh");
+  EXPECT_EQ(deform::summarize_quality(deform::scaled_jacobians(kept.cells, kept.points)).inverted_cells, 0u);
+  EXPECT_THAT(test::read_text(out / "failed.vtu"), HasSubstr("Name=\"inverted\""));
+}
+
+TEST(DeformCommand, BadCaseIsAUserErrorAndWritesNothing) {
+  RampCase ramp("mesh: ramp2d.msh\nsolver: {increments: 0}\npatches:\n  left: {role: fixed}\n");
+  const auto r = hotmesh("deform " + ramp.case_file());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("case.yaml:2: solver.increments: must be an integer >= 1, got 0"));
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
+  // With the YAML right, the case is checked against the mesh.
+  test::write_text(ramp.dir / "case.yaml", "mesh: ramp2d.msh\npatches:\n  left: {role: fixed}\n");
+  const auto roles = hotmesh("deform " + ramp.case_file());
+  EXPECT_EQ(roles.exit_code, 2);
+  EXPECT_THAT(roles.output, HasSubstr("case.yaml:2: patches: mesh patch 'right' has no role"));
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
+}
+
+TEST(DeformCommand, RefusesOutputFolderHoldingInputsUnlessForced) {
+  RampCase ramp(
+      "mesh: ramp2d.msh\nsolver: {increments: 2}\n"
+      "patches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: fixed}\n"
+      "  bottom: {role: prescribed, deflection: {file: ramp.csv}}\n");
+  const std::string before = test::read_text(ramp.dir / "ramp2d.msh");
+  const auto refused = hotmesh("deform " + ramp.case_file() + " -o " + shell_quote(ramp.dir.path().string()));
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.output, HasSubstr("--force"));
+  const auto forced = hotmesh("-q deform --force " + ramp.case_file() + " -o " + shell_quote(ramp.dir.path().string()));
+  EXPECT_EQ(forced.exit_code, 0) << forced.output;
+  EXPECT_EQ(test::read_text(ramp.dir / "ramp2d.msh"), before);  // inputs untouched
+  EXPECT_TRUE(std::filesystem::exists(ramp.dir / "deformed.msh"));
+}
+
+}  // namespace
+}  // namespace hotmesh::app
