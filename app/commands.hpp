@@ -17,5 +17,7 @@ using Command = std::function<int()>;
 Command add_info_command(CLI::App& parent);
 Command add_convert_command(CLI::App& parent);
 Command add_deform_command(CLI::App& parent);
+Command add_cad_command(CLI::App& parent);
+Command add_curve_command(CLI::App& parent);
 
 }  // namespace hotmesh::app

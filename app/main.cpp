@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   remember(hotmesh::app::add_info_command(app));
   remember(hotmesh::app::add_convert_command(app));
   remember(hotmesh::app::add_deform_command(app));
+  remember(hotmesh::app::add_cad_command(app));
+  remember(hotmesh::app::add_curve_command(app));
 
   try {
     app.parse(argc, argv);

@@ -9,6 +9,7 @@
 
 #include "curve_fixtures.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
+#include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/geometry/interpolation.hpp"
 
 namespace hotmesh::geometry {
@@ -74,6 +75,43 @@ TEST(PlanarCurveShape, ProjectsInTheXYPlane) {
   EXPECT_NEAR(q.parameter, 0.5, 1e-14);
   const std::unique_ptr<BoundaryShape> any = std::make_unique<PlanarCurveShape>(DeflectedCurve(test::s_curve()));
   EXPECT_NEAR(any->project({1.0, 1.0, 0.0}, 0.0).distance, test::brute_force_closest(DeflectedCurve(test::s_curve()), {1, 1}, 0.0).distance, 1e-10);
+}
+
+TEST(ShapeFactories, BuildDeflectedShapesFromFemSamples) {
+  // A cylinder of radius 2 about the z axis through (1, 1, 0), from z = 0 to 4; cartesian FEM
+  // nodes at 40 degrees pushed out radially by 0.1.
+  const Axis axis({1, 1, 0}, {0, 0, 1});
+  const BSplineCurve2d meridian =
+      BSplineCurve2d::polyline(std::vector<double>{0.0, 1.0}, std::vector<Vec2>{{2, 0}, {2, 4}});
+  DeflectionSamples samples;
+  samples.frame = SampleFrame::cartesian;
+  for (int j = 0; j <= 4; ++j) {
+    samples.points.push_back(axis.to_cartesian({2.0, 0.7, static_cast<double>(j)}));
+    samples.deflections.push_back(axis.meridional_vector(0.7, 0.1, 0.0));
+  }
+  const RevolvedShapeFit fit = make_revolved_shape(meridian, axis, samples);
+  EXPECT_EQ(fit.report.used_nodes, 5u);
+  const ShapePoint q = fit.shape.project(axis.to_cartesian({3.0, -2.0, 1.5}), 1.0);
+  EXPECT_NEAR(axis.to_cylindrical(q.point).r, 2.1, 1e-14);
+  EXPECT_NEAR(axis.to_cylindrical(q.point).theta, -2.0, 1e-14);
+
+  DeflectionSamples planar;
+  planar.frame = SampleFrame::planar;
+  planar.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+  planar.deflections = {{0, 0, 0}, {0, 0.1, 0}, {0, 0.2, 0}};
+  // The deflected nodes lie on y = 0.1 x (y = 0.05 x half way): projections land on that line
+  // and the offset is along its normal (-0.1, 1).
+  const PlanarShapeFit from_nodes = make_planar_shape(planar);
+  const ShapePoint a = from_nodes.shape.project({1.5, 1.0, 0.0}, 1.0);
+  EXPECT_NEAR(a.point.y, 0.1 * a.point.x, 1e-14);
+  EXPECT_NEAR(dot(Vec3{1.5, 1.0, 0.0} - a.point, Vec3{1.0, 0.1, 0.0}), 0.0, 1e-14);
+  const PlanarShapeFit on_curve = make_planar_shape(
+      BSplineCurve2d::polyline(std::vector<double>{0.0, 1.0}, std::vector<Vec2>{{-1, 0}, {3, 0}}), planar);
+  const ShapePoint b = on_curve.shape.project({1.5, 1.0, 0.0}, 0.5);
+  EXPECT_NEAR(b.point.y, 0.05 * b.point.x, 1e-14);
+  EXPECT_NEAR(dot(Vec3{1.5, 1.0, 0.0} - b.point, Vec3{1.0, 0.05, 0.0}), 0.0, 1e-14);
+  EXPECT_NEAR(on_curve.shape.project({-0.5, 1.0, 0.0}, 1.0).point.y, 0.0, 1e-14);  // before the nodes
+  EXPECT_THROW(make_planar_shape(samples), InputError);                            // cartesian for 2D
 }
 
 TEST(PlaneShape, ProjectsOrthogonallyWhateverTheStage) {

@@ -20,7 +20,8 @@ struct ShapePoint {
   Vec3 point;
   /// Unit normal to the boundary at `point`: in the x-y plane for 2D shapes, in the meridional
   /// plane through the point for axisymmetric ones. Its sign is the shape's convention
-  /// (consistent along the shape); users that need "outward" orient it themselves.
+  /// (consistent along the shape; for curves, to the left of increasing t; at a corner, the
+  /// bisector of the two sides); users that need "outward" orient it themselves.
   Vec3 normal;
   double parameter = 0.0;  ///< t; for planes, 0
   double distance = 0.0;   ///< distance from the point that was projected (0 for at())

@@ -5,13 +5,15 @@
 //                     axis; points are projected in the meridional plane through them (Fig. 4);
 //   PlaneShape        a fixed plane, for slip boundaries: orthogonal projection, constant
 //                     normal, the stage lambda is ignored.
-// Build the deflected curves with reconstruct() (reconstruction.hpp); all three are immutable
-// after construction, so project() and at() are safe from any number of threads.
+// make_revolved_shape / make_planar_shape build them from an undeformed curve and the FEM
+// deflection samples (section 4.2, reconstruction.hpp) and report the fit. All three shapes are
+// immutable after construction, so project() and at() are safe from any number of threads.
 #pragma once
 
 #include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/boundary_shape.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
+#include "hotmesh/geometry/reconstruction.hpp"
 
 namespace hotmesh::geometry {
 
@@ -67,5 +69,27 @@ class PlaneShape final : public BoundaryShape {
   Vec3 origin_;
   Vec3 normal_;
 };
+
+struct RevolvedShapeFit {
+  RevolvedShape shape;
+  ReconstructionReport report;
+};
+
+/// The deflected surface of revolution: cartesian or meridional samples taken to (r, z) about
+/// `axis` (meridional_samples), eq. (21) on the meridional curve (reconstruct).
+RevolvedShapeFit make_revolved_shape(const BSplineCurve2d& meridional, const Axis& axis,
+                                     const DeflectionSamples& samples, const ReconstructionOptions& options = {});
+
+struct PlanarShapeFit {
+  PlanarCurveShape shape;
+  ReconstructionReport report;
+};
+
+/// The deflected 2D boundary from a curve in the x-y plane and planar samples.
+PlanarShapeFit make_planar_shape(const BSplineCurve2d& curve, const DeflectionSamples& samples,
+                                 const ReconstructionOptions& options = {});
+/// The deflected 2D boundary without CAD: the planar samples define the curve
+/// (reconstruct_from_nodes).
+PlanarShapeFit make_planar_shape(const DeflectionSamples& samples, const ReconstructionOptions& options = {});
 
 }  // namespace hotmesh::geometry
