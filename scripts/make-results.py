@@ -1,0 +1,107 @@
+#!/usr/bin/python3
+"""hotmesh: regenerates the results pages of the samples (docs/results/*.md).
+
+Runs each sample case with the built hotmesh, measures the walls with wall_metrics, copies the
+pictures to docs/results/img/ and rewrites the table between the markers
+<!-- results:<sample>:begin --> and <!-- results:<sample>:end --> of docs/results/<sample>.md.
+Usage: scripts/make-results.sh (builds first), or scripts/make-results.py BUILD_DIR.
+"""
+import json
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+from datetime import date
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# sample -> [(label, case file, wall patch, table, (xmin, xmax) of the region to count nodes in)]
+SAMPLES = {
+    "ramp2d": [
+        ("without sliding", "ramp2d.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
+        ("with sliding", "ramp2d-sliding.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
+    ],
+    "shear2d": [
+        ("without sliding", "shear2d.yaml", "top", "top.csv", None),
+        ("with sliding", "shear2d-sliding.yaml", "top", "top.csv", None),
+    ],
+}
+
+
+def machine():
+    model = "unknown CPU"
+    try:
+        for line in subprocess.run(["lscpu"], capture_output=True, text=True).stdout.splitlines():
+            if line.startswith("Model name:"):
+                model = line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    load = os.getloadavg()[0]
+    return f"{model}, {os.cpu_count()} cores, {platform.system()} {platform.release()}; load average {load:.2f} at the start"
+
+
+def run_case(build, sample, label, case, wall, table, region, out_root):
+    sample_dir = os.path.join(ROOT, "samples", sample)
+    stem = os.path.splitext(case)[0]
+    out = os.path.join(out_root, stem)
+    env = dict(os.environ, OMP_WAIT_POLICY="PASSIVE")
+    subprocess.run([os.path.join(build, "app", "hotmesh"), "-q", "deform", os.path.join(sample_dir, case), "-o", out],
+                   check=True, env=env)
+    report = json.load(open(os.path.join(out, "report.json")))
+    args = [os.path.join(build, "samples", "tools", "wall_metrics"), os.path.join(out, "deformed.msh"), wall,
+            os.path.join(sample_dir, table)]
+    if region:
+        args += [str(region[0]), str(region[1])]
+    metrics = json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
+    img = os.path.join(ROOT, "docs", "results", "img")
+    os.makedirs(img, exist_ok=True)
+    pictures = []
+    for name in sorted(os.listdir(out)):
+        if name.endswith(".png"):
+            target = f"{stem}-{name}"
+            shutil.copyfile(os.path.join(out, name), os.path.join(img, target))
+            pictures.append(target)
+    return {"label": label, "case": case, "report": report, "metrics": metrics, "pictures": pictures}
+
+
+def table(sample, runs):
+    base = runs[0]["report"]["seconds"]["motion"]
+    has_region = SAMPLES[sample][0][4] is not None
+    lines = [
+        "| run | min scaled Jacobian | inverted cells | " + ("wall nodes on the ramp | " if has_region else "") +
+        "max distance wall–exact | sliding nodes | increments (attempts) | Newton iterations | PCG iterations | "
+        "time of the motion (s) | ratio to without sliding |",
+        "|---|---|---|" + ("---|" if has_region else "") + "---|---|---|---|---|---|---|",
+    ]
+    for run in runs:
+        r, m = run["report"], run["metrics"]
+        seconds = r["seconds"]["motion"]
+        lines.append(
+            f"| {run['label']} (`{run['case']}`) | {r['min_scaled_jacobian']:.3f} | {r['inverted_cells']} | " +
+            (f"{m['nodes_between']} | " if has_region else "") +
+            f"{m['max_distance_to_exact_wall']:.4f} | {r['sliding_nodes']} | {r['solver']['increments']} "
+            f"({len(r['increments'])}) | {r['newton_iterations']} | {r['pcg_iterations']} | {seconds:.2f} | "
+            f"{seconds / base:.1f} |")
+    return "\n".join(lines)
+
+
+def main():
+    build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build")
+    out_root = os.path.join(build, "results")
+    header = f"Measured on {date.today().isoformat()}: {machine()}."
+    for sample, cases in SAMPLES.items():
+        runs = [run_case(build, sample, *c, os.path.join(out_root, sample)) for c in cases]
+        page = os.path.join(ROOT, "docs", "results", f"{sample}.md")
+        text = open(page).read()
+        block = f"<!-- results:{sample}:begin -->\n{header}\n\n{table(sample, runs)}\n<!-- results:{sample}:end -->"
+        text, n = re.subn(rf"<!-- results:{sample}:begin -->.*?<!-- results:{sample}:end -->", block, text, flags=re.S)
+        if n != 1:
+            sys.exit(f"{page}: no results markers for {sample}")
+        open(page, "w").write(text)
+        print(f"updated {page}")
+
+
+if __name__ == "__main__":
+    main()
