@@ -1,47 +1,42 @@
 // hotmesh sample stator_well: the multi-block quad mesher (see block_mesh.hpp).
 #include "block_mesh.hpp"
 
+#include "boundary_loop.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include <fmt/format.h>
 
 namespace hotmesh::samples {
 
 namespace {
 
-constexpr int kArcSamplesPerSpan = 128;  // chord sums over these give arc lengths to ~1e-6
-constexpr int kFieldSamples = 4000;      // integration of the spacing field along a class
+constexpr int kFieldSamples = 4000;  // integration of the spacing field along a class
 
-std::string where(const Vec2& p) { return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")"; }
+std::string where(const Vec2& p) { return fmt::format("({:.6g}, {:.6g})", p.x, p.y); }
+
+template <typename T>
+const T& at(const std::vector<T>& v, int i) {
+  return v[static_cast<std::size_t>(i)];
+}
 
 /// Union-find with parity: parity(x) says whether x's direction is reversed relative to its root.
 class ParityUnion {
  public:
   explicit ParityUnion(std::size_t n) : parent_(n), parity_(n, 0) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::pair<std::size_t, int> find(std::size_t x) {
+  std::pair<std::size_t, int> find(std::size_t x) const {
     int p = 0;
-    std::size_t r = x;
-    while (parent_[r] != r) {
-      p ^= parity_[r];
-      r = parent_[r];
+    while (parent_[x] != x) {
+      p ^= parity_[x];
+      x = parent_[x];
     }
-    // Path compression keeping parities.
-    std::size_t y = x;
-    int py = p;
-    while (parent_[y] != y) {
-      const std::size_t next = parent_[y];
-      const int pn = py ^ parity_[y];
-      parent_[y] = r;
-      parity_[y] = py;
-      y = next;
-      py = pn;
-    }
-    return {r, p};
+    return {x, p};
   }
   /// a and b run the same way if `parity` is 0. False if that contradicts what is known.
   bool unite(std::size_t a, std::size_t b, int parity) {
@@ -58,31 +53,6 @@ class ParityUnion {
   std::vector<int> parity_;
 };
 
-/// Closest point of a curve to p: (parameter, distance), by sampling then Newton.
-std::pair<double, double> closest(const BSplineCurve2d& c, const std::vector<std::array<double, 2>>& samples, Vec2 p) {
-  double best_t = samples.front()[0];
-  double best = distance(c.point(best_t), p);
-  for (const auto& s : samples) {
-    const double d = distance(c.point(s[0]), p);
-    if (d < best) {
-      best = d;
-      best_t = s[0];
-    }
-  }
-  double t = best_t;
-  for (int it = 0; it < 30; ++it) {
-    const auto d = c.derivatives(t);
-    const Vec2 e = d.point - p;
-    const double g = dot(e, d.first);
-    const double h = dot(d.first, d.first) + dot(e, d.second);
-    if (h <= 0.0) break;
-    const double next = std::clamp(t - g / h, c.first_parameter(), c.last_parameter());
-    if (std::abs(next - t) < 1e-15) break;
-    t = next;
-  }
-  return {t, distance(c.point(t), p)};
-}
-
 }  // namespace
 
 BlockMesher::BlockMesher(BlockLayout layout, SpacingField field) : layout_(std::move(layout)), field_(field) {
@@ -90,133 +60,68 @@ BlockMesher::BlockMesher(BlockLayout layout, SpacingField field) : layout_(std::
   if (!(field_.growth > 1.0 && field_.wall_spacing > 0.0 && field_.spacing >= field_.wall_spacing)) {
     throw std::invalid_argument("block layout: the spacing field needs growth > 1 and 0 < wall_spacing <= spacing");
   }
-  // 1. The loop: arc-length tables, coordinates of curve starts, walls joined tangentially.
-  const std::size_t nc = layout_.loop.size();
-  curve_start_.assign(nc + 1, 0.0);
-  arc_.resize(nc);
-  for (std::size_t i = 0; i < nc; ++i) {
-    const BSplineCurve2d& c = layout_.loop[i].curve;
-    const auto breaks = c.breakpoints();
-    auto& table = arc_[i];
-    table.push_back({breaks.front(), 0.0});
-    for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
-      for (int j = 1; j <= kArcSamplesPerSpan; ++j) {
-        const double t = j == kArcSamplesPerSpan ? breaks[k + 1]
-                                                 : breaks[k] + (breaks[k + 1] - breaks[k]) * j / kArcSamplesPerSpan;
-        table.push_back({t, table.back()[1] + distance(c.point(t), c.point(table.back()[0]))});
-      }
-    }
-    curve_start_[i + 1] = curve_start_[i] + table.back()[1];
-    const Vec2 next_start = layout_.loop[(i + 1) % nc].curve.point(layout_.loop[(i + 1) % nc].curve.first_parameter());
-    if (distance(c.point(c.last_parameter()), next_start) > 1e-12 * (1.0 + norm(next_start))) {
-      throw std::invalid_argument("block layout: loop curve " + std::to_string(i) + " does not end where the next starts");
-    }
-  }
-  const double total = curve_start_.back();
-  std::vector<int> chain(nc);
-  {
-    ParityUnion joined(nc);
-    for (std::size_t i = 0; i < nc; ++i) {
-      const std::size_t j = (i + 1) % nc;
-      const auto& a = layout_.loop[i].curve;
-      const auto& b = layout_.loop[j].curve;
-      const Vec2 ta = a.derivatives(a.last_parameter()).first;
-      const Vec2 tb = b.derivatives(b.first_parameter()).first;
-      const double sine = (ta.x * tb.y - ta.y * tb.x) / (norm(ta) * norm(tb));
-      if (layout_.loop[i].wall && layout_.loop[j].wall && std::abs(sine) < 1e-6 && dot(ta, tb) > 0.0) joined.unite(i, j, 0);
-    }
-    for (std::size_t i = 0; i < nc; ++i) chain[i] = layout_.loop[i].wall ? static_cast<int>(joined.find(i).first) : -1;
-  }
-  const double eps = 1e-12 * total;
-  const auto curves_at = [&](double s) {  // the curves touching loop coordinate s
-    std::vector<std::size_t> found;
-    for (std::size_t i = 0; i < nc; ++i) {
-      if (s >= curve_start_[i] - eps && s <= curve_start_[i + 1] + eps) found.push_back(i);
-    }
-    if (s <= eps || s >= total - eps) found.push_back(s <= eps ? nc - 1 : 0);
-    return found;
-  };
-  const auto curve_after = [&](double s) {  // the curve that holds [s, s + ds)
-    s = std::fmod(s, total);
-    const auto it = std::upper_bound(curve_start_.begin(), curve_start_.end(), s + eps);
-    return std::min(static_cast<std::size_t>(it - curve_start_.begin()) - 1, nc - 1);
-  };
-  const auto curve_before = [&](double s) {  // the curve that holds (s - ds, s]
-    if (s <= eps) s += total;
-    const auto it = std::lower_bound(curve_start_.begin(), curve_start_.end(), s - eps);
-    return std::min(static_cast<std::size_t>(it - curve_start_.begin()) - 1, nc - 1);
-  };
+  loop_ = std::make_unique<BoundaryLoop>(layout_.loop);
+  double size = loop_->length();
+  for (const Vec2& v : layout_.vertices) size = std::max(size, norm(v));
+  for (const Vec2& v : layout_.vertices) vertex_s_.push_back(loop_->locate(v, 1e-9 * size).value_or(-1.0));
+  build_edges();
+  find_boundary_spans();
+  build_classes();
+}
 
-  // 2. Vertices on the loop.
-  double size = 0.0;
-  for (const auto& v : layout_.vertices) size = std::max(size, norm(v));
-  const double on_loop = 1e-9 * std::max(size, total);
-  vertex_s_.assign(layout_.vertices.size(), -1.0);
-  for (std::size_t v = 0; v < layout_.vertices.size(); ++v) {
-    for (std::size_t i = 0; i < nc && vertex_s_[v] < 0.0; ++i) {
-      const auto [t, d] = closest(layout_.loop[i].curve, arc_[i], layout_.vertices[v]);
-      if (d > on_loop) continue;
-      const auto& table = arc_[i];
-      const auto it = std::lower_bound(table.begin(), table.end(), t, [](const auto& e, double x) { return e[0] < x; });
-      double s = table.back()[1];
-      if (it == table.begin()) {
-        s = 0.0;
-      } else if (it != table.end()) {
-        const auto& a = *(it - 1);
-        const auto& b = *it;
-        s = a[1] + (b[1] - a[1]) * (t - a[0]) / (b[0] - a[0]);
-      }
-      vertex_s_[v] = std::fmod(curve_start_[i] + s, total);
-      if (vertex_s_[v] > total - eps) vertex_s_[v] = 0.0;
-    }
-  }
+BlockMesher::BlockMesher(BlockMesher&&) noexcept = default;
+BlockMesher::~BlockMesher() = default;
 
-  // 3. Edges and block sides.
+void BlockMesher::build_edges() {
   std::map<std::pair<int, int>, int> edge_of;
-  std::vector<int> uses;
   block_sides_.resize(layout_.blocks.size());
   for (std::size_t b = 0; b < layout_.blocks.size(); ++b) {
     const auto& q = layout_.blocks[b];
     double area = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      const Vec2& p = layout_.vertices.at(static_cast<std::size_t>(q[static_cast<std::size_t>(k)]));
-      const Vec2& n = layout_.vertices.at(static_cast<std::size_t>(q[static_cast<std::size_t>((k + 1) % 4)]));
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Vec2& p = layout_.vertices.at(static_cast<std::size_t>(q[k]));
+      const Vec2& n = layout_.vertices.at(static_cast<std::size_t>(q[(k + 1) % 4]));
       area += p.x * n.y - n.x * p.y;
     }
-    if (!(area > 0.0)) throw std::invalid_argument("block " + std::to_string(b) + " is not counter-clockwise");
+    if (!(area > 0.0)) throw std::invalid_argument(fmt::format("block {} is not counter-clockwise", b));
     const std::array<std::pair<int, int>, 4> sides{{{q[0], q[1]}, {q[1], q[2]}, {q[3], q[2]}, {q[0], q[3]}}};
     for (std::size_t k = 0; k < 4; ++k) {
       const auto [a, c] = sides[k];
       const auto key = std::minmax(a, c);
-      auto [it, fresh] = edge_of.try_emplace(key, static_cast<int>(edges_.size()));
+      const auto [it, fresh] = edge_of.try_emplace(key, static_cast<int>(edges_.size()));
       if (fresh) {
         edges_.push_back({key.first, key.second});
-        uses.push_back(0);
+        uses_.push_back(0);
       }
-      if (++uses[static_cast<std::size_t>(it->second)] > 2) {
-        throw std::invalid_argument("block " + std::to_string(b) + ": side " + where(layout_.vertices[static_cast<std::size_t>(a)]) +
-                                    " - " + where(layout_.vertices[static_cast<std::size_t>(c)]) + " is used by three blocks");
+      if (++uses_[static_cast<std::size_t>(it->second)] > 2) {
+        throw std::invalid_argument(fmt::format("block {}: side {} - {} is used by three blocks", b,
+                                                where(at(layout_.vertices, a)), where(at(layout_.vertices, c))));
       }
       block_sides_[b][k] = {it->second, a < c};
     }
   }
-  // A boundary side runs along the loop in its block's counter-clockwise order.
+}
+
+void BlockMesher::find_boundary_spans() {
+  // A side used by one block is on the boundary: it runs along the loop, in the block's
+  // counter-clockwise order, from one of its corners to the other.
+  const double total = loop_->length();
   for (std::size_t b = 0; b < layout_.blocks.size(); ++b) {
     const auto& q = layout_.blocks[b];
-    for (int k = 0; k < 4; ++k) {
-      const int a = q[static_cast<std::size_t>(k)], c = q[static_cast<std::size_t>((k + 1) % 4)];
-      Edge& e = edges_[static_cast<std::size_t>(edge_of.at(std::minmax(a, c)))];
-      if (uses[static_cast<std::size_t>(&e - edges_.data())] != 1) continue;
-      const double sa = vertex_s_[static_cast<std::size_t>(a)], sc = vertex_s_[static_cast<std::size_t>(c)];
-      if (sa < 0.0 || sc < 0.0) {
-        throw std::invalid_argument("block " + std::to_string(b) + ": boundary side " + where(layout_.vertices[static_cast<std::size_t>(a)]) +
-                                    " - " + where(layout_.vertices[static_cast<std::size_t>(c)]) + " has a corner off the loop");
+    for (std::size_t k = 0; k < 4; ++k) {
+      const int a = q[k], c = q[(k + 1) % 4];
+      const Side side = block_sides_[b][k];  // the same edge as the side from q[k] to q[k + 1]
+      Edge& e = edges_[static_cast<std::size_t>(side.edge)];
+      if (at(uses_, side.edge) != 1) {
+        e.length = distance(at(layout_.vertices, e.v0), at(layout_.vertices, e.v1));
+        continue;
       }
+      const double sa = at(vertex_s_, a), sc = at(vertex_s_, c);
+      const std::string name =
+          fmt::format("block {}: boundary side {} - {}", b, where(at(layout_.vertices, a)), where(at(layout_.vertices, c)));
+      if (sa < 0.0 || sc < 0.0) throw std::invalid_argument(name + " has a corner off the loop");
       const double end = sc > sa ? sc : sc + total;
-      if (end - sa > 0.5 * total) {
-        throw std::invalid_argument("block " + std::to_string(b) + ": boundary side " + where(layout_.vertices[static_cast<std::size_t>(a)]) +
-                                    " - " + where(layout_.vertices[static_cast<std::size_t>(c)]) + " runs against the loop");
-      }
+      if (end - sa > 0.5 * total) throw std::invalid_argument(name + " runs against the loop");
       e.boundary = true;
       e.loop_forward = a == e.v0;
       e.s0 = e.loop_forward ? sa : end;
@@ -224,19 +129,28 @@ BlockMesher::BlockMesher(BlockLayout layout, SpacingField field) : layout_(std::
       e.length = end - sa;
     }
   }
-  for (Edge& e : edges_) {
-    if (!e.boundary) e.length = distance(layout_.vertices[static_cast<std::size_t>(e.v0)], layout_.vertices[static_cast<std::size_t>(e.v1)]);
-  }
+}
 
-  // 4. Classes of opposite sides.
-  ParityUnion classes(edges_.size());
+bool BlockMesher::meets_wall(const Edge& e, int end) const {
+  const double s = at(vertex_s_, end == 0 ? e.v0 : e.v1);
+  if (s < 0.0) return false;
+  auto walls = loop_->walls_at(s);
+  if (e.boundary) {  // leave out the wall the side itself runs along, next to this end
+    const bool leaving = (end == 0) == e.loop_forward;  // the loop leaves the vertex along the side
+    const int own = loop_->wall(leaving ? loop_->curve_after(s) : loop_->curve_before(s));
+    walls.erase(std::remove(walls.begin(), walls.end(), own), walls.end());
+  }
+  return !walls.empty();
+}
+
+void BlockMesher::build_classes() {
+  // Opposite sides of a block carry the same count: chains of them form the classes.
+  ParityUnion chains(edges_.size());
   for (std::size_t b = 0; b < block_sides_.size(); ++b) {
     const auto& s = block_sides_[b];
-    for (const auto& [i, j] : {std::pair{0, 2}, std::pair{3, 1}}) {
-      const Side& x = s[static_cast<std::size_t>(i)];
-      const Side& y = s[static_cast<std::size_t>(j)];
-      if (!classes.unite(static_cast<std::size_t>(x.edge), static_cast<std::size_t>(y.edge), x.forward == y.forward ? 0 : 1)) {
-        throw std::invalid_argument("block " + std::to_string(b) + ": node counts cannot match (inconsistent orientation)");
+    for (const auto& [i, j] : {std::pair<std::size_t, std::size_t>{0, 2}, std::pair<std::size_t, std::size_t>{3, 1}}) {
+      if (!chains.unite(static_cast<std::size_t>(s[i].edge), static_cast<std::size_t>(s[j].edge), s[i].forward == s[j].forward ? 0 : 1)) {
+        throw std::invalid_argument(fmt::format("block {}: node counts cannot match (inconsistent orientation)", b));
       }
     }
   }
@@ -244,8 +158,8 @@ BlockMesher::BlockMesher(BlockLayout layout, SpacingField field) : layout_(std::
   std::vector<std::array<bool, 2>> clustered;
   std::vector<int> members;
   for (std::size_t i = 0; i < edges_.size(); ++i) {
-    const auto [root, parity] = classes.find(i);
-    auto [it, fresh] = class_of_root.try_emplace(root, static_cast<int>(classes_.size()));
+    const auto [root, parity] = chains.find(i);
+    const auto [it, fresh] = class_of_root.try_emplace(root, static_cast<int>(classes_.size()));
     if (fresh) {
       classes_.emplace_back();
       clustered.push_back({false, false});
@@ -254,44 +168,30 @@ BlockMesher::BlockMesher(BlockLayout layout, SpacingField field) : layout_(std::
     Edge& e = edges_[i];
     e.klass = it->second;
     e.flipped = parity != 0;
-    auto& c = classes_[static_cast<std::size_t>(e.klass)];
-    c.length += e.length;
-    ++members[static_cast<std::size_t>(e.klass)];
-    // Does the side meet a wall transversally at its ends?
+    const auto k = static_cast<std::size_t>(e.klass);
+    classes_[k].length += e.length;
+    ++members[k];
     for (int end = 0; end < 2; ++end) {
-      const int v = end == 0 ? e.v0 : e.v1;
-      const double s = vertex_s_[static_cast<std::size_t>(v)];
-      if (s < 0.0) continue;
-      std::set<int> walls;
-      for (std::size_t k : curves_at(s)) {
-        if (chain[k] >= 0) walls.insert(chain[k]);
-      }
-      if (e.boundary) {  // the wall the side itself runs along, next to this end
-        const bool leaving = (end == 0) == e.loop_forward;  // the loop leaves v along the side
-        walls.erase(chain[leaving ? curve_after(s) : curve_before(s)]);
-      }
-      if (!walls.empty()) clustered[static_cast<std::size_t>(e.klass)][static_cast<std::size_t>(end ^ (e.flipped ? 1 : 0))] = true;
+      if (meets_wall(e, end)) clustered[k][static_cast<std::size_t>(end ^ (e.flipped ? 1 : 0))] = true;
     }
   }
+  // The cells of the spacing field along each class, from its reference start, at refinement 1
+  // (Simpson's rule on 1 / h).
   for (std::size_t k = 0; k < classes_.size(); ++k) {
     Class& c = classes_[k];
     c.length /= members[k];
-    // Cells of the spacing field from the reference start, at refinement 1.
     const auto h = [&](double x) {
       double d = INFINITY;
       if (clustered[k][0]) d = std::min(d, x);
       if (clustered[k][1]) d = std::min(d, c.length - x);
       return std::min(field_.spacing, field_.wall_spacing + (field_.growth - 1.0) * d);
     };
-    c.u.resize(kFieldSamples + 1);
-    c.cells.resize(kFieldSamples + 1);
-    c.u[0] = 0.0;
-    c.cells[0] = 0.0;
-    for (int i = 1; i <= kFieldSamples; ++i) {
-      const double a = c.length * (i - 1) / kFieldSamples, b = c.length * i / kFieldSamples;
-      c.u[static_cast<std::size_t>(i)] = static_cast<double>(i) / kFieldSamples;
-      c.cells[static_cast<std::size_t>(i)] =
-          c.cells[static_cast<std::size_t>(i - 1)] + (b - a) * (1.0 / h(a) + 4.0 / h(0.5 * (a + b)) + 1.0 / h(b)) / 6.0;
+    c.u.assign(kFieldSamples + 1, 0.0);
+    c.cells.assign(kFieldSamples + 1, 0.0);
+    for (std::size_t i = 1; i <= kFieldSamples; ++i) {
+      const double a = c.length * static_cast<double>(i - 1) / kFieldSamples, b = c.length * static_cast<double>(i) / kFieldSamples;
+      c.u[i] = static_cast<double>(i) / kFieldSamples;
+      c.cells[i] = c.cells[i - 1] + (b - a) * (1.0 / h(a) + 4.0 / h(0.5 * (a + b)) + 1.0 / h(b)) / 6.0;
     }
   }
 }
@@ -341,25 +241,6 @@ std::vector<double> BlockMesher::fractions(const Class& c, int n) const {
   return u;
 }
 
-Vec2 BlockMesher::loop_point(double s) const {
-  const double total = curve_start_.back();
-  s = std::fmod(s, total);
-  const auto it = std::upper_bound(curve_start_.begin(), curve_start_.end(), s);
-  const std::size_t i = std::min(static_cast<std::size_t>(it - curve_start_.begin()) - 1, layout_.loop.size() - 1);
-  const auto& table = arc_[i];
-  const double local = s - curve_start_[i];
-  const auto at = std::lower_bound(table.begin(), table.end(), local, [](const auto& e, double x) { return e[1] < x; });
-  double t = table.back()[0];
-  if (at == table.begin()) {
-    t = table.front()[0];
-  } else if (at != table.end()) {
-    const auto& a = *(at - 1);
-    const auto& b = *at;
-    t = a[0] + (b[0] - a[0]) * (local - a[1]) / (b[1] - a[1]);
-  }
-  return layout_.loop[i].curve.point(t);
-}
-
 QuadMesh BlockMesher::mesh(double refinement) const {
   const auto n = class_cells(refinement);
   std::vector<std::vector<double>> u(classes_.size());
@@ -377,7 +258,7 @@ QuadMesh BlockMesher::mesh(double refinement) const {
     for (std::size_t j = 1; j < cells; ++j) {
       const double t = e.flipped ? 1.0 - f[cells - j] : f[j];  // fraction from v0
       if (e.boundary) {
-        out.nodes.push_back(loop_point(e.s0 + t * (e.s1 - e.s0)));
+        out.nodes.push_back(loop_->point(e.s0 + t * (e.s1 - e.s0)));
       } else {
         const Vec2& a = layout_.vertices[static_cast<std::size_t>(e.v0)];
         const Vec2& b = layout_.vertices[static_cast<std::size_t>(e.v1)];
@@ -445,20 +326,18 @@ QuadMesh BlockMesher::mesh(double refinement) const {
     auto ids = side_nodes({static_cast<int>(i), true});
     const auto& f = u[static_cast<std::size_t>(e.klass)];
     const std::size_t cells = f.size() - 1;
-    std::vector<double> at(cells + 1);
+    std::vector<double> along(cells + 1);
     for (std::size_t j = 0; j <= cells; ++j) {
       const double t = e.flipped ? 1.0 - f[cells - j] : f[j];
-      at[j] = e.s0 + t * (e.s1 - e.s0);
+      along[j] = e.s0 + t * (e.s1 - e.s0);
     }
     if (!e.loop_forward) {
       std::reverse(ids.begin(), ids.end());
-      std::reverse(at.begin(), at.end());
+      std::reverse(along.begin(), along.end());
     }
     for (std::size_t j = 0; j < cells; ++j) {
-      const double s = std::fmod(0.5 * (at[j] + at[j + 1]), curve_start_.back());
-      const auto it = std::upper_bound(curve_start_.begin(), curve_start_.end(), s);
-      const auto curve = std::min(static_cast<std::size_t>(it - curve_start_.begin()) - 1, layout_.loop.size() - 1);
-      out.boundary.push_back({ids[j], ids[j + 1], static_cast<int>(curve)});
+      const double middle = 0.5 * (along[j] + along[j + 1]);
+      out.boundary.push_back({ids[j], ids[j + 1], static_cast<int>(loop_->curve_after(middle))});
     }
   }
   return out;

@@ -21,12 +21,14 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "hotmesh/geometry/bspline_curve.hpp"
 
 namespace hotmesh::samples {
 
+class BoundaryLoop;
 using geometry::BSplineCurve2d;
 using geometry::Vec2;
 
@@ -65,6 +67,8 @@ class BlockMesher {
   /// vertex if a block is not counter-clockwise, a side is used by more than two blocks or twice
   /// in one direction, a boundary side's corners are not on the loop, or counts cannot match.
   BlockMesher(BlockLayout layout, SpacingField field);
+  BlockMesher(BlockMesher&&) noexcept;
+  ~BlockMesher();
 
   const BlockLayout& layout() const { return layout_; }
   std::size_t class_count() const { return classes_.size(); }
@@ -82,31 +86,35 @@ class BlockMesher {
     int v0 = 0, v1 = 0;         ///< canonical direction: v0 < v1
     bool boundary = false;
     bool loop_forward = false;  ///< the loop runs v0 -> v1 (boundary edges)
-    double s0 = 0.0, s1 = 0.0;  ///< loop coordinates of v0 and v1 along the loop's direction (s1 - s0 or s0 - s1 > 0)
+    double s0 = 0.0, s1 = 0.0;  ///< loop coordinates of v0 and v1, one of them unwrapped past the length
     double length = 0.0;
     int klass = 0;
     bool flipped = false;       ///< runs against its class's reference direction
   };
   struct Class {
-    double length = 0.0;
+    double length = 0.0;        ///< mean length of its sides
     std::vector<double> u;      ///< fraction of length, in the reference direction ...
-    std::vector<double> cells;  ///< ... and the cells of the field up to it, at refinement 1
+    std::vector<double> cells;  ///< ... and the cells of the spacing field up to it, at refinement 1
   };
   struct Side {
     int edge = 0;
     bool forward = true;  ///< the side runs v0 -> v1 of its edge
   };
 
+  void build_edges();
+  void find_boundary_spans();
+  void build_classes();
+  /// Does the side meet a wall transversally at its end v0 (end 0) or v1 (end 1)?
+  bool meets_wall(const Edge& e, int end) const;
   std::vector<double> fractions(const Class& c, int n) const;
-  Vec2 loop_point(double s) const;
 
   BlockLayout layout_;
   SpacingField field_;
-  std::vector<double> curve_start_;                   // loop coordinate where each curve starts; then the total
-  std::vector<std::vector<std::array<double, 2>>> arc_;  // per curve: (parameter, arc length) samples
-  std::vector<double> vertex_s_;                     // loop coordinate of each vertex, or -1
+  std::unique_ptr<BoundaryLoop> loop_;
+  std::vector<double> vertex_s_;                  // loop coordinate of each vertex, or -1
   std::vector<Edge> edges_;
-  std::vector<std::array<Side, 4>> block_sides_;     // P0->P1, P1->P2, P3->P2, P0->P3
+  std::vector<int> uses_;                         // blocks per edge
+  std::vector<std::array<Side, 4>> block_sides_;  // P0->P1, P1->P2, P3->P2, P0->P3
   std::vector<Class> classes_;
 };
 
