@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -44,23 +45,6 @@ std::vector<Vec2> equal_arcs(const BSplineCurve2d& curve, const std::vector<std:
 
 bool is_rotor(Patch p) { return p != Patch::stator_front && p != Patch::fins && p != Patch::stator_rear; }
 
-const char* role(Patch p, bool sliding) {
-  switch (p) {
-    case Patch::inlet:
-    case Patch::outlet:
-    case Patch::stator_outer: return "passive";
-    case Patch::casing:
-    case Patch::blade: return "fixed";
-    case Patch::disc_up_upper:
-    case Patch::disc_up_lower:
-    case Patch::disc_base:
-    case Patch::disc_down: return sliding ? "sliding" : "prescribed";
-    case Patch::per_lo:
-    case Patch::per_hi: return "periodic";
-    default: return "prescribed";
-  }
-}
-
 }  // namespace
 
 Vec2 deflection(Patch patch, Vec2 zr, const SevereCase& severe) {
@@ -81,6 +65,50 @@ Vec2 deflection(Patch patch, Vec2 zr, const SevereCase& severe) {
     default: break;
   }
   return {severe.axial_shift, dr};
+}
+
+const char* role(Patch p, bool sliding) {
+  switch (p) {
+    case Patch::inlet:
+    case Patch::outlet:
+    case Patch::stator_outer: return "passive";
+    case Patch::casing:
+    case Patch::blade: return "fixed";
+    case Patch::disc_up_upper:
+    case Patch::disc_up_lower:
+    case Patch::disc_base:
+    case Patch::disc_down: return sliding ? "sliding" : "prescribed";
+    case Patch::per_lo:
+    case Patch::per_hi: return "periodic";
+    default: return "prescribed";
+  }
+}
+
+GapChanges gap_changes(const std::vector<FemTable>& tables) {
+  using namespace dims;
+  const auto find = [&](Patch patch, Vec2 zr) -> const FemNode& {
+    for (const FemTable& t : tables) {
+      for (const FemNode& n : t.nodes) {
+        if (t.patch == patch && distance(n.zr, zr) < 1e-12) return n;
+      }
+    }
+    throw std::logic_error("stator well tables: no FEM node at the point asked for");
+  };
+  // The first fin's tip corner and the disc base (any of its nodes: it moves alike everywhere).
+  const FemNode& tip = find(Patch::fins, at(kFinCentres[0] - 0.5 * kFinTip, kRFinTip));
+  const FemNode* base = nullptr;
+  for (const FemTable& t : tables) {
+    if (t.patch == Patch::disc_base && !t.nodes.empty()) base = &t.nodes.front();
+  }
+  if (!base) throw std::logic_error("stator well tables: no disc base");
+  const FemNode& b = find(Patch::joint, at(kZJointEnd, kRJoint + kJointGap));
+  const FemNode& c = find(Patch::joint, at(kZJointEnd, kRJoint));
+  GapChanges g;
+  g.clearance_before = tip.zr.y - base->zr.y;
+  g.clearance_after = tip.zr.y + tip.dzr.y - base->zr.y - base->dzr.y;
+  g.joint_before = b.zr.y - c.zr.y;
+  g.joint_after = b.zr.y + b.dzr.y - c.zr.y - c.dzr.y;
+  return g;
 }
 
 std::vector<Patch> table_patches() {

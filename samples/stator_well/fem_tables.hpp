@@ -58,6 +58,18 @@ std::string table_file(Patch patch);
 /// The table as CSV: comment lines, then "id,r,z,dr,dz" and one row per node.
 std::string table_csv(const FemTable& table, const SevereCase& severe);
 
+/// The role of a patch in the case files: "fixed", "passive", "prescribed", "sliding" or
+/// "periodic"; the disc faces and the disc base slide only with `sliding`.
+const char* role(Patch patch, bool sliding);
+
+/// What the tables do to the two small gaps (metres): the seal clearance between the fin tips and
+/// the disc base, and the joint's gap between B and C, before and after.
+struct GapChanges {
+  double clearance_before = 0.0, clearance_after = 0.0;
+  double joint_before = 0.0, joint_after = 0.0;
+};
+GapChanges gap_changes(const std::vector<FemTable>& tables);
+
 /// "case_<label>.yaml", or "case_<label>_nosliding.yaml".
 std::string case_file_name(const std::string& label, bool sliding);
 /// The case file of the sample, for the mesh, CAD file and tables written beside it: sliding

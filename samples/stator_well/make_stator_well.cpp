@@ -1,8 +1,8 @@
 // hotmesh sample: the turbine stator well of the paper's section 6 (Amirante, Hills & Barnes,
 // Figs. 11-17): a 3.6 degree sector of the interstage cavity of a HP turbine, with a labyrinth
-// seal of three fins under the stator's land, cavities up- and downstream opening to the main
-// annulus through rim gaps, and the upstream disc made of an upper and a lower component joined
-// by a 1 mm radial gap.
+// seal of three fins hanging from the stator's land over the rotor's disc base, cavities up- and
+// downstream opening to the main annulus through rim gaps, and the upstream disc made of an
+// upper and a lower component joined by a 1 mm radial gap.
 //
 // Run:   build/samples/stator_well/make_stator_well [--cells N | --refinement S] [--label NAME]
 //                                                   [--ascii | --binary] [OUTPUT_FOLDER]
@@ -12,7 +12,8 @@
 //   stator_well.msh     the hex mesh of the sector (Gmsh 4.1, binary unless --ascii)
 //   <patch>.csv         one FEM deflection table per metal patch (r, z, dr, dz), severe case
 //   case_<label>.yaml, case_<label>_nosliding.yaml    the case files, sliding on and off
-// and prints a summary: sizes, quality, patches with roles and CAD faces, the deflections.
+// and prints a summary: size, quality, patches with their roles, CAD faces and tables, and what
+// the deflections do to the seal clearance and the joint.
 // The committed files in samples/stator_well/ are this program's default output.
 //
 // Sizes: --cells N picks the refinement whose cell count is nearest N; 18 000 (the committed
@@ -112,7 +113,7 @@ int main(int argc, char** argv) {
         "|---|---|---|---|---|---|---|\n| {:.4f} | {} | {} | {} | {} | {:.3f} | {:.3f} |\n\n",
         size.refinement, size.theta_cells, size.quads, size.cells, mesh.node_count(), quality.min_scaled_jacobian,
         quality.mean_scaled_jacobian);
-    out += "| patch | faces (mesh) | CAD faces | FEM table | nodes |\n|---|---|---|---|---|\n";
+    out += "| patch | faces (mesh) | role (sliding on / off) | CAD faces | FEM table | FEM nodes |\n|---|---|---|---|---|---|\n";
     for (const auto& p : mesh.patches) {
       const auto patch = static_cast<Patch>(p.tag - 1);
       const auto ids = cad_faces(loop, patch);
@@ -123,13 +124,18 @@ int main(int argc, char** argv) {
           nodes = std::to_string(t.nodes.size());
         }
       }
-      out += fmt::format("| {} | {} | {} | {} | {} |\n", p.name, p.faces.size(), ids.empty() ? "-" : fmt::format("{}", fmt::join(ids, ", ")),
-                         table, nodes);
+      const std::string roles = std::string(role(patch, true)) + " / " + role(patch, false);
+      out += fmt::format("| {} | {} | {} | {} | {} | {} |\n", p.name, p.faces.size(), roles,
+                         ids.empty() ? "-" : fmt::format("{}", fmt::join(ids, ", ")), table, nodes);
     }
+    const GapChanges gaps = gap_changes(tables);
     out += fmt::format(
         "\nSevere case: rotor dz = {:.2f} mm, rotor dr = {:.2f} mm at r = 420 mm (stator {:.2f} mm), lower disc "
-        "component dr + {:.2f} mm.\n",
-        severe.axial_shift * 1e3, severe.rotor_growth * 1e3, severe.stator_growth * 1e3, severe.joint_jump * 1e3);
+        "component dr + {:.2f} mm.\nSeal clearance {:.2f} -> {:.2f} mm ({:.0f} % closed); joint gap B-C {:.2f} -> "
+        "{:.2f} mm.\n",
+        severe.axial_shift * 1e3, severe.rotor_growth * 1e3, severe.stator_growth * 1e3, severe.joint_jump * 1e3,
+        gaps.clearance_before * 1e3, gaps.clearance_after * 1e3, 100.0 * (1.0 - gaps.clearance_after / gaps.clearance_before),
+        gaps.joint_before * 1e3, gaps.joint_after * 1e3);
     std::fputs(out.c_str(), stdout);
     return 0;
   } catch (const std::exception& e) {
