@@ -9,9 +9,7 @@
 #include <Precision.hxx>
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
-#include <StepData_Protocol.hxx>
 #include <StepData_StepModel.hxx>
-#include <StepData_StepWriter.hxx>
 #include <StepRepr_RepresentationItem.hxx>
 #include <StepShape_AdvancedFace.hxx>
 #include <StepShape_GeometricCurveSet.hxx>
@@ -23,7 +21,6 @@
 #include <TransferBRep_ShapeMapper.hxx>
 #include <Transfer_FinderProcess.hxx>
 #include <XSControl_TransferWriter.hxx>
-#include <XSControl_WorkSession.hxx>
 
 #include <sstream>
 #include <stdexcept>
@@ -32,6 +29,7 @@
 #include "hotmesh/geometry/cad_export.hpp"
 #include "occt_convert.hpp"
 #include "occt_session.hpp"
+#include "step_text.hpp"
 
 namespace hotmesh::geometry {
 
@@ -104,11 +102,7 @@ std::string to_step(const CadExport& content) {
         Handle(StepRepr_RepresentationItem)::DownCast(entity)->SetName(new TCollection_HAsciiString(name.c_str()));
       }
     }
-    StepData_StepWriter out(writer.Model());
-    out.SendModel(Handle(StepData_Protocol)::DownCast(writer.WS()->Protocol()));
-    std::ostringstream text;
-    if (!out.Print(text)) throw std::runtime_error("the STEP writer failed");
-    return text.str();
+    return detail::step_text(writer);
   } catch (const Standard_Failure& e) {
     throw std::runtime_error(std::string("STEP output failed: ") + e.GetMessageString());
   }

@@ -8,26 +8,23 @@
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
 #include <StepBasic_Product.hxx>
-#include <StepData_Protocol.hxx>
 #include <StepData_StepModel.hxx>
-#include <StepData_StepWriter.hxx>
 #include <StepShape_AdvancedFace.hxx>
 #include <TCollection_HAsciiString.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
-#include <XSControl_WorkSession.hxx>
 #include <gp_Ax1.hxx>
 
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 
 #include "hotmesh/geometry/revolved_export.hpp"
 #include "occt_convert.hpp"
 #include "occt_session.hpp"
+#include "step_text.hpp"
 
 namespace hotmesh::geometry {
 
@@ -104,11 +101,7 @@ std::string to_step(const RevolvedModel& model) {
       APIHeaderSection_MakeHeader header(step);
       header.SetTimeStamp(new TCollection_HAsciiString(model.time_stamp.c_str()));
     }
-    StepData_StepWriter out(step);
-    out.SendModel(Handle(StepData_Protocol)::DownCast(writer.WS()->Protocol()));
-    std::ostringstream text;
-    if (!out.Print(text)) throw std::runtime_error("the STEP writer failed");
-    return text.str();
+    return detail::step_text(writer);
   } catch (const Standard_Failure& e) {
     throw std::runtime_error(std::string("STEP output failed: ") + e.GetMessageString());
   }
