@@ -30,11 +30,12 @@ std::vector<Vec3> passive_displacements(const Mesh& mesh, std::span<const Vec3> 
   for (const PeriodicPair& p : periodic.pairs()) {
     const auto s = local.find(p.slave), m = local.find(p.master);
     if (s == local.end() || known[s->second]) continue;
-    if (m != local.end()) {
+    const std::optional<Vec3> km = m != local.end() ? known[m->second] : rim(p.master);
+    if (km) {  // a master on the rim, in the surface or not
+      known[s->second] = periodic.rotation(p.rotation).vector(*km);
+    } else if (m != local.end()) {
       master_of[s->second] = static_cast<std::int64_t>(m->second);
       rotation_of[s->second] = p.rotation;
-    } else if (const auto km = rim(p.master)) {
-      known[s->second] = periodic.rotation(p.rotation).vector(*km);
     }
   }
   // Unknowns: nodes neither known nor slaves of a surface node.

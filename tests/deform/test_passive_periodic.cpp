@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include "hotmesh/deform/mesh_motion.hpp"
@@ -118,6 +119,32 @@ TEST(Passive, FaceFollowsItsRimBySprings) {
     EXPECT_NEAR(b.x, a.x, 1e-12);
     EXPECT_NEAR(b.y, a.y, 1e-12);
   }
+}
+
+TEST(Passive, SurfaceAcrossPeriodicFacesMovesAxisymmetrically) {
+  // The top of an annular sector is passive and its sides periodic: its inner rim rises with
+  // the inner wall, its outer rim stays. The spring analogy on the surface is rotationally
+  // symmetric, so all of the top's nodes at one radius rise alike, those on the periodic edges
+  // too: the rim node of a slave edge is known through its master (the stator well's inlet and
+  // outlet, samples/stator_well, are such surfaces).
+  const Mesh mesh = test::annular_sector(6, 4, 4, 1.0, 2.0, 0.0, 1.0, kSector);
+  auto motions = sector_motions(inner_wall(0.0, 0.2), BoundaryRole::periodic);
+  motions[3].role = BoundaryRole::passive;  // top
+  const MotionResult r = move_mesh(mesh, motions, {}, {});
+  ASSERT_TRUE(r.success) << r.message;
+  std::map<long, std::vector<double>> rise_at_radius;  // radius in 1e-6, rise of each node
+  for (NodeId n : mesh.find_patch("top")->nodes) {
+    const Vec3 a = mesh.points[static_cast<std::size_t>(n)], b = r.points[static_cast<std::size_t>(n)];
+    rise_at_radius[std::lround(std::hypot(a.x, a.y) * 1e6)].push_back(b.z - a.z);
+  }
+  ASSERT_EQ(rise_at_radius.size(), 7u);
+  for (const auto& [radius, rises] : rise_at_radius) {
+    ASSERT_EQ(rises.size(), 5u);  // theta 0 (per_lo) to 10 degrees (per_hi)
+    for (double rise : rises) EXPECT_NEAR(rise, rises[2], 1e-12) << "radius " << static_cast<double>(radius) * 1e-6;
+  }
+  EXPECT_NEAR(rise_at_radius.begin()->second[0], 0.2, 1e-12);   // inner rim
+  EXPECT_NEAR(rise_at_radius.rbegin()->second[0], 0.0, 1e-12);  // outer rim
+  EXPECT_GT(std::next(rise_at_radius.begin())->second[0], 0.1);  // the first ring inside follows
 }
 
 TEST(Passive, SurfaceWithoutRimIsRefused) {
