@@ -11,6 +11,8 @@
 #include <numbers>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 #include "dimensions.hpp"
 #include "fem_tables.hpp"
 #include "hotmesh/deform/quality.hpp"
@@ -23,6 +25,7 @@
 #include "hotmesh/io/deflection_csv.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "stator_well.hpp"
+#include "run_command.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::samples::stator_well {
@@ -310,6 +313,37 @@ TEST(StatorWellCases, BothCaseFilesPassTheSetUpOfHotmeshDeform) {
     EXPECT_EQ(setup.shapes.size(), 10u);
     for (const auto& shape : setup.shapes) EXPECT_LT(shape.reconstruction.max_node_distance_to_cad, 1e-9) << shape.patch;
   }
+}
+
+}  // namespace
+}  // namespace hotmesh::samples::stator_well
+
+namespace hotmesh::samples::stator_well {
+namespace {
+
+/// The whole pipeline on a sector of about 5 000 cells: the generator writes the CAD file,
+/// mesh and tables, `hotmesh deform` runs the sample's case with sliding on (16 increments).
+TEST(StatorWellRun, SlidingCaseEndsValidPeriodicAndOnTheDeflectedWalls) {
+  test::TempDir dir;
+  const auto generate = test::run_command(std::string(HOTMESH_MAKE_STATOR_WELL) + " --cells 5000 " +
+                                          test::shell_quote(dir.path().string()));
+  ASSERT_EQ(generate.exit_code, 0) << generate.output;
+  ASSERT_TRUE(std::filesystem::exists(dir / "case_small.yaml"));  // the generator writes the case files too
+  const auto run = test::run_command(std::string(HOTMESH_EXE) + " -q deform " +
+                                     test::shell_quote((dir / "case_small.yaml").string()));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto report = nlohmann::json::parse(test::read_text(dir / "case_small-out" / "report.json"));
+  EXPECT_EQ(report["status"], "success");
+  EXPECT_EQ(report["inverted_cells"], 0);
+  EXPECT_GT(report["min_scaled_jacobian"].get<double>(), 0.5);
+  EXPECT_GT(report["sliding_nodes"].get<int>(), 100);
+  EXPECT_GT(report["passive_nodes"].get<int>(), 50);
+  EXPECT_GT(report["periodic_pairs"].get<int>(), 1000);
+  EXPECT_LT(report["periodic_max_mismatch"].get<double>(), 1e-9);
+  // After the last Newton step the sliding nodes moved back onto the deflected CAD walls by
+  // next to nothing: they lie on them.
+  EXPECT_LT(report["max_sliding_projection_distance"].get<double>(), 1e-9);
+  EXPECT_LT(report["max_normal_slip"].get<double>(), 1e-12);
 }
 
 }  // namespace
