@@ -4,6 +4,7 @@
 #include "serve/http_server.hpp"
 
 #include <httplib.h>
+#include <sys/socket.h>
 #include <spdlog/spdlog.h>
 
 #include <fmt/format.h>
@@ -223,10 +224,17 @@ HttpServer::HttpServer(GeometryService& service, HttpOptions options)
   const std::size_t threads = std::max<std::size_t>(i.options.threads, 1);
   i.server.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
   i.server.set_payload_max_length(service.limits().max_body_bytes);
+  i.server.set_tcp_nodelay(true);  // small JSON answers on kept-alive connections: no Nagle delay
   i.server.set_keep_alive_max_count(100);
   i.server.set_keep_alive_timeout(5);
   i.server.set_read_timeout(10);
   i.server.set_write_timeout(10);
+  // SO_REUSEADDR only: the library's default SO_REUSEPORT would let another process bind the
+  // same port and take a share of the connections.
+  i.server.set_socket_options([](int sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   i.server.set_default_headers({{"X-Content-Type-Options", "nosniff"}, {"Cache-Control", "no-store"}});
   i.add_routes();
   i.add_page();

@@ -37,8 +37,9 @@ Json parse_object(std::string_view body) {
   Json value;
   try {
     value = Json::parse(body.begin(), body.end());
-  } catch (const Json::parse_error& e) {
-    // e.what() reads "[json.exception.parse_error.101] parse error at line 1, column 5: ..."
+  } catch (const Json::exception& e) {
+    // e.what() reads "[json.exception.parse_error.101] parse error at line 1, column 5: ..." (or
+    // out_of_range.406 for a number too large for a double)
     std::string what = e.what();
     const auto at = what.find("] ");
     if (at != std::string::npos) what = what.substr(at + 2);
