@@ -161,7 +161,8 @@ void HttpServer::Impl::add_routes() {
   });
   add("POST", "/api/curves", [&s](const Request& req, Response& res) { send_json(res, 201, s.create_curve(json_body(req))); });
   add("GET", R"(/api/curves/([A-Za-z0-9]+))", [&s](const Request& req, Response& res) {
-    send_json(res, 200, s.curve(id_of(req)));
+    res.status = 200;
+    res.set_content(s.curve(id_of(req)), "application/json");
   });
   add("DELETE", R"(/api/curves/([A-Za-z0-9]+))", [&s](const Request& req, Response& res) {
     s.delete_curve(id_of(req));

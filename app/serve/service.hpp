@@ -28,6 +28,7 @@ struct ServiceLimits {
   std::size_t max_faces = 1'000;           ///< faces named in one request
   std::size_t max_models = 16;             ///< CAD models kept; loading more drops the least recently used
   std::size_t max_curves = 64;             ///< curves kept; likewise
+  std::size_t max_curve_bytes = 256u << 20;  ///< memory of the curves kept (about); likewise
 };
 
 /// A file to send: content and how to label it.
@@ -65,7 +66,8 @@ class GeometryService {
   /// {"model": "m1", "faces": [...], "axis": {...}, "csv": "x,y,z,dx,dy,dz\n...", ...}: the
   /// deflected curve reconstructed through the FEM nodes, kept as a curve.
   Json create_curve(const Json& request);
-  Json curve(std::string_view id) const;
+  /// The answer create_curve (or meridional) gave for the curve, as JSON text.
+  std::string curve(std::string_view id) const;
   void delete_curve(std::string_view id);
   /// {"points": [[a, b], ...] or [[x, y, z], ...], "lambda": 1}: closest points on stage lambda.
   Json project(std::string_view curve_id, const Json& request) const;

@@ -55,9 +55,12 @@ Json store_curve(GeometryService::State& state, CurveRun run, bool deflected, st
   const std::string base = "/api/curves/" + id + "/download?format=";
   body["downloads"] = {{"step", base + "step"}, {"iges", base + "iges"}, {"csv", base + "csv"}};
   body.update(extra);
-  auto stored = std::make_shared<const StoredCurve>(
-      StoredCurve{id, deflected, std::move(run), std::move(projector), std::move(shape), body});
-  state.curves.insert(std::move(stored), id);
+  std::string text = body.dump(-1, ' ', false, Json::error_handler_t::replace);
+  // What a curve costs: its answer, and about as much again for the nodes, curves and samples.
+  const std::size_t bytes = 2 * text.size();
+  auto stored = std::make_shared<const StoredCurve>(StoredCurve{
+      id, deflected, std::move(run), std::move(projector), std::move(shape), std::move(text), body["frame"]});
+  state.curves.insert(std::move(stored), id, bytes);
   return body;
 }
 
@@ -151,7 +154,7 @@ Json GeometryService::create_curve(const Json& request) {
   return store_curve(*state_, std::move(*run), true, samples, std::move(extra));
 }
 
-Json GeometryService::curve(std::string_view id) const { return state_->curves.get(id, "curve")->body; }
+std::string GeometryService::curve(std::string_view id) const { return state_->curves.get(id, "curve")->body; }
 
 void GeometryService::delete_curve(std::string_view id) { state_->curves.erase(id, "curve"); }
 
@@ -194,7 +197,7 @@ Json GeometryService::project(std::string_view curve_id, const Json& request) co
                              {"distance", q.distance}});
     }
   }
-  return {{"curve", stored->id}, {"lambda", lambda}, {"frame", stored->body["frame"]}, {"projections", projections}};
+  return {{"curve", stored->id}, {"lambda", lambda}, {"frame", stored->frame}, {"projections", projections}};
 }
 
 Download GeometryService::download(std::string_view curve_id, std::string_view format) const {

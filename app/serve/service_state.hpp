@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstddef>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -43,15 +44,18 @@ struct StoredCurve {
   CurveRun run;
   std::unique_ptr<geometry::CurveProjector> projector;  ///< for points in the curve's plane
   std::unique_ptr<geometry::BoundaryShape> shape;       ///< for points in space
-  Json body;                                            ///< the answer to GET /api/curves/{id}
+  std::string body;  ///< the answer to GET /api/curves/{id}, JSON text
+  std::string frame; ///< "rz" or "xy"
 };
 
-/// Items by id ("m1", "m2", ... with prefix "m"), at most `capacity`; inserting into a full
-/// store drops the one used least recently.
+/// Items by id ("m1", "m2", ... with prefix "m"), at most `capacity` of them and `budget`
+/// bytes (as the inserter reckons them); inserting into a full store drops the items used
+/// least recently.
 template <class T>
 class Store {
  public:
-  Store(char prefix, std::size_t capacity) : prefix_(prefix), capacity_(capacity) {}
+  Store(char prefix, std::size_t capacity, std::size_t budget = SIZE_MAX)
+      : prefix_(prefix), capacity_(capacity), budget_(budget) {}
 
   /// A fresh id for an item about to be inserted.
   std::string next_id() {
@@ -59,16 +63,18 @@ class Store {
     return fmt::format("{}{}", prefix_, ++issued_);
   }
 
-  void insert(std::shared_ptr<T> item, const std::string& id) {
+  void insert(std::shared_ptr<T> item, const std::string& id, std::size_t bytes = 0) {
     std::lock_guard lock(mutex_);
-    while (!items_.empty() && items_.size() >= capacity_) {
+    while (!items_.empty() && (items_.size() >= capacity_ || bytes_ + bytes > budget_)) {
       auto oldest = items_.begin();
       for (auto it = items_.begin(); it != items_.end(); ++it) {
         if (it->second.last_used < oldest->second.last_used) oldest = it;
       }
+      bytes_ -= oldest->second.bytes;
       items_.erase(oldest);
     }
-    items_[id] = {std::move(item), ++clock_};
+    items_[id] = {std::move(item), ++clock_, bytes};
+    bytes_ += bytes;
   }
 
   /// The item, or ApiError 404 saying what `kind` was not found.
@@ -88,6 +94,7 @@ class Store {
     std::lock_guard lock(mutex_);
     const auto it = items_.find(id);
     if (it == items_.end()) throw ApiError::not_found(fmt::format("no {} '{}'", kind, id));
+    bytes_ -= it->second.bytes;
     items_.erase(it);
   }
 
@@ -102,18 +109,21 @@ class Store {
   struct Entry {
     std::shared_ptr<T> item;
     std::uint64_t last_used = 0;
+    std::size_t bytes = 0;
   };
   mutable std::mutex mutex_;
   std::map<std::string, Entry, std::less<>> items_;
   char prefix_;
   std::size_t capacity_;
+  std::size_t budget_;
+  std::size_t bytes_ = 0;
   std::uint64_t issued_ = 0;
   std::uint64_t clock_ = 0;
 };
 
 struct GeometryService::State {
   State(const std::optional<std::filesystem::path>& root_path, ServiceLimits service_limits)
-      : limits(service_limits), models('m', service_limits.max_models), curves('c', service_limits.max_curves) {
+      : limits(service_limits), models('m', service_limits.max_models), curves('c', service_limits.max_curves, service_limits.max_curve_bytes) {
     if (root_path) root.emplace(*root_path);
   }
 

@@ -303,6 +303,23 @@ TEST_F(ServeApi, ReconstructsA2DTableWithoutCad) {
   EXPECT_EQ(r.body["summary"]["max_node_distance_to_cad"], 0.0);
 }
 
+TEST_F(ServeApi, KeepsTheCurvesUsedMostRecently) {
+  const Json table = {{"csv", "x,y,dx,dy\n0,0,0,0\n1,0,0,0.1\n"}, {"samples", 2}};
+  std::vector<std::string> ids;
+  for (int i = 0; i < 70; ++i) {
+    const Reply r = api_->post("/api/curves", table);
+    ASSERT_EQ(r.status, 201) << r.text;
+    ids.push_back(r.body["curve"]);
+    if (i >= 1) EXPECT_EQ(api_->get("/api/curves/" + ids.front()).status, 200);  // keeps the first one in use
+  }
+  // 64 are kept: the first (used all along) and the 63 newest; the 2nd to the 7th were dropped.
+  EXPECT_EQ(api_->get("/api/curves/" + ids[0]).status, 200);
+  for (std::size_t i = 1; i <= 6; ++i) {
+    expect_error(api_->get("/api/curves/" + ids[i]), 404, "dropped as the least recently used of 64");
+  }
+  for (std::size_t i = 7; i < ids.size(); ++i) EXPECT_EQ(api_->get("/api/curves/" + ids[i]).status, 200) << ids[i];
+}
+
 TEST_F(ServeApi, CurveRequestErrorsSayWhatIsWrong) {
   const std::string model = load_cone();
   const Json good = cone_curve_request(model);
