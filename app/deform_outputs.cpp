@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "hotmesh/io/atomic_file.hpp"
@@ -44,6 +46,15 @@ void picture(const std::filesystem::path& path, const std::string& title, const 
   if (!setup.shapes.empty()) figure.legend("deflected wall (FEM)", {io::colors::blue, 2.0});
   if (view) figure.set_view(view->xmin, view->xmax, view->ymin, view->ymax);
   figure.save(path);
+}
+
+/// The process's peak resident memory (VmHWM), or 0 where /proc does not tell.
+std::uint64_t peak_memory_bytes() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;  // kB
+  }
+  return 0;
 }
 
 }  // namespace
@@ -155,6 +166,10 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["pcg_iterations"] = pcg_total;
   j["stage_reached"] = result.lambda_reached;
   j["sliding_nodes"] = result.sliding_nodes;
+  j["passive_nodes"] = result.passive_nodes;
+  j["periodic_pairs"] = result.periodic_pairs;
+  j["periodic_max_mismatch"] = result.periodic_max_mismatch;
+  j["peak_memory_bytes"] = peak_memory_bytes();
   j["max_sliding_projection_distance"] = result.max_sliding_projection_distance;
   j["max_normal_slip"] = result.max_normal_slip;
   if (c.restart) j["restarted_from"] = c.restart->string();

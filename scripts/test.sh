@@ -26,7 +26,7 @@ ctest --test-dir build -j "$jobs" --output-on-failure --timeout 900
 
 if ((sanitizers)); then
   echo "== hotmesh: AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
-  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O2" \
         -DHOTMESH_WERROR=ON -DHOTMESH_SANITIZE=address,undefined
   cmake --build build-asan -j "$jobs"
   # Full stacks for leak reports (OpenCASCADE is built without frame pointers), so the

@@ -9,18 +9,21 @@
 
 #include "hotmesh/geometry/input_error.hpp"
 #include "parallel.hpp"
+#include "passive.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {
 
 int priority(BoundaryRole role) {
   switch (role) {
-    case BoundaryRole::fixed: return 4;
-    case BoundaryRole::prescribed: return 3;
-    case BoundaryRole::sliding: return 2;
-    case BoundaryRole::slip: return 1;
-    default: return 0;
+    case BoundaryRole::fixed: return 6;
+    case BoundaryRole::prescribed: return 5;
+    case BoundaryRole::sliding: return 4;
+    case BoundaryRole::passive: return 3;
+    case BoundaryRole::slip: return 2;
+    case BoundaryRole::periodic: return 1;
   }
+  return 0;
 }
 
 double bounding_diagonal(const Mesh& mesh, std::span<const NodeId> nodes) {
@@ -138,6 +141,8 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
                       {},
                       {},
                       {},
+                      {},
+                      PeriodicCoupling(static_cast<std::size_t>(mesh.dimension)),
                       std::vector<NodeRoleCode>(mesh.node_count(), 0),
                       {}};
   if (setup.reference.size() != mesh.node_count()) {
@@ -147,20 +152,42 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
   const std::vector<Vec3>& x0 = setup.reference;
 
   std::vector<const PatchMotion*> motion_of(mesh.patches.size(), nullptr);
+  const auto patch_index = [&](const std::string& name) {
+    const auto it = std::find_if(mesh.patches.begin(), mesh.patches.end(), [&](const Patch& p) { return p.name == name; });
+    if (it == mesh.patches.end()) throw InputError(fmt::format("the mesh has no patch '{}'", name));
+    return static_cast<std::size_t>(it - mesh.patches.begin());
+  };
   for (const PatchMotion& m : patches) {
-    const auto it = std::find_if(mesh.patches.begin(), mesh.patches.end(), [&](const Patch& p) { return p.name == m.patch; });
-    if (it == mesh.patches.end()) throw InputError(fmt::format("the mesh has no patch '{}'", m.patch));
-    motion_of[static_cast<std::size_t>(it - mesh.patches.begin())] = &m;
+    motion_of[patch_index(m.patch)] = &m;
     if ((m.role == BoundaryRole::prescribed || m.role == BoundaryRole::sliding) && !m.shape) {
       throw InputError(fmt::format("patch '{}' is {} but has no shape to follow", m.patch, to_string(m.role)));
-    }
-    if (m.role == BoundaryRole::passive || m.role == BoundaryRole::periodic) {
-      throw InputError(fmt::format("patch '{}': role {} is not available in the solver yet", m.patch, to_string(m.role)));
     }
   }
   for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
     if (!motion_of[p]) throw InputError(fmt::format("mesh patch '{}' has no role", mesh.patches[p].name));
   }
+
+  // Periodic pairs: slaves follow their masters and take no role of their own.
+  Vec3 lo = mesh.points.front(), hi = lo;
+  for (const Vec3& p : mesh.points) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  const double mesh_size = norm(hi - lo);
+  for (const PatchMotion& m : patches) {
+    if (m.role != BoundaryRole::periodic || m.partner.empty()) continue;
+    const std::size_t partner = patch_index(m.partner);
+    if (motion_of[partner]->role != BoundaryRole::periodic) {
+      throw InputError(fmt::format("periodic patch '{}' has partner '{}', which is not periodic", m.patch, m.partner));
+    }
+    setup.periodic.add(mesh, mesh.patches[patch_index(m.patch)], mesh.patches[partner], m.axis, m.angle, 1e-8 * mesh_size);
+  }
+  for (const PatchMotion& m : patches) {
+    if (m.role != BoundaryRole::periodic || !m.partner.empty()) continue;
+    const bool declared = std::any_of(patches.begin(), patches.end(), [&](const PatchMotion& o) { return o.partner == m.patch; });
+    if (!declared) throw InputError(fmt::format("periodic patch '{}' has no partner", m.patch));
+  }
+  const auto is_slave = [&](NodeId n) { return setup.periodic.is_slave(n); };
 
   // The strongest role of each node, and the patch that gives it.
   std::vector<int> owner(mesh.node_count(), -1);
@@ -174,9 +201,14 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
     }
   }
   for (std::size_t n = 0; n < mesh.node_count(); ++n) {
-    if (owner[n] >= 0) setup.roles[n] = static_cast<NodeRoleCode>(1 + static_cast<int>(motion_of[static_cast<std::size_t>(owner[n])]->role));
+    if (is_slave(static_cast<NodeId>(n))) {
+      setup.roles[n] = static_cast<NodeRoleCode>(1 + static_cast<int>(BoundaryRole::periodic));
+      setup.constraints.fix(static_cast<NodeId>(n));  // not an unknown: it follows its master
+    } else if (owner[n] >= 0) {
+      setup.roles[n] = static_cast<NodeRoleCode>(1 + static_cast<int>(motion_of[static_cast<std::size_t>(owner[n])]->role));
+    }
   }
-  const auto has_role = [&](NodeId n, BoundaryRole role) { return role_priority(n) == priority(role); };
+  const auto has_role = [&](NodeId n, BoundaryRole role) { return !is_slave(n) && role_priority(n) == priority(role); };
 
   // Slip planes: constrain slip nodes now; sliding nodes collect them below.
   std::vector<int> plane_of(mesh.patches.size(), -1);
@@ -195,11 +227,13 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
     const PatchMotion& m = *motion_of[p];
     if (patch.nodes.empty()) continue;
     if (m.role == BoundaryRole::fixed) {
-      for (NodeId n : patch.nodes) setup.constraints.fix(n);
+      for (NodeId n : patch.nodes) {
+        if (!is_slave(n)) setup.constraints.fix(n);
+      }
     } else if (m.role == BoundaryRole::prescribed) {
       std::vector<NodeId> nodes;
       for (NodeId n : patch.nodes) {
-        if (owner[static_cast<std::size_t>(n)] == static_cast<int>(p)) nodes.push_back(n);
+        if (owner[static_cast<std::size_t>(n)] == static_cast<int>(p) && !is_slave(n)) nodes.push_back(n);
       }
       const auto parameters = locate(mesh, x0, patch, m, nodes);
       for (std::size_t k = 0; k < nodes.size(); ++k) {
@@ -272,6 +306,32 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
     if (s.shape_count + s.plane_count > 1 && !start) s.target = place_sliding_node(s, s.target, 1.0, setup.slip_planes).point;
   }
 
+  // Passive surfaces (section 6.1): their rim moves with the walls around them; a spring
+  // analogy on each surface gives the rest. Then they are prescribed.
+  std::vector<std::optional<Vec3>> rim(mesh.node_count());
+  for (const PrescribedNode& p : setup.prescribed) {
+    rim[static_cast<std::size_t>(p.node)] = prescribed_position(p, x0[static_cast<std::size_t>(p.node)], 1.0) - x0[static_cast<std::size_t>(p.node)];
+  }
+  for (const SlidingNode& s : setup.sliding) rim[static_cast<std::size_t>(s.node)] = s.target - x0[static_cast<std::size_t>(s.node)];
+  for (std::size_t n = 0; n < mesh.node_count(); ++n) {
+    if (!is_slave(static_cast<NodeId>(n)) && has_role(static_cast<NodeId>(n), BoundaryRole::fixed)) rim[n] = Vec3{};
+  }
+  std::vector<char> passive_done(mesh.node_count(), 0);
+  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
+    if (motion_of[p]->role != BoundaryRole::passive || mesh.patches[p].nodes.empty()) continue;
+    const Patch& patch = mesh.patches[p];
+    const auto moved = passive_displacements(
+        mesh, x0, patch, [&](NodeId n) { return rim[static_cast<std::size_t>(n)]; }, setup.periodic);
+    for (std::size_t k = 0; k < patch.nodes.size(); ++k) {
+      const NodeId n = patch.nodes[k];
+      if (!has_role(n, BoundaryRole::passive) || passive_done[static_cast<std::size_t>(n)]) continue;
+      passive_done[static_cast<std::size_t>(n)] = 1;
+      rim[static_cast<std::size_t>(n)] = moved[k];  // a rim of the passive surfaces still to solve
+      setup.passive.push_back({n, moved[k]});
+      setup.constraints.fix(n);
+    }
+  }
+
   // Where a stronger role overrules a patch's deflection at shared nodes (a fixed wall beside a
   // moving one), say so if the two disagree about where the node goes.
   const auto final_position = [&](const PatchMotion& m, NodeId n) {
@@ -286,7 +346,7 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
     double largest = 0.0;
     const double tolerance = 1e-6 * bounding_diagonal(mesh, mesh.patches[p].nodes);
     for (NodeId n : mesh.patches[p].nodes) {
-      if (role_priority(n) <= priority(m.role)) continue;
+      if (is_slave(n) || role_priority(n) <= priority(m.role)) continue;
       const PatchMotion& winner = *motion_of[static_cast<std::size_t>(owner[static_cast<std::size_t>(n)])];
       const double gap = distance(final_position(m, n), final_position(winner, n));
       if (gap > tolerance) {

@@ -1,8 +1,10 @@
 // hotmesh deform (internal): from patch roles to what each node does. Every node takes the
-// strongest role of the patches it lies on, fixed > prescribed > sliding > slip > interior, so
-// a node is never moved twice. A sliding node keeps the shapes of all its sliding patches
+// strongest role of the patches it lies on,
+//     fixed > prescribed > sliding > passive > slip > periodic > interior,
+// so a node is never moved twice. A sliding node keeps the shapes of all its sliding patches
 // (two or three where sliding walls meet: it then moves along their intersection, or stays
-// put where they meet in a point) and the planes of its slip patches.
+// put where they meet in a point) and the planes of its slip patches. The slave node of a
+// periodic pair has no motion of its own: it follows its master (periodic.hpp).
 #pragma once
 
 #include <array>
@@ -12,6 +14,7 @@
 
 #include "hotmesh/deform/constraints.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
+#include "periodic.hpp"
 
 namespace hotmesh::deform::detail {
 
@@ -42,13 +45,21 @@ struct SlidingNode {
   double origin = 0.0;  ///< t0: its material parameter on shapes[0] (SlidingOrigin)
 };
 
+/// A node of a passive surface: moves by `displacement` times the stage.
+struct PassiveNode {
+  NodeId node = 0;
+  Vec3 displacement;
+};
+
 struct BoundarySetup {
   /// Positions the shapes' stage 0 refers to: the mesh's, or those a restarted run starts from.
   std::vector<Vec3> reference;
   NodeConstraints constraints;
   std::vector<PrescribedNode> prescribed;
   std::vector<SlidingNode> sliding;
+  std::vector<PassiveNode> passive;
   std::vector<SlipPlane> slip_planes;
+  PeriodicCoupling periodic;
   std::vector<NodeRoleCode> roles;
   std::vector<std::string> notes;
 };

@@ -41,20 +41,31 @@ using Clock = std::chrono::steady_clock;
 constexpr double kDivergence = 1e10;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// P K P: the stiffness restricted to the admissible subspace (eq. 16: the normal component
-/// is removed after the element loop).
+/// P T^T K T P: the stiffness restricted to the admissible subspace — periodic slaves expanded
+/// from their masters before the element loop and folded back after it (periodic.hpp), the
+/// normal component at sliding nodes removed (eq. 16), fixed nodes zeroed.
 class ConstrainedOperator final : public LinearOperator {
  public:
-  ConstrainedOperator(const StiffnessOperator& k, const NodeConstraints& c) : k_(k), c_(c) {}
+  ConstrainedOperator(const StiffnessOperator& k, const NodeConstraints& c, const detail::PeriodicCoupling& periodic)
+      : k_(k), c_(c), periodic_(periodic), expanded_(periodic.empty() ? 0 : k.size()) {}
   std::size_t size() const override { return k_.size(); }
   void apply(std::span<const double> x, std::span<double> y) const override {
-    k_.apply(x, y);
+    if (periodic_.empty()) {
+      k_.apply(x, y);
+    } else {
+      std::copy(x.begin(), x.end(), expanded_.begin());
+      periodic_.expand(expanded_);
+      k_.apply(expanded_, y);
+      periodic_.fold(y);
+    }
     c_.project(y);
   }
 
  private:
   const StiffnessOperator& k_;
   const NodeConstraints& c_;
+  const detail::PeriodicCoupling& periodic_;
+  mutable std::vector<double> expanded_;  ///< work space (an operator is used by one thread)
 };
 
 /// Nodal (block) Jacobi: y_i = M_i x_i with M_i the inverse of the node's d x d diagonal block
@@ -66,9 +77,10 @@ class ConstrainedOperator final : public LinearOperator {
 /// boundary layer, or on a sliding wall at an angle, that roughly halves the PCG iterations.
 class NodalJacobi final : public LinearOperator {
  public:
-  NodalJacobi(const StiffnessOperator& k, const NodeConstraints& c)
+  NodalJacobi(const StiffnessOperator& k, const NodeConstraints& c, const detail::PeriodicCoupling& periodic)
       : dim_(static_cast<std::size_t>(k.dofs_per_node())), blocks_(k.size() * dim_) {
     k.diagonal_blocks(blocks_);
+    periodic.fold_blocks(blocks_);  // a master carries its slave's stiffness
     const auto nodes = static_cast<std::ptrdiff_t>(c.node_count());
 #pragma omp parallel for schedule(static) if (nodes >= detail::kParallelNodes)
     for (std::ptrdiff_t i = 0; i < nodes; ++i) invert(static_cast<NodeId>(i), c);
@@ -170,6 +182,8 @@ class Motion {
     result_.node_roles = setup_.roles;
     result_.notes = setup_.notes;
     result_.sliding_nodes = sliding_.size();
+    result_.passive_nodes = setup_.passive.size();
+    result_.periodic_pairs = setup_.periodic.pairs().size();
     for (const auto& s : setup_.sliding) result_.sliding_origins.push_back({s.node, s.origin});
     result_.points = setup_.reference;
     const int n = std::max(solver_.increments, 1);
@@ -181,6 +195,7 @@ class Motion {
     const auto q = Clock::now();
     result_.quality = scaled_jacobians(mesh_.cells, result_.points);
     result_.summary = summarize_quality(result_.quality);
+    result_.periodic_max_mismatch = setup_.periodic.mismatch(result_.points) / size_;
     result_.timings.quality += seconds_since(q);
     result_.timings.total = seconds_since(start) + result_.timings.setup;
     return std::move(result_);
@@ -235,14 +250,20 @@ class Motion {
       const Vec3 target = detail::prescribed_position(p, setup_.reference[i], b);
       for (std::size_t c = 0; c < dim_; ++c) u[i * dim_ + c] = target[c] - x[i][c];
     }
+    for (const auto& p : setup_.passive) {  // passive surfaces move with the stage (6.1)
+      const auto i = static_cast<std::size_t>(p.node);
+      const Vec3 target = setup_.reference[i] + b * p.displacement;
+      for (std::size_t c = 0; c < dim_; ++c) u[i * dim_ + c] = target[c] - x[i][c];
+    }
     auto t = Clock::now();
     sliding_.begin_increment(a, b, x, u);
     result_.timings.projection += seconds_since(t);
+    setup_.periodic.expand(u);  // slaves follow their masters
 
     std::vector<Vec3> trial(x.size());
     std::vector<double> r(dofs), rhs(dofs), p(dofs);
     double r0 = 0.0;
-    const ConstrainedOperator k(stiffness_, setup_.constraints);
+    const ConstrainedOperator k(stiffness_, setup_.constraints, setup_.periodic);
     for (int it = 0;; ++it) {
       displace(x, u, trial);
       t = Clock::now();
@@ -251,6 +272,7 @@ class Motion {
       // R(n) = K(n) u(n) - f (eq. 7; f is K's action on the boundary motion), with only its
       // tangential part F_t at sliding nodes (eq. 17).
       stiffness_.apply(u, r);
+      setup_.periodic.fold(r);
       setup_.constraints.project(r);
       const double residual = norm2(r);
       if (it == 0) r0 = residual;
@@ -276,7 +298,7 @@ class Motion {
       for (std::size_t i = 0; i < dofs; ++i) rhs[i] = -r[i];
       std::fill(p.begin(), p.end(), 0.0);
       t = Clock::now();
-      const NodalJacobi m(stiffness_, setup_.constraints);
+      const NodalJacobi m(stiffness_, setup_.constraints, setup_.periodic);
       const auto cg = pcg(k, m, rhs, p,
                           {.relative_tolerance = solver_.pcg_tolerance,
                            .max_iterations = solver_.max_pcg_iterations,
@@ -297,6 +319,7 @@ class Motion {
       t = Clock::now();
       step.max_projection = sliding_.project(b, x, u);
       result_.timings.projection += seconds_since(t);
+      setup_.periodic.expand(u);
     }
     if (record.converged) {
       t = Clock::now();

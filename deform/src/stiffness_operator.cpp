@@ -132,18 +132,14 @@ void StiffnessOperator::apply(std::span<const double> x, std::span<double> y) co
 }
 
 void StiffnessOperator::diagonal(std::span<double> d) const {
-  std::fill(d.begin(), d.end(), 0.0);
-  const auto n = static_cast<std::size_t>(element_dofs_);
   const auto dim = static_cast<std::size_t>(dim_);
-  // Sequential in cell order: deterministic, and cheap next to a product.
-  for (std::size_t c = 0; c < cells_->size(); ++c) {
-    const auto ke = element_matrix(static_cast<CellId>(c));
-    const auto nodes = cells_->nodes(c);
-    for (std::size_t r = 0; r < n; ++r) d[static_cast<std::size_t>(nodes[r / dim]) * dim + r % dim] += ke[r * n + r];
-  }
+  std::vector<double> blocks(size() * dim);
+  diagonal_blocks(blocks);
+  for (std::size_t i = 0; i < size(); ++i) d[i] = blocks[i * dim + i % dim];
 }
 
 void StiffnessOperator::diagonal_blocks(std::span<double> blocks) const {
+  // Sequential in cell order: deterministic, and cheap next to a product.
   std::fill(blocks.begin(), blocks.end(), 0.0);
   const auto n = static_cast<std::size_t>(element_dofs_);
   const auto dim = static_cast<std::size_t>(dim_);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <optional>
 
 #include <fmt/format.h>
@@ -195,6 +196,11 @@ CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh, const RestartStat
   CurveBuilder builder(c, mesh);
   for (const PatchSpec& spec : c.patches) {
     deform::PatchMotion motion{spec.name, spec.role, nullptr, 0.0};
+    if (spec.role == PatchRole::periodic && spec.angle_deg != 0.0) {  // the side that declares the pair
+      motion.partner = spec.partner;
+      motion.angle = spec.angle_deg * std::numbers::pi / 180.0;
+      motion.axis = *c.axis;
+    }
     const bool follows = spec.role == PatchRole::prescribed || spec.role == PatchRole::sliding;
     const RestartPatch* before = previous ? &previous_patch(*previous, spec, c) : nullptr;
     if (follows) {

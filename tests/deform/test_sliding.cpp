@@ -78,10 +78,10 @@ std::size_t nodes_on_ramp(const Mesh& mesh, const MotionResult& r) {
 }
 
 TEST(Sliding, RampNodesEndOnTheDeflectedWallAndSlideTangentially) {
-  const Mesh mesh = ramp_mesh();
+  const Mesh mesh = ramp_mesh(0, true);
   const MotionResult r = move_mesh(mesh, ramp_motions(true, {}), {}, {});
   ASSERT_TRUE(r.success) << r.message;
-  EXPECT_EQ(r.sliding_nodes, 2u * (58u - 1u));  // bottom and top walls but their corners on the fixed wall
+  EXPECT_EQ(r.sliding_nodes, 2u * (22u - 1u));  // bottom and top walls but their corners on the fixed wall
   double off = 0.0;
   for (NodeId n : mesh.find_patch("bottom")->nodes) off = std::max(off, distance_to_ramp(r.points[static_cast<std::size_t>(n)], {}));
   const double size = std::sqrt(5.0);
@@ -90,13 +90,14 @@ TEST(Sliding, RampNodesEndOnTheDeflectedWallAndSlideTangentially) {
   EXPECT_LT(r.max_sliding_projection_distance, 1e-3);
   EXPECT_LT(r.max_normal_slip, 1e-12 * size);  // every Newton step kept u_s . n = 0 (eq. 19)
   // The corner on the slip wall ends where the deflected wall meets x = 2.
-  const Vec3 corner = r.points[57];
+  const Vec3 corner = r.points[21];
   EXPECT_NEAR(corner.x, 2.0, 1e-12);
   EXPECT_NEAR(corner.y, 0.5, 1e-9);
 }
 
 TEST(Sliding, GathersMoreNodesOnTheRampWithoutLosingQuality) {
-  const Mesh mesh = ramp_mesh();
+  // On the paper's mesh this is samples/ramp2d (docs/results/ramp2d.md); a coarser one here.
+  const Mesh mesh = ramp_mesh(0, true);
   const MotionResult fixed = move_mesh(mesh, ramp_motions(false, {}), {}, {});
   const MotionResult sliding = move_mesh(mesh, ramp_motions(true, {}), {}, {});
   ASSERT_TRUE(fixed.success) << fixed.message;
@@ -202,8 +203,8 @@ TEST(Sliding, ExtrudedRampBehavesLikeTheTwoDimensionalCase) {
   const Mesh solid = ramp_mesh(2, true);
   const MaterialOptions uniform{StiffnessLaw::uniform, 1.0, 0.01, true};
   SolverOptions tight;
-  tight.newton_tolerance = 1e-7;
-  tight.pcg_tolerance = 1e-7;
+  tight.newton_tolerance = 1e-6;
+  tight.pcg_tolerance = 1e-6;
   const MotionResult r2 = move_mesh(plane, ramp_motions(true, {}), uniform, tight);
   const MotionResult r3 = move_mesh(solid, ramp_motions(true, {}, true), uniform, tight);
   ASSERT_TRUE(r2.success) << r2.message;
@@ -216,8 +217,8 @@ TEST(Sliding, ExtrudedRampBehavesLikeTheTwoDimensionalCase) {
       largest = std::max(largest, std::hypot(p.x - r2.points[n].x, p.y - r2.points[n].y));
     }
   }
-  EXPECT_LT(largest, 1e-5);
-  EXPECT_NEAR(r3.summary.min_scaled_jacobian, r2.summary.min_scaled_jacobian, 1e-5);
+  EXPECT_LT(largest, 1e-4);
+  EXPECT_NEAR(r3.summary.min_scaled_jacobian, r2.summary.min_scaled_jacobian, 1e-4);
 }
 
 TEST(Sliding, NodeOnTwoSlidingWallsStaysOnBoth) {

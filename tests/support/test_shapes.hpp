@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -55,6 +56,22 @@ class TestCurveShape final : public geometry::BoundaryShape {
   }
   std::vector<Vec3> vertices_;
   Motion motion_;
+};
+
+/// Every point lies on this shape and moves by the affine map x -> x + lambda (G x + g).
+class AffineShape final : public geometry::BoundaryShape {
+ public:
+  AffineShape(std::array<Vec3, 3> g, Vec3 shift) : g_(g), shift_(shift) {}
+  ShapePoint project(const Vec3& p, double, double) const override { return {p, {1, 0, 0}, 0.0, 0.0}; }
+  ShapePoint at(double t, double lambda, const Vec3& x) const override {
+    const Vec3 gx{dot(g_[0], x), dot(g_[1], x), dot(g_[2], x)};
+    return {x + lambda * (gx + shift_), {1, 0, 0}, t, 0.0};
+  }
+  Vec3 moved(const Vec3& x) const { return at(0, 1, x).point; }
+
+ private:
+  std::array<Vec3, 3> g_;
+  Vec3 shift_;
 };
 
 /// Rotation about the z axis through `centre` by lambda * angle.

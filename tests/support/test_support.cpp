@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <sstream>
@@ -129,6 +130,15 @@ deform::Mesh square_ring(int per_side, int radial, double inner, double outer, i
     mesh.patches[3].faces.add(ElementType::quad4, {top + q[0], top + q[1], top + q[2], top + q[3]});
   }
   mesh.derive_node_sets();
+  return mesh;
+}
+
+deform::Mesh annular_sector(int nr, int nt, int nz, double r0, double r1, double z0, double z1, double angle_deg) {
+  const auto rs = deform::uniform_line(r0, r1, nr);
+  const auto ts = deform::uniform_line(0.0, angle_deg * 3.14159265358979323846 / 180.0, nt);
+  const auto zs = deform::uniform_line(z0, z1, nz);
+  deform::Mesh mesh = deform::structured_hexes(rs, ts, zs, {"inner", "outer", "per_lo", "per_hi", "bottom", "top"});
+  for (auto& p : mesh.points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), p.z};  // (r, theta, z) -> (x, y, z)
   return mesh;
 }
 

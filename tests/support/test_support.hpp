@@ -39,6 +39,11 @@ deform::Mesh unit_cube(int n);
 deform::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers = 0, double depth = 0.0,
                          double growth = 1.0);
 
+/// A sector of an annulus about the z axis: r in [r0, r1], z in [z0, z1], theta in
+/// [0, angle_deg], as nr x nt x nz hexes. Patches "inner" (r0), "outer" (r1), "per_lo"
+/// (theta 0), "per_hi" (theta angle), "bottom" (z0), "top" (z1).
+deform::Mesh annular_sector(int nr, int nt, int nz, double r0, double r1, double z0, double z1, double angle_deg);
+
 /// Moves interior nodes (those on no patch) pseudo-randomly by up to `fraction` of the
 /// smallest edge length around them, keeping the mesh valid; deterministic.
 void jiggle_interior(deform::Mesh& mesh, double fraction);

@@ -22,6 +22,7 @@
 #include "hotmesh/deform/mesh.hpp"
 #include "hotmesh/deform/quality.hpp"
 #include "hotmesh/deform/solver_options.hpp"
+#include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/boundary_shape.hpp"
 
 namespace hotmesh::deform {
@@ -45,6 +46,12 @@ struct PatchMotion {
   /// Largest distance allowed between a patch node and the undeformed shape; 0 means
   /// 1e-3 times the diagonal of the patch's bounding box.
   double tolerance = 0.0;
+  /// periodic, on the side that declares the pair: the partner patch, and the rotation (about
+  /// `axis`, radians, right-handed) that carries this patch onto it. Empty partner on the
+  /// other side.
+  std::string partner;
+  double angle = 0.0;
+  geometry::Axis axis;
 };
 
 /// Node roles as stored per node for output: 0 for interior nodes, 1 + BoundaryRole.
@@ -115,6 +122,11 @@ struct MotionResult {
   std::vector<IncrementRecord> increments;  ///< every attempt, accepted or not, in order
   std::vector<NodeRoleCode> node_roles;
   std::size_t sliding_nodes = 0;
+  std::size_t passive_nodes = 0;
+  std::size_t periodic_pairs = 0;
+  /// Largest distance between a master node turned by the sector angle and its slave, at
+  /// the end, relative to the diagonal of the mesh's bounding box.
+  double periodic_max_mismatch = 0.0;
   /// Largest projection distance of a sliding node in the last Newton step of the last
   /// accepted increment, relative to the diagonal of the mesh's bounding box.
   double max_sliding_projection_distance = 0.0;
