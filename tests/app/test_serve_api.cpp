@@ -310,7 +310,9 @@ TEST_F(ServeApi, KeepsTheCurvesUsedMostRecently) {
     const Reply r = api_->post("/api/curves", table);
     ASSERT_EQ(r.status, 201) << r.text;
     ids.push_back(r.body["curve"]);
-    if (i >= 1) EXPECT_EQ(api_->get("/api/curves/" + ids.front()).status, 200);  // keeps the first one in use
+    if (i >= 1) {
+      EXPECT_EQ(api_->get("/api/curves/" + ids.front()).status, 200);  // keeps the first one in use
+    }
   }
   // 64 are kept: the first (used all along) and the 63 newest; the 2nd to the 7th were dropped.
   EXPECT_EQ(api_->get("/api/curves/" + ids[0]).status, 200);
