@@ -2,9 +2,10 @@
 // playwright-core). Starts the service on a free port, uploads the CATIA cone (IGES, mm) and a
 // table of FEM nodes with deflections through the page, and checks that the curves, nodes and
 // arrows are drawn where the API says, that the numbers shown are the API's, that the tooltip,
-// the amplification slider, zoom, pan and the downloads work, and that an API error is shown.
+// the amplification slider, zoom, pan and the downloads work, that an API error is shown, and
+// that a meridional curve and a 2D table without CAD (the ramp2d sample) are drawn too.
 // Keeps a screenshot. Exit code 0 when every check passed.
-//   node serve_page.test.mjs --hotmesh build/app/hotmesh --data tests/data --out build/tests/browser
+//   node serve_page.test.mjs --hotmesh build/app/hotmesh --data tests/data --samples samples --out build/tests/browser
 import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
@@ -22,9 +23,9 @@ try {
 
 const args = Object.fromEntries(
   process.argv.slice(2).reduce((pairs, a, i, all) => (a.startsWith('--') ? [...pairs, [a.slice(2), all[i + 1]]] : pairs), []));
-for (const key of ['hotmesh', 'data', 'out']) {
+for (const key of ['hotmesh', 'data', 'samples', 'out']) {
   if (!args[key]) {
-    console.error('usage: node serve_page.test.mjs --hotmesh EXE --data tests/data --out DIR');
+    console.error('usage: node serve_page.test.mjs --hotmesh EXE --data tests/data --samples samples --out DIR');
     process.exit(2);
   }
 }
@@ -254,6 +255,25 @@ async function run() {
     await page.waitForSelector('#error:not([hidden])');
     const error = await page.textContent('#error');
     check(error.includes('bad.csv:2') && error.includes('csv:'), `the API's message is shown: ${error}`);
+
+    // The meridional curve of the faces alone: the CAD curve, no nodes.
+    await page.click('#show-meridional');
+    await page.waitForFunction(() => !document.getElementById('deformed-curve') && document.getElementById('cad-curve'));
+    check((await page.$$('#node-markers circle')).length === 0, 'a meridional curve has no nodes');
+    check(await page.isDisabled('#amplification'), 'nor an amplification');
+
+    // A 2D table without CAD (the ramp2d sample): the nodes define the curve, drawn in (x, y).
+    await page.check('#no-cad');
+    await page.setInputFiles('#csv-file', path.join(args.samples, 'ramp2d', 'ramp.csv'));
+    await page.click('#reconstruct');
+    await page.waitForSelector('#deformed-curve');
+    const ramp = await page.$$eval('#node-markers circle', (cs) => cs.length);
+    const rows = fs.readFileSync(path.join(args.samples, 'ramp2d', 'ramp.csv'), 'utf8')
+      .split('\n').filter((line) => /^[0-9]/.test(line)).length;
+    check(ramp === rows, `the ramp's ${rows} nodes are drawn: ${ramp}`);
+    check((await page.$eval('#summary dd[data-key="max_node_distance_to_cad"]', (dd) => dd.textContent)) === '0',
+      'without CAD the nodes are on their own curve');
+    check(await page.isHidden('#error'), 'the earlier error is gone');
     check(!problems.some((p) => p.startsWith('page error')), `no script errors on the page: ${problems.join('; ')}`);
   } finally {
     await context.close();
