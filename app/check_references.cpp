@@ -93,6 +93,9 @@ std::unique_ptr<PatchReference> reference(const PatchCheckSpec& spec, const geom
   if (mesh.dimension == 2 && table.frame != geometry::SampleFrame::planar) {
     throw InputError::in(source, "a 2D mesh needs a planar table (x,y,dx,dy)");
   }
+  if (mesh.dimension == 3 && table.frame == geometry::SampleFrame::meridional && !options.axis) {
+    throw InputError::in(source, "meridional (r, z) nodes need --axis: the mesh is measured about it");
+  }
   const CurveRun run = fit_without_cad(table, options.axis, options.reconstruction, options.unit, "--axis");
   const std::string where = run.axis ? " about " + axis_text(*run.axis) : std::string(" in the x-y plane");
   return std::make_unique<ShapeReference>(
