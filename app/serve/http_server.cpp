@@ -8,8 +8,11 @@
 #include <spdlog/spdlog.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <exception>
+#include <iterator>
 #include <new>
 #include <regex>
 #include <utility>
