@@ -14,7 +14,7 @@
 #include <exception>
 #include <iterator>
 #include <new>
-#include <regex>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -100,10 +100,28 @@ Json json_body(const Request& req) {
 
 std::string id_of(const Request& req) { return req.matches[1].str(); }
 
-struct RoutePattern {
-  std::regex pattern;
-  std::vector<std::string> methods;
-};
+constexpr std::string_view kIdSegment = "/([A-Za-z0-9]+)";
+
+/// Whether `path` fits a route pattern: literal segments, and kIdSegment for an id.
+/// (std::regex is avoided here: GCC 12 warns inside it at -O1 with sanitizers.)
+bool route_matches(std::string_view pattern, std::string_view path) {
+  while (!pattern.empty() && !path.empty()) {
+    const auto pattern_end = std::min(pattern.find('/', 1), pattern.size());
+    const auto path_end = std::min(path.find('/', 1), path.size());
+    const std::string_view want = pattern.substr(0, pattern_end), got = path.substr(0, path_end);
+    if (want == kIdSegment) {
+      const bool id = got.size() > 1 && std::all_of(got.begin() + 1, got.end(), [](char c) {
+                        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+                      });
+      if (!id) return false;
+    } else if (want != got) {
+      return false;
+    }
+    pattern.remove_prefix(pattern_end);
+    path.remove_prefix(path_end);
+  }
+  return pattern.empty() && path.empty();
+}
 
 }  // namespace
 
@@ -130,8 +148,7 @@ struct HttpServer::Impl {
   GeometryService& service;
   HttpOptions options;
   httplib::Server server;
-  std::vector<std::pair<std::string, std::vector<std::string>>> routes;
-  std::vector<RoutePattern> compiled;
+  std::vector<std::pair<std::string, std::vector<std::string>>> routes;  ///< pattern, methods
 };
 
 void HttpServer::Impl::add_routes() {
@@ -203,10 +220,10 @@ httplib::Server::HandlerResponse HttpServer::Impl::complete_error(const Request&
   const bool unrouted = res.status == 404 || (res.status == 400 && req.method != "GET" && req.method != "POST" &&
                                               req.method != "DELETE" && !req.method.empty());
   if (unrouted) {
-    for (const auto& route : compiled) {
-      if (!std::regex_match(req.path, route.pattern)) continue;
-      res.set_header("Allow", fmt::format("{}", fmt::join(route.methods, ", ")));
-      send_error(res, 405, fmt::format("{} {}: use {}", req.method, req.path, fmt::join(route.methods, " or ")));
+    for (const auto& [pattern, methods] : routes) {
+      if (!route_matches(pattern, req.path)) continue;
+      res.set_header("Allow", fmt::format("{}", fmt::join(methods, ", ")));
+      send_error(res, 405, fmt::format("{} {}: use {}", req.method, req.path, fmt::join(methods, " or ")));
       return httplib::Server::HandlerResponse::Handled;
     }
     send_error(res, 404, fmt::format("no route {} {} (the API is under /api/, see docs/service.md)", req.method, req.path));
@@ -242,7 +259,6 @@ HttpServer::HttpServer(GeometryService& service, HttpOptions options)
   i.server.set_default_headers({{"X-Content-Type-Options", "nosniff"}, {"Cache-Control", "no-store"}});
   i.add_routes();
   i.add_page();
-  for (const auto& [pattern, methods] : i.routes) i.compiled.push_back({std::regex(pattern), methods});
   i.server.set_error_handler(httplib::Server::HandlerWithResponse(
       [&i](const Request& req, Response& res) { return i.complete_error(req, res); }));
   i.server.set_exception_handler([](const Request& req, Response& res, std::exception_ptr) {

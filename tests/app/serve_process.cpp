@@ -10,7 +10,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -70,12 +69,14 @@ ServeProcess::ServeProcess(const std::vector<std::string>& arguments,
     }
     line.append(buffer, static_cast<std::size_t>(n));
   }
-  std::smatch match;
-  if (!std::regex_search(line, match, std::regex(R"(listening on http://[^:]+:(\d+)/)"))) {
+  const auto at = line.find("listening on http://");
+  const auto slash = line.find('/', at == std::string::npos ? 0 : at + 20);
+  const auto colon = line.rfind(':', slash);
+  if (at == std::string::npos || slash == std::string::npos || colon == std::string::npos || colon < at + 20) {
     stop(SIGKILL);
     throw std::runtime_error("unexpected first line of hotmesh serve: " + line);
   }
-  port_ = std::stoi(match[1].str());
+  port_ = std::stoi(line.substr(colon + 1, slash - colon - 1));
 }
 
 ServeProcess::~ServeProcess() {

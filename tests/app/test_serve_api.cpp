@@ -413,6 +413,7 @@ TEST_F(ServeApi, DownloadsTheCurvesAsStepIgesAndCsv) {
   expect_error(api_->get("/api/curves/c999/download?format=csv"), 404, "no curve");
   EXPECT_EQ(api_->del(base).status, 200);
   expect_error(api_->get(base), 404, "no curve");
+  expect_error(api_->del(base), 404, "no curve");
 }
 
 TEST_F(ServeApi, BadRequestsGetJsonErrors) {
