@@ -9,6 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cad_json.hpp"
 #include "commands.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -17,24 +18,8 @@ namespace hotmesh::app {
 
 namespace {
 
-nlohmann::json vec(const geometry::Vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
-
-nlohmann::json faces_json(const geometry::CadModel& model) {
-  nlohmann::json faces = nlohmann::json::array();
-  for (const geometry::FaceInfo& face : model.faces()) {
-    nlohmann::json axis = nullptr;
-    if (face.axis) {
-      axis = {{"origin", vec(face.axis->origin())},
-              {"direction", vec(face.axis->direction())},
-              {"source", geometry::to_string(face.axis_source)}};
-    }
-    faces.push_back({{"id", face.id},
-                     {"name", face.name},
-                     {"kind", geometry::to_string(face.kind)},
-                     {"axis", axis},
-                     {"bounds", {{"min", vec(face.bounds.min)}, {"max", vec(face.bounds.max)}}}});
-  }
-  return {{"file", model.path().string()}, {"unit", geometry::to_string(model.unit())}, {"faces", faces}};
+nlohmann::json model_json(const geometry::CadModel& model) {
+  return {{"file", model.path().string()}, {"unit", geometry::to_string(model.unit())}, {"faces", faces_json(model)}};
 }
 
 /// Coordinates to 6 digits, with values below `noise` (rounding left by the CAD system or the
@@ -90,7 +75,7 @@ Command add_cad_command(CLI::App& parent) {
     geometry::CadReadOptions read;
     read.unit = parse_unit_option(options->unit);
     const geometry::CadModel model = geometry::CadModel::read(options->file, read);
-    std::cout << (options->json ? faces_json(model).dump(2) + "\n" : faces_text(model));
+    std::cout << (options->json ? model_json(model).dump(2) + "\n" : faces_text(model));
     return 0;
   };
 }

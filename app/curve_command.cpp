@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "curve_fit.hpp"
 #include "curve_outputs.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
@@ -52,10 +53,7 @@ std::optional<geometry::Axis> axis_option(const std::vector<double>& values) {
 CurveRun with_cad(const Options& o, const geometry::DeflectionSamples& samples,
                   const geometry::ReconstructionOptions& reconstruction) {
   if (o.faces.empty()) throw InputError("--cad needs --faces: the ids of the boundary's faces (see 'hotmesh cad')");
-  if (samples.frame == geometry::SampleFrame::planar) {
-    throw InputError::in(samples.source, "a CAD boundary needs cartesian (x,y,z,dx,dy,dz) or meridional "
-                                         "(r,z,dr,dz) nodes; planar (x,y) tables are for 2D cases without --cad");
-  }
+  require_cad_frame(samples);
   const std::optional<geometry::Axis> axis = axis_option(o.axis);
   if (samples.frame == geometry::SampleFrame::meridional && !axis) {
     throw InputError::in(samples.source, "meridional (r, z) nodes need --axis: z is measured from the axis origin");
@@ -65,32 +63,17 @@ CurveRun with_cad(const Options& o, const geometry::DeflectionSamples& samples,
   const geometry::CadModel model = geometry::CadModel::read(o.cad, read);
   geometry::MeridionalOptions meridional;
   meridional.axis = axis;
-  geometry::MeridionalCurve curve = model.meridional_curve(o.faces, meridional);
+  const geometry::MeridionalCurve curve = model.meridional_curve(o.faces, meridional);
   spdlog::info("{}: meridional curve of faces {} (degree {}, {} poles)", o.cad, fmt::join(curve.faces, ", "),
                curve.curve.degree(), curve.curve.poles().size());
-  geometry::CurveSamples nodes = geometry::meridional_samples(samples, curve.axis);
-  geometry::Reconstruction fit = geometry::reconstruct(curve.curve, nodes, reconstruction);
-  return {std::move(fit), std::move(nodes), curve.axis, read.unit, curve.faces, o.cad};
+  return fit_on_cad_curve(curve, samples, reconstruction, read.unit, o.cad);
 }
 
 /// Without CAD: the nodes define the curve, in (x, y) (2D) or (r, z).
 CurveRun without_cad(const Options& o, const geometry::DeflectionSamples& samples,
                      const geometry::ReconstructionOptions& reconstruction) {
   if (!o.faces.empty()) throw InputError("--faces needs --cad");
-  std::optional<geometry::Axis> axis = axis_option(o.axis);
-  geometry::CurveSamples nodes;
-  if (samples.frame == geometry::SampleFrame::planar) {
-    if (axis) throw InputError("--axis is for axisymmetric boundaries; the node table is planar (x, y)");
-    nodes = geometry::planar_samples(samples);
-  } else {
-    if (!axis && samples.frame == geometry::SampleFrame::cartesian) {
-      throw InputError::in(samples.source, "cartesian (x, y, z) nodes without --cad need --axis");
-    }
-    if (!axis) axis = geometry::Axis();  // (r, z) as given; the z axis places curves.step
-    nodes = geometry::meridional_samples(samples, *axis);
-  }
-  geometry::Reconstruction fit = geometry::reconstruct_from_nodes(nodes, reconstruction);
-  return {std::move(fit), std::move(nodes), axis, parse_unit_option(o.unit), {}, {}};
+  return fit_without_cad(samples, axis_option(o.axis), reconstruction, parse_unit_option(o.unit), "--axis");
 }
 
 int run_curve(const Options& o) {

@@ -1,15 +1,14 @@
-// hotmesh app: outputs of `hotmesh curve`: the undeformed and deformed curves sampled (CSV)
-// and as B-splines (STEP, IGES), a picture with nodes and amplified deflections (SVG) and a
-// summary of the fit (JSON). Every file is written atomically.
+// hotmesh app: outputs of a reconstructed curve: the undeformed and deformed curves sampled
+// (CSV) and as B-splines (STEP, IGES), a picture with nodes and amplified deflections (SVG) and
+// a summary of the fit (JSON). Every file is written atomically.
 #include "curve_outputs.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <nlohmann/json.hpp>
 
-#include "hotmesh/geometry/cad_export.hpp"
+#include "cad_json.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/figure.hpp"
 
@@ -20,27 +19,6 @@ namespace {
 using geometry::DeflectedCurve;
 using geometry::Vec2;
 
-/// Uniform parameters over the curve plus every piece end, so corners are sampled exactly.
-std::vector<double> sample_parameters(const DeflectedCurve& curve, std::size_t samples) {
-  std::vector<double> t;
-  const double a = curve.first_parameter();
-  const double b = curve.last_parameter();
-  for (std::size_t i = 0; i <= samples; ++i) t.push_back(a + (b - a) * static_cast<double>(i) / static_cast<double>(samples));
-  for (const auto& piece : curve.pieces()) t.push_back(piece.begin);
-  std::sort(t.begin(), t.end());
-  t.erase(std::unique(t.begin(), t.end()), t.end());
-  return t;
-}
-
-std::string curve_csv(const DeflectedCurve& curve, const std::vector<double>& t, double lambda, bool meridional) {
-  std::string text = meridional ? "t,r,z\n" : "t,x,y\n";
-  for (const double s : t) {
-    const Vec2 p = curve.point(s, lambda);
-    text += fmt::format("{:.15g},{:.15g},{:.15g}\n", s, p.x, p.y);
-  }
-  return text;
-}
-
 /// 1, 2 or 5 times a power of ten, at most `value`.
 double nice_below(double value) {
   const double decade = std::pow(10.0, std::floor(std::log10(value)));
@@ -50,7 +28,7 @@ double nice_below(double value) {
   return decade;
 }
 
-double automatic_amplification(const CurveRun& run, double size) {
+double amplification_for(const CurveRun& run, double size) {
   double largest = 0.0;
   for (const Vec2& d : run.nodes.deflections) largest = std::max(largest, geometry::norm(d));
   if (!(largest > 0.0) || !(size > 0.0)) return 1.0;
@@ -116,7 +94,44 @@ void draw_picture(const std::filesystem::path& path, const CurveRun& run, const 
   figure.save(path);
 }
 
-nlohmann::json summary_json(const CurveRun& run, double amplification) {
+}  // namespace
+
+std::vector<double> sample_parameters(const DeflectedCurve& curve, std::size_t samples) {
+  std::vector<double> t;
+  const double a = curve.first_parameter();
+  const double b = curve.last_parameter();
+  for (std::size_t i = 0; i <= samples; ++i) t.push_back(a + (b - a) * static_cast<double>(i) / static_cast<double>(samples));
+  for (const auto& piece : curve.pieces()) t.push_back(piece.begin);
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
+
+std::string curve_csv(const DeflectedCurve& curve, const std::vector<double>& t, double lambda, bool meridional) {
+  std::string text = meridional ? "t,r,z\n" : "t,x,y\n";
+  for (const double s : t) {
+    const Vec2 p = curve.point(s, lambda);
+    text += fmt::format("{:.15g},{:.15g},{:.15g}\n", s, p.x, p.y);
+  }
+  return text;
+}
+
+geometry::CadExport curve_export(const CurveRun& run) {
+  const DeflectedCurve& curve = run.fit.curve;
+  geometry::CadExport content;
+  content.unit = run.unit;
+  const geometry::PlaneFrame frame = run.axis ? geometry::meridional_frame(*run.axis) : geometry::PlaneFrame{};
+  content.curves.push_back({"undeformed", curve.undeformed(), frame});
+  content.curves.push_back({"deformed", curve.stage(1.0), frame});
+  return content;
+}
+
+double automatic_amplification(const CurveRun& run) {
+  const DeflectedCurve& curve = run.fit.curve;
+  return amplification_for(run, curve_size(curve, sample_parameters(curve, 2000)));
+}
+
+nlohmann::json curve_summary(const CurveRun& run, double amplification) {
   const geometry::ReconstructionReport& report = run.fit.report;
   nlohmann::json rejected = nlohmann::json::array();
   for (const auto& node : report.rejected_nodes) {
@@ -125,12 +140,7 @@ nlohmann::json summary_json(const CurveRun& run, double amplification) {
     if (node.index < run.nodes.lines.size()) entry["line"] = run.nodes.lines[node.index];
     rejected.push_back(entry);
   }
-  nlohmann::json axis = nullptr;
-  if (run.axis) {
-    const auto& o = run.axis->origin();
-    const auto& d = run.axis->direction();
-    axis = {{"origin", {o.x, o.y, o.z}}, {"direction", {d.x, d.y, d.z}}};
-  }
+  const nlohmann::json axis = run.axis ? axis_json(*run.axis) : nlohmann::json(nullptr);
   return {{"nodes", report.nodes},
           {"used_nodes", report.used_nodes},
           {"merged_duplicates", report.merged_duplicates},
@@ -148,11 +158,8 @@ nlohmann::json summary_json(const CurveRun& run, double amplification) {
           {"cad", run.cad.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.cad)},
           {"faces", run.faces},
           {"axis", axis},
-          {"amplification", amplification},
-          {"files", {"undeformed.csv", "deformed.csv", "curves.step", "curves.igs", "plot.svg", "summary.json"}}};
+          {"amplification", amplification}};
 }
-
-}  // namespace
 
 std::string write_curve_outputs(const std::filesystem::path& folder, const CurveRun& run,
                                 const CurveOutputOptions& options) {
@@ -162,20 +169,18 @@ std::string write_curve_outputs(const std::filesystem::path& folder, const Curve
   io::write_file_atomically(folder / "undeformed.csv", curve_csv(curve, t, 0.0, meridional));
   io::write_file_atomically(folder / "deformed.csv", curve_csv(curve, t, 1.0, meridional));
 
-  geometry::CadExport content;
-  content.unit = run.unit;
-  const geometry::PlaneFrame frame = meridional ? geometry::meridional_frame(*run.axis) : geometry::PlaneFrame{};
-  content.curves.push_back({"undeformed", curve.undeformed(), frame});
-  content.curves.push_back({"deformed", curve.stage(1.0), frame});
+  const geometry::CadExport content = curve_export(run);
   io::write_file_atomically(folder / "curves.step", geometry::to_step(content));
   io::write_file_atomically(folder / "curves.igs", geometry::to_iges(content));
 
   const double amplification =
-      options.amplification > 0.0 ? options.amplification : automatic_amplification(run, curve_size(curve, t));
+      options.amplification > 0.0 ? options.amplification : amplification_for(run, curve_size(curve, t));
   draw_picture(folder / "plot.svg", run, t, amplification);
-  const std::string summary = summary_json(run, amplification).dump(2) + "\n";
-  io::write_file_atomically(folder / "summary.json", summary);
-  return summary;
+  nlohmann::json summary = curve_summary(run, amplification);
+  summary["files"] = {"undeformed.csv", "deformed.csv", "curves.step", "curves.igs", "plot.svg", "summary.json"};
+  const std::string text = summary.dump(2) + "\n";
+  io::write_file_atomically(folder / "summary.json", text);
+  return text;
 }
 
 }  // namespace hotmesh::app

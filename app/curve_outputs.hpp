@@ -1,31 +1,42 @@
-// hotmesh app: the files `hotmesh curve` writes for a reconstructed boundary curve: sampled
-// curves (CSV), both curves as B-splines (STEP, IGES), a picture (SVG) and a summary (JSON).
+// hotmesh app: what is made of a reconstructed boundary curve for people and CAD systems:
+// sampled curves (CSV), both curves as B-splines (STEP, IGES), a picture (SVG) and a summary of
+// the fit (JSON). `hotmesh curve` writes them to a folder; `hotmesh serve` sends them.
 #pragma once
 
 #include <filesystem>
-#include <optional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "hotmesh/geometry/cad_model.hpp"
-#include "hotmesh/geometry/reconstruction.hpp"
+#include "curve_fit.hpp"
+#include "hotmesh/geometry/cad_export.hpp"
 
 namespace hotmesh::app {
-
-/// A reconstruction and what it was made from.
-struct CurveRun {
-  geometry::Reconstruction fit;
-  geometry::CurveSamples nodes;
-  std::optional<geometry::Axis> axis;  ///< for (r, z) curves; none for 2D (x, y) curves
-  geometry::LengthUnit unit = geometry::LengthUnit::metre;
-  std::vector<int> faces;               ///< CAD faces along the curve; empty without CAD
-  std::string cad;                      ///< CAD file, empty without CAD
-};
 
 struct CurveOutputOptions {
   std::size_t samples = 2000;  ///< uniform samples in t, plus every knot
   double amplification = 0.0;  ///< deflection scale in the picture; 0: automatic
 };
+
+/// `samples` + 1 uniform parameters over the curve plus every piece end (so corners are
+/// sampled exactly), sorted, without repeats.
+std::vector<double> sample_parameters(const geometry::DeflectedCurve& curve, std::size_t samples);
+
+/// "t,r,z" (meridional) or "t,x,y" rows of the stage-lambda curve at the parameters t.
+std::string curve_csv(const geometry::DeflectedCurve& curve, const std::vector<double>& t, double lambda,
+                      bool meridional);
+
+/// Both curves ("undeformed", "deformed") as exact B-splines in the plane of the run: the
+/// meridional plane of the axis (theta = 0), or the x-y plane for 2D curves.
+geometry::CadExport curve_export(const CurveRun& run);
+
+/// A scale that draws the largest deflection at about 10 % of the curve's size (1, 2 or 5
+/// times a power of ten, at least 1).
+double automatic_amplification(const CurveRun& run);
+
+/// The fit in numbers, as summary.json: nodes, degree, form, ranges, distances, residual,
+/// rejected nodes, CAD faces, axis, amplification.
+nlohmann::json curve_summary(const CurveRun& run, double amplification);
 
 /// Writes undeformed.csv, deformed.csv, curves.step, curves.igs, plot.svg and summary.json
 /// into `folder` (which exists), each atomically. Returns the summary.

@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   remember(hotmesh::app::add_deform_command(app));
   remember(hotmesh::app::add_cad_command(app));
   remember(hotmesh::app::add_curve_command(app));
+  remember(hotmesh::app::add_check_command(app));
+  remember(hotmesh::app::add_serve_command(app));
 
   try {
     app.parse(argc, argv);

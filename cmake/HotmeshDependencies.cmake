@@ -27,3 +27,9 @@ target_link_libraries(hotmesh_occt INTERFACE
   TKernel TKMath TKG2d TKG3d TKGeomBase TKGeomAlgo TKBRep TKTopAlgo TKPrim TKBO TKShHealing
   TKXSBase TKSTEP TKSTEPBase TKSTEPAttr TKSTEP209 TKIGES)
 target_link_directories(hotmesh_occt INTERFACE ${OpenCASCADE_LIBRARY_DIR})
+
+# HTTP for `hotmesh serve`: cpp-httplib (Debian builds it as a library; its pkg-config flags
+# carry the feature macros the library was built with, which its header must see too).
+pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib>=0.11)
+add_library(hotmesh_httplib INTERFACE)
+target_link_libraries(hotmesh_httplib INTERFACE PkgConfig::HTTPLIB)

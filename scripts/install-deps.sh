@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# hotmesh: install the Debian packages hotmesh builds, tests and runs with.
+# hotmesh: install the Debian packages hotmesh builds, tests and runs with, and the npm
+# package of the browser test (playwright-core, into tests/browser/node_modules).
 # Idempotent: installs only what is missing. Works as root or through sudo.
 #   scripts/install-deps.sh            build + test dependencies
 set -euo pipefail
+cd "$(dirname "$0")/.."
 
 packages=(
   # toolchain
@@ -14,12 +16,21 @@ packages=(
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   # case files, command line, logging
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
+  # hotmesh serve: HTTP server
+  libcpp-httplib-dev
   # pictures (PNG and SVG)
   libcairo2-dev
   # tests: GoogleTest, plus real external tools that check our files
   # (gmsh writes every .msh flavour we read; VTK's XML reader is the one ParaView uses)
   libgtest-dev libgmock-dev gmsh python3 python3-vtk9 python3-numpy
+  # the browser test of hotmesh serve's page: Debian's Chromium, driven by playwright-core
+  chromium
 )
+# Node.js and npm for the browser test, unless a node is there already (a NodeSource node
+# ships its own npm and conflicts with Debian's npm package).
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -29,20 +40,32 @@ done
 
 if ((${#missing[@]} == 0)); then
   echo "hotmesh: all ${#packages[@]} Debian packages present"
-  exit 0
-fi
-
-if ((EUID == 0)); then
-  as_root=()
-elif command -v sudo >/dev/null 2>&1; then
-  as_root=(sudo)
 else
-  echo "hotmesh: missing packages (${missing[*]}) and neither root nor sudo available" >&2
-  exit 1
+  if ((EUID == 0)); then
+    as_root=()
+  elif command -v sudo >/dev/null 2>&1; then
+    as_root=(sudo)
+  else
+    echo "hotmesh: missing packages (${missing[*]}) and neither root nor sudo available" >&2
+    exit 1
+  fi
+  echo "hotmesh: installing ${#missing[@]} Debian packages: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  "${as_root[@]}" apt-get update -qq
+  "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "hotmesh: installing ${#missing[@]} Debian packages: ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-"${as_root[@]}" apt-get update -qq
-"${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
-  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# playwright-core at the version package-lock.json pins (never `playwright install`: the
+# browser is Debian's). Run as the user who called sudo, so node_modules stays theirs.
+browser=tests/browser
+wanted=$(node -p "require('./$browser/package-lock.json').packages['node_modules/playwright-core'].version")
+have=$(node -p "try { require('./$browser/node_modules/playwright-core/package.json').version } catch { '' }")
+if [[ "$have" == "$wanted" ]]; then
+  echo "hotmesh: playwright-core $have present"
+else
+  echo "hotmesh: installing playwright-core $wanted into $browser/node_modules"
+  as_user=()
+  if ((EUID == 0)) && [[ -n "${SUDO_USER:-}" ]]; then as_user=(sudo -u "$SUDO_USER"); fi
+  (cd "$browser" && "${as_user[@]}" npm ci --no-audit --no-fund --loglevel=error)
+fi

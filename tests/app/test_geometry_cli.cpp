@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cone_nodes.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
 
@@ -25,24 +26,7 @@ test::CommandResult hotmesh(const std::string& arguments) {
 
 std::string cad(const std::string& name) { return shell_quote(test::data_path("cad/" + name).string()); }
 
-/// Nodes on the CATIA cone's lateral surface (apex (0, 0, 80) mm, base radius 60 at z = -70)
-/// at 30 degrees, in cartesian mm, written out of order; deflection (dr, dz) = (0.5 s^2, -0.2 s)
-/// with s = 0 at the apex, 1 at the base.
-std::string cone_nodes(int count, double far_offset = 0.0) {
-  std::ostringstream out;
-  out.precision(17);
-  out << "id,x,y,z,dx,dy,dz\n";
-  const double theta = std::numbers::pi / 6;
-  for (int pass = 0; pass < 2; ++pass) {
-    for (int k = pass; k < count; k += 2) {
-      const double s = static_cast<double>(k) / (count - 1);
-      const double r = 60 * s + (k == 3 ? far_offset : 0.0);
-      out << 100 + k << "," << r * std::cos(theta) << "," << r * std::sin(theta) << "," << 80 - 150 * s << ","
-          << 0.5 * s * s * std::cos(theta) << "," << 0.5 * s * s * std::sin(theta) << "," << -0.2 * s << "\n";
-    }
-  }
-  return out.str();
-}
+using test::cone_nodes;
 
 std::vector<std::vector<double>> read_csv(const std::filesystem::path& path, std::string& header) {
   std::ifstream in(path);

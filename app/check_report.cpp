@@ -1,0 +1,121 @@
+// hotmesh app: the report of `hotmesh check` as text, JSON and JUnit XML (see check_report.hpp).
+#include "check_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+namespace hotmesh::app {
+
+namespace {
+
+std::string point_text(const geometry::Vec3& p) { return fmt::format("({:.9g}, {:.9g}, {:.9g})", p.x, p.y, p.z); }
+
+std::string verdict(const PatchCheck& p, double tolerance) {
+  return fmt::format("max distance {:.3e} at node {} {} {} the tolerance {:.3e}; mean {:.3e} over {} nodes",
+                     p.max_distance, p.worst_node, point_text(p.worst_point), p.passed ? "within" : "ABOVE",
+                     tolerance, p.mean_distance, p.nodes);
+}
+
+/// Text escaped for XML attributes and content.
+std::string xml(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default:
+        // Control characters other than tab and line ends are not allowed in XML 1.0.
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') {
+          out += '?';
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out;
+}
+
+double total_seconds(const CheckResult& result) {
+  double seconds = 0.0;
+  for (const PatchCheck& p : result.patches) seconds += p.seconds;
+  return seconds;
+}
+
+std::size_t failures(const CheckResult& result) {
+  return static_cast<std::size_t>(
+      std::count_if(result.patches.begin(), result.patches.end(), [](const PatchCheck& p) { return !p.passed; }));
+}
+
+}  // namespace
+
+bool CheckResult::passed() const { return failures(*this) == 0; }
+
+std::string check_text(const CheckResult& result) {
+  std::string text = fmt::format("hotmesh check: {}{}, tolerance {:.3e} {}\n", result.mesh,
+                                 result.cad.empty() ? "" : " against " + result.cad, result.tolerance, result.unit);
+  for (const PatchCheck& p : result.patches) {
+    text += fmt::format("  {} {}: {}\n      against {}\n", p.passed ? "pass" : "FAIL", p.patch, verdict(p, result.tolerance),
+                        p.reference);
+  }
+  text += fmt::format("{} of {} patches within the tolerance\n", result.patches.size() - failures(result),
+                      result.patches.size());
+  return text;
+}
+
+std::string check_json(const CheckResult& result) {
+  nlohmann::json patches = nlohmann::json::array();
+  for (const PatchCheck& p : result.patches) {
+    patches.push_back({{"patch", p.patch},
+                       {"reference", p.reference},
+                       {"nodes", p.nodes},
+                       {"max_distance", p.max_distance},
+                       {"mean_distance", p.mean_distance},
+                       {"worst_node", {{"id", p.worst_node}, {"point", {p.worst_point.x, p.worst_point.y, p.worst_point.z}}}},
+                       {"passed", p.passed},
+                       {"seconds", p.seconds}});
+  }
+  const nlohmann::json json = {{"mesh", result.mesh},
+                               {"cad", result.cad.empty() ? nlohmann::json(nullptr) : nlohmann::json(result.cad)},
+                               {"tolerance", result.tolerance},
+                               {"unit", result.unit},
+                               {"passed", result.passed()},
+                               {"patches", patches}};
+  return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+std::string check_junit(const CheckResult& result) {
+  const std::string suite = "hotmesh check " + std::filesystem::path(result.mesh).filename().string();
+  const std::string classname = "hotmesh.check." + std::filesystem::path(result.mesh).stem().string();
+  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  x += fmt::format("<testsuites name=\"hotmesh check\" tests=\"{}\" failures=\"{}\" errors=\"0\" time=\"{:.3f}\">\n",
+                   result.patches.size(), failures(result), total_seconds(result));
+  x += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" skipped=\"0\" time=\"{:.3f}\">\n",
+                   xml(suite), result.patches.size(), failures(result), total_seconds(result));
+  x += "    <properties>\n";
+  x += fmt::format("      <property name=\"mesh\" value=\"{}\"/>\n", xml(result.mesh));
+  if (!result.cad.empty()) x += fmt::format("      <property name=\"cad\" value=\"{}\"/>\n", xml(result.cad));
+  x += fmt::format("      <property name=\"tolerance\" value=\"{:.6e}\"/>\n", result.tolerance);
+  x += fmt::format("      <property name=\"unit\" value=\"{}\"/>\n", xml(result.unit));
+  x += "    </properties>\n";
+  for (const PatchCheck& p : result.patches) {
+    x += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">\n", xml(classname), xml(p.patch), p.seconds);
+    const std::string details = xml(verdict(p, result.tolerance) + "; against " + p.reference);
+    if (!p.passed) {
+      x += fmt::format("      <failure type=\"tolerance\" message=\"node {} is {:.3e} from the reference shape, above the "
+                       "tolerance {:.3e}\">{}</failure>\n",
+                       p.worst_node, p.max_distance, result.tolerance, details);
+    }
+    x += fmt::format("      <system-out>{}</system-out>\n", details);
+    x += "    </testcase>\n";
+  }
+  x += "  </testsuite>\n</testsuites>\n";
+  return x;
+}
+
+}  // namespace hotmesh::app

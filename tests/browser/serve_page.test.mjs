@@ -1,0 +1,300 @@
+// hotmesh tests: the page of `hotmesh serve` in a real browser (Debian's Chromium, driven by
+// playwright-core). Starts the service on a free port, uploads the CATIA cone (IGES, mm) and a
+// table of FEM nodes with deflections through the page, and checks that the curves, nodes and
+// arrows are drawn where the API says, that the numbers shown are the API's, that the tooltip,
+// the amplification slider, zoom, pan and the downloads work, that an API error is shown, and
+// that a meridional curve and a 2D table without CAD (the ramp2d sample) are drawn too.
+// Keeps a screenshot. Exit code 0 when every check passed.
+//   node serve_page.test.mjs --hotmesh build/app/hotmesh --data tests/data --samples samples --out build/tests/browser
+import assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import readline from 'node:readline';
+
+let chromium;
+try {
+  ({ chromium } = await import('playwright-core'));
+} catch {
+  console.error('playwright-core is missing: run scripts/install-deps.sh (npm ci in tests/browser)');
+  process.exit(1);
+}
+
+const args = Object.fromEntries(
+  process.argv.slice(2).reduce((pairs, a, i, all) => (a.startsWith('--') ? [...pairs, [a.slice(2), all[i + 1]]] : pairs), []));
+for (const key of ['hotmesh', 'data', 'samples', 'out']) {
+  if (!args[key]) {
+    console.error('usage: node serve_page.test.mjs --hotmesh EXE --data tests/data --samples samples --out DIR');
+    process.exit(2);
+  }
+}
+const chromiumPath = process.env.HOTMESH_CHROMIUM || '/usr/bin/chromium';
+const work = fs.mkdtempSync(path.join(os.tmpdir(), 'hotmesh-browser-'));
+fs.mkdirSync(args.out, { recursive: true });
+const screenshot = path.join(args.out, 'serve-page.png');
+let checks = 0;
+const check = (condition, what) => {
+  assert.ok(condition, what);
+  checks += 1;
+};
+
+/// The page's number format (app.js formatNumber), to compare what is shown with the API.
+function formatNumber(value) {
+  if (value === null || value === undefined) return '–';
+  if (typeof value !== 'number') return String(value);
+  if (Number.isInteger(value)) return String(value);
+  return String(Number(value.toPrecision(6)));
+}
+
+/// Nodes on the CATIA cone (apex (0, 0, 80) mm, base radius 60 at z = -70) at 30 degrees, with
+/// deflection (dr, dz) = (0.5 s^2, -0.2 s), s = 0 at the apex and 1 at the base.
+function coneTable(count) {
+  const lines = ['id,x,y,z,dx,dy,dz'];
+  const theta = Math.PI / 6;
+  for (let k = 0; k < count; k++) {
+    const s = k / (count - 1);
+    const r = 60 * s;
+    lines.push([100 + k, r * Math.cos(theta), r * Math.sin(theta), 80 - 150 * s, 0.5 * s * s * Math.cos(theta),
+      0.5 * s * s * Math.sin(theta), -0.2 * s].join(','));
+  }
+  return lines.join('\n') + '\n';
+}
+
+async function startServer(root) {
+  const server = spawn(args.hotmesh, ['serve', '--port', '0', '--root', root], { stdio: ['ignore', 'pipe', 'inherit'] });
+  const exited = new Promise((resolve) => server.on('exit', (code, signal) => resolve({ code, signal })));
+  const lines = readline.createInterface({ input: server.stdout });
+  const url = await new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error('hotmesh serve did not print its address in 20 s')), 20000);
+    lines.on('line', (line) => {
+      const match = line.match(/listening on (http:\/\/\S+)/);
+      if (match) {
+        clearTimeout(timer);
+        resolve(match[1]);
+      }
+    });
+    server.on('exit', () => reject(new Error('hotmesh serve exited before listening')));
+  });
+  return { server, url, exited };
+}
+
+async function api(url, method, route, body) {
+  const init = { method };
+  if (body instanceof FormData) init.body = body;
+  else if (body !== undefined) {
+    init.body = JSON.stringify(body);
+    init.headers = { 'Content-Type': 'application/json' };
+  }
+  const response = await fetch(new URL(route, url), init);
+  const json = await response.json();
+  assert.ok(response.ok, `${method} ${route}: ${response.status} ${json.message}`);
+  return json;
+}
+
+/// The points of an SVG path "Mx,yLx,y..." in plot coordinates (y up again).
+function pathPoints(d) {
+  return d.split(/[ML]/).filter(Boolean).map((pair) => {
+    const [x, y] = pair.split(',').map(Number);
+    return [x, -y];
+  });
+}
+
+const near = (a, b, tolerance) => Math.abs(a - b) <= tolerance * Math.max(1, Math.abs(b));
+
+async function run() {
+  const conePath = path.join(args.data, 'cad', 'OCC8842_cone_CATIA.igs');
+  const tablePath = path.join(work, 'cone-nodes.csv');
+  fs.writeFileSync(tablePath, coneTable(21));
+  const badTablePath = path.join(work, 'bad.csv');
+  fs.writeFileSync(badTablePath, 'id,x,y,z,dx,dy,dz\n1,0,0,80,0,0\n');
+
+  const { server, url, exited } = await startServer(path.join(args.data, 'cad'));
+  const profile = fs.mkdtempSync(path.join(work, 'profile-'));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: chromiumPath,
+    headless: true,
+    viewport: { width: 1400, height: 1000 },
+    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+      '--disable-component-update', '--disable-sync'],
+  });
+  const problems = [];
+  try {
+    const page = await context.newPage();
+    page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
+    page.on('console', (message) => {
+      if (message.type() === 'error') problems.push(`console error: ${message.text()}`);
+    });
+    await page.goto(url);
+    await page.waitForSelector('body[data-ready]');
+    check((await page.textContent('#version')).startsWith('version '), 'the service version is shown');
+    const rootFiles = await page.$$eval('#root-file option', (options) => options.map((o) => o.value));
+    check(rootFiles.includes('OCC8842_cone_CATIA.igs'), `the root folder's CAD files are offered: ${rootFiles}`);
+
+    // 1. Upload the CAD file, pick its faces.
+    await page.setInputFiles('#cad-file', conePath);
+    await page.selectOption('#unit', 'mm');
+    await page.click('#load-cad');
+    await page.waitForSelector('#faces tbody tr');
+    check((await page.$$('#faces tbody tr')).length === 3, 'the cone has three faces');
+    await page.check('#faces input[value="1"]');
+    await page.check('#faces input[value="2"]');
+
+    // 2. Upload the FEM table and reconstruct.
+    await page.setInputFiles('#csv-file', tablePath);
+    await page.click('#reconstruct');
+    await page.waitForSelector('#deformed-curve');
+    check(await page.isHidden('#error'), 'no error is shown');
+
+    // The same request straight to the API: the page must show these numbers.
+    const form = new FormData();
+    form.append('file', new Blob([fs.readFileSync(conePath)]), 'OCC8842_cone_CATIA.igs');
+    form.append('unit', 'mm');
+    const model = await api(url, 'POST', '/api/models', form);
+    const expected = await api(url, 'POST', '/api/curves', {
+      model: model.model, faces: [1, 2], csv: fs.readFileSync(tablePath, 'utf8'), csv_name: 'cone-nodes.csv',
+      degree: 1, form: 'curve', drop_far_nodes: false,
+    });
+    const shown = await page.$$eval('#summary dd', (dds) => dds.map((dd) => ({
+      key: dd.dataset.key, text: dd.textContent, value: dd.dataset.value })));
+    for (const { key, text, value } of shown) {
+      let want = expected.summary[key];
+      if (key === 'rejected_nodes') want = want.length;
+      check(value === JSON.stringify(want), `summary ${key}: page holds ${value}, the API says ${JSON.stringify(want)}`);
+      check(text === formatNumber(want), `summary ${key}: page shows "${text}", want "${formatNumber(want)}"`);
+    }
+    check(expected.summary.nodes === 21 && expected.summary.max_node_residual < 1e-12, 'the API fit is exact');
+
+    // The page's own curve, by the id in its download link.
+    const stepHref = await page.getAttribute('#download-step', 'href');
+    const curveId = stepHref.match(/\/api\/curves\/([^/]+)\//)[1];
+    const curve = await api(url, 'GET', `/api/curves/${curveId}`);
+
+    // Curves and nodes drawn where the API says: meridional (r, z) shows z across, r up.
+    const cad = pathPoints(await page.getAttribute('#cad-curve', 'd'));
+    check(cad.length === curve.undeformed.samples.length && cad.length > 400, `CAD curve drawn with ${cad.length} points`);
+    check(cad.every(([x, y], i) => near(x, curve.undeformed.samples[i][2], 1e-9) && near(y, curve.undeformed.samples[i][1], 1e-9)),
+      'the CAD curve runs through the API samples');
+    const a = curve.amplification;
+    check(a === 20, `automatic amplification 20, got ${a}`);
+    check(await page.$eval('#amplification-value', (o) => o.textContent) === '×20', 'the slider shows ×20');
+    let deformed = pathPoints(await page.getAttribute('#deformed-curve', 'd'));
+    const amplified = (i, factor) => {
+      const u = curve.undeformed.samples[i];
+      const d = curve.deformed.samples[i];
+      return [u[2] + factor * (d[2] - u[2]), u[1] + factor * (d[1] - u[1])];
+    };
+    check(deformed.every(([x, y], i) => near(x, amplified(i, a)[0], 1e-9) && near(y, amplified(i, a)[1], 1e-9)),
+      'the reconstructed curve is drawn with its deflection amplified 20 times');
+    const markers = await page.$$eval('#node-markers circle', (cs) => cs.map((c) => [Number(c.getAttribute('cx')), -Number(c.getAttribute('cy'))]));
+    check(markers.length === 21, `21 FEM nodes drawn, got ${markers.length}`);
+    check(markers.every(([x, y], i) => near(x, curve.nodes[i].point[1], 1e-9) && near(y, curve.nodes[i].point[0], 1e-9)),
+      'the nodes are drawn at their (z, r)');
+    const arrowCount = (await page.$$('#arrows line')).length;
+    check(arrowCount === 20, `one arrow per deflected node (the apex does not move): ${arrowCount}`);
+    check((await page.$$('#residuals rect.bar')).length === 21, 'a residual bar per node');
+    check((await page.$$('#nodes tbody tr')).length === 21, 'a table row per node');
+
+    // Hovering a node shows its values.
+    const node = curve.nodes[10];
+    await page.hover('#node-markers circle[data-index="10"]', { force: true });
+    await page.waitForSelector('#tooltip:not([hidden])');
+    const tip = await page.$$eval('#tooltip .value', (vs) => Object.fromEntries(vs.map((v) => [v.dataset.key, v.textContent])));
+    check(tip.node === node.label, `tooltip names ${node.label}: ${tip.node}`);
+    check(tip.t === formatNumber(node.parameter), `tooltip t ${tip.t} = ${formatNumber(node.parameter)}`);
+    check(tip['distance to CAD'] === formatNumber(node.distance), 'tooltip distance to CAD');
+    check(tip.residual === formatNumber(node.residual), 'tooltip residual');
+    check(tip['δ'] === `(${formatNumber(node.deflection[0])}, ${formatNumber(node.deflection[1])})`, 'tooltip deflection');
+    check(await page.$eval('#nodes tr.highlight', (r) => r.dataset.index) === '10', 'the hovered node is marked in the table');
+    await page.screenshot({ path: screenshot, fullPage: true });
+
+    // The amplification slider: at 10^0 the curve is drawn at its true deflection.
+    await page.$eval('#amplification', (slider) => {
+      slider.value = '0';
+      slider.dispatchEvent(new Event('input', { bubbles: true }));
+    });
+    deformed = pathPoints(await page.getAttribute('#deformed-curve', 'd'));
+    check(deformed.every(([x, y], i) => near(x, curve.deformed.samples[i][2], 1e-9) && near(y, curve.deformed.samples[i][1], 1e-9)),
+      'at ×1 the drawn curve is the reconstructed one');
+
+    // Zoom (wheel) and pan (drag) change the view box.
+    const viewBox = async () => (await page.getAttribute('#plot', 'viewBox')).split(' ').map(Number);
+    const before = await viewBox();
+    const box = await page.locator('#plot').boundingBox();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.wheel(0, -400);
+    const zoomed = await viewBox();
+    check(zoomed[2] < 0.8 * before[2], `wheel zooms in: width ${before[2]} -> ${zoomed[2]}`);
+    await page.mouse.move(box.x + 200, box.y + 200);
+    await page.mouse.down();
+    await page.mouse.move(box.x + 300, box.y + 250, { steps: 5 });
+    await page.mouse.up();
+    const panned = await viewBox();
+    check(panned[0] < zoomed[0] && panned[1] < zoomed[1] && near(panned[2], zoomed[2], 1e-12), 'dragging pans the view');
+
+    // Downloads: the page's links give the deformed curve.
+    const downloads = await page.evaluate(async () => {
+      const result = {};
+      for (const id of ['download-step', 'download-iges', 'download-csv']) {
+        const response = await fetch(document.getElementById(id).href);
+        result[id] = { status: response.status, type: response.headers.get('Content-Type'), text: await response.text() };
+      }
+      return result;
+    });
+    check(downloads['download-csv'].status === 200 && downloads['download-csv'].text.startsWith('t,r,z\n0,60.5,-150.2'),
+      'CSV download: the deformed curve from the base rim moved by (0.5, -0.2)');
+    check(downloads['download-step'].text.startsWith('ISO-10303-21;') && downloads['download-step'].text.includes("'deformed'"),
+      'STEP download holds the deformed curve');
+    check(downloads['download-iges'].type.startsWith('model/iges') && downloads['download-iges'].text.length > 1000, 'IGES download');
+
+    check(problems.length === 0, `no script or loading errors on the page: ${problems.join('; ')}`);
+
+    // An API error reaches the user: a table row with a missing value.
+    await page.setInputFiles('#csv-file', badTablePath);
+    await page.click('#reconstruct');
+    await page.waitForSelector('#error:not([hidden])');
+    const error = await page.textContent('#error');
+    check(error.includes('bad.csv:2') && error.includes('csv:'), `the API's message is shown: ${error}`);
+
+    // The meridional curve of the faces alone: the CAD curve, no nodes.
+    await page.click('#show-meridional');
+    await page.waitForFunction(() => !document.getElementById('deformed-curve') && document.getElementById('cad-curve'));
+    check((await page.$$('#node-markers circle')).length === 0, 'a meridional curve has no nodes');
+    check(await page.isDisabled('#amplification'), 'nor an amplification');
+
+    // A 2D table without CAD (the ramp2d sample): the nodes define the curve, drawn in (x, y).
+    await page.check('#no-cad');
+    await page.setInputFiles('#csv-file', path.join(args.samples, 'ramp2d', 'ramp.csv'));
+    await page.click('#reconstruct');
+    await page.waitForSelector('#deformed-curve');
+    const ramp = await page.$$eval('#node-markers circle', (cs) => cs.length);
+    const rows = fs.readFileSync(path.join(args.samples, 'ramp2d', 'ramp.csv'), 'utf8')
+      .split('\n').filter((line) => /^[0-9]/.test(line)).length;
+    check(ramp === rows, `the ramp's ${rows} nodes are drawn: ${ramp}`);
+    check((await page.$eval('#summary dd[data-key="max_node_distance_to_cad"]', (dd) => dd.textContent)) === '0',
+      'without CAD the nodes are on their own curve');
+    check(await page.isHidden('#error'), 'the earlier error is gone');
+    check(!problems.some((p) => p.startsWith('page error')), `no script errors on the page: ${problems.join('; ')}`);
+  } finally {
+    await context.close();
+    server.kill('SIGTERM');
+  }
+  const { code, signal } = await exited;
+  check(code === 0 && signal === null, `hotmesh serve stops with code 0 on SIGTERM (code ${code}, signal ${signal})`);
+}
+
+const timeout = setTimeout(() => {
+  console.error('browser test: timed out after 240 s');
+  process.exit(1);
+}, 240000);
+try {
+  await run();
+  console.log(`browser test: ${checks} checks passed; screenshot: ${screenshot}`);
+  clearTimeout(timeout);
+} catch (error) {
+  console.error(`browser test: FAILED after ${checks} checks: ${error.message}`);
+  process.exitCode = 1;
+  clearTimeout(timeout);
+} finally {
+  fs.rmSync(work, { recursive: true, force: true });
+}
