@@ -3,6 +3,8 @@
 // on the CAD curves; the FEM tables parse, lie on their walls, agree at shared corners and
 // describe the severe case; the sizes are counted without building them; the case files pass
 // hotmesh's own set-up (tables on the CAD faces named).
+#include <fmt/format.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -344,6 +346,19 @@ TEST(StatorWellRun, SlidingCaseEndsValidPeriodicAndOnTheDeflectedWalls) {
   // next to nothing: they lie on them.
   EXPECT_LT(report["max_sliding_projection_distance"].get<double>(), 1e-9);
   EXPECT_LT(report["max_normal_slip"].get<double>(), 1e-12);
+  // Independently, `hotmesh check`: every node of the sliding walls lies on its deflected CAD
+  // wall (faces of stator_well.step, tables as the case uses them) to 1e-6 of the mesh size.
+  std::string check = std::string(HOTMESH_EXE) + " -q check --form displacement --axis 0,0,0,0,0,1 --cad " +
+                      test::shell_quote((dir / "stator_well.step").string()) + " --mesh " +
+                      test::shell_quote((dir / "case_small-out" / "deformed.msh").string());
+  for (const auto& [patch, faces] : {std::pair{"disc_up_upper", "32,33,34"}, std::pair{"disc_up_lower", "38"},
+                                     std::pair{"disc_base", "39"}, std::pair{"disc_down", "40,41,42"}}) {
+    check += fmt::format(" --map {}={} --deflection {}={}", patch, faces, patch,
+                         test::shell_quote((dir / (std::string(patch) + ".csv")).string()));
+  }
+  const auto on_walls = test::run_command(check);
+  EXPECT_EQ(on_walls.exit_code, 0) << on_walls.output;
+  EXPECT_THAT(on_walls.output, ::testing::HasSubstr("4 of 4 patches within the tolerance"));
 }
 
 }  // namespace
