@@ -24,6 +24,10 @@
 // 5. The cost of starting an OpenMP team next to the work each threshold of
 //    deform/src/parallel.hpp keeps on one thread (estimated from the rates measured above).
 //
+// "other load" is the mean number of cores other processes kept busy during a measurement
+// (from /proc/stat): on a shared machine, rows with all threads and other load well above 0
+// are not the machine's speed.
+//
 // Memory: the stored K_e take 4.6 kB per hex (4.6 GB at 100^3) and 0.5 kB per quad; the
 // triad 3 x `--triad-mib` MiB. One mesh is alive at a time.
 #include <omp.h>
@@ -47,6 +51,7 @@
 #include "hotmesh/deform/pcg.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/deform/structured_mesh.hpp"
+#include "machine_load.hpp"
 #include "parallel.hpp"  // deform/src: the OpenMP thresholds under test in part 5
 
 using namespace hotmesh::deform;
@@ -56,13 +61,21 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-/// Median duration of `run`, after `warmup` untimed calls: at least `min_runs` runs and,
-/// while they take less than `min_total` seconds in all, more (at most 200).
+/// The median duration of runs, and the mean number of cores other processes kept busy
+/// during them.
+struct Timing {
+  double seconds = 0.0;
+  double others = 0.0;
+};
+
+/// Times `run` after `warmup` untimed calls: at least `min_runs` runs and, while they take
+/// less than `min_total` seconds in all, more (at most 200).
 template <class Run>
-double median_seconds(Run&& run, int warmup, int min_runs, double min_total) {
+Timing time_runs(Run&& run, int warmup, int min_runs, double min_total) {
   for (int i = 0; i < warmup; ++i) run();
   std::vector<double> times;
   double total = 0.0;
+  const hotmesh::bench::LoadProbe load;
   while (static_cast<int>(times.size()) < min_runs || (total < min_total && times.size() < 200)) {
     const auto start = Clock::now();
     run();
@@ -70,7 +83,7 @@ double median_seconds(Run&& run, int warmup, int min_runs, double min_total) {
     total += times.back();
   }
   std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
+  return {times[times.size() / 2], load.others()};
 }
 
 std::vector<int> parse_list(std::string_view text) {
@@ -120,8 +133,12 @@ Settings parse_arguments(int argc, char** argv) {
 // ---------------------------------------------------------------------------------------
 // 1. Memory bandwidth
 
-/// GB/s of the triad a = b + s c over `entries` doubles per array, with the current threads.
-double triad_rate(std::size_t entries) {
+/// The triad a = b + s c over `entries` doubles per array, with the current threads.
+struct Rate {
+  double gbs = 0.0;
+  double others = 0.0;
+};
+Rate triad_rate(std::size_t entries) {
   std::vector<double> a(entries), b(entries), c(entries);
   const auto n = static_cast<std::ptrdiff_t>(entries);
 #pragma omp parallel for schedule(static)  // first touch by the threads that use the pages
@@ -134,7 +151,7 @@ double triad_rate(std::size_t entries) {
   // Repeat small arrays so that one timed run lasts about 10 ms.
   const int repeats = std::max(1, static_cast<int>(4.0e6 / static_cast<double>(entries)));
   double s = 0.5;
-  const double seconds = median_seconds(
+  const Timing timing = time_runs(
       [&] {
         double* pa = a.data();
         const double* pb = b.data();
@@ -148,7 +165,7 @@ double triad_rate(std::size_t entries) {
       },
       1, 10, 0.5);
   if (!std::isfinite(a[entries / 2])) std::fprintf(stderr, "triad: not finite\n");
-  return 24.0 * static_cast<double>(entries) * repeats / seconds * 1e-9;
+  return {24.0 * static_cast<double>(entries) * repeats / timing.seconds * 1e-9, timing.others};
 }
 
 // ---------------------------------------------------------------------------------------
@@ -179,8 +196,8 @@ std::vector<double> random_vector(std::size_t n) {
 
 /// Rates measured on one mesh with one number of threads.
 struct OperatorRates {
-  double update_seconds = 0.0;
-  double apply_seconds = 0.0;
+  Timing update;
+  Timing apply;
 };
 
 struct Row {
@@ -198,10 +215,10 @@ OperatorRates measure_operator(StiffnessOperator& k, const Mesh& mesh, int threa
   omp_set_num_threads(threads);
   OperatorRates r;
   // update() rewrites every K_e; the matrices are already allocated and touched.
-  r.update_seconds = median_seconds([&] { k.update(mesh.points); }, 0, 3, 1.0);
+  r.update = time_runs([&] { k.update(mesh.points); }, 0, 3, 1.0);
   const auto x = random_vector(k.size());
   std::vector<double> y(k.size());
-  r.apply_seconds = median_seconds([&] { k.apply(x, y); }, 1, 5, 1.0);
+  r.apply = time_runs([&] { k.apply(x, y); }, 1, 5, 1.0);
   return r;
 }
 
@@ -288,25 +305,27 @@ void pcg_section(int n, const std::vector<int>& thread_counts) {
              "(the solver's), from p = 0. Median of 3 solves.\n\n",
              n, mesh.cell_count(), k.size(), fixed.size());
   fmt::print("| threads | PCG iterations | solve s | ms per iteration | products (share of the solve) | "
-             "Jacobi set-up ms (K's diagonal) | one product ms |\n|---|---|---|---|---|---|---|\n");
+             "Jacobi set-up ms (K's diagonal) | one product ms | other load |\n"
+             "|---|---|---|---|---|---|---|---|\n");
   for (int t : thread_counts) {
     omp_set_num_threads(t);
     PcgResult result;
     std::vector<double> p(k.size());
-    const double solve = median_seconds(
+    const Timing solve = time_runs(
         [&] {
           const JacobiOperator m(k, fixed);
           std::fill(p.begin(), p.end(), 0.0);
           result = pcg(a, m, rhs, p, {.relative_tolerance = 1e-3, .max_iterations = 5000, .record_history = false});
         },
         0, 3, 0.0);
-    const double diagonal = median_seconds([&] { const JacobiOperator m(k, fixed); }, 1, 5, 0.2);
+    const double diagonal = time_runs([&] { const JacobiOperator m(k, fixed); }, 1, 5, 0.2).seconds;
     std::vector<double> y(k.size());
-    const double product = median_seconds([&] { k.apply(p, y); }, 1, 5, 0.5);
+    const double product = time_runs([&] { k.apply(p, y); }, 1, 5, 0.5).seconds;
     const double products = (result.iterations + 1) * product;  // one for r0, one per iteration
-    fmt::print("| {} | {}{} | {:.3f} | {:.2f} | {:.0f} % | {:.1f} | {:.2f} |\n", t, result.iterations,
-               result.converged ? "" : " (not converged)", solve, 1e3 * solve / std::max(1, result.iterations),
-               100.0 * products / solve, 1e3 * diagonal, 1e3 * product);
+    fmt::print("| {} | {}{} | {:.3f} | {:.2f} | {:.0f} % | {:.1f} | {:.2f} | {:.2f} |\n", t, result.iterations,
+               result.converged ? "" : " (not converged)", solve.seconds,
+               1e3 * solve.seconds / std::max(1, result.iterations), 100.0 * products / solve.seconds, 1e3 * diagonal,
+               1e3 * product, solve.others);
   }
 }
 
@@ -321,6 +340,7 @@ struct ForkJoin {
   double mean = 0.0;
   double p999 = 0.0;  ///< 99.9th percentile
   double max = 0.0;
+  double others = 0.0;  ///< cores busy with other processes meanwhile
 };
 ForkJoin fork_join_seconds(int threads) {
   omp_set_num_threads(threads);
@@ -331,6 +351,7 @@ ForkJoin fork_join_seconds(int threads) {
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < threads; ++i) sink[static_cast<std::size_t>(i) * 8] += 1.0;
   }
+  const hotmesh::bench::LoadProbe load;
   for (std::size_t r = 0; r < kRegions; ++r) {
     const auto start = Clock::now();
 #pragma omp parallel for schedule(static)
@@ -338,6 +359,7 @@ ForkJoin fork_join_seconds(int threads) {
     times[r] = seconds_since(start);
   }
   ForkJoin f;
+  f.others = load.others();
   for (double t : times) f.mean += t;
   f.mean /= static_cast<double>(kRegions);
   std::sort(times.begin(), times.end());
@@ -353,11 +375,11 @@ double axpy_seconds_per_entry() {
   const std::size_t n = static_cast<std::size_t>(hotmesh::deform::detail::kParallelVector);
   std::vector<double> x(n, 1.0), y(n, 0.0);
   constexpr int kCalls = 1000;
-  const double seconds = median_seconds(
+  const double seconds = time_runs(
       [&] {
         for (int r = 0; r < kCalls; ++r) axpy(1e-9, x, y);
       },
-      1, 5, 0.1);
+      1, 5, 0.1).seconds;
   return seconds / kCalls / static_cast<double>(n);
 }
 
@@ -369,7 +391,8 @@ int main(int argc, char** argv) {
   if (omp_get_max_threads() > 1) thread_counts.push_back(omp_get_max_threads());
 
   // 1. Memory bandwidth.
-  fmt::print("### Memory bandwidth (STREAM triad)\n\n| arrays | threads | GB/s |\n|---|---|---|\n");
+  fmt::print("### Memory bandwidth (STREAM triad)\n\n");
+  fmt::print("| arrays | threads | GB/s | other load |\n|---|---|---|---|\n");
   struct Triad {
     std::string label;
     std::size_t entries;
@@ -382,9 +405,9 @@ int main(int argc, char** argv) {
   for (const Triad& triad : triads) {
     for (std::size_t t = 0; t < thread_counts.size(); ++t) {
       omp_set_num_threads(thread_counts[t]);
-      const double rate = triad_rate(triad.entries);
-      if (triad.entries == big) memory_rate[t] = rate;
-      fmt::print("| {} | {} | {:.1f} |\n", triad.label, thread_counts[t], rate);
+      const Rate rate = triad_rate(triad.entries);
+      if (triad.entries == big) memory_rate[t] = rate.gbs;
+      fmt::print("| {} | {} | {:.1f} | {:.2f} |\n", triad.label, thread_counts[t], rate.gbs, rate.others);
       std::fflush(stdout);
     }
   }
@@ -402,14 +425,14 @@ int main(int argc, char** argv) {
       Row row{label, mesh.cell_count(), k.size(), k.coloring().colors(), t, model, measure_operator(k, mesh, t),
               static_cast<double>(mesh.cell_count()) * k.element_size() * k.element_size() * 8.0};
       std::fprintf(stderr, "%s, %d threads: update %.3f s, apply %.4f s\n", label.c_str(), t,
-                   row.rates.update_seconds, row.rates.apply_seconds);
+                   row.rates.update.seconds, row.rates.apply.seconds);
       if (t == 1) {
         const double cells = static_cast<double>(mesh.cell_count());
         if (mesh.dimension == 3 && product_ns_per_madd == 0.0) {
-          product_ns_per_madd = 1e9 * row.rates.apply_seconds / (0.5 * model.flops);
-          update_hex_seconds = row.rates.update_seconds / cells;
+          product_ns_per_madd = 1e9 * row.rates.apply.seconds / (0.5 * model.flops);
+          update_hex_seconds = row.rates.update.seconds / cells;
         }
-        if (mesh.dimension == 2 && update_quad_seconds == 0.0) update_quad_seconds = row.rates.update_seconds / cells;
+        if (mesh.dimension == 2 && update_quad_seconds == 0.0) update_quad_seconds = row.rates.update.seconds / cells;
       }
       rows.push_back(row);
     }
@@ -418,24 +441,27 @@ int main(int argc, char** argv) {
   for (int n : settings.quad) run_mesh(fmt::format("quad {}^2", n), quad_block(n));
 
   fmt::print("\n### Element matrices (StiffnessOperator::update)\n\n");
-  fmt::print("| mesh | cells | K_e MB | threads | s | cells/s | GB/s written |\n|---|---|---|---|---|---|---|\n");
+  fmt::print("| mesh | cells | K_e MB | threads | s | cells/s | GB/s written | other load |\n"
+             "|---|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows) {
-    fmt::print("| {} | {} | {:.0f} | {} | {:.3f} | {:.3g} | {:.2f} |\n", r.mesh, r.cells, r.matrix_bytes * 1e-6,
-               r.threads, r.rates.update_seconds, static_cast<double>(r.cells) / r.rates.update_seconds,
-               r.matrix_bytes / r.rates.update_seconds * 1e-9);
+    const Timing& u = r.rates.update;
+    fmt::print("| {} | {} | {:.0f} | {} | {:.3f} | {:.3g} | {:.2f} | {:.2f} |\n", r.mesh, r.cells,
+               r.matrix_bytes * 1e-6, r.threads, u.seconds, static_cast<double>(r.cells) / u.seconds,
+               r.matrix_bytes / u.seconds * 1e-9, u.others);
   }
 
   fmt::print("\n### Product y = K x (StiffnessOperator::apply)\n\n");
-  fmt::print("| mesh | cells | dofs | colours | MB moved | threads | ms | cells/s | GFLOP/s | GB/s | of triad |\n"
-             "|---|---|---|---|---|---|---|---|---|---|---|\n");
+  fmt::print("| mesh | cells | dofs | colours | MB moved | threads | ms | cells/s | GFLOP/s | GB/s | of triad | "
+             "other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows) {
-    const double s = r.rates.apply_seconds;
+    const double s = r.rates.apply.seconds;
     const double gbs = r.model.bytes / s * 1e-9;
     const auto t = static_cast<std::size_t>(std::find(thread_counts.begin(), thread_counts.end(), r.threads) -
                                             thread_counts.begin());
-    fmt::print("| {} | {} | {} | {} | {:.0f} | {} | {:.2f} | {:.3g} | {:.2f} | {:.2f} | {:.0f} % |\n", r.mesh,
-               r.cells, r.dofs, r.colors, r.model.bytes * 1e-6, r.threads, 1e3 * s, static_cast<double>(r.cells) / s,
-               r.model.flops / s * 1e-9, gbs, 100.0 * gbs / memory_rate[t]);
+    fmt::print("| {} | {} | {} | {} | {:.0f} | {} | {:.2f} | {:.3g} | {:.2f} | {:.2f} | {:.0f} % | {:.2f} |\n",
+               r.mesh, r.cells, r.dofs, r.colors, r.model.bytes * 1e-6, r.threads, 1e3 * s,
+               static_cast<double>(r.cells) / s, r.model.flops / s * 1e-9, gbs, 100.0 * gbs / memory_rate[t],
+               r.rates.apply.others);
   }
 
   // 4. A Jacobi-PCG solve.
@@ -447,10 +473,10 @@ int main(int argc, char** argv) {
     const ForkJoin fork = fork_join_seconds(all);
     const double axpy_entry = axpy_seconds_per_entry();
     fmt::print("\n### OpenMP thresholds (deform/src/parallel.hpp)\n\n");
-    fmt::print("Starting and joining a team of {} threads, over 20000 regions under the current load: median "
-               "{:.2f} us, mean {:.2f} us, 99.9th percentile {:.1f} us, longest {:.0f} us. One-thread work each threshold keeps "
-               "sequential, from the rates above, and its ratio to the mean start-up cost:\n\n",
-               all, 1e6 * fork.median, 1e6 * fork.mean, 1e6 * fork.p999, 1e6 * fork.max);
+    fmt::print("Starting and joining a team of {} threads, over 20000 regions (other load {:.2f}): median "
+               "{:.2f} us, mean {:.2f} us, 99.9th percentile {:.1f} us, longest {:.0f} us. One-thread work each "
+               "threshold keeps sequential, from the rates above, and its ratio to the mean start-up cost:\n\n",
+               all, fork.others, 1e6 * fork.median, 1e6 * fork.mean, 1e6 * fork.p999, 1e6 * fork.max);
     fmt::print("| threshold | value | one-thread work at the threshold | work / mean team start-up |\n"
                "|---|---|---|---|\n");
     auto line = [&](const char* name, std::ptrdiff_t value, double seconds) {

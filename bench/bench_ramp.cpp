@@ -10,8 +10,11 @@
 // runs (each column its own median): wall time; the phases from MotionResult::timings (set-up,
 // element matrices, PCG, quality, and the rest of the motion: residual products, updates of
 // the points); Newton and PCG iteration totals and the time per PCG iteration, next to one
-// product y = K x on the same mesh. The iteration counts are the same in every run (the
-// solver is deterministic); a run that differs is reported.
+// product y = K x on the same mesh, and the other load: the mean number of cores other
+// processes kept busy during the runs (rows with all threads and other load well above 0 are
+// not the machine's speed).
+// The iteration counts are the same in every run (the solver is deterministic); a run that
+// differs is reported.
 #include <omp.h>
 
 #include <algorithm>
@@ -31,6 +34,7 @@
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/mesh_files.hpp"
+#include "machine_load.hpp"
 
 using namespace hotmesh;
 
@@ -53,11 +57,13 @@ struct Run {
   std::size_t newton = 0;
   std::size_t pcg = 0;
   std::size_t attempts = 0;  ///< increments tried, split pieces and rejected ones included
+  double others = 0.0;       ///< mean number of cores busy with other processes
   bool success = false;
 };
 
 Run run_case(const std::string& file) {
   Run r;
+  const bench::LoadProbe load;
   const auto start = Clock::now();
   const io::Case c = io::read_case(file);
   const io::LoadedMesh loaded = io::read_mesh(c.mesh);
@@ -68,6 +74,7 @@ Run run_case(const std::string& file) {
   r.shapes = seconds_since(t);
   const deform::MotionResult result = deform::move_mesh(loaded.mesh, setup.motions, c.material, c.solver);
   r.wall = seconds_since(start);
+  r.others = load.others();
   r.motion = result.timings;
   r.success = result.success;
   r.attempts = result.increments.size();
@@ -121,8 +128,8 @@ int main(int argc, char** argv) {
                  loaded.mesh.cell_count(), loaded.mesh.node_count(), c.solver.increments, runs);
     }
     fmt::print("| threads | wall s (min-max) | read + shapes s | set-up s | element matrices s | PCG s | quality s | "
-               "rest of the motion s | Newton iterations | PCG iterations | us per PCG iteration | us per product |\n"
-               "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+               "rest of the motion s | Newton iterations | PCG iterations | us per PCG iteration | us per product | "
+               "other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int threads : thread_counts) {
       omp_set_num_threads(threads);
       std::vector<Run> all;
@@ -152,12 +159,13 @@ int main(int argc, char** argv) {
       const double product = product_seconds(file);
       const Run& first = all.front();
       fmt::print("| {} | {:.3f} ({:.3f}-{:.3f}) | {:.3f} | {:.4f} | {:.3f} | {:.3f} | {:.4f} | {:.3f} | {} | {} | "
-                 "{:.1f} | {:.1f} |\n",
+                 "{:.1f} | {:.1f} | {:.2f} |\n",
                  threads, wall, lowest, highest, column([](const Run& r) { return r.read + r.shapes; }),
                  column([](const Run& r) { return r.motion.setup; }),
                  column([](const Run& r) { return r.motion.assembly; }), solve,
                  column([](const Run& r) { return r.motion.quality; }), rest, first.newton, first.pcg,
-                 1e6 * solve / static_cast<double>(std::max<std::size_t>(1, first.pcg)), 1e6 * product);
+                 1e6 * solve / static_cast<double>(std::max<std::size_t>(1, first.pcg)), 1e6 * product,
+                 column([](const Run& r) { return r.others; }));
       std::fflush(stdout);
       if (!first.success) fmt::print("\nThe motion failed with {} threads.\n", threads);
     }

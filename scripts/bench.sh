@@ -5,9 +5,10 @@
 #
 # Usage: scripts/bench.sh [--quick]
 #   --quick   small sizes only (a smoke run of a minute, numbers not worth recording)
-# A full run takes about ten minutes on 2 cores and needs about 6 GB of memory (the 100^3 hex
-# block's element matrices). Run it on an otherwise idle machine: the load is printed before
-# and after each benchmark, and medians are reported, but other processes still slow it down.
+# A full run takes about three minutes on 2 cores and needs about 5 GB of memory (the 100^3
+# hex block's element matrices). Run it on an otherwise idle machine: the load is printed
+# before and after each benchmark and the tables report, row by row, how many cores other
+# processes kept busy ("other load"); medians resist short disturbances, not a busy machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
