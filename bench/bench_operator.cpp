@@ -1,0 +1,501 @@
+// hotmesh benchmark: the matrix-free stiffness operator (section 3, eqs. 9-10) against the
+// memory bandwidth of the machine it runs on.
+//
+//   ninja -C build bench_operator && build/bench/bench_operator [--hex 20,40,60,80,100]
+//       [--quad 250,1000,2000] [--triad-mib 1024] [--pcg 40]
+//
+// (scripts/bench.sh builds and runs it with every other benchmark.) Each number is the median
+// of several runs, with 1 thread and with all of them (OpenMP). Prints Markdown tables:
+//
+// 1. Memory bandwidth: a STREAM triad a[i] = b[i] + s c[i] on three arrays of `--triad-mib`
+//    MiB each (far larger than the caches; STREAM's count of 24 bytes per entry, no
+//    write-allocate traffic), and for reference on arrays that fit in L2 and in L3.
+// 2. Element matrices: StiffnessOperator::update (every K_e at the given points), cells/s.
+// 3. Product: StiffnessOperator::apply (y = K x), cells/s, GFLOP/s (2 N^2 per cell) and
+//    effective GB/s over the bytes a product must move at least:
+//        K_e            cells x N^2 x 8       (N = 24 for hex8, 8 for quad4)
+//        connectivity   cells x (4 n + 8 + 4) (n node ids, one 64-bit offset, the colour list)
+//        vectors        dofs x 8 x 4          (x read; y zeroed, then read and written)
+//    and that rate over the triad's with the same number of threads.
+// 4. One Jacobi-PCG solve (the solver's inner solve, tolerance 1e-3, from p = 0) on a hex
+//    block `--pcg` cells on a side, stretched towards z = 0, with a bump prescribed on z = 0
+//    and every other boundary node fixed: iterations, time per iteration, the share of it
+//    spent in products, and the time to build the Jacobi preconditioner (K's diagonal).
+// 5. The cost of starting an OpenMP team next to the work each threshold of
+//    deform/src/parallel.hpp keeps on one thread (estimated from the rates measured above).
+//
+// "other load" is the mean number of cores other processes kept busy during a measurement
+// (from /proc/stat): on a shared machine, rows with all threads and other load well above 0
+// are not the machine's speed.
+//
+// Memory: the stored K_e take 4.6 kB per hex (4.6 GB at 100^3) and 0.5 kB per quad; the
+// triad 3 x `--triad-mib` MiB. One mesh is alive at a time.
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <random>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "hotmesh/deform/linear_algebra.hpp"
+#include "hotmesh/deform/material.hpp"
+#include "hotmesh/deform/pcg.hpp"
+#include "hotmesh/deform/stiffness_operator.hpp"
+#include "hotmesh/deform/structured_mesh.hpp"
+#include "machine_load.hpp"
+#include "parallel.hpp"  // deform/src: the OpenMP thresholds under test in part 5
+
+using namespace hotmesh::deform;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// The median duration of runs, and the mean number of cores other processes kept busy
+/// during them.
+struct Timing {
+  double seconds = 0.0;
+  double others = 0.0;
+};
+
+/// Times `run` after `warmup` untimed calls: at least `min_runs` runs and, while they take
+/// less than `min_total` seconds in all, more (at most 200).
+template <class Run>
+Timing time_runs(Run&& run, int warmup, int min_runs, double min_total) {
+  for (int i = 0; i < warmup; ++i) run();
+  std::vector<double> times;
+  double total = 0.0;
+  const hotmesh::bench::LoadProbe load;
+  while (static_cast<int>(times.size()) < min_runs || (total < min_total && times.size() < 200)) {
+    const auto start = Clock::now();
+    run();
+    times.push_back(seconds_since(start));
+    total += times.back();
+  }
+  std::sort(times.begin(), times.end());
+  return {times[times.size() / 2], load.others()};
+}
+
+std::vector<int> parse_list(std::string_view text) {
+  std::vector<int> values;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string item(text.substr(begin, end - begin));
+    if (!item.empty()) values.push_back(std::atoi(item.c_str()));
+    begin = end + 1;
+  }
+  return values;
+}
+
+struct Settings {
+  std::vector<int> hex = {20, 40, 60, 80, 100};
+  std::vector<int> quad = {250, 1000, 2000};
+  int triad_mib = 1024;
+  int pcg_cells = 40;
+};
+
+Settings parse_arguments(int argc, char** argv) {
+  Settings s;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string_view key = argv[i];
+    const std::string_view value = argv[i + 1];
+    if (key == "--hex") {
+      s.hex = parse_list(value);
+    } else if (key == "--quad") {
+      s.quad = parse_list(value);
+    } else if (key == "--triad-mib") {
+      s.triad_mib = std::atoi(argv[i + 1]);
+    } else if (key == "--pcg") {
+      s.pcg_cells = std::atoi(argv[i + 1]);
+    } else {
+      std::fprintf(stderr, "bench_operator: unknown option %s\n", argv[i]);
+      std::exit(2);
+    }
+  }
+  if (argc % 2 == 0) {
+    std::fprintf(stderr, "usage: bench_operator [--hex 20,40,...] [--quad 250,...] [--triad-mib M] [--pcg N]\n");
+    std::exit(2);
+  }
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------
+// 1. Memory bandwidth
+
+/// The triad a = b + s c over `entries` doubles per array, with the current threads.
+struct Rate {
+  double gbs = 0.0;
+  double others = 0.0;
+};
+Rate triad_rate(std::size_t entries) {
+  std::vector<double> a(entries), b(entries), c(entries);
+  const auto n = static_cast<std::ptrdiff_t>(entries);
+#pragma omp parallel for schedule(static)  // first touch by the threads that use the pages
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    a[k] = 0.0;
+    b[k] = 1.0;
+    c[k] = 2.0;
+  }
+  // Repeat small arrays so that one timed run lasts about 10 ms.
+  const int repeats = std::max(1, static_cast<int>(4.0e6 / static_cast<double>(entries)));
+  double s = 0.5;
+  const Timing timing = time_runs(
+      [&] {
+        double* pa = a.data();
+        const double* pb = b.data();
+        const double* pc = c.data();
+#pragma omp parallel
+        for (int r = 0; r < repeats; ++r) {
+#pragma omp for schedule(static)
+          for (std::ptrdiff_t i = 0; i < n; ++i) pa[i] = pb[i] + s * pc[i];
+        }
+        s = -s;
+      },
+      1, 10, 0.5);
+  if (!std::isfinite(a[entries / 2])) std::fprintf(stderr, "triad: not finite\n");
+  return {24.0 * static_cast<double>(entries) * repeats / timing.seconds * 1e-9, timing.others};
+}
+
+// ---------------------------------------------------------------------------------------
+// 2-3. Element matrices and products
+
+struct ProductModel {
+  double bytes = 0.0;  ///< at least moved by one product (see the file's comment)
+  double flops = 0.0;
+};
+
+ProductModel product_model(const StiffnessOperator& k) {
+  const auto cells = static_cast<double>(k.cells().size());
+  const auto n = static_cast<double>(k.element_size());
+  const double nodes = n / k.dofs_per_node();
+  ProductModel m;
+  m.bytes = cells * n * n * 8.0 + cells * (4.0 * nodes + 8.0 + 4.0) + static_cast<double>(k.size()) * 8.0 * 4.0;
+  m.flops = 2.0 * cells * n * n;
+  return m;
+}
+
+std::vector<double> random_vector(std::size_t n) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::vector<double> v(n);
+  for (double& x : v) x = uniform(random);
+  return v;
+}
+
+/// Rates measured on one mesh with one number of threads.
+struct OperatorRates {
+  Timing update;
+  Timing apply;
+};
+
+struct Row {
+  std::string mesh;
+  std::size_t cells = 0;
+  std::size_t dofs = 0;
+  std::size_t colors = 0;
+  int threads = 0;
+  ProductModel model;
+  OperatorRates rates;
+  double matrix_bytes = 0.0;
+};
+
+OperatorRates measure_operator(StiffnessOperator& k, const Mesh& mesh, int threads) {
+  omp_set_num_threads(threads);
+  OperatorRates r;
+  // update() rewrites every K_e; the matrices are already allocated and touched.
+  r.update = time_runs([&] { k.update(mesh.points); }, 0, 3, 1.0);
+  const auto x = random_vector(k.size());
+  std::vector<double> y(k.size());
+  r.apply = time_runs([&] { k.apply(x, y); }, 1, 5, 1.0);
+  return r;
+}
+
+Mesh hex_block(int n) {
+  const auto line = uniform_line(0.0, 1.0, n);
+  return structured_hexes(line, line, line);
+}
+
+Mesh quad_block(int n) {
+  const auto line = uniform_line(0.0, 1.0, n);
+  return structured_quads(line, line);
+}
+
+// ---------------------------------------------------------------------------------------
+// 4. One Jacobi-PCG solve
+
+/// K with the rows and columns of fixed dofs removed (their entries of y set to 0), as the
+/// solver's constrained operator does for fixed and prescribed nodes.
+class MaskedOperator final : public LinearOperator {
+ public:
+  MaskedOperator(const StiffnessOperator& k, std::span<const std::size_t> fixed) : k_(k), fixed_(fixed) {}
+  std::size_t size() const override { return k_.size(); }
+  void apply(std::span<const double> x, std::span<double> y) const override {
+    k_.apply(x, y);
+    for (std::size_t i : fixed_) y[i] = 0.0;
+  }
+
+ private:
+  const StiffnessOperator& k_;
+  std::span<const std::size_t> fixed_;
+};
+
+class JacobiOperator final : public LinearOperator {
+ public:
+  JacobiOperator(const StiffnessOperator& k, std::span<const std::size_t> fixed) : inverse_(k.size()) {
+    k.diagonal(inverse_);
+    for (double& d : inverse_) d = d > 0.0 ? 1.0 / d : 0.0;
+    for (std::size_t i : fixed) inverse_[i] = 0.0;
+  }
+  std::size_t size() const override { return inverse_.size(); }
+  void apply(std::span<const double> x, std::span<double> y) const override {
+    const auto n = static_cast<std::ptrdiff_t>(x.size());
+#pragma omp parallel for schedule(static) if (n >= hotmesh::deform::detail::kParallelVector)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      y[k] = inverse_[k] * x[k];
+    }
+  }
+
+ private:
+  std::vector<double> inverse_;
+};
+
+void pcg_section(int n, const std::vector<int>& thread_counts) {
+  const auto line = uniform_line(0.0, 1.0, n);
+  const auto zs = stretched_line(0.0, 1.0, n, 0.2 / n);  // first cell 1/5 of a uniform one
+  const Mesh mesh = structured_hexes(line, line, zs);
+  StiffnessOperator k(mesh, element_lame(mesh, MaterialOptions{}), true);
+  k.update(mesh.points);
+
+  // A bump on z = 0, every other boundary node fixed.
+  std::vector<std::size_t> fixed;
+  std::vector<double> u(k.size(), 0.0);
+  for (const Patch& patch : mesh.patches) {
+    for (NodeId node : patch.nodes) {
+      const auto i = static_cast<std::size_t>(node);
+      for (std::size_t c = 0; c < 3; ++c) fixed.push_back(3 * i + c);
+      if (patch.name == "zmin") {
+        const Vec3& p = mesh.points[i];
+        u[3 * i + 2] = 0.05 * std::sin(std::numbers::pi * p[0]) * std::sin(std::numbers::pi * p[1]);
+      }
+    }
+  }
+  std::sort(fixed.begin(), fixed.end());
+  fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
+  std::vector<double> rhs(k.size());
+  k.apply(u, rhs);
+  for (double& v : rhs) v = -v;
+  for (std::size_t i : fixed) rhs[i] = 0.0;
+
+  const MaskedOperator a(k, fixed);
+  fmt::print("\n### Jacobi-PCG solve\n\n");
+  fmt::print("Hex block {0}^3 ({1} cells, {2} dofs, {3} fixed), stretched towards z = 0; tolerance 1e-3 "
+             "(the solver's), from p = 0. Median of 3 solves.\n\n",
+             n, mesh.cell_count(), k.size(), fixed.size());
+  fmt::print("| threads | PCG iterations | solve s | ms per iteration | products (share of the solve) | "
+             "Jacobi set-up ms (K's diagonal) | one product ms | other load |\n"
+             "|---|---|---|---|---|---|---|---|\n");
+  for (int t : thread_counts) {
+    omp_set_num_threads(t);
+    PcgResult result;
+    std::vector<double> p(k.size());
+    const Timing solve = time_runs(
+        [&] {
+          const JacobiOperator m(k, fixed);
+          std::fill(p.begin(), p.end(), 0.0);
+          result = pcg(a, m, rhs, p, {.relative_tolerance = 1e-3, .max_iterations = 5000, .record_history = false});
+        },
+        0, 3, 0.0);
+    const double diagonal = time_runs([&] { const JacobiOperator m(k, fixed); }, 1, 5, 0.2).seconds;
+    std::vector<double> y(k.size());
+    const double product = time_runs([&] { k.apply(p, y); }, 1, 5, 0.5).seconds;
+    const double products = (result.iterations + 1) * product;  // one for r0, one per iteration
+    fmt::print("| {} | {}{} | {:.3f} | {:.2f} | {:.0f} % | {:.1f} | {:.2f} | {:.2f} |\n", t, result.iterations,
+               result.converged ? "" : " (not converged)", solve.seconds,
+               1e3 * solve.seconds / std::max(1, result.iterations), 100.0 * products / solve.seconds, 1e3 * diagonal,
+               1e3 * product, solve.others);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// 5. OpenMP team start-up against the thresholds
+
+/// Cost of starting and joining a team of `threads` for a loop of `threads` trivial
+/// iterations, timed region by region: on a loaded machine the mean is far above the median
+/// (now and then a thread waits for a time slice).
+struct ForkJoin {
+  double median = 0.0;
+  double mean = 0.0;
+  double p999 = 0.0;  ///< 99.9th percentile
+  double max = 0.0;
+  double others = 0.0;  ///< cores busy with other processes meanwhile
+};
+ForkJoin fork_join_seconds(int threads) {
+  omp_set_num_threads(threads);
+  std::vector<double> sink(static_cast<std::size_t>(threads) * 8, 0.0);
+  constexpr std::size_t kRegions = 20000;
+  std::vector<double> times(kRegions);
+  for (std::size_t r = 0; r < kRegions / 10; ++r) {  // warm-up: the team is created once
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < threads; ++i) sink[static_cast<std::size_t>(i) * 8] += 1.0;
+  }
+  const hotmesh::bench::LoadProbe load;
+  for (std::size_t r = 0; r < kRegions; ++r) {
+    const auto start = Clock::now();
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < threads; ++i) sink[static_cast<std::size_t>(i) * 8] += 1.0;
+    times[r] = seconds_since(start);
+  }
+  ForkJoin f;
+  f.others = load.others();
+  for (double t : times) f.mean += t;
+  f.mean /= static_cast<double>(kRegions);
+  std::sort(times.begin(), times.end());
+  f.median = times[kRegions / 2];
+  f.p999 = times[kRegions * 999 / 1000];
+  f.max = times.back();
+  return f;
+}
+
+/// One-thread seconds per entry of deform::axpy on vectors that fit in L1/L2.
+double axpy_seconds_per_entry() {
+  omp_set_num_threads(1);
+  const std::size_t n = static_cast<std::size_t>(hotmesh::deform::detail::kParallelVector);
+  std::vector<double> x(n, 1.0), y(n, 0.0);
+  constexpr int kCalls = 1000;
+  const double seconds = time_runs(
+      [&] {
+        for (int r = 0; r < kCalls; ++r) axpy(1e-9, x, y);
+      },
+      1, 5, 0.1).seconds;
+  return seconds / kCalls / static_cast<double>(n);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Settings settings = parse_arguments(argc, argv);
+  std::vector<int> thread_counts = {1};
+  if (omp_get_max_threads() > 1) thread_counts.push_back(omp_get_max_threads());
+
+  // 1. Memory bandwidth.
+  fmt::print("### Memory bandwidth (STREAM triad)\n\n");
+  fmt::print("| arrays | threads | GB/s | other load |\n|---|---|---|---|\n");
+  struct Triad {
+    std::string label;
+    std::size_t entries;
+  };
+  const std::size_t big = static_cast<std::size_t>(settings.triad_mib) * 1024 * 1024 / 8;
+  const std::vector<Triad> triads = {{"3 x 0.5 MiB (L2)", 65536},
+                                     {"3 x 16 MiB (L3)", 16 * 131072},
+                                     {fmt::format("3 x {} MiB (memory)", settings.triad_mib), big}};
+  std::vector<double> memory_rate(thread_counts.size());
+  for (const Triad& triad : triads) {
+    for (std::size_t t = 0; t < thread_counts.size(); ++t) {
+      omp_set_num_threads(thread_counts[t]);
+      const Rate rate = triad_rate(triad.entries);
+      if (triad.entries == big) memory_rate[t] = rate.gbs;
+      fmt::print("| {} | {} | {:.1f} | {:.2f} |\n", triad.label, thread_counts[t], rate.gbs, rate.others);
+      std::fflush(stdout);
+    }
+  }
+
+  // 2-3. Element matrices and products, hex then quad meshes.
+  std::vector<Row> rows;
+  double product_ns_per_madd = 0.0;  // one thread, smallest hex mesh (for part 5)
+  double update_hex_seconds = 0.0;   // one thread, per cell
+  double update_quad_seconds = 0.0;
+  auto run_mesh = [&](const std::string& label, const Mesh& mesh) {
+    StiffnessOperator k(mesh, element_lame(mesh, MaterialOptions{}), true);
+    k.update(mesh.points);  // touch the matrices once before timing
+    const ProductModel model = product_model(k);
+    for (int t : thread_counts) {
+      Row row{label, mesh.cell_count(), k.size(), k.coloring().colors(), t, model, measure_operator(k, mesh, t),
+              static_cast<double>(mesh.cell_count()) * k.element_size() * k.element_size() * 8.0};
+      std::fprintf(stderr, "%s, %d threads: update %.3f s, apply %.4f s\n", label.c_str(), t,
+                   row.rates.update.seconds, row.rates.apply.seconds);
+      if (t == 1) {
+        const double cells = static_cast<double>(mesh.cell_count());
+        if (mesh.dimension == 3 && product_ns_per_madd == 0.0) {
+          product_ns_per_madd = 1e9 * row.rates.apply.seconds / (0.5 * model.flops);
+          update_hex_seconds = row.rates.update.seconds / cells;
+        }
+        if (mesh.dimension == 2 && update_quad_seconds == 0.0) update_quad_seconds = row.rates.update.seconds / cells;
+      }
+      rows.push_back(row);
+    }
+  };
+  for (int n : settings.hex) run_mesh(fmt::format("hex {}^3", n), hex_block(n));
+  for (int n : settings.quad) run_mesh(fmt::format("quad {}^2", n), quad_block(n));
+
+  fmt::print("\n### Element matrices (StiffnessOperator::update)\n\n");
+  fmt::print("| mesh | cells | K_e MB | threads | s | cells/s | GB/s written | other load |\n"
+             "|---|---|---|---|---|---|---|---|\n");
+  for (const Row& r : rows) {
+    const Timing& u = r.rates.update;
+    fmt::print("| {} | {} | {:.0f} | {} | {:.3f} | {:.3g} | {:.2f} | {:.2f} |\n", r.mesh, r.cells,
+               r.matrix_bytes * 1e-6, r.threads, u.seconds, static_cast<double>(r.cells) / u.seconds,
+               r.matrix_bytes / u.seconds * 1e-9, u.others);
+  }
+
+  fmt::print("\n### Product y = K x (StiffnessOperator::apply)\n\n");
+  fmt::print("| mesh | cells | dofs | colours | MB moved | threads | ms | cells/s | GFLOP/s | GB/s | of triad | "
+             "other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Row& r : rows) {
+    const double s = r.rates.apply.seconds;
+    const double gbs = r.model.bytes / s * 1e-9;
+    const auto t = static_cast<std::size_t>(std::find(thread_counts.begin(), thread_counts.end(), r.threads) -
+                                            thread_counts.begin());
+    fmt::print("| {} | {} | {} | {} | {:.0f} | {} | {:.2f} | {:.3g} | {:.2f} | {:.2f} | {:.0f} % | {:.2f} |\n",
+               r.mesh, r.cells, r.dofs, r.colors, r.model.bytes * 1e-6, r.threads, 1e3 * s,
+               static_cast<double>(r.cells) / s, r.model.flops / s * 1e-9, gbs, 100.0 * gbs / memory_rate[t],
+               r.rates.apply.others);
+  }
+
+  // 4. A Jacobi-PCG solve.
+  if (settings.pcg_cells > 0) pcg_section(settings.pcg_cells, thread_counts);
+
+  // 5. Thresholds.
+  if (thread_counts.size() > 1) {
+    const int all = thread_counts.back();
+    const ForkJoin fork = fork_join_seconds(all);
+    const double axpy_entry = axpy_seconds_per_entry();
+    fmt::print("\n### OpenMP thresholds (deform/src/parallel.hpp)\n\n");
+    fmt::print("Starting and joining a team of {} threads, over 20000 regions (other load {:.2f}): median "
+               "{:.2f} us, mean {:.2f} us, 99.9th percentile {:.1f} us, longest {:.0f} us. One-thread work each "
+               "threshold keeps sequential, from the rates above, and its ratio to the mean start-up cost:\n\n",
+               all, fork.others, 1e6 * fork.median, 1e6 * fork.mean, 1e6 * fork.p999, 1e6 * fork.max);
+    fmt::print("| threshold | value | one-thread work at the threshold | work / mean team start-up |\n"
+               "|---|---|---|---|\n");
+    auto line = [&](const char* name, std::ptrdiff_t value, double seconds) {
+      fmt::print("| {} | {} | {:.1f} us | {:.0f} |\n", name, value, 1e6 * seconds, seconds / fork.mean);
+    };
+    using namespace hotmesh::deform::detail;
+    if (product_ns_per_madd > 0.0) {
+      line("kParallelProduct (multiply-adds per colour)", kParallelProduct,
+           static_cast<double>(kParallelProduct) * product_ns_per_madd * 1e-9);
+    }
+    if (update_hex_seconds > 0.0) {
+      line("kParallelCells (hex8 K_e)", kParallelCells, static_cast<double>(kParallelCells) * update_hex_seconds);
+    }
+    if (update_quad_seconds > 0.0) {
+      line("kParallelCells (quad4 K_e)", kParallelCells, static_cast<double>(kParallelCells) * update_quad_seconds);
+    }
+    line("kParallelVector (axpy entries)", kParallelVector, static_cast<double>(kParallelVector) * axpy_entry);
+    line("kParallelNodes (nodal update, as 3 axpy entries a node)", kParallelNodes,
+         3.0 * static_cast<double>(kParallelNodes) * axpy_entry);
+  }
+  return 0;
+}

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# hotmesh: build Release in build/ (warnings are errors) and run every benchmark, bench/bench_*,
+# printing the machine, the load and each benchmark's Markdown tables; docs/performance.md
+# records the results. Benchmarks are not tests: ctest never runs them.
+#
+# Usage: scripts/bench.sh [--quick]
+#   --quick   small sizes only (a smoke run of a minute, numbers not worth recording)
+# A full run takes about three minutes on 2 cores and needs about 5 GB of memory (the 100^3
+# hex block's element matrices). Run it on an otherwise idle machine: the load is printed
+# before and after each benchmark and the tables report, row by row, how many cores other
+# processes kept busy ("other load"); medians resist short disturbances, not a busy machine.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+quick=0
+for arg in "$@"; do
+  case "$arg" in
+    --quick) quick=1 ;;
+    *) echo "usage: scripts/bench.sh [--quick]" >&2; exit 2 ;;
+  esac
+done
+
+benches=()
+for source in bench/bench_*.cpp; do benches+=("$(basename "$source" .cpp)"); done
+
+echo "== hotmesh: Release build of the benchmarks (warnings are errors)"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DHOTMESH_WERROR=ON >/dev/null
+cmake --build build -j "$(nproc)" --target "${benches[@]}"
+
+compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' build/CMakeCache.txt)
+flags=$(sed -n 's/^CMAKE_CXX_FLAGS_RELEASE:[A-Z]*=//p' build/CMakeCache.txt)
+echo
+echo "== machine"
+echo "date:     $(date -u '+%Y-%m-%d %H:%M UTC')"
+echo "commit:   $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+lscpu | grep -E '^(Model name|CPU\(s\)|Thread\(s\) per core|Core\(s\) per socket|L1d|L2|L3)' | sed 's/  */ /g'
+free -g | sed -n '1,2p'
+echo "compiler: $("$compiler" --version | head -n 1); Release flags: $flags -fopenmp"
+load() { echo "load:     $(uptime | sed 's/.*load average: //') (1, 5, 15 min) on $(nproc) cores"; }
+load
+busy=$(awk -v cores="$(nproc)" '{ print ($1 > 0.5 * cores) ? 1 : 0 }' /proc/loadavg)
+if ((busy)); then echo "warning: the machine is busy; the numbers below will be low and noisy" >&2; fi
+
+args_for() {
+  if ((quick)); then
+    case "$1" in
+      bench_operator) echo "--hex 20 --quad 250 --triad-mib 128 --pcg 16" ;;
+      bench_ramp) echo "--runs 1" ;;
+      bench_projection) echo "20000" ;;
+    esac
+  fi
+}
+
+for bench in "${benches[@]}"; do
+  echo
+  echo "== $bench $(args_for "$bench")"
+  # shellcheck disable=SC2046  # the arguments are meant to split
+  "build/bench/$bench" $(args_for "$bench")
+  echo
+  load
+done
