@@ -103,11 +103,22 @@ void apply_color(const ElementList& cells, std::span<const CellId> color, const 
       for (std::size_t i = 0; i < D; ++i) xe[a * D + i] = x[base + i];
     }
     const double* ke = matrices + c * N * N;
-    std::array<double, N> ye;
-    for (std::size_t r = 0; r < N; ++r) {
-      double s = 0.0;
-      for (std::size_t j = 0; j < N; ++j) s += ke[r * N + j] * xe[j];
-      ye[r] = s;
+    std::array<double, N> ye{};
+    if constexpr (N >= 24) {
+      // Hexes: y_e = K_e x_e as a sum of columns scaled by x_j, so the inner loop runs along
+      // contiguous memory and vectorises (K_e is symmetric: column j is the stored row j).
+      // 10 % faster than row sums here (bench_operator); for the 8x8 quad matrices row sums win.
+      for (std::size_t j = 0; j < N; ++j) {
+        const double xj = xe[j];
+        const double* column = ke + j * N;
+        for (std::size_t r = 0; r < N; ++r) ye[r] += column[r] * xj;
+      }
+    } else {
+      for (std::size_t r = 0; r < N; ++r) {
+        double s = 0.0;
+        for (std::size_t j = 0; j < N; ++j) s += ke[r * N + j] * xe[j];
+        ye[r] = s;
+      }
     }
     for (std::size_t a = 0; a < kNodes; ++a) {
       const auto base = static_cast<std::size_t>(nodes[a]) * D;
