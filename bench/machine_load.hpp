@@ -3,6 +3,7 @@
 // /proc/stat). Used by bench_operator and bench_ramp.
 #pragma once
 
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -12,11 +13,16 @@
 
 namespace hotmesh::bench {
 
-/// CPU seconds used so far by this process, all threads together.
+/// CPU seconds used so far by this process, all threads together, and by its children that
+/// have finished (benchmarks that time a command).
 inline double own_cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  rusage children{};
+  getrusage(RUSAGE_CHILDREN, &children);
+  const auto seconds = [](const timeval& v) { return static_cast<double>(v.tv_sec) + 1e-6 * static_cast<double>(v.tv_usec); };
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec) + seconds(children.ru_utime) +
+         seconds(children.ru_stime);
 }
 
 /// CPU seconds the whole machine has been busy since boot (user, nice, system, interrupts and

@@ -5,8 +5,8 @@
 #
 # Usage: scripts/bench.sh [--quick]
 #   --quick   small sizes only (a smoke run of a minute, numbers not worth recording)
-# A full run takes about three minutes on 2 cores and needs about 5 GB of memory (the 100^3
-# hex block's element matrices). Run it on an otherwise idle machine: the load is printed
+# A full run takes about fifteen minutes on 2 cores (most of it the stator-well sector solved at
+# 50 000 cells) and needs about 5 GB of memory (the 100^3 hex block's element matrices). Run it on an otherwise idle machine: the load is printed
 # before and after each benchmark and the tables report, row by row, how many cores other
 # processes kept busy ("other load"); medians resist short disturbances, not a busy machine.
 set -euo pipefail
@@ -47,6 +47,7 @@ args_for() {
       bench_operator) echo "--hex 20 --quad 250 --triad-mib 128 --pcg 16" ;;
       bench_ramp) echo "--runs 1" ;;
       bench_projection) echo "20000" ;;
+      bench_stator_solve) echo "5000" ;;
     esac
   fi
 }
