@@ -47,6 +47,7 @@ args_for() {
       bench_operator) echo "--hex 20 --quad 250 --triad-mib 128 --pcg 16" ;;
       bench_ramp) echo "--runs 1" ;;
       bench_projection) echo "20000" ;;
+      bench_checkpoint) echo "--cells 100000 --runs 1" ;;
     esac
   fi
 }
