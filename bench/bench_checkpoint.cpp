@@ -28,18 +28,15 @@
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "machine_load.hpp"
+#include "timing.hpp"
 
 using namespace hotmesh;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::Clock;
+using bench::seconds_since;
+using bench::median;
 
 /// The state a run hands out after an accepted increment: every point, and each boundary
 /// node as a sliding node with a target and hints; 8 increments of records.

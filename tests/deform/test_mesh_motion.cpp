@@ -169,11 +169,13 @@ TEST(MeshMotion, ResultIsBitIdenticalForAnyThreadCount) {
   EXPECT_NE(std::memcmp(a.data(), mesh.points.data(), a.size() * sizeof(Vec3)), 0);  // it moved
 }
 
-/// Every checkpoint of a run, as move_mesh hands them out.
-MotionObservers collect_checkpoints(std::vector<MotionCheckpoint>& into) {
+/// The inner square of `mesh` turned in `increments`, with every checkpoint of the run.
+MotionResult turn_with_checkpoints(const Mesh& mesh, int increments, std::vector<MotionCheckpoint>& checkpoints) {
+  SolverOptions options;
+  options.increments = increments;
   MotionObservers o;
-  o.checkpoint = [&into](const MotionCheckpoint& c) { into.push_back(c); };
-  return o;
+  o.checkpoint = [&checkpoints](const MotionCheckpoint& c) { checkpoints.push_back(c); };
+  return move_mesh(mesh, rotating_inner_square(mesh, 0.25), {}, options, o);
 }
 
 bool bitwise_equal(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
@@ -184,11 +186,8 @@ TEST(MeshMotion, ResumingAfterAPieceOfASplitIncrementMakesTheSameMoves) {
   // An eighth of a turn of the inner square in one increment: too much at once, so it is split;
   // a checkpoint after the first accepted piece still has the other pieces to do.
   const Mesh mesh = clustered_ring();
-  const auto motions = rotating_inner_square(mesh, 0.25);
-  SolverOptions options;
-  options.increments = 1;
   std::vector<MotionCheckpoint> checkpoints;
-  const MotionResult straight = move_mesh(mesh, motions, {}, options, collect_checkpoints(checkpoints));
+  const MotionResult straight = turn_with_checkpoints(mesh, 1, checkpoints);
   ASSERT_TRUE(straight.success) << straight.message;
   const auto split = std::find_if(checkpoints.begin(), checkpoints.end(), [](const MotionCheckpoint& c) {
     return !c.remaining.empty() && c.remaining.front().split_depth > 0;
@@ -202,6 +201,9 @@ TEST(MeshMotion, ResumingAfterAPieceOfASplitIncrementMakesTheSameMoves) {
   EXPECT_EQ(checkpoints.back().finished_increments, 1);
   EXPECT_TRUE(checkpoints.back().remaining.empty());
 
+  const auto motions = rotating_inner_square(mesh, 0.25);
+  SolverOptions options;
+  options.increments = 1;
   for (const MotionCheckpoint* from : {&*split, &checkpoints.front(), &checkpoints.back()}) {
     const MotionResult resumed = move_mesh(mesh, motions, {}, options, {}, nullptr, from);
     ASSERT_TRUE(resumed.success) << resumed.message;
@@ -243,11 +245,10 @@ TEST(MeshMotion, NewtonObserverSeesEveryStep) {
 
 TEST(MeshMotion, CheckpointOfAnotherRunIsRefused) {
   const Mesh mesh = clustered_ring();
+  std::vector<MotionCheckpoint> checkpoints;
+  ASSERT_TRUE(turn_with_checkpoints(mesh, 3, checkpoints).success);
   const auto motions = rotating_inner_square(mesh, 0.25);
   SolverOptions options;
-  options.increments = 3;
-  std::vector<MotionCheckpoint> checkpoints;
-  ASSERT_TRUE(move_mesh(mesh, motions, {}, options, collect_checkpoints(checkpoints)).success);
   options.increments = 4;
   try {
     move_mesh(mesh, motions, {}, options, {}, nullptr, &checkpoints.front());
