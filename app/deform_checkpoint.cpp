@@ -13,11 +13,11 @@ namespace hotmesh::app {
 
 CheckpointWriter::CheckpointWriter(std::filesystem::path path, const io::Case& c, const deform::Mesh& mesh,
                                    std::vector<io::InputFingerprint> inputs, int kill_after_increment)
-    : path_(std::move(path)), case_(c), mesh_(mesh), inputs_(std::move(inputs)), kill_after_(kill_after_increment) {}
+    : path_(std::move(path)), origin_(io::checkpoint_origin(c, mesh, std::move(inputs))), kill_after_(kill_after_increment) {}
 
 void CheckpointWriter::write(const deform::MotionCheckpoint& state) {
   const auto start = std::chrono::steady_clock::now();
-  io::write_checkpoint(path_, io::make_checkpoint(case_, mesh_, inputs_, state));
+  io::write_checkpoint(path_, origin_, state);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::error_code ec;
   bytes_ = std::filesystem::file_size(path_, ec);

@@ -38,9 +38,7 @@ class CheckpointWriter {
 
  private:
   std::filesystem::path path_;
-  const io::Case& case_;
-  const deform::Mesh& mesh_;
-  std::vector<io::InputFingerprint> inputs_;
+  io::CheckpointOrigin origin_;
   int kill_after_ = 0;
   int written_ = 0;
   double seconds_ = 0.0;

@@ -5,8 +5,8 @@
 //   - state: building the deform::MotionCheckpoint from the solver (a copy of every point),
 //   - write: io::write_checkpoint (temporary file, fsync, rename) into --dir,
 //   - read:  io::read_checkpoint, with its checks, as `--resume` does,
-//   - hash:  io::input_fingerprints of the case's inputs (the mesh file, binary Gmsh 4.1), done
-//            once per run and once per resume.
+//   - hash:  io::input_fingerprints of the case's inputs (the mesh file, binary Gmsh 4.1) and
+//            the mesh's fingerprint (io::checkpoint_origin), done once per run.
 // Prints a Markdown table of medians over --runs. Results in docs/performance.md.
 //
 //   ninja -C build bench_checkpoint && build/bench/bench_checkpoint [--cells 2700000] [--runs 3] [--dir DIR]
@@ -106,14 +106,15 @@ int main(int argc, char** argv) {
     for (int r = 0; r < runs; ++r) {
       const bench::LoadProbe load;
       auto t = Clock::now();
-      auto inputs = io::input_fingerprints(c);
+      const auto inputs = io::input_fingerprints(c);
+      const io::CheckpointOrigin origin = io::checkpoint_origin(c, mesh, inputs);
       hash.push_back(seconds_since(t));
       t = Clock::now();
       deform::MotionCheckpoint s = state_of(mesh);
       state.push_back(seconds_since(t));
       sliding = s.sliding.size();
       t = Clock::now();
-      io::write_checkpoint(path, io::make_checkpoint(c, mesh, inputs, std::move(s)));
+      io::write_checkpoint(path, origin, s);
       write.push_back(seconds_since(t));
       bytes = std::filesystem::file_size(path);
       t = Clock::now();

@@ -1,5 +1,5 @@
-// hotmesh deform: increments, the Newton-Raphson cycle (eqs. 7-8), quality checks and
-// increment splitting.
+// hotmesh deform: increments, the Newton-Raphson cycle (eqs. 7-8), quality checks, increment
+// splitting, and the state a run hands out after each accepted step to be resumed from.
 #include "hotmesh/deform/mesh_motion.hpp"
 
 #include <array>

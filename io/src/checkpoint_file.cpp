@@ -103,22 +103,17 @@ std::string local_time_now() {
   return text;
 }
 
-/// The arrays of a checkpoint, in file order.
-struct Arrays {
-  std::vector<deform::Vec3> points;
-  std::vector<deform::NodeId> ids;
-  std::vector<deform::Vec3> targets;
-  std::vector<double> hints;
+/// The hash of a checkpoint's arrays, in file order (hints: kHints per sliding node).
+constexpr std::size_t kHints = std::tuple_size_v<decltype(deform::SlidingState::hints)>;
 
-  std::uint64_t hash() const {
-    std::uint64_t h = detail::kFnvOffset;
-    detail::hash_words(h, points.data(), points.size() * sizeof(deform::Vec3));
-    detail::hash_words(h, ids.data(), ids.size() * sizeof(deform::NodeId));
-    detail::hash_words(h, targets.data(), targets.size() * sizeof(deform::Vec3));
-    detail::hash_words(h, hints.data(), hints.size() * sizeof(double));
-    return h;
-  }
-};
+std::uint64_t arrays_hash(const std::vector<deform::Vec3>& points, const std::vector<deform::SlidingState>& sliding) {
+  std::uint64_t h = detail::kFnvOffset;
+  detail::hash_words(h, points.data(), points.size() * sizeof(deform::Vec3));
+  for (const auto& s : sliding) detail::hash_words(h, &s.node, sizeof s.node);
+  for (const auto& s : sliding) detail::hash_words(h, &s.target, sizeof s.target);
+  for (const auto& s : sliding) detail::hash_words(h, s.hints.data(), sizeof s.hints);
+  return h;
+}
 
 CheckpointInfo info_from_json(const json& header) {
   CheckpointInfo info;
@@ -209,24 +204,17 @@ std::vector<InputFingerprint> input_fingerprints(const Case& c) {
   return result;
 }
 
-Checkpoint make_checkpoint(const Case& c, const deform::Mesh& mesh, std::vector<InputFingerprint> inputs,
-                           deform::MotionCheckpoint state) {
-  Checkpoint k;
-  k.info = {c.file.string(), HOTMESH_IO_VERSION, local_time_now(), state.increments, state.finished_increments,
-            state.lambda};
-  k.mesh_fingerprint = mesh_fingerprint(mesh);
-  k.inputs = std::move(inputs);
-  k.state = std::move(state);
-  return k;
+CheckpointOrigin checkpoint_origin(const Case& c, const deform::Mesh& mesh, std::vector<InputFingerprint> inputs) {
+  return {c.file.string(), mesh_fingerprint(mesh), std::move(inputs)};
 }
 
-void write_checkpoint(const std::filesystem::path& path, const Checkpoint& checkpoint) {
-  const deform::MotionCheckpoint& s = checkpoint.state;
+void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin& origin,
+                      const deform::MotionCheckpoint& s) {
   json header{{"format_version", kVersion},
-              {"hotmesh_version", checkpoint.info.hotmesh_version},
-              {"case", checkpoint.info.case_file},
-              {"written_at", checkpoint.info.written_at},
-              {"mesh_fingerprint", checkpoint.mesh_fingerprint},
+              {"hotmesh_version", HOTMESH_IO_VERSION},
+              {"case", origin.case_file},
+              {"written_at", local_time_now()},
+              {"mesh_fingerprint", origin.mesh_fingerprint},
               {"inputs", json::array()},
               {"nodes", s.points.size()},
               {"sliding_nodes", s.sliding.size()},
@@ -238,28 +226,28 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& check
               {"max_normal_slip", number(s.max_normal_slip)},
               {"max_sliding_projection_distance", number(s.max_sliding_projection_distance)},
               {"timings", timings_json(s.timings)}};
-  for (const auto& f : checkpoint.inputs) header["inputs"].push_back({{"file", f.file.string()}, {"bytes", f.bytes}, {"hash", f.hash}});
+  for (const auto& f : origin.inputs) header["inputs"].push_back({{"file", f.file.string()}, {"bytes", f.bytes}, {"hash", f.hash}});
   for (const auto& step : s.remaining) {
     header["remaining"].push_back({step.increment, step.lambda_begin, step.lambda_end, step.split_depth});
   }
   for (const auto& r : s.records) header["records"].push_back(record_json(r));
 
-  Arrays arrays;
-  arrays.points = s.points;
-  for (const auto& node : s.sliding) {
-    arrays.ids.push_back(node.node);
-    arrays.targets.push_back(node.target);
-    arrays.hints.insert(arrays.hints.end(), node.hints.begin(), node.hints.end());
-  }
+  // Sliding nodes as three arrays (ids, targets, hints), written without copying the points.
+  const auto count = [](std::size_t n) { return static_cast<std::uint64_t>(n); };
   AtomicFile file(path);
   std::ostream& out = file.stream();
   detail::write_header(out, kMagic, header.dump());
-  detail::write_array(out, arrays.points);
-  detail::write_array(out, arrays.ids);
-  detail::write_array(out, arrays.targets);
-  detail::write_array(out, arrays.hints);
-  const std::uint64_t hash = arrays.hash();
-  out.write(reinterpret_cast<const char*>(&hash), sizeof hash);
+  detail::write_array(out, s.points);
+  const auto put = [&out](const void* data, std::size_t size) { out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size)); };
+  const std::uint64_t n = count(s.sliding.size()), hints = n * kHints;
+  put(&n, sizeof n);
+  for (const auto& node : s.sliding) put(&node.node, sizeof node.node);
+  put(&n, sizeof n);
+  for (const auto& node : s.sliding) put(&node.target, sizeof node.target);
+  put(&hints, sizeof hints);
+  for (const auto& node : s.sliding) put(node.hints.data(), sizeof node.hints);
+  const std::uint64_t hash = arrays_hash(s.points, s.sliding);
+  put(&hash, sizeof hash);
   file.commit();
 }
 
@@ -283,9 +271,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const deform::Mesh
   std::uint64_t nodes = 0, sliding = 0;
   try {
     k.info = info_from_json(header);
-    k.mesh_fingerprint = header.at("mesh_fingerprint").get<std::uint64_t>();
+    k.origin.case_file = k.info.case_file;
+    k.origin.mesh_fingerprint = header.at("mesh_fingerprint").get<std::uint64_t>();
     for (const json& f : header.at("inputs")) {
-      k.inputs.push_back({f.at("file").get<std::string>(), f.at("bytes").get<std::uint64_t>(), f.at("hash").get<std::uint64_t>()});
+      k.origin.inputs.push_back({f.at("file").get<std::string>(), f.at("bytes").get<std::uint64_t>(), f.at("hash").get<std::uint64_t>()});
     }
     nodes = header.at("nodes").get<std::uint64_t>();
     sliding = header.at("sliding_nodes").get<std::uint64_t>();
@@ -304,7 +293,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const deform::Mesh
     throw InputError::in(path.string(), std::string("the checkpoint file's header is damaged: ") + e.what());
   }
 
-  const std::string changed = input_differences(k.inputs, inputs);
+  const std::string changed = input_differences(k.origin.inputs, inputs);
   if (!changed.empty()) {
     throw InputError::in(path.string(),
                          fmt::format("cannot resume: the inputs are not those of the interrupted run (checkpoint "
@@ -313,26 +302,25 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const deform::Mesh
                                      "--resume",
                                      k.info.written_at, k.info.case_file, changed));
   }
-  if (k.mesh_fingerprint != mesh_fingerprint(mesh) || nodes != mesh.node_count()) {
+  if (k.origin.mesh_fingerprint != mesh_fingerprint(mesh) || nodes != mesh.node_count()) {
     throw InputError::in(path.string(), "cannot resume: this checkpoint was written for another mesh (case " +
                                             k.info.case_file + ")");
   }
-  Arrays arrays;
-  arrays.points = in.array<deform::Vec3>(nodes);
-  arrays.ids = in.array<deform::NodeId>(sliding);
-  arrays.targets = in.array<deform::Vec3>(sliding);
-  arrays.hints = in.array<double>(sliding * deform::SlidingState{}.hints.size());
+  k.state.points = in.array<deform::Vec3>(nodes);
+  const auto ids = in.array<deform::NodeId>(sliding);
+  const auto targets = in.array<deform::Vec3>(sliding);
+  const auto hints = in.array<double>(sliding * kHints);
+  k.state.sliding.resize(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    deform::SlidingState& node = k.state.sliding[i];
+    node.node = ids[i];
+    node.target = targets[i];
+    std::copy_n(hints.begin() + static_cast<std::ptrdiff_t>(i * kHints), kHints, node.hints.begin());
+  }
   std::uint64_t hash = 0;
   in.read(&hash, sizeof hash);
-  if (hash != arrays.hash() || in.at() != bytes.size()) {
+  if (hash != arrays_hash(k.state.points, k.state.sliding) || in.at() != bytes.size()) {
     throw InputError::in(path.string(), "the checkpoint file is damaged (its content does not match its checksum)");
-  }
-  k.state.points = std::move(arrays.points);
-  const std::size_t per_node = deform::SlidingState{}.hints.size();
-  for (std::size_t i = 0; i < arrays.ids.size(); ++i) {
-    deform::SlidingState node{arrays.ids[i], arrays.targets[i], {}};
-    std::copy_n(arrays.hints.begin() + static_cast<std::ptrdiff_t>(i * per_node), per_node, node.hints.begin());
-    k.state.sliding.push_back(node);
   }
   return k;
 }

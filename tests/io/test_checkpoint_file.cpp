@@ -76,7 +76,7 @@ TEST(CheckpointFile, RoundTripKeepsEveryFieldBitForBit) {
   const auto inputs = input_fingerprints(c);
   ASSERT_EQ(inputs.size(), 3u);  // case file, mesh, table
   EXPECT_EQ(inputs[1].bytes, 10u);
-  write_checkpoint(dir / "checkpoint.hmc", make_checkpoint(c, mesh, inputs, some_state(mesh)));
+  write_checkpoint(dir / "checkpoint.hmc", checkpoint_origin(c, mesh, inputs), some_state(mesh));
 
   const Checkpoint k = read_checkpoint(dir / "checkpoint.hmc", mesh, inputs);
   const deform::MotionCheckpoint expected = some_state(mesh);
@@ -123,7 +123,7 @@ TEST(CheckpointFile, ChangedInputIsRefusedNamingTheFile) {
   test::TempDir dir;
   const Case c = case_in(dir);
   const deform::Mesh mesh = test::unit_square(3, 2);
-  write_checkpoint(dir / "checkpoint.hmc", make_checkpoint(c, mesh, input_fingerprints(c), some_state(mesh)));
+  write_checkpoint(dir / "checkpoint.hmc", checkpoint_origin(c, mesh, input_fingerprints(c)), some_state(mesh));
   test::write_text(dir / "wall.csv", "x,y,dx,dy\n0,0,0,0\n1,0,0,0.2\n");  // same size, other bytes
   try {
     read_checkpoint(dir / "checkpoint.hmc", mesh, input_fingerprints(c));
@@ -151,7 +151,7 @@ TEST(CheckpointFile, AnotherMeshIsRefused) {
   test::TempDir dir;
   const Case c = case_in(dir);
   const deform::Mesh mesh = test::unit_square(3, 2);
-  write_checkpoint(dir / "checkpoint.hmc", make_checkpoint(c, mesh, input_fingerprints(c), some_state(mesh)));
+  write_checkpoint(dir / "checkpoint.hmc", checkpoint_origin(c, mesh, input_fingerprints(c)), some_state(mesh));
   deform::Mesh moved = mesh;
   moved.points[4].x += 1e-9;
   try {
@@ -167,7 +167,7 @@ TEST(CheckpointFile, DamagedOrForeignFilesAreRefused) {
   const Case c = case_in(dir);
   const deform::Mesh mesh = test::unit_square(3, 2);
   const auto inputs = input_fingerprints(c);
-  write_checkpoint(dir / "checkpoint.hmc", make_checkpoint(c, mesh, inputs, some_state(mesh)));
+  write_checkpoint(dir / "checkpoint.hmc", checkpoint_origin(c, mesh, inputs), some_state(mesh));
   const std::string good = test::read_text(dir / "checkpoint.hmc");
   const auto refused = [&](const std::string& bytes, const std::string& message) {
     test::write_text(dir / "bad.hmc", bytes);

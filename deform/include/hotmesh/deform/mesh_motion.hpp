@@ -9,6 +9,9 @@
 // increment the cells are checked; an increment that inverts a cell or whose Newton cycle
 // fails is retried as two half increments (recursively, up to a limit). If it still fails,
 // the run stops with the last valid mesh and a message naming the cell and increment.
+// Observers see every Newton step and every attempt; after each accepted step the run hands
+// out its state (MotionCheckpoint), from which a run that was killed later resumes and makes
+// the same moves to the last bit.
 #pragma once
 
 #include <array>

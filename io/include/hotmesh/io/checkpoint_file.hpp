@@ -49,19 +49,26 @@ struct CheckpointInfo {
   double lambda = 0.0;
 };
 
-struct Checkpoint {
-  CheckpointInfo info;
+/// What a run was made from: the same in all its checkpoints.
+struct CheckpointOrigin {
+  std::string case_file;
   std::uint64_t mesh_fingerprint = 0;  ///< of the undeformed mesh (mesh_fingerprint())
   std::vector<InputFingerprint> inputs;
+};
+
+/// The origin of run `c` on `mesh` (`inputs` from input_fingerprints(c)); computed once a run.
+CheckpointOrigin checkpoint_origin(const Case& c, const deform::Mesh& mesh, std::vector<InputFingerprint> inputs);
+
+struct Checkpoint {
+  CheckpointInfo info;
+  CheckpointOrigin origin;
   deform::MotionCheckpoint state;
 };
 
-/// The checkpoint of run `c` on `mesh` (`inputs` from input_fingerprints(c)).
-Checkpoint make_checkpoint(const Case& c, const deform::Mesh& mesh, std::vector<InputFingerprint> inputs,
-                           deform::MotionCheckpoint state);
-
-/// Writes atomically (a crash while writing leaves the previous checkpoint).
-void write_checkpoint(const std::filesystem::path& path, const Checkpoint& checkpoint);
+/// Writes the state of a run atomically (a crash while writing leaves the previous checkpoint),
+/// stamped with this hotmesh's version and the time.
+void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin& origin,
+                      const deform::MotionCheckpoint& state);
 
 /// Reads only the header. Throws hotmesh::InputError naming the file if it is not a
 /// checkpoint of this format version, or is damaged.
