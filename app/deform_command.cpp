@@ -14,6 +14,7 @@
 #include <memory>
 #include <new>
 #include <optional>
+#include <span>
 
 #include "commands.hpp"
 #include "deform_checkpoint.hpp"
@@ -97,6 +98,38 @@ void report_out_of_memory(const RunState& state) {
   }
 }
 
+/// Makes the output folder ready; with --resume, reads the checkpoint in it and checks it
+/// against this run's inputs (`fingerprints`).
+std::optional<io::Checkpoint> prepare_output(const Options& options, const io::Case& c, const deform::Mesh& mesh,
+                                             const std::filesystem::path& output,
+                                             std::span<const io::InputFingerprint> fingerprints) {
+  const auto inputs = c.inputs();
+  const auto names = output_names(c, mesh);
+  std::optional<io::Checkpoint> resumed;
+  if (options.resume) {
+    // The folder was accepted by the run that wrote the checkpoint: no check for inputs in it
+    // (that run may have been forced), but no output may replace one.
+    const auto path = output / io::kCheckpointName;
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) {
+      throw InputError::in(output.string(), fmt::format("--resume: there is no {} in the output folder, so no "
+                                                        "interrupted run to continue; run without --resume to start",
+                                                        io::kCheckpointName));
+    }
+    resumed = io::read_checkpoint(path, mesh, fingerprints);
+    if (resumed->info.hotmesh_version != HOTMESH_VERSION) {
+      spdlog::warn("the checkpoint was written by hotmesh {}, this is {}: the result may differ slightly from an "
+                   "uninterrupted run", resumed->info.hotmesh_version, HOTMESH_VERSION);
+    }
+  } else {
+    io::prepare_output_folder(output, inputs, options.force);
+    refuse_to_replace_checkpoint(output, options.force);
+  }
+  for (const auto& name : names) io::refuse_overwriting_input(output / name, inputs);
+  if (resumed) remove_leftover_temporaries(output, names);
+  return resumed;
+}
+
 int run_deform(const Options& options, RunState& state) {
   const auto start = Clock::now();
   RunTimings timings;
@@ -113,32 +146,10 @@ int run_deform(const Options& options, RunState& state) {
   spdlog::info("mesh {}: {} nodes, {} cells", c.mesh.string(), mesh.node_count(), mesh.cell_count());
   io::check_case_against_mesh(c, mesh);
   const std::filesystem::path output = options.output.empty() ? c.output : std::filesystem::path(options.output);
-  const auto inputs = c.inputs();
-  const auto names = output_names(c, mesh);
   const std::filesystem::path checkpoint_path = output / io::kCheckpointName;
-  std::optional<io::Checkpoint> resumed;
   state.phase = "checking the inputs";
   auto fingerprints = io::input_fingerprints(c);
-  if (options.resume) {
-    // The folder was accepted by the run that wrote the checkpoint: no check for inputs in it
-    // (that run may have been forced), but no output may replace one.
-    std::error_code ec;
-    if (!std::filesystem::exists(checkpoint_path, ec)) {
-      throw InputError::in(output.string(), fmt::format("--resume: there is no {} in the output folder, so no "
-                                                        "interrupted run to continue; run without --resume to start",
-                                                        io::kCheckpointName));
-    }
-    resumed = io::read_checkpoint(checkpoint_path, mesh, fingerprints);
-    if (resumed->info.hotmesh_version != HOTMESH_VERSION) {
-      spdlog::warn("the checkpoint was written by hotmesh {}, this is {}: the result may differ slightly from an "
-                   "uninterrupted run", resumed->info.hotmesh_version, HOTMESH_VERSION);
-    }
-  } else {
-    io::prepare_output_folder(output, inputs, options.force);
-    refuse_to_replace_checkpoint(output, options.force);
-  }
-  for (const auto& name : names) io::refuse_overwriting_input(output / name, inputs);
-  if (resumed) remove_leftover_temporaries(output, names);
+  std::optional<io::Checkpoint> resumed = prepare_output(options, c, mesh, output, fingerprints);
   const int threads = options.threads >= 0 ? options.threads : c.solver.threads;
   if (threads > 0) omp_set_num_threads(threads);
 
@@ -169,8 +180,9 @@ int run_deform(const Options& options, RunState& state) {
   const int increments = c.solver.increments;
   if (resumed) {
     const io::CheckpointInfo& info = resumed->info;
-    spdlog::info("resuming from {} (written {}): {} of {} increments done, stage {:.4f}", checkpoint_path.string(),
-                 info.written_at, info.finished_increments, info.increments, info.lambda);
+    spdlog::info("resuming from {} (written {}): {} of {} increments done, stage {:.4f}; on {} threads",
+                 checkpoint_path.string(), info.written_at, info.finished_increments, info.increments, info.lambda,
+                 omp_get_max_threads());
   } else {
     spdlog::info("moving the mesh in {} increments on {} threads", increments, omp_get_max_threads());
   }
