@@ -159,6 +159,22 @@ TEST(DeformResume, RunKilledWithSigkillResumesToTheSameOutputs) {
   expect_same_outputs(dir / "straight", out);
 }
 
+TEST(DeformResume, RestartedRunResumesToo) {
+  // The next coupling iteration (restart: from a finished run's restart.hmr), killed and resumed.
+  SlidingRamp ramp;
+  test::write_text(ramp.dir / "first.yaml", test::ramp_case("half.csv", 2));
+  test::write_text(ramp.dir / "second.yaml", test::ramp_case("full.csv", 4, "restart: first-out/restart.hmr\n"));
+  ASSERT_EQ(hotmesh("-q deform " + shell_quote((ramp.dir / "first.yaml").string())).exit_code, 0);
+  const std::string second = "deform " + shell_quote((ramp.dir / "second.yaml").string()) + " -o ";
+  ASSERT_EQ(hotmesh("-q " + second + shell_quote((ramp.dir / "straight").string())).exit_code, 0);
+  const std::string out = shell_quote((ramp.dir / "out").string());
+  ASSERT_EQ(hotmesh(second + out + " --stop-after-increment 2").exit_code, kKilled);
+  const auto resumed = hotmesh(second + out + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  expect_same_outputs(ramp.dir / "straight", ramp.dir / "out");
+  EXPECT_THAT(test::read_text(ramp.dir / "out" / "report.json"), HasSubstr("first-out/restart.hmr"));
+}
+
 TEST(DeformResume, ChangedCaseOrTableIsRefusedNamingTheFile) {
   SlidingRamp ramp;
   ASSERT_EQ(hotmesh(ramp.deform("out", "--stop-after-increment 1")).exit_code, kKilled);
