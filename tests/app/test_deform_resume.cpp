@@ -1,9 +1,9 @@
 // Tests of long runs of `hotmesh deform`: a run killed after an increment (by the testing hook
 // --stop-after-increment, and by a real SIGKILL at a moment it does not choose) resumes with
-// --resume and writes the very outputs of an uninterrupted run; a resume with a changed case or
-// table, or without a checkpoint, is refused; a fresh run does not destroy a checkpoint; running
-// out of memory exits with code 4 naming the phase and keeps the checkpoint; progress lines per
-// Newton step.
+// --resume and writes the very outputs of an uninterrupted run, a restarted run's too; a resume
+// with a changed case or table, or without a checkpoint, is refused; a fresh run does not
+// destroy a checkpoint; running out of memory exits with code 4 naming the phase and keeps the
+// checkpoint; progress lines per Newton step.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
