@@ -14,6 +14,9 @@ namespace hotmesh::app {
 /// hotmesh::InputError (exit code 2), failures of the work itself return 1.
 using Command = std::function<int()>;
 
+/// Exit code when memory runs out (std::bad_alloc): neither bad input (2) nor a bug (3).
+inline constexpr int kExitOutOfMemory = 4;
+
 Command add_info_command(CLI::App& parent);
 Command add_convert_command(CLI::App& parent);
 Command add_deform_command(CLI::App& parent);

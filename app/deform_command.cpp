@@ -1,21 +1,29 @@
-// hotmesh deform CASE.yaml [-o DIR] [--threads N] [--force] [--binary]: the main job. Reads and
-// validates everything first, moves the mesh increment by increment, and writes the deformed
-// mesh (.msh, .vtu), pictures for 2D meshes, report.json and restart.hmr (the state the next
-// coupling iteration continues from) to the output folder. If the motion fails it keeps the
-// last valid mesh, writes failed.vtu marking the failed cells and exits with code 1.
+// hotmesh deform CASE.yaml [-o DIR] [--threads N] [--force] [--binary] [--resume] [--progress]:
+// the main job. Reads and validates everything first, moves the mesh increment by increment
+// (saving a checkpoint after each), and writes the deformed mesh (.msh, .vtu), pictures for 2D
+// meshes, report.json and restart.hmr (the state the next coupling iteration continues from)
+// to the output folder. If the motion fails it keeps the last valid mesh, writes failed.vtu
+// marking the failed cells and exits with code 1. --resume continues a killed run from its
+// checkpoint. Running out of memory is reported with the phase and exit code 4.
 #include <CLI/CLI.hpp>
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
+#include <new>
 #include <optional>
+#include <span>
 
 #include "commands.hpp"
+#include "deform_checkpoint.hpp"
 #include "deform_outputs.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/io/checkpoint_file.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/io/output_folder.hpp"
 #include "hotmesh/io/restart_file.hpp"
@@ -26,10 +34,38 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+/// From this size on, every Newton step is logged at info level (else at debug, -v): a step
+/// then takes seconds to minutes, and a user wants to see the run is alive.
+constexpr std::size_t kProgressCells = 100'000;
+
+struct Options {
+  std::string case_file;
+  std::string output;
+  int threads = -1;
+  bool force = false;
+  bool binary = false;
+  bool resume = false;
+  bool progress = false;
+  int stop_after_increment = 0;         ///< testing hook: SIGKILL after this increment's checkpoint
+  int fail_allocation_in_increment = 0;  ///< testing hook: std::bad_alloc during this increment
+};
+
+/// Where the run is, for the message if memory runs out (kept outside the run, which the
+/// exception unwinds).
+struct RunState {
+  std::string phase = "reading the case";
+  std::size_t nodes = 0;
+  std::size_t cells = 0;
+  std::filesystem::path checkpoint;  ///< set once the motion starts
+  int checkpoint_increments = -1;    ///< increments done in the last checkpoint written, -1: none
+};
+
+std::string piece_of(int split_depth) { return split_depth > 0 ? fmt::format(" (1/{} piece)", 1 << split_depth) : ""; }
+
 void log_increment(const deform::IncrementRecord& r, int increments) {
   std::string pcg;
   for (std::size_t i = 0; i + 1 < r.newton.size(); ++i) pcg += fmt::format("{}{}", i ? "+" : "", r.newton[i].pcg_iterations);
-  const std::string piece = r.split_depth > 0 ? fmt::format(" (1/{} piece)", 1 << r.split_depth) : "";
+  const std::string piece = piece_of(r.split_depth);
   if (r.accepted) {
     spdlog::info("increment {}/{}{}: stage {:.4f}, {} Newton iterations (PCG {}), residual {:.2e}, min scaled "
                  "Jacobian {:.3f}, {:.2f} s",
@@ -41,89 +77,193 @@ void log_increment(const deform::IncrementRecord& r, int increments) {
   }
 }
 
+void log_newton_step(const deform::NewtonProgress& p, spdlog::level::level_enum level, bool sliding, double run_seconds) {
+  spdlog::log(level, "increment {}/{}{} Newton {}: residual {:.2e} of initial, PCG {}{}{}, {:.1f} s (run {:.0f} s)",
+              p.step.increment, p.increments, piece_of(p.step.split_depth), p.iteration, p.residual_reduction,
+              p.pcg_iterations, p.pcg_converged ? "" : " (not converged)",
+              sliding ? fmt::format(", sliding projection {:.2e}", p.max_projection) : "", p.seconds, run_seconds);
+}
+
+void report_out_of_memory(const RunState& state) {
+  std::string sizes = state.nodes > 0 ? fmt::format(" on a mesh of {} nodes and {} cells", state.nodes, state.cells) : "";
+  spdlog::error("out of memory while {}{} (peak memory of this process {:.2f} GB)", state.phase, sizes,
+                static_cast<double>(peak_memory_bytes()) / 1e9);
+  if (state.checkpoint_increments >= 0) {
+    spdlog::error("the last checkpoint, {} increments done, is kept in {}: run the same command with --resume where "
+                  "more memory is available (or with fewer threads) to continue from it",
+                  state.checkpoint_increments, state.checkpoint.string());
+  } else if (!state.checkpoint.empty()) {
+    spdlog::error("no increment had finished, so there is nothing to resume; outputs already in the folder are "
+                  "those of earlier runs");
+  }
+}
+
+/// Makes the output folder ready; with --resume, reads the checkpoint in it and checks it
+/// against this run's inputs (`fingerprints`).
+std::optional<io::Checkpoint> prepare_output(const Options& options, const io::Case& c, const deform::Mesh& mesh,
+                                             const std::filesystem::path& output,
+                                             std::span<const io::InputFingerprint> fingerprints) {
+  const auto inputs = c.inputs();
+  const auto names = output_names(c, mesh);
+  std::optional<io::Checkpoint> resumed;
+  if (options.resume) {
+    // The folder was accepted by the run that wrote the checkpoint: no check for inputs in it
+    // (that run may have been forced), but no output may replace one.
+    const auto path = output / io::kCheckpointName;
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) {
+      throw InputError::in(output.string(), fmt::format("--resume: there is no {} in the output folder, so no "
+                                                        "interrupted run to continue; run without --resume to start",
+                                                        io::kCheckpointName));
+    }
+    resumed = io::read_checkpoint(path, mesh, fingerprints);
+    if (resumed->info.hotmesh_version != HOTMESH_VERSION) {
+      spdlog::warn("the checkpoint was written by hotmesh {}, this is {}: the result may differ slightly from an "
+                   "uninterrupted run", resumed->info.hotmesh_version, HOTMESH_VERSION);
+    }
+  } else {
+    io::prepare_output_folder(output, inputs, options.force);
+    refuse_to_replace_checkpoint(output, options.force);
+  }
+  for (const auto& name : names) io::refuse_overwriting_input(output / name, inputs);
+  if (resumed) remove_leftover_temporaries(output, names);
+  return resumed;
+}
+
+int run_deform(const Options& options, RunState& state) {
+  const auto start = Clock::now();
+  RunTimings timings;
+
+  // 1. Everything the run needs is read and checked before any work.
+  auto t = Clock::now();
+  const io::Case c = io::read_case(options.case_file);
+  spdlog::info("case {}", c.file.string());
+  state.phase = "reading the mesh";
+  io::LoadedMesh loaded = io::read_mesh(c.mesh);
+  const deform::Mesh& mesh = loaded.mesh;
+  state.nodes = mesh.node_count();
+  state.cells = mesh.cell_count();
+  spdlog::info("mesh {}: {} nodes, {} cells", c.mesh.string(), mesh.node_count(), mesh.cell_count());
+  io::check_case_against_mesh(c, mesh);
+  const std::filesystem::path output = options.output.empty() ? c.output : std::filesystem::path(options.output);
+  const std::filesystem::path checkpoint_path = output / io::kCheckpointName;
+  state.phase = "checking the inputs";
+  auto fingerprints = io::input_fingerprints(c);
+  std::optional<io::Checkpoint> resumed = prepare_output(options, c, mesh, output, fingerprints);
+  const int threads = options.threads >= 0 ? options.threads : c.solver.threads;
+  if (threads > 0) omp_set_num_threads(threads);
+
+  // A restarted run continues from the state a previous run saved (section 4.3).
+  std::optional<io::RestartState> previous;
+  std::optional<deform::MotionStart> restart;
+  if (c.restart) {
+    previous = io::read_restart(*c.restart, mesh);
+    restart = deform::MotionStart{previous->points, previous->sliding};
+    spdlog::info("restarting from {} ({} sliding nodes)", c.restart->string(), previous->sliding.size());
+  }
+  timings.read = seconds_since(t);
+
+  // 2. The deflected shapes, from the FEM tables (section 4.2).
+  state.phase = "building the deflected shapes";
+  t = Clock::now();
+  const io::CaseSetup setup = io::set_up_case(c, mesh, previous ? &*previous : nullptr);
+  for (const auto& s : setup.shapes) {
+    spdlog::info("patch {}: deflected shape through {} FEM nodes (degree {})", s.patch, s.reconstruction.used_nodes,
+                 s.reconstruction.degree);
+  }
+  timings.shapes = seconds_since(t);
+
+  // 3. The motion, increment by increment, with a checkpoint after each.
+  CheckpointWriter checkpoints(checkpoint_path, c, mesh, std::move(fingerprints), options.stop_after_increment);
+  state.checkpoint = checkpoint_path;
+  if (resumed) state.checkpoint_increments = resumed->info.finished_increments;
+  const int increments = c.solver.increments;
+  if (resumed) {
+    const io::CheckpointInfo& info = resumed->info;
+    spdlog::info("resuming from {} (written {}): {} of {} increments done, stage {:.4f}; on {} threads",
+                 checkpoint_path.string(), info.written_at, info.finished_increments, info.increments, info.lambda,
+                 omp_get_max_threads());
+  } else {
+    spdlog::info("moving the mesh in {} increments on {} threads", increments, omp_get_max_threads());
+  }
+  const bool sliding = std::any_of(setup.motions.begin(), setup.motions.end(),
+                                   [](const deform::PatchMotion& m) { return m.role == deform::BoundaryRole::sliding; });
+  const auto newton_level =
+      options.progress || mesh.cell_count() >= kProgressCells ? spdlog::level::info : spdlog::level::debug;
+  deform::MotionObservers observers;
+  observers.increment = [increments](const deform::IncrementRecord& r) { log_increment(r, increments); };
+  observers.newton = [&](const deform::NewtonProgress& p) {
+    state.phase = fmt::format("moving the mesh (increment {} of {})", p.step.increment, increments);
+    if (p.step.increment == options.fail_allocation_in_increment) throw std::bad_alloc();  // testing hook
+    log_newton_step(p, newton_level, sliding, seconds_since(start));
+  };
+  observers.checkpoint = [&](const deform::MotionCheckpoint& k) {
+    checkpoints.write(k);
+    state.checkpoint_increments = k.finished_increments;
+  };
+  state.phase = "moving the mesh";
+  const deform::MotionResult result = deform::move_mesh(mesh, setup.motions, c.material, c.solver, observers,
+                                                        restart ? &*restart : nullptr, resumed ? &resumed->state : nullptr);
+  const std::optional<io::CheckpointInfo> resumed_from = resumed ? std::optional(resumed->info) : std::nullopt;
+  resumed.reset();  // its copy of the mesh is no longer needed
+  for (const auto& note : result.notes) spdlog::warn("{}", note);
+
+  // 4. Outputs, each written atomically; on failure the last valid mesh.
+  state.phase = "writing the outputs";
+  t = Clock::now();
+  RunOutputs outputs = write_outputs(output, c, mesh, setup, result, options.binary);
+  if (result.success) {  // the state the next coupling iteration restarts from
+    io::write_restart(output / "restart.hmr", io::restart_state(c, mesh, result));
+    outputs.files.push_back(output / "restart.hmr");
+  }
+  timings.write = seconds_since(t);
+  timings.checkpoints = checkpoints.written();
+  timings.checkpoint = checkpoints.seconds();
+  timings.checkpoint_bytes = checkpoints.bytes();
+  timings.wall = seconds_since(start);
+  write_report(output, c, loaded, setup, result, timings, outputs, resumed_from ? &*resumed_from : nullptr);
+  checkpoints.remove();  // the run has ended: the outputs supersede it
+
+  if (!result.success) {
+    spdlog::error("{}", result.message);
+    spdlog::error("kept the last valid mesh (stage {:.4f}) in {}; failed.vtu marks the failed cells",
+                  result.lambda_reached, output.string());
+    return 1;
+  }
+  spdlog::info("done in {:.2f} s: min scaled Jacobian {:.3f}, outputs in {}", timings.wall,
+               result.summary.min_scaled_jacobian, output.string());
+  return 0;
+}
+
 }  // namespace
 
 Command add_deform_command(CLI::App& parent) {
-  struct Options {
-    std::string case_file;
-    std::string output;
-    int threads = -1;
-    bool force = false;
-    bool binary = false;
-  };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = parent.add_subcommand("deform", "Deform a mesh as a case file describes (the main job)");
   cmd->add_option("CASE", options->case_file, "Case file (.yaml), see docs/case-file.md")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", options->output, "Output folder (default: the case's `output`)");
   cmd->add_option("--threads", options->threads, "OpenMP threads (default: the case's solver.threads; 0: all cores)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--force", options->force, "Write into the output folder even if it holds input files");
+  cmd->add_flag("--force", options->force,
+                "Write into the output folder even if it holds input files or the checkpoint of an interrupted run");
   cmd->add_flag("--binary", options->binary, "Write deformed.msh in binary (smaller, faster for large meshes)");
+  cmd->add_flag("--resume", options->resume,
+                "Continue an interrupted run from the checkpoint in its output folder (same case and inputs)");
+  cmd->add_flag("--progress", options->progress,
+                "Log every Newton step (the default for meshes of 100 000 cells or more; -v shows them too)");
+  // Testing hooks, not shown in --help (docs/case-file.md, "Long runs").
+  cmd->add_option("--stop-after-increment", options->stop_after_increment)->group("")->check(CLI::PositiveNumber);
+  cmd->add_option("--fail-allocation-in-increment", options->fail_allocation_in_increment)
+      ->group("")
+      ->check(CLI::PositiveNumber);
   return [options] {
-    const auto start = Clock::now();
-    RunTimings timings;
-
-    // 1. Everything the run needs is read and checked before any work.
-    auto t = Clock::now();
-    const io::Case c = io::read_case(options->case_file);
-    spdlog::info("case {}", c.file.string());
-    io::LoadedMesh loaded = io::read_mesh(c.mesh);
-    const deform::Mesh& mesh = loaded.mesh;
-    spdlog::info("mesh {}: {} nodes, {} cells", c.mesh.string(), mesh.node_count(), mesh.cell_count());
-    io::check_case_against_mesh(c, mesh);
-    const std::filesystem::path output = options->output.empty() ? c.output : std::filesystem::path(options->output);
-    const auto inputs = c.inputs();
-    io::prepare_output_folder(output, inputs, options->force);
-    for (const auto& name : output_names(c, mesh)) io::refuse_overwriting_input(output / name, inputs);
-    const int threads = options->threads >= 0 ? options->threads : c.solver.threads;
-    if (threads > 0) omp_set_num_threads(threads);
-
-    // A restarted run continues from the state a previous run saved (section 4.3).
-    std::optional<io::RestartState> previous;
-    std::optional<deform::MotionStart> resume;
-    if (c.restart) {
-      previous = io::read_restart(*c.restart, mesh);
-      resume = deform::MotionStart{previous->points, previous->sliding};
-      spdlog::info("restarting from {} ({} sliding nodes)", c.restart->string(), previous->sliding.size());
+    RunState state;
+    try {
+      return run_deform(*options, state);
+    } catch (const std::bad_alloc&) {
+      report_out_of_memory(state);
+      return kExitOutOfMemory;
     }
-    timings.read = seconds_since(t);
-
-    // 2. The deflected shapes, from the FEM tables (section 4.2).
-    t = Clock::now();
-    const io::CaseSetup setup = io::set_up_case(c, mesh, previous ? &*previous : nullptr);
-    for (const auto& s : setup.shapes) {
-      spdlog::info("patch {}: deflected shape through {} FEM nodes (degree {})", s.patch, s.reconstruction.used_nodes,
-                   s.reconstruction.degree);
-    }
-    timings.shapes = seconds_since(t);
-
-    // 3. The motion, increment by increment.
-    spdlog::info("moving the mesh in {} increments on {} threads", c.solver.increments, omp_get_max_threads());
-    const deform::MotionResult result = deform::move_mesh(
-        mesh, setup.motions, c.material, c.solver,
-        [&c](const deform::IncrementRecord& r) { log_increment(r, c.solver.increments); }, resume ? &*resume : nullptr);
-    for (const auto& note : result.notes) spdlog::warn("{}", note);
-
-    // 4. Outputs, each written atomically; on failure the last valid mesh.
-    t = Clock::now();
-    RunOutputs outputs = write_outputs(output, c, mesh, setup, result, options->binary);
-    if (result.success) {  // the state the next coupling iteration restarts from
-      io::write_restart(output / "restart.hmr", io::restart_state(c, mesh, result));
-      outputs.files.push_back(output / "restart.hmr");
-    }
-    timings.write = seconds_since(t);
-    timings.wall = seconds_since(start);
-    write_report(output, c, loaded, setup, result, timings, outputs);
-
-    if (!result.success) {
-      spdlog::error("{}", result.message);
-      spdlog::error("kept the last valid mesh (stage {:.4f}) in {}; failed.vtu marks the failed cells",
-                    result.lambda_reached, output.string());
-      return 1;
-    }
-    spdlog::info("done in {:.2f} s: min scaled Jacobian {:.3f}, outputs in {}", timings.wall,
-                 result.summary.min_scaled_jacobian, output.string());
-    return 0;
   };
 }
 

@@ -48,7 +48,8 @@ void picture(const std::filesystem::path& path, const std::string& title, const 
   figure.save(path);
 }
 
-/// The process's peak resident memory (VmHWM), or 0 where /proc does not tell.
+}  // namespace
+
 std::uint64_t peak_memory_bytes() {
   std::ifstream status("/proc/self/status");
   for (std::string line; std::getline(status, line);) {
@@ -57,10 +58,9 @@ std::uint64_t peak_memory_bytes() {
   return 0;
 }
 
-}  // namespace
-
 std::vector<std::string> output_names(const io::Case& c, const deform::Mesh& mesh) {
-  std::vector<std::string> names{"deformed.msh", "deformed.vtu", "failed.vtu", "report.json", "restart.hmr"};
+  std::vector<std::string> names{"deformed.msh", "deformed.vtu", "failed.vtu", "report.json", "restart.hmr",
+                                 std::string(io::kCheckpointName)};
   if (mesh.dimension == 2) {
     names.push_back("deformed.png");
     names.push_back("failed.png");
@@ -105,7 +105,7 @@ RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c,
 
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
                   const io::CaseSetup& setup, const deform::MotionResult& result, const RunTimings& timings,
-                  RunOutputs& outputs) {
+                  RunOutputs& outputs, const io::CheckpointInfo* resumed) {
   using nlohmann::json;
   const deform::Mesh& mesh = loaded.mesh;
   json j;
@@ -173,6 +173,15 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["max_sliding_projection_distance"] = result.max_sliding_projection_distance;
   j["max_normal_slip"] = result.max_normal_slip;
   if (c.restart) j["restarted_from"] = c.restart->string();
+  if (resumed) {
+    j["resumed_from"] = {{"checkpoint", (folder / io::kCheckpointName).string()},
+                         {"written_at", resumed->written_at},
+                         {"finished_increments", resumed->finished_increments},
+                         {"stage", resumed->lambda}};
+  }
+  j["checkpoints"] = {{"written", timings.checkpoints},
+                      {"seconds", timings.checkpoint},
+                      {"last_bytes", timings.checkpoint_bytes}};
   j["min_scaled_jacobian"] = result.summary.min_scaled_jacobian;
   j["inverted_cells"] = result.summary.inverted_cells;
   j["quality"] = quality_json(mesh, result.summary);
@@ -180,7 +189,8 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   const auto& m = result.timings;
   j["seconds"] = {{"read", timings.read},   {"shapes", timings.shapes},         {"setup", m.setup},
                   {"assembly", m.assembly}, {"solve", m.solve},                {"projection", m.projection},
-                  {"quality", m.quality},   {"motion", m.total},               {"write", timings.write}};
+                  {"quality", m.quality},   {"motion", m.total},               {"checkpoint", timings.checkpoint},
+                  {"write", timings.write}};
   j["wall_seconds"] = timings.wall;
   outputs.files.push_back(folder / "report.json");
   j["outputs"] = json::array();

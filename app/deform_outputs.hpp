@@ -3,6 +3,7 @@
 // PNG pictures for 2D meshes, and report.json.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/io/checkpoint_file.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 
 namespace hotmesh::app {
@@ -18,7 +20,10 @@ struct RunTimings {
   double read = 0.0;    ///< case, mesh and tables, with validation
   double shapes = 0.0;  ///< deflected shapes
   double write = 0.0;   ///< outputs
-  double wall = 0.0;    ///< the whole run
+  double wall = 0.0;    ///< the whole run (this process: a resumed run's own time)
+  int checkpoints = 0;  ///< checkpoints written
+  double checkpoint = 0.0;  ///< writing them
+  std::uint64_t checkpoint_bytes = 0;  ///< size of the last one
 };
 
 struct RunOutputs {
@@ -31,9 +36,14 @@ std::vector<std::string> output_names(const io::Case& c, const deform::Mesh& mes
 RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const deform::Mesh& mesh,
                          const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh);
 
-/// report.json: status, increments with Newton and PCG iterations, quality, times per phase.
+/// report.json: status, increments with Newton and PCG iterations, quality, times per phase;
+/// for a resumed run (`resumed`: the checkpoint it continued from) every increment, those of
+/// the interrupted run included.
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
                   const io::CaseSetup& setup, const deform::MotionResult& result, const RunTimings& timings,
-                  RunOutputs& outputs);
+                  RunOutputs& outputs, const io::CheckpointInfo* resumed = nullptr);
+
+/// The process's peak resident memory (VmHWM), or 0 where /proc does not tell.
+std::uint64_t peak_memory_bytes();
 
 }  // namespace hotmesh::app

@@ -1,10 +1,11 @@
 // hotmesh: command line entry point. Parses the command line, sets up logging and turns
 // errors into exit codes: 0 success, 1 the work failed, 2 bad input (files, case keys,
-// options), 3 internal error.
+// options), 3 internal error, 4 out of memory.
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
 #include <exception>
+#include <new>
 #include <vector>
 
 #include "commands.hpp"
@@ -48,6 +49,9 @@ int main(int argc, char** argv) {
   } catch (const hotmesh::InputError& e) {
     spdlog::error("{}", e.what());
     return 2;
+  } catch (const std::bad_alloc&) {
+    spdlog::error("out of memory: this machine (or its limits for this process) cannot hold the job");
+    return hotmesh::app::kExitOutOfMemory;
   } catch (const std::exception& e) {
     spdlog::critical("internal error: {} (please report this with the command line and input files)", e.what());
     return 3;

@@ -52,14 +52,15 @@
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/deform/structured_mesh.hpp"
 #include "machine_load.hpp"
+#include "timing.hpp"
 #include "parallel.hpp"  // deform/src: the OpenMP thresholds under test in part 5
 
 using namespace hotmesh::deform;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+using hotmesh::bench::Clock;
+using hotmesh::bench::seconds_since;
 
 /// The median duration of runs, and the mean number of cores other processes kept busy
 /// during them.

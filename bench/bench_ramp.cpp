@@ -35,18 +35,15 @@
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "machine_load.hpp"
+#include "timing.hpp"
 
 using namespace hotmesh;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::Clock;
+using bench::seconds_since;
+using bench::median;
 
 /// One run of the whole job, timed.
 struct Run {

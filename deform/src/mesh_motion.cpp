@@ -1,10 +1,11 @@
-// hotmesh deform: increments, the Newton-Raphson cycle (eqs. 7-8), quality checks and
-// increment splitting.
+// hotmesh deform: increments, the Newton-Raphson cycle (eqs. 7-8), quality checks, increment
+// splitting, and the state a run hands out after each accepted step to be resumed from.
 #include "hotmesh/deform/mesh_motion.hpp"
 
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <optional>
 
 #include <fmt/format.h>
@@ -14,6 +15,7 @@
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/pcg.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
+#include "hotmesh/geometry/input_error.hpp"
 #include "parallel.hpp"
 
 namespace hotmesh::deform {
@@ -164,20 +166,22 @@ class NodalJacobi final : public LinearOperator {
   std::vector<double> blocks_;  ///< B_i, then M_i, row-major per node
 };
 
+static_assert(std::tuple_size_v<decltype(SlidingState::hints)> == detail::SlidingNode::kMaxShapes);
+
 class Motion {
  public:
   Motion(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
-         const SolverOptions& solver, const IncrementObserver& observer, const MotionStart* start)
+         const SolverOptions& solver, const MotionObservers& observers, const MotionStart* start)
       : mesh_(mesh),
         solver_(solver),
-        observer_(observer),
+        observers_(observers),
         setup_(detail::set_up_boundaries(mesh, patches, start)),
         sliding_(setup_, static_cast<std::size_t>(mesh.dimension)),
         stiffness_(mesh, element_lame(mesh, material), material.drop_jacobian),
         dim_(static_cast<std::size_t>(mesh.dimension)),
         size_(bounding_diagonal(mesh.points)) {}
 
-  MotionResult run() {
+  MotionResult run(const MotionCheckpoint* resume) {
     const auto start = Clock::now();
     result_.node_roles = setup_.roles;
     result_.notes = setup_.notes;
@@ -187,8 +191,22 @@ class Motion {
     for (const auto& s : setup_.sliding) result_.sliding_origins.push_back({s.node, s.origin});
     result_.points = setup_.reference;
     const int n = std::max(solver_.increments, 1);
-    for (int k = 1; k <= n; ++k) {
-      if (!advance(k, double(k - 1) / n, double(k) / n, 0)) break;
+    // The steps to do, in order; a step that fails is replaced by its two halves (up to
+    // max_increment_splits deep), so a split increment's pieces come before the next one.
+    std::deque<MotionStep> work;
+    if (resume) {
+      work.assign(resume->remaining.begin(), resume->remaining.end());
+      restore(*resume);
+    } else {
+      for (int k = 1; k <= n; ++k) work.push_back({k, double(k - 1) / n, double(k) / n, 0});
+    }
+    while (!work.empty()) {
+      const MotionStep step = work.front();
+      work.pop_front();
+      if (!advance(step, work)) break;
+      if (!result_.increments.back().accepted) continue;
+      if (work.empty() || work.front().increment != step.increment) finished_increments_ = step.increment;
+      if (observers_.checkpoint) observers_.checkpoint(checkpoint(work, seconds_since(start)));
     }
     result_.success = result_.failed_points.empty();
     if (result_.success) result_.lambda_reached = 1.0;
@@ -197,21 +215,27 @@ class Motion {
     result_.summary = summarize_quality(result_.quality);
     result_.periodic_max_mismatch = setup_.periodic.mismatch(result_.points) / size_;
     result_.timings.quality += seconds_since(q);
-    result_.timings.total = seconds_since(start) + result_.timings.setup;
+    result_.timings.total = seconds_since(start) + setup_seconds_ + earlier_seconds_;
     return std::move(result_);
   }
 
-  void set_setup_time(double s) { result_.timings.setup = s; }
+  void set_setup_time(double s) {
+    setup_seconds_ = s;
+    result_.timings.setup = s;
+  }
 
  private:
-  /// Moves the mesh from stage a to stage b, splitting the step on failure.
-  bool advance(int increment, double a, double b, int depth) {
+  /// Moves the mesh by one step; on failure puts its two halves at the front of `work`
+  /// (while splits are left) or ends the run (returns false).
+  bool advance(const MotionStep& step, std::deque<MotionStep>& work) {
+    const double a = step.lambda_begin, b = step.lambda_end;
+    const int increment = step.increment, depth = step.split_depth;
     IncrementRecord record;
-    std::vector<Vec3> moved = attempt(a, b, record);
     record.increment = increment;
     record.split_depth = depth;
+    std::vector<Vec3> moved = attempt(step, record);
     result_.increments.push_back(record);
-    if (observer_) observer_(record);
+    if (observers_.increment) observers_.increment(record);
     if (record.accepted) {
       result_.points = std::move(moved);
       result_.lambda_reached = b;
@@ -219,7 +243,9 @@ class Motion {
     }
     if (depth < solver_.max_increment_splits) {
       const double mid = 0.5 * (a + b);
-      return advance(increment, a, mid, depth + 1) && advance(increment, mid, b, depth + 1);
+      work.push_front({increment, mid, b, depth + 1});
+      work.push_front({increment, a, mid, depth + 1});
+      return true;
     }
     result_.failed_points = std::move(moved);
     result_.failed_quality = scaled_jacobians(mesh_.cells, result_.failed_points);
@@ -234,9 +260,65 @@ class Motion {
     return false;
   }
 
+  /// The state to resume from after an accepted step, `work` the steps left.
+  MotionCheckpoint checkpoint(const std::deque<MotionStep>& work, double seconds) const {
+    MotionCheckpoint c;
+    c.increments = std::max(solver_.increments, 1);
+    c.finished_increments = finished_increments_;
+    c.lambda = result_.lambda_reached;
+    c.remaining.assign(work.begin(), work.end());
+    c.points = result_.points;
+    c.sliding.reserve(setup_.sliding.size());
+    for (const detail::SlidingNode& s : setup_.sliding) c.sliding.push_back({s.node, s.target, s.hints});
+    c.records = result_.increments;
+    c.max_normal_slip = result_.max_normal_slip;
+    c.max_sliding_projection_distance = result_.max_sliding_projection_distance;
+    c.timings = result_.timings;
+    c.timings.total = seconds + setup_seconds_ + earlier_seconds_;
+    return c;
+  }
+
+  /// Takes up an interrupted run where its checkpoint left it.
+  void restore(const MotionCheckpoint& c) {
+    const auto refuse = [](const std::string& what) {
+      throw InputError("the checkpoint does not fit this run: " + what);
+    };
+    if (c.increments != std::max(solver_.increments, 1)) {
+      refuse(fmt::format("it was written for {} increments, this run has {}", c.increments, solver_.increments));
+    }
+    if (c.points.size() != mesh_.node_count()) {
+      refuse(fmt::format("it holds {} nodes, the mesh {}", c.points.size(), mesh_.node_count()));
+    }
+    if (c.sliding.size() != setup_.sliding.size()) {
+      refuse(fmt::format("it holds {} sliding nodes, this set-up {}", c.sliding.size(), setup_.sliding.size()));
+    }
+    for (std::size_t i = 0; i < c.sliding.size(); ++i) {
+      detail::SlidingNode& s = setup_.sliding[i];
+      if (c.sliding[i].node != s.node) refuse(fmt::format("sliding node {} differs", mesh_.node_id(s.node)));
+      s.target = c.sliding[i].target;
+      s.hints = c.sliding[i].hints;
+    }
+    for (const MotionStep& step : c.remaining) {
+      if (!(step.lambda_begin >= 0.0 && step.lambda_begin < step.lambda_end && step.lambda_end <= 1.0) ||
+          step.increment < 1 || step.increment > c.increments || step.split_depth < 0) {
+        refuse("its steps left are damaged");
+      }
+    }
+    result_.points = c.points;
+    result_.lambda_reached = c.lambda;
+    result_.increments = c.records;
+    result_.max_normal_slip = c.max_normal_slip;
+    result_.max_sliding_projection_distance = c.max_sliding_projection_distance;
+    finished_increments_ = c.finished_increments;
+    result_.timings = c.timings;  // the interrupted run's, this run's added as they come
+    result_.timings.setup += setup_seconds_;
+    earlier_seconds_ = c.timings.total;
+  }
+
   /// One increment: Newton-Raphson from the current mesh to stage b. Returns the new points.
-  std::vector<Vec3> attempt(double a, double b, IncrementRecord& record) {
+  std::vector<Vec3> attempt(const MotionStep& piece, IncrementRecord& record) {
     const auto start = Clock::now();
+    const double a = piece.lambda_begin, b = piece.lambda_end;
     record.lambda_begin = a;
     record.lambda_end = b;
     const std::vector<Vec3>& x = result_.points;
@@ -278,6 +360,7 @@ class Motion {
       if (it == 0) r0 = residual;
       record.newton.push_back({residual, 0, true, 0.0});
       record.residual_reduction = r0 > 0.0 ? residual / r0 : 0.0;
+      if (it > 0 && observers_.newton) report_step(piece, record, it, seconds_since(start));
       if (!std::isfinite(residual) || residual > kDivergence * r0) {
         record.failure = fmt::format("the Newton-Raphson cycle diverged (residual {:.3g} times the initial one)",
                                      residual / r0);
@@ -345,6 +428,18 @@ class Motion {
     return trial;
   }
 
+  void report_step(const MotionStep& step, const IncrementRecord& record, int it, double seconds) const {
+    const NewtonStep& done = record.newton[static_cast<std::size_t>(it - 1)];
+    observers_.newton({.step = step,
+                       .increments = std::max(solver_.increments, 1),
+                       .iteration = it,
+                       .residual_reduction = record.residual_reduction,
+                       .pcg_iterations = done.pcg_iterations,
+                       .pcg_converged = done.pcg_converged,
+                       .max_projection = done.max_projection,
+                       .seconds = seconds});
+  }
+
   void displace(const std::vector<Vec3>& x, std::span<const double> u, std::vector<Vec3>& out) const {
 #pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(x.size()) >= detail::kParallelNodes)
     for (std::ptrdiff_t n = 0; n < static_cast<std::ptrdiff_t>(x.size()); ++n) {
@@ -366,23 +461,27 @@ class Motion {
 
   const Mesh& mesh_;
   SolverOptions solver_;
-  const IncrementObserver& observer_;
+  const MotionObservers& observers_;
   detail::BoundarySetup setup_;
   detail::SlidingNodes sliding_;
   StiffnessOperator stiffness_;
   std::size_t dim_;
   double size_;
+  int finished_increments_ = 0;
+  double setup_seconds_ = 0.0;    ///< of this run
+  double earlier_seconds_ = 0.0;  ///< total of the interrupted run this one resumes
   MotionResult result_;
 };
 
 }  // namespace
 
 MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
-                       const SolverOptions& solver, const IncrementObserver& observer, const MotionStart* start) {
+                       const SolverOptions& solver, const MotionObservers& observers, const MotionStart* start,
+                       const MotionCheckpoint* resume) {
   const auto begin = Clock::now();
-  Motion motion(mesh, patches, material, solver, observer, start);
+  Motion motion(mesh, patches, material, solver, observers, start);
   motion.set_setup_time(seconds_since(begin));
-  return motion.run();
+  return motion.run(resume);
 }
 
 }  // namespace hotmesh::deform

@@ -1,31 +1,23 @@
 // hotmesh io: restart files (restart.hmr), section 4.3.
 #include "hotmesh/io/restart_file.hpp"
 
-#include <bit>
-#include <cstring>
 #include <ostream>
 
 #include <nlohmann/json.hpp>
 
+#include "binary_file.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 
 namespace hotmesh::io {
 namespace {
 
-static_assert(std::endian::native == std::endian::little, "restart files are little-endian");
 constexpr std::string_view kMagic = "HOTMESH-RESTART\n";
 constexpr int kVersion = 1;
 
 using nlohmann::json;
-
-void hash_bytes(std::uint64_t& h, const void* data, std::size_t size) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i) {
-    h ^= p[i];
-    h *= 0x100000001b3ull;  // FNV-1a
-  }
-}
+using detail::hash_bytes;
+using detail::write_array;
 
 json samples_json(const DeflectionSpec& d) {
   std::vector<double> points, deflections;
@@ -64,46 +56,10 @@ DeflectionSpec samples_from_json(const json& j) {
   return d;
 }
 
-template <class T>
-void write_array(std::ostream& out, const std::vector<T>& v) {
-  const std::uint64_t n = v.size();
-  out.write(reinterpret_cast<const char*>(&n), sizeof n);
-  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
-}
-
-/// Reads from a byte buffer, refusing to run past its end.
-class Reader {
- public:
-  Reader(const std::string& bytes, const std::filesystem::path& path) : bytes_(bytes), path_(path) {}
-  void read(void* out, std::size_t size) {
-    if (size > bytes_.size() - at_) throw InputError::in(path_.string(), "the restart file is cut short (damaged?)");
-    std::memcpy(out, bytes_.data() + at_, size);
-    at_ += size;
-  }
-  template <class T>
-  std::vector<T> array(std::uint64_t expected) {
-    std::uint64_t n = 0;
-    read(&n, sizeof n);
-    if (n != expected || n > (bytes_.size() - at_) / sizeof(T)) {
-      throw InputError::in(path_.string(), "the restart file is damaged (array sizes do not match)");
-    }
-    std::vector<T> v(static_cast<std::size_t>(n));
-    read(v.data(), v.size() * sizeof(T));
-    return v;
-  }
-  std::size_t at() const { return at_; }
-  void skip(std::size_t n) { at_ += n; }
-
- private:
-  const std::string& bytes_;
-  const std::filesystem::path& path_;
-  std::size_t at_ = 0;
-};
-
 }  // namespace
 
 std::uint64_t mesh_fingerprint(const deform::Mesh& mesh) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
+  std::uint64_t h = detail::kFnvOffset;
   hash_bytes(h, &mesh.dimension, sizeof mesh.dimension);
   hash_bytes(h, mesh.points.data(), mesh.points.size() * sizeof(deform::Vec3));
   const auto nodes = mesh.cells.all_nodes();
@@ -134,13 +90,9 @@ void write_restart(const std::filesystem::path& path, const RestartState& state)
     if (p.deflection) entry["deflection"] = samples_json(*p.deflection);
     header["patches"].push_back(entry);
   }
-  const std::string text = header.dump();
   AtomicFile file(path);
   std::ostream& out = file.stream();
-  out.write(kMagic.data(), static_cast<std::streamsize>(kMagic.size()));
-  const std::uint64_t length = text.size();
-  out.write(reinterpret_cast<const char*>(&length), sizeof length);
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  detail::write_header(out, kMagic, header.dump());
   write_array(out, state.points);
   std::vector<deform::NodeId> nodes;
   std::vector<double> parameters;
@@ -155,19 +107,12 @@ void write_restart(const std::filesystem::path& path, const RestartState& state)
 
 RestartState read_restart(const std::filesystem::path& path, const deform::Mesh& mesh) {
   const std::string bytes = read_file(path);
-  if (bytes.compare(0, kMagic.size(), kMagic) != 0) {
-    throw InputError::in(path.string(), "not a hotmesh restart file (write one with `hotmesh deform`: restart.hmr)");
-  }
-  Reader in(bytes, path);
-  in.skip(kMagic.size());
-  std::uint64_t length = 0;
-  in.read(&length, sizeof length);
-  if (length > bytes.size() - in.at()) throw InputError::in(path.string(), "the restart file is cut short (damaged?)");
+  detail::BinaryReader in(bytes, path, "restart file");
+  const std::string text = in.header(kMagic, "write one with `hotmesh deform`: restart.hmr");
   RestartState s;
   std::uint64_t nodes = 0, sliding = 0;
   try {
-    const json header = json::parse(bytes.substr(in.at(), static_cast<std::size_t>(length)));
-    in.skip(static_cast<std::size_t>(length));
+    const json header = json::parse(text);
     if (header.at("format_version").get<int>() != kVersion) {
       throw InputError::in(path.string(), "restart file format " + std::to_string(header.at("format_version").get<int>()) +
                                               " is not the one this hotmesh reads (" + std::to_string(kVersion) + ")");

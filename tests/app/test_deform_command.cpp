@@ -11,6 +11,7 @@
 #include "hotmesh/deform/structured_mesh.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/deform/quality.hpp"
+#include "deform_cases.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
 
@@ -18,25 +19,11 @@ namespace hotmesh::app {
 namespace {
 
 using ::testing::HasSubstr;
-using test::run_command;
+using test::hotmesh;
+using test::kSample;
+using test::RampCase;
+using test::read_json;
 using test::shell_quote;
-
-const std::filesystem::path kSample = std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "ramp2d";
-
-test::CommandResult hotmesh(const std::string& arguments) { return run_command(std::string(HOTMESH_EXE) + " " + arguments); }
-
-nlohmann::json read_json(const std::filesystem::path& p) { return nlohmann::json::parse(test::read_text(p)); }
-
-/// A copy of the ramp sample in a temporary folder, with its case file replaced by `yaml`.
-struct RampCase {
-  test::TempDir dir;
-  explicit RampCase(const std::string& yaml) {
-    std::filesystem::copy_file(kSample / "ramp2d.msh", dir / "ramp2d.msh");
-    std::filesystem::copy_file(kSample / "ramp.csv", dir / "ramp.csv");
-    test::write_text(dir / "case.yaml", yaml);
-  }
-  std::string case_file() const { return shell_quote((dir / "case.yaml").string()); }
-};
 
 TEST(DeformCommand, RampSampleCompletesWithEveryOutputAndReport) {
   test::TempDir out;
@@ -128,23 +115,8 @@ TEST(DeformCommand, RefusesOutputFolderHoldingInputsUnlessForced) {
 namespace hotmesh::app {
 namespace {
 
-/// A coarse ramp channel written to `dir`, with tables for the half and the full ramp.
-void write_coarse_ramp(const std::filesystem::path& dir) {
-  const auto xs = deform::uniform_line(0.0, 2.0, 21);
-  const auto ys = deform::stretched_line(0.0, 1.0, 12, 0.004);
-  io::write_gmsh(dir / "ramp.msh", deform::structured_quads(xs, ys, {"left", "right", "bottom", "top"}));
-  for (const auto& [name, height] : {std::pair{"half.csv", 0.25}, std::pair{"full.csv", 0.5}}) {
-    test::write_text(dir / name, fmt::format("x,y,dx,dy\n0,0,0,0\n0.975,0,0,0\n1.025,0,0,{}\n2,0,0,{}\n", height, height));
-  }
-}
-
-std::string ramp_case(const std::string& table, int increments, const std::string& extra = "") {
-  return fmt::format(
-      "mesh: ramp.msh\nsolver: {{increments: {}, newton_tolerance: 1.0e-6, pcg_tolerance: 1.0e-6}}\n{}"
-      "patches:\n  left: {{role: fixed}}\n  right: {{role: slip}}\n  top: {{role: sliding}}\n"
-      "  bottom: {{role: sliding, deflection: {{file: {}}}}}\n",
-      increments, extra, table);
-}
+using test::ramp_case;
+using test::write_coarse_ramp;
 
 TEST(DeformCommand, RestartFromSavedStateMatchesAStraightRun) {
   test::TempDir dir;

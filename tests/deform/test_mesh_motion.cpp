@@ -169,6 +169,99 @@ TEST(MeshMotion, ResultIsBitIdenticalForAnyThreadCount) {
   EXPECT_NE(std::memcmp(a.data(), mesh.points.data(), a.size() * sizeof(Vec3)), 0);  // it moved
 }
 
+/// The inner square of `mesh` turned in `increments`, with every checkpoint of the run.
+MotionResult turn_with_checkpoints(const Mesh& mesh, int increments, std::vector<MotionCheckpoint>& checkpoints) {
+  SolverOptions options;
+  options.increments = increments;
+  MotionObservers o;
+  o.checkpoint = [&checkpoints](const MotionCheckpoint& c) { checkpoints.push_back(c); };
+  return move_mesh(mesh, rotating_inner_square(mesh, 0.25), {}, options, o);
+}
+
+bool bitwise_equal(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
+}
+
+TEST(MeshMotion, ResumingAfterAPieceOfASplitIncrementMakesTheSameMoves) {
+  // An eighth of a turn of the inner square in one increment: too much at once, so it is split;
+  // a checkpoint after the first accepted piece still has the other pieces to do.
+  const Mesh mesh = clustered_ring();
+  std::vector<MotionCheckpoint> checkpoints;
+  const MotionResult straight = turn_with_checkpoints(mesh, 1, checkpoints);
+  ASSERT_TRUE(straight.success) << straight.message;
+  const auto split = std::find_if(checkpoints.begin(), checkpoints.end(), [](const MotionCheckpoint& c) {
+    return !c.remaining.empty() && c.remaining.front().split_depth > 0;
+  });
+  ASSERT_NE(split, checkpoints.end()) << "no increment was split: the test needs a harder motion";
+  EXPECT_EQ(split->finished_increments, split->remaining.front().increment - 1);
+  EXPECT_LT(split->lambda, 1.0);
+  const std::size_t accepted = static_cast<std::size_t>(std::count_if(
+      straight.increments.begin(), straight.increments.end(), [](const IncrementRecord& r) { return r.accepted; }));
+  EXPECT_EQ(checkpoints.size(), accepted);  // one per accepted step
+  EXPECT_EQ(checkpoints.back().finished_increments, 1);
+  EXPECT_TRUE(checkpoints.back().remaining.empty());
+
+  const auto motions = rotating_inner_square(mesh, 0.25);
+  SolverOptions options;
+  options.increments = 1;
+  for (const MotionCheckpoint* from : {&*split, &checkpoints.front(), &checkpoints.back()}) {
+    const MotionResult resumed = move_mesh(mesh, motions, {}, options, {}, nullptr, from);
+    ASSERT_TRUE(resumed.success) << resumed.message;
+    EXPECT_TRUE(bitwise_equal(resumed.points, straight.points)) << "resumed at stage " << from->lambda;
+    ASSERT_EQ(resumed.increments.size(), straight.increments.size());
+    for (std::size_t i = 0; i < straight.increments.size(); ++i) {
+      EXPECT_EQ(resumed.increments[i].newton.size(), straight.increments[i].newton.size()) << i;
+      EXPECT_EQ(resumed.increments[i].split_depth, straight.increments[i].split_depth) << i;
+      EXPECT_EQ(resumed.increments[i].accepted, straight.increments[i].accepted) << i;
+    }
+  }
+}
+
+TEST(MeshMotion, NewtonObserverSeesEveryStep) {
+  const Mesh mesh = clustered_ring();
+  SolverOptions options;
+  options.increments = 3;
+  std::vector<NewtonProgress> steps;
+  MotionObservers observers;
+  observers.newton = [&steps](const NewtonProgress& p) { steps.push_back(p); };
+  const MotionResult r = move_mesh(mesh, rotating_inner_square(mesh, 0.25), {}, options, observers);
+  ASSERT_TRUE(r.success) << r.message;
+  std::size_t expected = 0;
+  for (const auto& inc : r.increments) expected += inc.newton.size() - 1;
+  ASSERT_EQ(steps.size(), expected);
+  std::size_t at = 0;
+  for (const auto& inc : r.increments) {
+    for (std::size_t i = 0; i + 1 < inc.newton.size(); ++i, ++at) {
+      const NewtonProgress& p = steps[at];
+      EXPECT_EQ(p.step.increment, inc.increment);
+      EXPECT_EQ(p.increments, 3);
+      EXPECT_EQ(p.iteration, static_cast<int>(i + 1));
+      EXPECT_EQ(p.pcg_iterations, inc.newton[i].pcg_iterations);
+      EXPECT_DOUBLE_EQ(p.residual_reduction, inc.newton[i + 1].residual / inc.newton[0].residual);
+      EXPECT_GE(p.seconds, 0.0);
+    }
+  }
+}
+
+TEST(MeshMotion, CheckpointOfAnotherRunIsRefused) {
+  const Mesh mesh = clustered_ring();
+  std::vector<MotionCheckpoint> checkpoints;
+  ASSERT_TRUE(turn_with_checkpoints(mesh, 3, checkpoints).success);
+  const auto motions = rotating_inner_square(mesh, 0.25);
+  SolverOptions options;
+  options.increments = 4;
+  try {
+    move_mesh(mesh, motions, {}, options, {}, nullptr, &checkpoints.front());
+    FAIL() << "resumed with another number of increments";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("written for 3 increments, this run has 4"));
+  }
+  options.increments = 3;
+  MotionCheckpoint other = checkpoints.front();
+  other.points.pop_back();
+  EXPECT_THROW(move_mesh(mesh, motions, {}, options, {}, nullptr, &other), InputError);
+}
+
 TEST(MeshMotion, ImpossibleMotionStopsWithLastValidMeshNamingCellAndIncrement) {
   // The top wall is pushed down through the bottom wall: some increment must fail.
   const Mesh mesh = test::unit_square(6, 6);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "hotmesh/deform/constraints.hpp"
 #include "hotmesh/deform/material.hpp"
@@ -194,6 +195,40 @@ TEST(Sliding, RestartInTwoHalvesMatchesAStraightRun) {
   EXPECT_LT(largest, 1e-5);  // of a domain 2 x 1, with a ramp of 0.5
   EXPECT_NEAR(second.summary.min_scaled_jacobian, straight.summary.min_scaled_jacobian, 1e-5);
   EXPECT_EQ(nodes_on_ramp(mesh, second), nodes_on_ramp(mesh, straight));
+}
+
+TEST(Sliding, ResumingFromAnyCheckpointMakesTheSameMoves) {
+  const Mesh mesh = ramp_mesh(0, true);
+  SolverOptions options;
+  options.increments = 5;
+  std::vector<MotionCheckpoint> checkpoints;
+  MotionObservers observers;
+  observers.checkpoint = [&checkpoints](const MotionCheckpoint& c) { checkpoints.push_back(c); };
+  const MotionResult straight = move_mesh(mesh, ramp_motions(true, {}), {}, options, observers);
+  ASSERT_TRUE(straight.success) << straight.message;
+  ASSERT_EQ(checkpoints.size(), 5u);
+  const auto same = [](const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
+  };
+  for (const MotionCheckpoint& c : checkpoints) {
+    EXPECT_EQ(c.sliding.size(), straight.sliding_nodes);
+    EXPECT_EQ(c.records.size(), static_cast<std::size_t>(c.finished_increments));
+    const MotionResult resumed = move_mesh(mesh, ramp_motions(true, {}), {}, options, {}, nullptr, &c);
+    ASSERT_TRUE(resumed.success) << resumed.message;
+    EXPECT_TRUE(same(resumed.points, straight.points)) << "resumed after increment " << c.finished_increments;
+    EXPECT_EQ(resumed.increments.size(), straight.increments.size());
+    EXPECT_EQ(resumed.max_normal_slip, straight.max_normal_slip);
+    EXPECT_EQ(resumed.max_sliding_projection_distance, straight.max_sliding_projection_distance);
+  }
+
+  // The sliding nodes' targets are part of the state: resuming with those of an earlier
+  // increment (as if they had not been saved) does not make the same moves.
+  MotionCheckpoint stale = checkpoints[2];
+  for (std::size_t i = 0; i < stale.sliding.size(); ++i) stale.sliding[i].target = checkpoints[0].sliding[i].target;
+  const MotionResult wrong = move_mesh(mesh, ramp_motions(true, {}), {}, options, {}, nullptr, &stale);
+  double largest = 0.0;
+  for (std::size_t n = 0; n < mesh.node_count(); ++n) largest = std::max(largest, distance(wrong.points[n], straight.points[n]));
+  EXPECT_GT(largest, 1e-6);
 }
 
 TEST(Sliding, ExtrudedRampBehavesLikeTheTwoDimensionalCase) {

@@ -9,8 +9,12 @@
 // increment the cells are checked; an increment that inverts a cell or whose Newton cycle
 // fails is retried as two half increments (recursively, up to a limit). If it still fails,
 // the run stops with the last valid mesh and a message naming the cell and increment.
+// Observers see every Newton step and every attempt; after each accepted step the run hands
+// out its state (MotionCheckpoint), from which a run that was killed later resumes and makes
+// the same moves to the last bit.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -136,7 +140,65 @@ struct MotionResult {
   MotionTimings timings;
 };
 
+/// One step of the run still to do: increment `increment` of N from stage lambda_begin to
+/// lambda_end; split_depth d > 0 for a 1/2^d piece of a split increment.
+struct MotionStep {
+  int increment = 0;
+  double lambda_begin = 0.0;
+  double lambda_end = 0.0;
+  int split_depth = 0;
+};
+
+/// What a sliding node carries from one increment to the next: its target x_F on the fully
+/// deflected boundary (section 4.3, moved by every slide) and the parameters of its last
+/// projections on its shapes (warm starts of the next ones).
+struct SlidingState {
+  NodeId node = 0;
+  Vec3 target;
+  std::array<double, 3> hints{};
+};
+
+/// Where a run stands after an accepted step: everything needed to continue it and make
+/// exactly the moves the uninterrupted run would make (resume after a crash or a kill).
+/// Prescribed and passive motions are not in it: they follow from the set-up, which a resumed
+/// run repeats.
+struct MotionCheckpoint {
+  int increments = 0;                ///< N of the run
+  int finished_increments = 0;       ///< increments 1..k done (all their pieces accepted)
+  double lambda = 0.0;               ///< stage of `points`
+  std::vector<MotionStep> remaining;  ///< steps still to do, in order (pieces of a split increment first)
+  std::vector<Vec3> points;          ///< the mesh at stage `lambda`
+  std::vector<SlidingState> sliding;  ///< in the order of the set-up
+  std::vector<IncrementRecord> records;  ///< every attempt so far, as MotionResult::increments
+  double max_normal_slip = 0.0;
+  double max_sliding_projection_distance = 0.0;
+  MotionTimings timings;             ///< spent so far
+};
+
+/// A Newton step done (its linear solve and the projection of the sliding nodes), for
+/// progress output.
+struct NewtonProgress {
+  MotionStep step;                 ///< the increment (or piece) being solved
+  int increments = 0;              ///< N
+  int iteration = 0;               ///< 1, 2, ...: Newton steps done in this attempt
+  double residual_reduction = 0.0;  ///< ||R|| / ||R0|| after the step
+  int pcg_iterations = 0;          ///< of the step's linear solve
+  bool pcg_converged = true;
+  double max_projection = 0.0;     ///< largest move of a sliding node back onto its boundary
+  double seconds = 0.0;            ///< since the attempt started
+};
+
 using IncrementObserver = std::function<void(const IncrementRecord&)>;
+using NewtonObserver = std::function<void(const NewtonProgress&)>;
+using CheckpointObserver = std::function<void(const MotionCheckpoint&)>;
+
+/// Callbacks of a run; any may be empty. An exception thrown by one ends the run (it
+/// propagates out of move_mesh).
+struct MotionObservers {
+  IncrementObserver increment;    ///< after every attempt, accepted or not
+  NewtonObserver newton;          ///< after every Newton step
+  CheckpointObserver checkpoint;  ///< after every accepted attempt, with the state to resume from
+};
 
 /// Moves `mesh` (validated) as its patches prescribe. Every mesh patch needs an entry in
 /// `patches`. Throws hotmesh::InputError for a set-up the solver cannot take (unknown patch,
@@ -145,8 +207,12 @@ using IncrementObserver = std::function<void(const IncrementRecord&)>;
 /// the result.
 /// With `start`, the run continues from a previous one (see MotionStart): the patch shapes
 /// must then start (stage 0) where the previous run ended.
+/// With `resume`, the run picks up an interrupted run of the same set-up (same mesh, patches,
+/// options and `start`) where its checkpoint left it; its result is the uninterrupted run's
+/// (records and timings include those of the interrupted run). Throws hotmesh::InputError if
+/// the checkpoint does not fit the set-up (node counts, sliding nodes, increments).
 MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
-                       const SolverOptions& solver, const IncrementObserver& observer = {},
-                       const MotionStart* start = nullptr);
+                       const SolverOptions& solver, const MotionObservers& observers = {},
+                       const MotionStart* start = nullptr, const MotionCheckpoint* resume = nullptr);
 
 }  // namespace hotmesh::deform

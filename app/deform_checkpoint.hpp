@@ -1,0 +1,56 @@
+// hotmesh app: checkpoints of `hotmesh deform` (io/checkpoint_file.hpp). After every accepted
+// increment the run replaces <output>/checkpoint.hmc; `--resume` continues from it. A run that
+// ends (done, or failed with exit code 1) removes it; one that is killed or runs out of memory
+// leaves it, and a new run into that folder is refused unless it resumes or is forced.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/io/case_file.hpp"
+#include "hotmesh/io/checkpoint_file.hpp"
+
+namespace hotmesh::app {
+
+/// Writes the checkpoints of one run.
+class CheckpointWriter {
+ public:
+  /// `kill_after_increment` > 0 is a testing hook (hidden option --stop-after-increment): the
+  /// process kills itself with SIGKILL once the checkpoint of that increment is written.
+  CheckpointWriter(std::filesystem::path path, const io::Case& c, const deform::Mesh& mesh,
+                   std::vector<io::InputFingerprint> inputs, int kill_after_increment);
+
+  /// The checkpoint observer of deform::move_mesh.
+  void write(const deform::MotionCheckpoint& state);
+  /// Removes the checkpoint (the run has ended).
+  void remove();
+
+  const std::filesystem::path& path() const { return path_; }
+  int written() const { return written_; }
+  double seconds() const { return seconds_; }      ///< writing all of them
+  std::uint64_t bytes() const { return bytes_; }   ///< of the last one
+
+ private:
+  std::filesystem::path path_;
+  io::CheckpointOrigin origin_;
+  int kill_after_ = 0;
+  int written_ = 0;
+  double seconds_ = 0.0;
+  std::uint64_t bytes_ = 0;
+};
+
+/// A fresh run must not destroy the checkpoint of an interrupted one: throws hotmesh::InputError
+/// if `folder` holds one, unless `force`.
+void refuse_to_replace_checkpoint(const std::filesystem::path& folder, bool force);
+
+/// The temporary files a killed run left beside the outputs `names` in `folder` (an atomic
+/// write that never finished): removed before a resumed run writes.
+void remove_leftover_temporaries(const std::filesystem::path& folder, std::span<const std::string> names);
+
+}  // namespace hotmesh::app

@@ -1,0 +1,328 @@
+// hotmesh io: checkpoint files (checkpoint.hmc), to resume an interrupted run.
+#include "hotmesh/io/checkpoint_file.hpp"
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <limits>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "binary_file.hpp"
+#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/io/atomic_file.hpp"
+#include "hotmesh/io/restart_file.hpp"
+
+namespace hotmesh::io {
+namespace {
+
+constexpr std::string_view kMagic = "HOTMESH-CHECKPOINT\n";
+constexpr int kVersion = 1;
+constexpr std::string_view kKind = "checkpoint file";
+
+using nlohmann::json;
+
+/// JSON has no NaN or infinity; a diverged Newton step records them.
+json number(double v) {
+  if (std::isfinite(v)) return v;
+  return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf";
+}
+
+double number_from(const json& j) {
+  if (!j.is_string()) return j.get<double>();
+  const auto text = j.get<std::string>();
+  if (text == "nan") return std::numeric_limits<double>::quiet_NaN();
+  if (text == "inf") return std::numeric_limits<double>::infinity();
+  if (text == "-inf") return -std::numeric_limits<double>::infinity();
+  throw std::runtime_error("'" + text + "' is not a number");
+}
+
+json record_json(const deform::IncrementRecord& r) {
+  json newton = json::array();
+  for (const auto& s : r.newton) {
+    newton.push_back({number(s.residual), s.pcg_iterations, s.pcg_converged, number(s.pcg_reduction),
+                      number(s.max_projection)});
+  }
+  return {{"increment", r.increment},
+          {"stage", {r.lambda_begin, r.lambda_end}},
+          {"split_depth", r.split_depth},
+          {"newton", newton},
+          {"converged", r.converged},
+          {"accepted", r.accepted},
+          {"residual_reduction", number(r.residual_reduction)},
+          {"min_scaled_jacobian", number(r.min_scaled_jacobian)},
+          {"inverted_cells", r.inverted_cells},
+          {"worst_cell", r.worst_cell},
+          {"max_normal_slip", number(r.max_normal_slip)},
+          {"seconds", r.seconds},
+          {"failure", r.failure}};
+}
+
+deform::IncrementRecord record_from_json(const json& j) {
+  deform::IncrementRecord r;
+  r.increment = j.at("increment").get<int>();
+  r.lambda_begin = j.at("stage").at(0).get<double>();
+  r.lambda_end = j.at("stage").at(1).get<double>();
+  r.split_depth = j.at("split_depth").get<int>();
+  for (const json& s : j.at("newton")) {
+    r.newton.push_back({number_from(s.at(0)), s.at(1).get<int>(), s.at(2).get<bool>(), number_from(s.at(3)),
+                        number_from(s.at(4))});
+  }
+  r.converged = j.at("converged").get<bool>();
+  r.accepted = j.at("accepted").get<bool>();
+  r.residual_reduction = number_from(j.at("residual_reduction"));
+  r.min_scaled_jacobian = number_from(j.at("min_scaled_jacobian"));
+  r.inverted_cells = j.at("inverted_cells").get<std::size_t>();
+  r.worst_cell = j.at("worst_cell").get<deform::CellId>();
+  r.max_normal_slip = number_from(j.at("max_normal_slip"));
+  r.seconds = j.at("seconds").get<double>();
+  r.failure = j.at("failure").get<std::string>();
+  return r;
+}
+
+json timings_json(const deform::MotionTimings& t) {
+  return {{"setup", t.setup},   {"assembly", t.assembly}, {"solve", t.solve},
+          {"projection", t.projection}, {"quality", t.quality},   {"total", t.total}};
+}
+
+deform::MotionTimings timings_from_json(const json& j) {
+  return {j.at("setup").get<double>(),   j.at("assembly").get<double>(), j.at("solve").get<double>(),
+          j.at("projection").get<double>(), j.at("quality").get<double>(), j.at("total").get<double>()};
+}
+
+std::string local_time_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  localtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%S", &tm);
+  return text;
+}
+
+/// The hash of a checkpoint's arrays, in file order (hints: kHints per sliding node).
+constexpr std::size_t kHints = std::tuple_size_v<decltype(deform::SlidingState::hints)>;
+
+std::uint64_t arrays_hash(const std::vector<deform::Vec3>& points, const std::vector<deform::SlidingState>& sliding) {
+  std::uint64_t h = detail::kFnvOffset;
+  detail::hash_words(h, points.data(), points.size() * sizeof(deform::Vec3));
+  for (const auto& s : sliding) detail::hash_words(h, &s.node, sizeof s.node);
+  for (const auto& s : sliding) detail::hash_words(h, &s.target, sizeof s.target);
+  for (const auto& s : sliding) detail::hash_words(h, s.hints.data(), sizeof s.hints);
+  return h;
+}
+
+CheckpointInfo info_from_json(const json& header) {
+  CheckpointInfo info;
+  info.case_file = header.at("case").get<std::string>();
+  info.hotmesh_version = header.at("hotmesh_version").get<std::string>();
+  info.written_at = header.at("written_at").get<std::string>();
+  info.increments = header.at("increments").get<int>();
+  info.finished_increments = header.at("finished_increments").get<int>();
+  info.lambda = header.at("lambda").get<double>();
+  return info;
+}
+
+/// The JSON header of a checkpoint held in `bytes` (which may be the file's beginning only);
+/// checks the magic line and the format version.
+json parse_header(detail::BinaryReader& in, const std::filesystem::path& path) {
+  const std::string text = in.header(kMagic, "hotmesh deform writes checkpoint.hmc in its output folder");
+  json header;
+  try {
+    header = json::parse(text);
+    const int version = header.at("format_version").get<int>();
+    if (version != kVersion) {
+      throw InputError::in(path.string(), fmt::format("checkpoint format {} is not the one this hotmesh reads ({}): "
+                                                      "resume with the hotmesh that wrote it ({}), or start again",
+                                                      version, kVersion, header.value("hotmesh_version", "?")));
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError::in(path.string(), std::string("the checkpoint file's header is damaged: ") + e.what());
+  }
+  return header;
+}
+
+/// The beginning of a file: its magic line, header length and header.
+std::string read_header_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError::in(path.string(), std::string("cannot open: ") + std::strerror(errno));
+  std::string bytes(kMagic.size() + sizeof(std::uint64_t), '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
+  if (bytes.size() == kMagic.size() + sizeof(std::uint64_t) && bytes.compare(0, kMagic.size(), kMagic) == 0) {
+    std::uint64_t length = 0;
+    std::memcpy(&length, bytes.data() + kMagic.size(), sizeof length);
+    std::string header(static_cast<std::size_t>(std::min<std::uint64_t>(length, 1ull << 30)), '\0');
+    in.read(header.data(), static_cast<std::streamsize>(header.size()));
+    header.resize(static_cast<std::size_t>(in.gcount()));
+    bytes += header;
+  }
+  return bytes;
+}
+
+/// Every way the inputs of this run differ from those of the checkpoint's, one per line.
+std::string input_differences(std::span<const InputFingerprint> then, std::span<const InputFingerprint> now) {
+  std::string text;
+  for (const InputFingerprint& a : then) {
+    const auto b = std::find_if(now.begin(), now.end(), [&](const InputFingerprint& f) { return f.file == a.file; });
+    if (b == now.end()) {
+      text += fmt::format("\n  {} was an input of the interrupted run and is not one now", a.file.string());
+    } else if (b->bytes != a.bytes || b->hash != a.hash) {
+      text += fmt::format("\n  {} has changed ({} bytes then, {} now)", a.file.string(), a.bytes, b->bytes);
+    }
+  }
+  for (const InputFingerprint& b : now) {
+    const bool known = std::any_of(then.begin(), then.end(), [&](const InputFingerprint& f) { return f.file == b.file; });
+    if (!known) text += fmt::format("\n  {} is a new input", b.file.string());
+  }
+  return text;
+}
+
+}  // namespace
+
+std::vector<InputFingerprint> input_fingerprints(const Case& c) {
+  std::vector<InputFingerprint> result;
+  std::vector<char> buffer(1 << 20);
+  for (const auto& file : c.inputs()) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw InputError::in(file.string(), std::string("cannot open: ") + std::strerror(errno));
+    InputFingerprint f{file, 0, detail::kFnvOffset};
+    while (in) {
+      in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+      const auto n = static_cast<std::size_t>(in.gcount());
+      detail::hash_words(f.hash, buffer.data(), n);
+      f.bytes += n;
+    }
+    if (in.bad()) throw InputError::in(file.string(), "read error");
+    result.push_back(std::move(f));
+  }
+  return result;
+}
+
+CheckpointOrigin checkpoint_origin(const Case& c, const deform::Mesh& mesh, std::vector<InputFingerprint> inputs) {
+  return {c.file.string(), mesh_fingerprint(mesh), std::move(inputs)};
+}
+
+void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin& origin,
+                      const deform::MotionCheckpoint& s) {
+  json header{{"format_version", kVersion},
+              {"hotmesh_version", HOTMESH_IO_VERSION},
+              {"case", origin.case_file},
+              {"written_at", local_time_now()},
+              {"mesh_fingerprint", origin.mesh_fingerprint},
+              {"inputs", json::array()},
+              {"nodes", s.points.size()},
+              {"sliding_nodes", s.sliding.size()},
+              {"increments", s.increments},
+              {"finished_increments", s.finished_increments},
+              {"lambda", s.lambda},
+              {"remaining", json::array()},
+              {"records", json::array()},
+              {"max_normal_slip", number(s.max_normal_slip)},
+              {"max_sliding_projection_distance", number(s.max_sliding_projection_distance)},
+              {"timings", timings_json(s.timings)}};
+  for (const auto& f : origin.inputs) header["inputs"].push_back({{"file", f.file.string()}, {"bytes", f.bytes}, {"hash", f.hash}});
+  for (const auto& step : s.remaining) {
+    header["remaining"].push_back({step.increment, step.lambda_begin, step.lambda_end, step.split_depth});
+  }
+  for (const auto& r : s.records) header["records"].push_back(record_json(r));
+
+  // Sliding nodes as three arrays (ids, targets, hints), written without copying the points.
+  const auto count = [](std::size_t n) { return static_cast<std::uint64_t>(n); };
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
+  detail::write_header(out, kMagic, header.dump());
+  detail::write_array(out, s.points);
+  const auto put = [&out](const void* data, std::size_t size) { out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size)); };
+  const std::uint64_t n = count(s.sliding.size()), hints = n * kHints;
+  put(&n, sizeof n);
+  for (const auto& node : s.sliding) put(&node.node, sizeof node.node);
+  put(&n, sizeof n);
+  for (const auto& node : s.sliding) put(&node.target, sizeof node.target);
+  put(&hints, sizeof hints);
+  for (const auto& node : s.sliding) put(node.hints.data(), sizeof node.hints);
+  const std::uint64_t hash = arrays_hash(s.points, s.sliding);
+  put(&hash, sizeof hash);
+  file.commit();
+}
+
+CheckpointInfo read_checkpoint_info(const std::filesystem::path& path) {
+  const std::string bytes = read_header_bytes(path);
+  detail::BinaryReader in(bytes, path, std::string(kKind));
+  const json header = parse_header(in, path);
+  try {
+    return info_from_json(header);
+  } catch (const std::exception& e) {
+    throw InputError::in(path.string(), std::string("the checkpoint file's header is damaged: ") + e.what());
+  }
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& path, const deform::Mesh& mesh,
+                           std::span<const InputFingerprint> inputs) {
+  const std::string bytes = read_file(path);
+  detail::BinaryReader in(bytes, path, std::string(kKind));
+  const json header = parse_header(in, path);
+  Checkpoint k;
+  std::uint64_t nodes = 0, sliding = 0;
+  try {
+    k.info = info_from_json(header);
+    k.origin.case_file = k.info.case_file;
+    k.origin.mesh_fingerprint = header.at("mesh_fingerprint").get<std::uint64_t>();
+    for (const json& f : header.at("inputs")) {
+      k.origin.inputs.push_back({f.at("file").get<std::string>(), f.at("bytes").get<std::uint64_t>(), f.at("hash").get<std::uint64_t>()});
+    }
+    nodes = header.at("nodes").get<std::uint64_t>();
+    sliding = header.at("sliding_nodes").get<std::uint64_t>();
+    deform::MotionCheckpoint& s = k.state;
+    s.increments = k.info.increments;
+    s.finished_increments = k.info.finished_increments;
+    s.lambda = k.info.lambda;
+    for (const json& step : header.at("remaining")) {
+      s.remaining.push_back({step.at(0).get<int>(), step.at(1).get<double>(), step.at(2).get<double>(), step.at(3).get<int>()});
+    }
+    for (const json& r : header.at("records")) s.records.push_back(record_from_json(r));
+    s.max_normal_slip = number_from(header.at("max_normal_slip"));
+    s.max_sliding_projection_distance = number_from(header.at("max_sliding_projection_distance"));
+    s.timings = timings_from_json(header.at("timings"));
+  } catch (const std::exception& e) {
+    throw InputError::in(path.string(), std::string("the checkpoint file's header is damaged: ") + e.what());
+  }
+
+  const std::string changed = input_differences(k.origin.inputs, inputs);
+  if (!changed.empty()) {
+    throw InputError::in(path.string(),
+                         fmt::format("cannot resume: the inputs are not those of the interrupted run (checkpoint "
+                                     "written {} by case {}):{}\nA resume continues the same run, so it needs the "
+                                     "same case and input files; restore them, or start the run again without "
+                                     "--resume",
+                                     k.info.written_at, k.info.case_file, changed));
+  }
+  if (k.origin.mesh_fingerprint != mesh_fingerprint(mesh) || nodes != mesh.node_count()) {
+    throw InputError::in(path.string(), "cannot resume: this checkpoint was written for another mesh (case " +
+                                            k.info.case_file + ")");
+  }
+  k.state.points = in.array<deform::Vec3>(nodes);
+  const auto ids = in.array<deform::NodeId>(sliding);
+  const auto targets = in.array<deform::Vec3>(sliding);
+  const auto hints = in.array<double>(sliding * kHints);
+  k.state.sliding.resize(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    deform::SlidingState& node = k.state.sliding[i];
+    node.node = ids[i];
+    node.target = targets[i];
+    std::copy_n(hints.begin() + static_cast<std::ptrdiff_t>(i * kHints), kHints, node.hints.begin());
+  }
+  std::uint64_t hash = 0;
+  in.read(&hash, sizeof hash);
+  if (hash != arrays_hash(k.state.points, k.state.sliding) || in.at() != bytes.size()) {
+    throw InputError::in(path.string(), "the checkpoint file is damaged (its content does not match its checksum)");
+  }
+  return k;
+}
+
+}  // namespace hotmesh::io

@@ -1,0 +1,259 @@
+// Tests of long runs of `hotmesh deform`: a run killed after an increment (by the testing hook
+// --stop-after-increment, and by a real SIGKILL at a moment it does not choose) resumes with
+// --resume and writes the very outputs of an uninterrupted run, a restarted run's too; a resume
+// with a changed case or table, or without a checkpoint, is refused; a fresh run does not
+// destroy a checkpoint; running out of memory exits with code 4 naming the phase and keeps the
+// checkpoint; progress lines per Newton step.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "deform_cases.hpp"
+#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/io/checkpoint_file.hpp"
+#include "test_support.hpp"
+
+namespace hotmesh::app {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+using test::hotmesh;
+using test::read_json;
+using test::shell_quote;
+
+/// The exit code /bin/sh reports for a command killed by SIGKILL.
+constexpr int kKilled = 128 + SIGKILL;
+
+/// The coarse sliding ramp (both walls sliding) in a temporary folder, run in 6 increments.
+struct SlidingRamp {
+  test::TempDir dir;
+  SlidingRamp() {
+    test::write_coarse_ramp(dir.path());
+    test::write_text(dir / "case.yaml", test::ramp_case("full.csv", 6));
+  }
+  std::string deform(const std::string& out, const std::string& options = "") const {
+    return fmt::format("deform {} -o {} {}", shell_quote((dir / "case.yaml").string()), shell_quote((dir / out).string()),
+                       options);
+  }
+};
+
+/// Files of two output folders that must be identical, byte for byte.
+void expect_same_outputs(const std::filesystem::path& a, const std::filesystem::path& b) {
+  for (const char* name : {"deformed.msh", "deformed.vtu", "restart.hmr"}) {
+    ASSERT_TRUE(std::filesystem::exists(b / name)) << name;
+    EXPECT_TRUE(test::read_text(a / name) == test::read_text(b / name)) << name << " differs";
+  }
+  // report.json: every increment with its iterations and residuals (times differ).
+  const auto ra = read_json(a / "report.json"), rb = read_json(b / "report.json");
+  EXPECT_EQ(rb["status"], "success");
+  ASSERT_EQ(ra["increments"].size(), rb["increments"].size());
+  for (std::size_t i = 0; i < ra["increments"].size(); ++i) {
+    for (const char* key : {"increment", "stage", "split_depth", "accepted", "newton_iterations", "pcg_iterations",
+                            "residuals", "min_scaled_jacobian", "max_projection_distance"}) {
+      EXPECT_EQ(ra["increments"][i][key], rb["increments"][i][key]) << "increment record " << i << ", " << key;
+    }
+  }
+  for (const char* key : {"newton_iterations", "pcg_iterations", "min_scaled_jacobian", "max_normal_slip",
+                          "max_sliding_projection_distance", "sliding_nodes"}) {
+    EXPECT_EQ(ra[key], rb[key]) << key;
+  }
+  EXPECT_FALSE(std::filesystem::exists(b / io::kCheckpointName)) << "the checkpoint outlived the run";
+  for (const auto& entry : std::filesystem::directory_iterator(b)) {
+    EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(".tmp-")));
+  }
+}
+
+TEST(DeformResume, RunStoppedAfterAnIncrementResumesToTheSameOutputs) {
+  SlidingRamp ramp;
+  ASSERT_EQ(hotmesh("-q " + ramp.deform("straight")).exit_code, 0);
+  const auto killed = hotmesh(ramp.deform("out", "--stop-after-increment 2"));
+  EXPECT_EQ(killed.exit_code, kKilled) << "not killed by SIGKILL: " << killed.output;
+  EXPECT_THAT(killed.output, HasSubstr("increment 2/6"));
+  EXPECT_THAT(killed.output, Not(HasSubstr("increment 3/6")));
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "out" / "deformed.msh"));
+  const io::CheckpointInfo info = io::read_checkpoint_info(ramp.dir / "out" / io::kCheckpointName);
+  EXPECT_EQ(info.finished_increments, 2);
+  EXPECT_EQ(info.increments, 6);
+
+  const auto resumed = hotmesh(ramp.deform("out", "--resume"));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_THAT(resumed.output, HasSubstr("2 of 6 increments done"));
+  EXPECT_THAT(resumed.output, Not(HasSubstr("increment 2/6")));  // not done again
+  EXPECT_THAT(resumed.output, HasSubstr("increment 3/6"));
+  expect_same_outputs(ramp.dir / "straight", ramp.dir / "out");
+  const auto report = read_json(ramp.dir / "out" / "report.json");
+  EXPECT_EQ(report["resumed_from"]["finished_increments"], 2);
+  EXPECT_EQ(report["checkpoints"]["written"], 4);  // increments 3 to 6
+}
+
+/// Starts `hotmesh arguments...` in the background, its output to `log`.
+pid_t start_hotmesh(const std::vector<std::string>& arguments, const std::filesystem::path& log) {
+  std::vector<std::string> words{HOTMESH_EXE};
+  words.insert(words.end(), arguments.begin(), arguments.end());
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    ::dup2(fd, STDOUT_FILENO);
+    ::dup2(fd, STDERR_FILENO);
+    std::vector<char*> argv;
+    for (auto& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+TEST(DeformResume, RunKilledWithSigkillResumesToTheSameOutputs) {
+  // The ramp sample (2280 cells, both walls sliding) in 8 increments: slow enough to be killed
+  // while it runs, at whatever point of the increment after the second it has reached.
+  test::TempDir dir;
+  std::filesystem::copy_file(test::kSample / "ramp2d.msh", dir / "ramp2d.msh");
+  std::filesystem::copy_file(test::kSample / "ramp.csv", dir / "ramp.csv");
+  std::string yaml = test::read_text(test::kSample / "ramp2d-sliding.yaml");
+  yaml.replace(yaml.find("increments: 16"), 14, "increments: 8");
+  test::write_text(dir / "case.yaml", yaml);
+  const std::string case_file = (dir / "case.yaml").string();
+  ASSERT_EQ(hotmesh(fmt::format("-q deform {} -o {}", shell_quote(case_file), shell_quote((dir / "straight").string()))).exit_code, 0);
+
+  const auto out = dir / "out";
+  const pid_t pid = start_hotmesh({"deform", case_file, "-o", out.string()}, dir / "run.log");
+  ASSERT_GT(pid, 0);
+  int finished = 0, status = 0;
+  bool exited = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(10);
+  while (finished < 2 && std::chrono::steady_clock::now() < deadline) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) {
+      exited = true;
+      break;
+    }
+    try {
+      finished = io::read_checkpoint_info(out / io::kCheckpointName).finished_increments;
+    } catch (const InputError&) {  // not written yet
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  if (!exited) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  ASSERT_FALSE(exited) << "the run ended before it could be killed:\n" << test::read_text(dir / "run.log");
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  ASSERT_GE(finished, 2) << test::read_text(dir / "run.log");
+  ASSERT_FALSE(std::filesystem::exists(out / "report.json"));
+
+  const auto resumed = hotmesh(fmt::format("deform {} -o {} --resume", shell_quote(case_file), shell_quote(out.string())));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_THAT(resumed.output, HasSubstr("resuming from"));
+  expect_same_outputs(dir / "straight", out);
+}
+
+TEST(DeformResume, RestartedRunResumesToo) {
+  // The next coupling iteration (restart: from a finished run's restart.hmr), killed and resumed.
+  SlidingRamp ramp;
+  test::write_text(ramp.dir / "first.yaml", test::ramp_case("half.csv", 2));
+  test::write_text(ramp.dir / "second.yaml", test::ramp_case("full.csv", 4, "restart: first-out/restart.hmr\n"));
+  ASSERT_EQ(hotmesh("-q deform " + shell_quote((ramp.dir / "first.yaml").string())).exit_code, 0);
+  const std::string second = "deform " + shell_quote((ramp.dir / "second.yaml").string()) + " -o ";
+  ASSERT_EQ(hotmesh("-q " + second + shell_quote((ramp.dir / "straight").string())).exit_code, 0);
+  const std::string out = shell_quote((ramp.dir / "out").string());
+  ASSERT_EQ(hotmesh(second + out + " --stop-after-increment 2").exit_code, kKilled);
+  const auto resumed = hotmesh(second + out + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  expect_same_outputs(ramp.dir / "straight", ramp.dir / "out");
+  EXPECT_THAT(test::read_text(ramp.dir / "out" / "report.json"), HasSubstr("first-out/restart.hmr"));
+}
+
+TEST(DeformResume, ChangedCaseOrTableIsRefusedNamingTheFile) {
+  SlidingRamp ramp;
+  ASSERT_EQ(hotmesh(ramp.deform("out", "--stop-after-increment 1")).exit_code, kKilled);
+  const std::string yaml = test::read_text(ramp.dir / "case.yaml");
+  test::write_text(ramp.dir / "case.yaml", yaml + "# a comment is a change too\n");
+  const auto changed_case = hotmesh(ramp.deform("out", "--resume"));
+  EXPECT_EQ(changed_case.exit_code, 2);
+  EXPECT_THAT(changed_case.output, HasSubstr("cannot resume"));
+  EXPECT_THAT(changed_case.output, HasSubstr((ramp.dir / "case.yaml").string() + " has changed"));
+  test::write_text(ramp.dir / "case.yaml", yaml);
+
+  const std::string table = test::read_text(ramp.dir / "full.csv");
+  test::write_text(ramp.dir / "full.csv", table + "# FEM time step 813\n");
+  const auto changed_table = hotmesh(ramp.deform("out", "--resume"));
+  EXPECT_EQ(changed_table.exit_code, 2);
+  EXPECT_THAT(changed_table.output, HasSubstr((ramp.dir / "full.csv").string() + " has changed"));
+  EXPECT_THAT(changed_table.output, Not(HasSubstr("case.yaml has changed")));
+  test::write_text(ramp.dir / "full.csv", table);
+
+  // The refusals left the checkpoint alone: with the inputs restored, the run goes on.
+  const auto resumed = hotmesh("-q " + ramp.deform("out", "--resume"));
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+}
+
+TEST(DeformResume, WithoutCheckpointIsAUserError) {
+  SlidingRamp ramp;
+  const auto r = hotmesh(ramp.deform("out", "--resume"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("--resume: there is no checkpoint.hmc in the output folder"));
+  ASSERT_EQ(hotmesh("-q " + ramp.deform("out")).exit_code, 0);  // a run that ends leaves none
+  EXPECT_EQ(hotmesh(ramp.deform("out", "--resume")).exit_code, 2);
+}
+
+TEST(DeformResume, FreshRunDoesNotReplaceACheckpointUnlessForced) {
+  SlidingRamp ramp;
+  ASSERT_EQ(hotmesh(ramp.deform("out", "--stop-after-increment 3")).exit_code, kKilled);
+  const auto refused = hotmesh(ramp.deform("out"));
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.output, HasSubstr("holds checkpoint.hmc, the checkpoint of an interrupted run"));
+  EXPECT_THAT(refused.output, HasSubstr("3 of 6 increments done"));
+  EXPECT_THAT(refused.output, HasSubstr("--resume"));
+  EXPECT_EQ(io::read_checkpoint_info(ramp.dir / "out" / io::kCheckpointName).finished_increments, 3);
+  const auto forced = hotmesh(ramp.deform("out", "--force"));
+  EXPECT_EQ(forced.exit_code, 0) << forced.output;
+  EXPECT_THAT(forced.output, HasSubstr("increment 1/6"));
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "out" / io::kCheckpointName));
+}
+
+TEST(DeformResume, OutOfMemoryExitsWithCodeFourAndKeepsTheCheckpoint) {
+  SlidingRamp ramp;
+  ASSERT_EQ(hotmesh("-q " + ramp.deform("straight")).exit_code, 0);
+  const auto r = hotmesh(ramp.deform("out", "--fail-allocation-in-increment 3"));
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("out of memory while moving the mesh (increment 3 of 6) on a mesh of"));
+  EXPECT_THAT(r.output, HasSubstr("the last checkpoint, 2 increments done, is kept in"));
+  EXPECT_THAT(r.output, HasSubstr("--resume"));
+  EXPECT_EQ(io::read_checkpoint_info(ramp.dir / "out" / io::kCheckpointName).finished_increments, 2);
+  const auto resumed = hotmesh("-q " + ramp.deform("out", "--resume"));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  expect_same_outputs(ramp.dir / "straight", ramp.dir / "out");
+}
+
+TEST(DeformCommand, ProgressLinePerNewtonStepOnRequest) {
+  SlidingRamp ramp;
+  const auto plain = hotmesh(ramp.deform("a"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_THAT(plain.output, Not(HasSubstr(" Newton 1:")));  // a small mesh: one line per increment
+  const auto progress = hotmesh(ramp.deform("b", "--progress"));
+  ASSERT_EQ(progress.exit_code, 0) << progress.output;
+  EXPECT_THAT(progress.output, HasSubstr("increment 1/6 Newton 1: residual "));
+  EXPECT_THAT(progress.output, HasSubstr("increment 6/6 Newton 2: residual "));
+  EXPECT_THAT(progress.output, HasSubstr(" of initial, PCG "));
+  EXPECT_THAT(progress.output, HasSubstr(", sliding projection "));
+  EXPECT_THAT(progress.output, HasSubstr(" s (run "));
+  EXPECT_THAT(hotmesh("-v " + ramp.deform("c")).output, HasSubstr("increment 1/6 Newton 1: "));
+  const auto quiet = hotmesh("-q " + ramp.deform("d", "--progress"));
+  EXPECT_EQ(quiet.exit_code, 0);
+  EXPECT_EQ(quiet.output, "");
+}
+
+}  // namespace
+}  // namespace hotmesh::app
