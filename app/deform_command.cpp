@@ -98,11 +98,16 @@ Command add_deform_command(CLI::App& parent) {
     timings.shapes = seconds_since(t);
 
     // 3. The motion, increment by increment.
-    spdlog::info("moving the mesh in {} increments on {} threads", c.solver.increments, omp_get_max_threads());
+    spdlog::info("moving the mesh in {} increments on {} threads, linear solver {}{}", c.solver.increments,
+                 omp_get_max_threads(), deform::to_string(c.solver.linear),
+                 c.solver.linear == deform::LinearSolverKind::amg ? fmt::format(" ({})", deform::to_string(c.solver.amg)) : "");
     const deform::MotionResult result = deform::move_mesh(
         mesh, setup.motions, c.material, c.solver,
         [&c](const deform::IncrementRecord& r) { log_increment(r, c.solver.increments); }, resume ? &*resume : nullptr);
     for (const auto& note : result.notes) spdlog::warn("{}", note);
+    const auto& m = result.timings;
+    spdlog::info("motion {:.2f} s: assembly {:.2f} s, preconditioner {:.2f} s, solve {:.2f} s, projection {:.2f} s",
+                 m.total, m.assembly, m.preconditioner, m.solve, m.projection);
 
     // 4. Outputs, each written atomically; on failure the last valid mesh.
     t = Clock::now();
