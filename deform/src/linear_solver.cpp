@@ -2,6 +2,7 @@
 #include "linear_solver.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "petsc_solver.hpp"
@@ -16,6 +17,18 @@ std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options) {
     case LinearSolverKind::amg: return make_amg_solver(options);
   }
   return make_jacobi_pcg_solver(options);
+}
+
+bool stores_element_matrices(const SolverOptions& options) { return options.linear != LinearSolverKind::amg; }
+
+void LinearSolver::update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
+                          MotionTimings& timings) {
+  const auto start = std::chrono::steady_clock::now();
+  k.update(s.points);
+  timings.assembly += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  k.apply(u, r);
+  s.periodic.fold(r);
+  s.constraints.project(r);
 }
 
 double Forcing::next(int n, double residual, double initial) {

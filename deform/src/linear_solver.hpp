@@ -43,6 +43,13 @@ struct LinearSolveResult {
 class LinearSolver {
  public:
   virtual ~LinearSolver() = default;
+  /// The element pass of a Newton step: K(n) at s.points (k is s.stiffness) and the residual
+  /// r = P T^T K(n) u of eq. (7): folded onto periodic masters, only its tangential part F_t at
+  /// sliding nodes (eq. 17). Adds the element work to timings.assembly. By default k.update()
+  /// and one product; the amg solver without stored element matrices assembles its matrix in
+  /// the same pass.
+  virtual void update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
+                      MotionTimings& timings);
   /// Solves the system for p from p = 0 to ||r|| <= tolerance ||rhs||. `rhs` lies in the
   /// admissible subspace (projected, folded); so does p, with p = 0 at slaves (the Newton loop
   /// expands u afterwards). Adds its times to timings.assembly (what it assembles beyond the
@@ -55,6 +62,9 @@ class LinearSolver {
 
 /// The solver SolverOptions::linear names. `amg` initialises PETSc (and MPI) on first use.
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options);
+/// Whether that solver wants the element matrices stored (jacobi-pcg) or computes them itself
+/// while it assembles (amg: 4.6 kB less per hex).
+bool stores_element_matrices(const SolverOptions& options);
 
 /// P T^T K T P: the stiffness restricted to the admissible subspace — periodic slaves expanded
 /// from their masters before the element loop and folded back after it (periodic.hpp), the

@@ -50,7 +50,7 @@ class Motion {
         observer_(observer),
         setup_(detail::set_up_boundaries(mesh, patches, start)),
         sliding_(setup_, static_cast<std::size_t>(mesh.dimension)),
-        stiffness_(mesh, element_lame(mesh, material), material.drop_jacobian),
+        stiffness_(mesh, element_lame(mesh, material), material.drop_jacobian, detail::stores_element_matrices(solver)),
         linear_(detail::make_linear_solver(solver)),
         dim_(static_cast<std::size_t>(mesh.dimension)),
         size_(bounding_diagonal(mesh.points)) {}
@@ -145,14 +145,10 @@ class Motion {
     detail::Forcing forcing(solver_);
     for (int it = 0;; ++it) {
       displace(x, u, trial);
-      t = Clock::now();
-      stiffness_.update(trial);  // K(n) at the current geometry (eq. 8)
-      result_.timings.assembly += seconds_since(t);
-      // R(n) = K(n) u(n) - f (eq. 7; f is K's action on the boundary motion), with only its
-      // tangential part F_t at sliding nodes (eq. 17).
-      stiffness_.apply(u, r);
-      setup_.periodic.fold(r);
-      setup_.constraints.project(r);
+      // K(n) at the current geometry (eq. 8) and R(n) = K(n) u(n) - f (eq. 7; f is K's action on
+      // the boundary motion), with only its tangential part F_t at sliding nodes (eq. 17).
+      const detail::ConstrainedSystem system{stiffness_, setup_.constraints, setup_.periodic, trial};
+      linear_->update(stiffness_, system, u, r, result_.timings);
       const double residual = norm2(r);
       if (it == 0) r0 = residual;
       record.newton.push_back({residual, 0, true, 0.0});
@@ -176,8 +172,7 @@ class Motion {
       // sliding nodes the projected operator solves eq. (16) and keeps p . n = 0 (eq. 19).
       for (std::size_t i = 0; i < dofs; ++i) rhs[i] = -r[i];
       const double tolerance = forcing.next(it, residual, r0);
-      const auto solved = linear_->solve({stiffness_, setup_.constraints, setup_.periodic, trial}, rhs, p, tolerance,
-                                         result_.timings);
+      const auto solved = linear_->solve(system, rhs, p, tolerance, result_.timings);
       auto& step = record.newton.back();
       step.pcg_iterations = solved.iterations;
       step.pcg_converged = solved.converged;

@@ -224,11 +224,39 @@ struct AssemblyOrder {
   }
 };
 
-/// K~ from the system's element matrices, into the preallocated `a`. The first assembly goes
-/// through MatSetValuesBlocked and fixes the sparsity; later ones add each K~_e straight into
-/// the AIJ values, cells of a colour in parallel.
-void assemble_frame_matrix(Mat a, const ConstrainedSystem& s, const NodalFrames& frames, const BlockRows& rows,
+/// Where an element pass takes K_e from: the stored matrices, or element_stiffness at the
+/// system's points (no storage: 4.6 kB per hex saved, the matrices computed once per pass).
+/// With `u` given, the pass also adds K_e u_e into `r` (the Newton residual, before folding).
+struct ElementPass {
+  const ConstrainedSystem& s;
+  std::span<const double> u;
+  std::span<double> r;
+
+  const double* matrix(CellId c, std::span<double> scratch) const {
+    if (s.stiffness.stores_matrices()) return s.stiffness.element_matrix(c).data();
+    s.stiffness.element_matrix_at(c, s.points, scratch);
+    return scratch.data();
+  }
+  void residual(std::span<const NodeId> nodes, const double* ke, std::size_t n, std::size_t d) const {
+    if (u.empty()) return;
+    std::array<double, 24> ue{};
+    for (std::size_t a = 0; a < nodes.size(); ++a) {
+      for (std::size_t i = 0; i < d; ++i) ue[a * d + i] = u[static_cast<std::size_t>(nodes[a]) * d + i];
+    }
+    for (std::size_t row = 0; row < n; ++row) {
+      double sum = 0.0;
+      for (std::size_t j = 0; j < n; ++j) sum += ke[row * n + j] * ue[j];
+      r[static_cast<std::size_t>(nodes[row / d]) * d + row % d] += sum;
+    }
+  }
+};
+
+/// K~ into the preallocated `a`, from every cell's K_e (and the residual, see ElementPass).
+/// The first assembly goes through MatSetValuesBlocked and fixes the sparsity; later ones add
+/// each K~_e straight into the AIJ values, cells of a colour in parallel.
+void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& frames, const BlockRows& rows,
                            const AssemblyOrder& order, bool first) {
+  const ConstrainedSystem& s = pass.s;
   const ElementList& cells = s.stiffness.cells();
   const auto d = static_cast<std::size_t>(frames.dimension());
   const auto n = static_cast<std::size_t>(s.stiffness.element_size());
@@ -237,11 +265,12 @@ void assemble_frame_matrix(Mat a, const ConstrainedSystem& s, const NodalFrames&
   check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a), MATSEQAIJ, &aij), "PetscObjectTypeCompare");
   if (first || !aij) {  // MatSetValuesBlocked: any matrix type (and, later, rows owned by other processes)
     if (!first) check(MatZeroEntries(a), "MatZeroEntries");
-    std::array<double, 24 * 24> values{};
+    std::array<double, 24 * 24> scratch{}, values{};
     std::array<std::int32_t, 8> owners{};
     for (std::size_t c = 0; c < cells.size(); ++c) {
-      frames.transform_element(cells.nodes(c), s.stiffness.element_matrix(static_cast<CellId>(c)), {values.data(), n * n},
-                               {owners.data(), corners});
+      const double* ke = pass.matrix(static_cast<CellId>(c), {scratch.data(), n * n});
+      pass.residual(cells.nodes(c), ke, n, d);
+      frames.transform_element(cells.nodes(c), {ke, n * n}, {values.data(), n * n}, {owners.data(), corners});
       std::array<PetscInt, 8> index{};  // negative for a fixed node: PETSc skips it
       for (std::size_t k = 0; k < corners; ++k) index[k] = rows[owners[k]];
       check(MatSetValuesBlocked(a, static_cast<PetscInt>(corners), index.data(), static_cast<PetscInt>(corners), index.data(),
@@ -263,10 +292,12 @@ void assemble_frame_matrix(Mat a, const ConstrainedSystem& s, const NodalFrames&
   check(MatSeqAIJGetArray(a, &v), "MatSeqAIJGetArray");
   std::fill(v, v + ia[size], 0.0);
   const auto add = [&](CellId cell) {
-    std::array<double, 24 * 24> values{};
+    std::array<double, 24 * 24> scratch{}, values{};
     std::array<std::int32_t, 8> owners{};
-    const auto c = static_cast<std::size_t>(cell);
-    frames.transform_element(cells.nodes(c), s.stiffness.element_matrix(cell), {values.data(), n * n}, {owners.data(), corners});
+    const auto nodes = cells.nodes(static_cast<std::size_t>(cell));
+    const double* ke = pass.matrix(cell, {scratch.data(), n * n});
+    pass.residual(nodes, ke, n, d);
+    frames.transform_element(nodes, {ke, n * n}, {values.data(), n * n}, {owners.data(), corners});
     for (std::size_t p = 0; p < corners; ++p) {
       const PetscInt row = rows[owners[p]];
       if (row < 0) continue;
@@ -369,13 +400,27 @@ class AmgSolver final : public LinearSolver {
 
   void begin_increment() override { fresh_ = true; }
 
+  /// Without stored element matrices: one pass computes every K_e, adds its part of the
+  /// residual and assembles K~ (the matrix is then ready for solve()).
+  void update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
+              MotionTimings& timings) override {
+    if (k.stores_matrices()) {
+      LinearSolver::update(k, s, u, r, timings);
+      return;
+    }
+    const auto t = Clock::now();
+    std::fill(r.begin(), r.end(), 0.0);
+    assemble(s, u, r);
+    s.periodic.fold(r);
+    s.constraints.project(r);
+    timings.assembly += seconds_since(t);
+  }
+
   LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p, double tolerance,
                           MotionTimings& timings) override {
     auto t = Clock::now();
-    const bool first = a_ == nullptr;
-    if (first) create(s);
-    frames_->update(s.constraints, s.periodic);
-    assemble_frame_matrix(a_, s, *frames_, *rows_, *order_, first);
+    if (!assembled_) assemble(s, {}, {});  // from the stored element matrices
+    assembled_ = false;
     timings.assembly += seconds_since(t);
     const auto d = static_cast<std::size_t>(s.stiffness.dofs_per_node());
     frames_->to_frames(rhs, full_);
@@ -425,6 +470,15 @@ class AmgSolver final : public LinearSolver {
   }
 
  private:
+  /// K~ of the system at its points, with the frames of its current normals.
+  void assemble(const ConstrainedSystem& s, std::span<const double> u, std::span<double> r) {
+    if (!a_) create(s);
+    frames_->update(s.constraints, s.periodic);
+    assemble_frame_matrix(a_, {s, u, r}, *frames_, *rows_, *order_, !pattern_);
+    pattern_ = true;
+    assembled_ = true;
+  }
+
   void create(const ConstrainedSystem& s) {
     const int d = s.stiffness.dofs_per_node();
     const std::size_t nodes = s.stiffness.size() / static_cast<std::size_t>(d);
@@ -474,6 +528,8 @@ class AmgSolver final : public LinearSolver {
   Vec b_ = nullptr;
   Vec x_ = nullptr;
   bool fresh_ = true;
+  bool pattern_ = false;    ///< the sparsity is fixed (after the first assembly)
+  bool assembled_ = false;  ///< update() assembled K~ for the coming solve()
   std::vector<double> full_;             ///< d per node, in the frames
   std::vector<double> rhs_, solution_;  ///< d per block row
 };
@@ -489,8 +545,8 @@ std::vector<double> assembled_frame_product(const ConstrainedSystem& system, con
   const auto d = static_cast<std::size_t>(frames.dimension());
   const AssemblyOrder order(system.stiffness, frames);
   Mat a = create_frame_matrix(system.stiffness.cells(), frames, rows);
-  assemble_frame_matrix(a, system, frames, rows, order, true);
-  if (twice) assemble_frame_matrix(a, system, frames, rows, order, false);
+  assemble_frame_matrix(a, {system, {}, {}}, frames, rows, order, true);
+  if (twice) assemble_frame_matrix(a, {system, {}, {}}, frames, rows, order, false);
   Vec vx = nullptr, vy = nullptr;
   check(MatCreateVecs(a, &vx, &vy), "MatCreateVecs");
   std::vector<double> compressed(static_cast<std::size_t>(rows.count) * d);
