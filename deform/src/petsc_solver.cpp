@@ -1,12 +1,13 @@
 // hotmesh deform: the assembled linear solver on PETSc (SolverOptions::linear = amg).
 //
-// Per Newton step: the frames follow the constraints' current normals; every K~_e =
-// T_e^T K_e T_e (nodal_frames.hpp) is added with MatSetValuesBlocked into a matrix with
-// block size d whose sparsity was preallocated once, from the node graph with slaves merged
-// into their masters (MAT_NEW_NONZERO_LOCATION_ERR guards it); the right-hand side is
-// r~ = T^T r; CG (KSPCG, stopping on the unpreconditioned residual as the matrix-free PCG
-// does) with algebraic multigrid solves K~ p~ = r~ from p~ = 0, and p = T p~. PCGAMG gets the
-// rigid-body modes at the current coordinates, written in the frames, as near-null space.
+// Per Newton step, in one pass over the cells (update()): every K_e is computed at the current
+// points (not stored), K_e u_e added to the Newton residual, and K~_e = T_e^T K_e T_e in the
+// nodal frames of the current normals (nodal_frames.hpp) added into a matrix of block size d
+// whose sparsity was preallocated once from the node graph, slaves merged into their masters
+// (MAT_NEW_NONZERO_LOCATION_ERR guards it). Then (solve()) the right-hand side is r~ = T^T r,
+// CG (KSPCG, stopping on the unpreconditioned residual as the matrix-free PCG does) with
+// algebraic multigrid solves K~ p~ = r~ from p~ = 0, and p = T p~. PCGAMG gets the
+// translations written in the frames as near-null space.
 //
 // The multigrid hierarchy is built at the first Newton step of an increment and kept for
 // the later steps of the increment (KSPSetReusePreconditioner): K changes little between
@@ -108,11 +109,10 @@ void default_option(const char* name, const char* value) {
 
 /// The block rows of the matrix: one per node with at least one unknown (free or sliding);
 /// a slave shares its master's. Fixed nodes (and slaves of fixed masters) have none and are
-/// left out: a row with only a diagonal would be an isolated vertex of the matrix graph,
-/// which PCGAMG makes an aggregate of one node whose d rows cannot carry the 3 (2D) or 6
-/// (3D) rigid-body modes; its tentative prolongator is then rank-deficient and the coarse
-/// operators singular (the preconditioner turned indefinite on the ramp). The set does not
-/// change during a run: sliding nodes keep at least one tangential direction.
+/// left out: as rows holding only a diagonal they would be isolated vertices of the matrix
+/// graph, which PCGAMG makes aggregates of one node (whose d rows cannot carry the rigid-body
+/// rotations, see AmgSolver::rotations_), and work for nothing. The set does not change
+/// during a run: sliding nodes keep at least one tangential direction.
 struct BlockRows {
   std::vector<PetscInt> of_node;  ///< block row of each node's unknowns (a slave: its master's), -1 for none
   std::vector<NodeId> node_of;    ///< the node each block row belongs to
