@@ -184,7 +184,9 @@ int run_deform(const Options& options, RunState& state) {
                  checkpoint_path.string(), info.written_at, info.finished_increments, info.increments, info.lambda,
                  omp_get_max_threads());
   } else {
-    spdlog::info("moving the mesh in {} increments on {} threads", increments, omp_get_max_threads());
+    spdlog::info("moving the mesh in {} increments on {} threads, linear solver {}{}", increments, omp_get_max_threads(),
+                 deform::to_string(c.solver.linear),
+                 c.solver.linear == deform::LinearSolverKind::amg ? fmt::format(" ({})", deform::to_string(c.solver.amg)) : "");
   }
   const bool sliding = std::any_of(setup.motions.begin(), setup.motions.end(),
                                    [](const deform::PatchMotion& m) { return m.role == deform::BoundaryRole::sliding; });
@@ -207,6 +209,9 @@ int run_deform(const Options& options, RunState& state) {
   const std::optional<io::CheckpointInfo> resumed_from = resumed ? std::optional(resumed->info) : std::nullopt;
   resumed.reset();  // its copy of the mesh is no longer needed
   for (const auto& note : result.notes) spdlog::warn("{}", note);
+  const auto& m = result.timings;
+  spdlog::info("motion {:.2f} s: assembly {:.2f} s, preconditioner {:.2f} s, solve {:.2f} s, projection {:.2f} s",
+               m.total, m.assembly, m.preconditioner, m.solve, m.projection);
 
   // 4. Outputs, each written atomically; on failure the last valid mesh.
   state.phase = "writing the outputs";

@@ -134,15 +134,21 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
                  {"max_newton_iterations", c.solver.max_newton_iterations},
                  {"pcg_tolerance", c.solver.pcg_tolerance},
                  {"max_pcg_iterations", c.solver.max_pcg_iterations},
-                 {"max_increment_splits", c.solver.max_increment_splits}};
+                 {"max_increment_splits", c.solver.max_increment_splits},
+                 {"linear", deform::to_string(c.solver.linear)},
+                 {"amg", deform::to_string(c.solver.amg)},
+                 {"forcing", deform::to_string(c.solver.forcing)}};
   j["increments"] = json::array();
   std::size_t newton_total = 0, pcg_total = 0;
   for (const auto& r : result.increments) {
-    json pcg = json::array(), residuals = json::array(), projections = json::array();
+    json pcg = json::array(), tolerances = json::array(), residuals = json::array(), projections = json::array();
     for (std::size_t i = 0; i < r.newton.size(); ++i) {
       residuals.push_back(r.newton[i].residual);
       if (i + 1 < r.newton.size() && result.sliding_nodes > 0) projections.push_back(r.newton[i].max_projection);
-      if (i + 1 < r.newton.size()) pcg.push_back(r.newton[i].pcg_iterations);
+      if (i + 1 < r.newton.size()) {
+        pcg.push_back(r.newton[i].pcg_iterations);
+        tolerances.push_back(r.newton[i].linear_tolerance);
+      }
       pcg_total += static_cast<std::size_t>(r.newton[i].pcg_iterations);
     }
     newton_total += r.newton.empty() ? 0 : r.newton.size() - 1;
@@ -153,6 +159,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
                                {"converged", r.converged},
                                {"newton_iterations", r.newton.empty() ? 0 : r.newton.size() - 1},
                                {"pcg_iterations", pcg},
+                               {"linear_tolerances", tolerances},
                                {"residuals", residuals},
                                {"residual_reduction", r.residual_reduction},
                                {"min_scaled_jacobian", r.min_scaled_jacobian},
@@ -187,9 +194,10 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["quality"] = quality_json(mesh, result.summary);
   j["notes"] = result.notes;
   const auto& m = result.timings;
-  j["seconds"] = {{"read", timings.read},   {"shapes", timings.shapes},         {"setup", m.setup},
-                  {"assembly", m.assembly}, {"solve", m.solve},                {"projection", m.projection},
-                  {"quality", m.quality},   {"motion", m.total},               {"checkpoint", timings.checkpoint},
+  j["seconds"] = {{"read", timings.read},         {"shapes", timings.shapes},   {"setup", m.setup},
+                  {"assembly", m.assembly},       {"preconditioner", m.preconditioner},
+                  {"solve", m.solve},             {"projection", m.projection}, {"quality", m.quality},
+                  {"motion", m.total},            {"checkpoint", timings.checkpoint},
                   {"write", timings.write}};
   j["wall_seconds"] = timings.wall;
   outputs.files.push_back(folder / "report.json");

@@ -14,6 +14,19 @@ find_package(spdlog 1.10 REQUIRED CONFIG)
 find_package(nlohmann_json 3.11 REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(Cairo REQUIRED IMPORTED_TARGET cairo>=1.16)
+# PETSc with Open MPI for the `amg` linear solver (Debian's petsc-dev 3.18). Its PETSc.pc lies
+# under the alternative /usr/lib/petsc; its Cflags force _FORTIFY_SOURCE (a warning without
+# optimisation), so only the include directory and libraries are taken from it.
+set(MPI_CXX_SKIP_MPICXX ON)  # the C API only, not Open MPI's deprecated C++ bindings
+find_package(MPI 3.0 REQUIRED COMPONENTS CXX)
+if(EXISTS /usr/lib/petsc/lib/pkgconfig)
+  set(ENV{PKG_CONFIG_PATH} "/usr/lib/petsc/lib/pkgconfig:$ENV{PKG_CONFIG_PATH}")
+endif()
+pkg_check_modules(PETSC REQUIRED PETSc>=3.18)
+add_library(hotmesh_petsc INTERFACE)
+target_include_directories(hotmesh_petsc SYSTEM INTERFACE ${PETSC_INCLUDE_DIRS})
+target_link_libraries(hotmesh_petsc INTERFACE ${PETSC_LINK_LIBRARIES} MPI::MPI_CXX)
+
 if(HOTMESH_TESTS)
   find_package(GTest 1.12 REQUIRED CONFIG)
 endif()

@@ -5,8 +5,9 @@
 #
 # Usage: scripts/bench.sh [--quick]
 #   --quick   small sizes only (a smoke run of a minute, numbers not worth recording)
-# A full run takes about fifteen minutes on 2 cores (most of it the stator-well sector solved at
-# 50 000 cells) and needs about 5 GB of memory (the 100^3 hex block's element matrices). Run it on an otherwise idle machine: the load is printed
+# A full run takes about twenty-five minutes on 2 cores (most of it the stator-well sector solved
+# at 50 000 cells, and both linear solvers on the stator-well sample) and needs about 5 GB of
+# memory (the 100^3 hex block's element matrices). Run it on an otherwise idle machine: the load is printed
 # before and after each benchmark and the tables report, row by row, how many cores other
 # processes kept busy ("other load"); medians resist short disturbances, not a busy machine.
 set -euo pipefail
@@ -53,11 +54,27 @@ args_for() {
   fi
 }
 
+# The linear solvers: the 2D samples, three runs each, then the stator-well sample (20 000 hex
+# cells) once.
+linear_solvers() {
+  if ((quick)); then
+    build/bench/bench_linear_solvers --runs 1
+    return
+  fi
+  build/bench/bench_linear_solvers --runs 3
+  echo
+  build/bench/bench_linear_solvers --runs 1 samples/stator_well/case_small.yaml
+}
+
 for bench in "${benches[@]}"; do
   echo
   echo "== $bench $(args_for "$bench")"
-  # shellcheck disable=SC2046  # the arguments are meant to split
-  "build/bench/$bench" $(args_for "$bench")
+  if [[ "$bench" == bench_linear_solvers ]]; then
+    linear_solvers
+  else
+    # shellcheck disable=SC2046  # the arguments are meant to split
+    "build/bench/$bench" $(args_for "$bench")
+  fi
   echo
   load
 done

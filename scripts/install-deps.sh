@@ -14,6 +14,8 @@ packages=(
   libocct-data-exchange-dev libtbb-dev
   # numerics
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  # the amg linear solver: PETSc 3.18 (with hypre) on Open MPI; mpirun for parallel runs
+  petsc-dev openmpi-bin
   # case files, command line, logging
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   # hotmesh serve: HTTP server

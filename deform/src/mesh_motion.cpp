@@ -13,9 +13,9 @@
 #include "boundary_conditions.hpp"
 #include "sliding.hpp"
 #include "hotmesh/deform/material.hpp"
-#include "hotmesh/deform/pcg.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/geometry/input_error.hpp"
+#include "linear_solver.hpp"
 #include "parallel.hpp"
 
 namespace hotmesh::deform {
@@ -43,129 +43,6 @@ using Clock = std::chrono::steady_clock;
 constexpr double kDivergence = 1e10;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// P T^T K T P: the stiffness restricted to the admissible subspace — periodic slaves expanded
-/// from their masters before the element loop and folded back after it (periodic.hpp), the
-/// normal component at sliding nodes removed (eq. 16), fixed nodes zeroed.
-class ConstrainedOperator final : public LinearOperator {
- public:
-  ConstrainedOperator(const StiffnessOperator& k, const NodeConstraints& c, const detail::PeriodicCoupling& periodic)
-      : k_(k), c_(c), periodic_(periodic), expanded_(periodic.empty() ? 0 : k.size()) {}
-  std::size_t size() const override { return k_.size(); }
-  void apply(std::span<const double> x, std::span<double> y) const override {
-    if (periodic_.empty()) {
-      k_.apply(x, y);
-    } else {
-      std::copy(x.begin(), x.end(), expanded_.begin());
-      periodic_.expand(expanded_);
-      k_.apply(expanded_, y);
-      periodic_.fold(y);
-    }
-    c_.project(y);
-  }
-
- private:
-  const StiffnessOperator& k_;
-  const NodeConstraints& c_;
-  const detail::PeriodicCoupling& periodic_;
-  mutable std::vector<double> expanded_;  ///< work space (an operator is used by one thread)
-};
-
-/// Nodal (block) Jacobi: y_i = M_i x_i with M_i the inverse of the node's d x d diagonal block
-/// B_i of K on the directions the node may move in: M_i = P (P B_i P + I - P)^-1 P, P the
-/// projector that removes the node's constrained normals (zero for fixed nodes). For a free
-/// node it is B_i^-1; for a sliding node it inverts the stiffness along the boundary only, so
-/// the result stays tangential ("apply, then project" in one step). It takes the coupling of
-/// a node's components into account, which point Jacobi does not: in the stretched cells of a
-/// boundary layer, or on a sliding wall at an angle, that roughly halves the PCG iterations.
-class NodalJacobi final : public LinearOperator {
- public:
-  NodalJacobi(const StiffnessOperator& k, const NodeConstraints& c, const detail::PeriodicCoupling& periodic)
-      : dim_(static_cast<std::size_t>(k.dofs_per_node())), blocks_(k.size() * dim_) {
-    k.diagonal_blocks(blocks_);
-    periodic.fold_blocks(blocks_);  // a master carries its slave's stiffness
-    const auto nodes = static_cast<std::ptrdiff_t>(c.node_count());
-#pragma omp parallel for schedule(static) if (nodes >= detail::kParallelNodes)
-    for (std::ptrdiff_t i = 0; i < nodes; ++i) invert(static_cast<NodeId>(i), c);
-  }
-  std::size_t size() const override { return blocks_.size() / dim_; }
-  void apply(std::span<const double> x, std::span<double> y) const override {
-    const auto nodes = static_cast<std::ptrdiff_t>(size() / dim_);
-#pragma omp parallel for schedule(static) if (nodes >= detail::kParallelNodes)
-    for (std::ptrdiff_t i = 0; i < nodes; ++i) {
-      const auto base = static_cast<std::size_t>(i) * dim_;
-      const double* m = blocks_.data() + base * dim_;
-      for (std::size_t r = 0; r < dim_; ++r) {
-        double s = 0.0;
-        for (std::size_t j = 0; j < dim_; ++j) s += m[r * dim_ + j] * x[base + j];
-        y[base + r] = s;
-      }
-    }
-  }
-
- private:
-  void invert(NodeId n, const NodeConstraints& c) {
-    double* b = blocks_.data() + static_cast<std::size_t>(n) * dim_ * dim_;
-    if (c.is_fixed(n)) {
-      std::fill(b, b + dim_ * dim_, 0.0);
-      return;
-    }
-    // P = I - sum n n^T; A = P B P + (I - P).
-    std::array<double, 9> p{}, a{}, inv{};
-    for (std::size_t i = 0; i < dim_; ++i) p[i * dim_ + i] = 1.0;
-    for (const Vec3& normal : c.normals(n)) {
-      for (std::size_t i = 0; i < dim_; ++i) {
-        for (std::size_t j = 0; j < dim_; ++j) p[i * dim_ + j] -= normal[i] * normal[j];
-      }
-    }
-    const auto at = [this](const std::array<double, 9>& m, std::size_t i, std::size_t j) { return m[i * dim_ + j]; };
-    std::array<double, 9> bp{};
-    for (std::size_t i = 0; i < dim_; ++i) {
-      for (std::size_t j = 0; j < dim_; ++j) {
-        for (std::size_t k = 0; k < dim_; ++k) bp[i * dim_ + j] += b[i * dim_ + k] * at(p, k, j);
-      }
-    }
-    for (std::size_t i = 0; i < dim_; ++i) {
-      for (std::size_t j = 0; j < dim_; ++j) {
-        double s = (i == j ? 1.0 : 0.0) - at(p, i, j);
-        for (std::size_t k = 0; k < dim_; ++k) s += at(p, i, k) * at(bp, k, j);
-        a[i * dim_ + j] = s;
-      }
-    }
-    if (!invert_small(a, inv)) {
-      std::fill(b, b + dim_ * dim_, 0.0);
-      return;
-    }
-    for (std::size_t i = 0; i < dim_; ++i) {  // M = P A^-1 P
-      for (std::size_t j = 0; j < dim_; ++j) {
-        double s = 0.0;
-        for (std::size_t k = 0; k < dim_; ++k) {
-          for (std::size_t l = 0; l < dim_; ++l) s += at(p, i, k) * at(inv, k, l) * at(p, l, j);
-        }
-        b[i * dim_ + j] = s;
-      }
-    }
-  }
-
-  bool invert_small(const std::array<double, 9>& a, std::array<double, 9>& inv) const {
-    if (dim_ == 2) {
-      const double det = a[0] * a[3] - a[1] * a[2];
-      if (!(std::abs(det) > 0.0)) return false;
-      inv = {a[3] / det, -a[1] / det, -a[2] / det, a[0] / det};
-      return true;
-    }
-    const double det = a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) +
-                       a[2] * (a[3] * a[7] - a[4] * a[6]);
-    if (!(std::abs(det) > 0.0)) return false;
-    inv = {(a[4] * a[8] - a[5] * a[7]) / det, (a[2] * a[7] - a[1] * a[8]) / det, (a[1] * a[5] - a[2] * a[4]) / det,
-           (a[5] * a[6] - a[3] * a[8]) / det, (a[0] * a[8] - a[2] * a[6]) / det, (a[2] * a[3] - a[0] * a[5]) / det,
-           (a[3] * a[7] - a[4] * a[6]) / det, (a[1] * a[6] - a[0] * a[7]) / det, (a[0] * a[4] - a[1] * a[3]) / det};
-    return true;
-  }
-
-  std::size_t dim_;
-  std::vector<double> blocks_;  ///< B_i, then M_i, row-major per node
-};
-
 static_assert(std::tuple_size_v<decltype(SlidingState::hints)> == detail::SlidingNode::kMaxShapes);
 
 class Motion {
@@ -177,7 +54,8 @@ class Motion {
         observers_(observers),
         setup_(detail::set_up_boundaries(mesh, patches, start)),
         sliding_(setup_, static_cast<std::size_t>(mesh.dimension)),
-        stiffness_(mesh, element_lame(mesh, material), material.drop_jacobian),
+        stiffness_(mesh, element_lame(mesh, material), material.drop_jacobian, detail::stores_element_matrices(solver)),
+        linear_(detail::make_linear_solver(solver)),
         dim_(static_cast<std::size_t>(mesh.dimension)),
         size_(bounding_diagonal(mesh.points)) {}
 
@@ -345,17 +223,14 @@ class Motion {
     std::vector<Vec3> trial(x.size());
     std::vector<double> r(dofs), rhs(dofs), p(dofs);
     double r0 = 0.0;
-    const ConstrainedOperator k(stiffness_, setup_.constraints, setup_.periodic);
+    linear_->begin_increment();
+    detail::Forcing forcing(solver_);
     for (int it = 0;; ++it) {
       displace(x, u, trial);
-      t = Clock::now();
-      stiffness_.update(trial);  // K(n) at the current geometry (eq. 8)
-      result_.timings.assembly += seconds_since(t);
-      // R(n) = K(n) u(n) - f (eq. 7; f is K's action on the boundary motion), with only its
-      // tangential part F_t at sliding nodes (eq. 17).
-      stiffness_.apply(u, r);
-      setup_.periodic.fold(r);
-      setup_.constraints.project(r);
+      // K(n) at the current geometry (eq. 8) and R(n) = K(n) u(n) - f (eq. 7; f is K's action on
+      // the boundary motion), with only its tangential part F_t at sliding nodes (eq. 17).
+      const detail::ConstrainedSystem system{stiffness_, setup_.constraints, setup_.periodic, trial};
+      linear_->update(stiffness_, system, u, r, result_.timings);
       const double residual = norm2(r);
       if (it == 0) r0 = residual;
       record.newton.push_back({residual, 0, true, 0.0});
@@ -379,20 +254,14 @@ class Motion {
       // K(n) p = -R(n) on the free degrees of freedom, from p = 0 (eq. 8, section 3); at
       // sliding nodes the projected operator solves eq. (16) and keeps p . n = 0 (eq. 19).
       for (std::size_t i = 0; i < dofs; ++i) rhs[i] = -r[i];
-      std::fill(p.begin(), p.end(), 0.0);
-      t = Clock::now();
-      const NodalJacobi m(stiffness_, setup_.constraints, setup_.periodic);
-      const auto cg = pcg(k, m, rhs, p,
-                          {.relative_tolerance = solver_.pcg_tolerance,
-                           .max_iterations = solver_.max_pcg_iterations,
-                           .record_history = false,
-                           .project = [this](std::span<double> v) { setup_.constraints.project(v); }});
-      result_.timings.solve += seconds_since(t);
+      const double tolerance = forcing.next(it, residual, r0);
+      const auto solved = linear_->solve(system, rhs, p, tolerance, result_.timings);
       auto& step = record.newton.back();
-      step.pcg_iterations = cg.iterations;
-      step.pcg_converged = cg.converged;
-      step.pcg_reduction = cg.initial_residual > 0.0 ? cg.final_residual / cg.initial_residual : 0.0;
-      if (cg.breakdown) {
+      step.pcg_iterations = solved.iterations;
+      step.pcg_converged = solved.converged;
+      step.pcg_reduction = solved.reduction;
+      step.linear_tolerance = tolerance;
+      if (solved.breakdown) {
         record.failure = "the linear solver broke down (the stiffness is not positive definite on the free nodes)";
         break;
       }
@@ -465,6 +334,7 @@ class Motion {
   detail::BoundarySetup setup_;
   detail::SlidingNodes sliding_;
   StiffnessOperator stiffness_;
+  std::unique_ptr<detail::LinearSolver> linear_;
   std::size_t dim_;
   double size_;
   int finished_increments_ = 0;

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
+#include <stdexcept>
 
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -50,7 +52,7 @@ CellColoring color_cells(const ElementList& cells, std::size_t node_count) {
   return coloring;
 }
 
-StiffnessOperator::StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian)
+StiffnessOperator::StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian, bool store)
     : cells_(&mesh.cells),
       nodes_(mesh.node_count()),
       dim_(mesh.dimension),
@@ -67,10 +69,16 @@ StiffnessOperator::StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, b
   if (lame_.size() != mesh.cell_count()) throw std::invalid_argument("StiffnessOperator: one Lame per cell");
   element_dofs_ = element_dofs(expected);
   coloring_ = color_cells(mesh.cells, nodes_);
-  matrices_.assign(mesh.cell_count() * static_cast<std::size_t>(element_dofs_ * element_dofs_), 0.0);
+  if (store) matrices_.assign(mesh.cell_count() * static_cast<std::size_t>(element_dofs_ * element_dofs_), 0.0);
+}
+
+void StiffnessOperator::element_matrix_at(CellId c, std::span<const Vec3> points, std::span<double> k) const {
+  const auto i = static_cast<std::size_t>(c);
+  element_stiffness(cells_->type(i), gather(cells_->nodes(i), points), lame_[i], drop_jacobian_, k);
 }
 
 void StiffnessOperator::update(std::span<const Vec3> points) {
+  if (!stores_matrices()) throw std::logic_error("StiffnessOperator::update: built without element storage");
   const auto n = static_cast<std::ptrdiff_t>(cells_->size());
   const auto block = static_cast<std::size_t>(element_dofs_ * element_dofs_);
 #pragma omp parallel for schedule(static) if (n >= detail::kParallelCells)
@@ -130,6 +138,7 @@ void apply_color(const ElementList& cells, std::span<const CellId> color, const 
 }  // namespace
 
 void StiffnessOperator::apply(std::span<const double> x, std::span<double> y) const {
+  assert(stores_matrices());
   std::fill(y.begin(), y.end(), 0.0);
   for (std::size_t k = 0; k < coloring_.colors(); ++k) {
     const std::span<const CellId> color(coloring_.cells.data() + coloring_.offsets[k],

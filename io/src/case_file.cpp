@@ -38,9 +38,17 @@ constexpr std::array<std::string_view, 10> kTopKeys{"mesh",     "cad",     "leng
                                                    "solver",   "material", "patches",    "pictures", "restart"};
 constexpr std::array<std::string_view, 6> kUnitNames{"m", "mm", "cm", "um", "in", "ft"};
 constexpr std::array<std::string_view, 2> kAxisKeys{"origin", "direction"};
-constexpr std::array<std::string_view, 7> kSolverKeys{
+constexpr std::array<std::string_view, 10> kSolverKeys{
     "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
-    "max_increment_splits"};
+    "max_increment_splits", "linear", "amg", "forcing"};
+/// The names of the linear solvers, in the order of enum deform::LinearSolverKind.
+constexpr std::array<std::string_view, 2> kLinearNames{to_string(deform::LinearSolverKind::jacobi_pcg),
+                                                      to_string(deform::LinearSolverKind::amg)};
+/// The names of the multigrid packages, in the order of enum deform::AmgPackage.
+constexpr std::array<std::string_view, 2> kAmgNames{to_string(deform::AmgPackage::gamg), to_string(deform::AmgPackage::hypre)};
+/// The names of the forcing terms, in the order of enum deform::ForcingTerm.
+constexpr std::array<std::string_view, 2> kForcingNames{to_string(deform::ForcingTerm::fixed),
+                                                       to_string(deform::ForcingTerm::eisenstat_walker)};
 constexpr std::array<std::string_view, 4> kMaterialKeys{"law", "alpha_s", "alpha_v", "drop_jacobian"};
 /// The names of the stiffness laws, in the order of enum deform::StiffnessLaw.
 constexpr std::array<std::string_view, 3> kLawNames{"shape_volume", "uniform", "inverse_volume"};
@@ -206,6 +214,15 @@ class CaseParser {
     integer("max_pcg_iterations", s.max_pcg_iterations, 1);
     integer("threads", s.threads, 0);
     integer("max_increment_splits", s.max_increment_splits, 0);
+    if (const Entry* x = m.find("linear")) {
+      if (const auto k = reader_.choice(*x, kLinearNames)) s.linear = static_cast<deform::LinearSolverKind>(*k);
+    }
+    if (const Entry* x = m.find("amg")) {
+      if (const auto k = reader_.choice(*x, kAmgNames)) s.amg = static_cast<deform::AmgPackage>(*k);
+    }
+    if (const Entry* x = m.find("forcing")) {
+      if (const auto k = reader_.choice(*x, kForcingNames)) s.forcing = static_cast<deform::ForcingTerm>(*k);
+    }
   }
 
   void read_material(const Entry& e) {

@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <set>
+
 #include <fmt/format.h>
 
 #include "hotmesh/deform/structured_mesh.hpp"
@@ -56,6 +58,37 @@ TEST(DeformCommand, RampSampleCompletesWithEveryOutputAndReport) {
   }
   const auto q = deform::summarize_quality(deform::scaled_jacobians(moved.cells, moved.points));
   EXPECT_EQ(q.inverted_cells, 0u);
+}
+
+/// `linear: amg` runs PETSc inside the process, without mpirun, and leaves no MPI session
+/// folder behind; the report names the solver and splits its time into phases.
+TEST(DeformCommand, AmgSolverRunsWithoutMpirunAndReportsItsPhases) {
+  std::string yaml = test::read_text(kSample / "ramp2d-sliding.yaml");
+  yaml.replace(yaml.find("solver:\n"), 8, "solver:\n  linear: amg\n  forcing: eisenstat-walker\n");
+  const RampCase ramp(yaml);
+  test::TempDir tmp;
+  const auto r = run_command("TMPDIR=" + shell_quote(tmp.path().string()) + " " + HOTMESH_EXE + " deform " + ramp.case_file());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("linear solver amg (gamg)"));
+  EXPECT_THAT(r.output, HasSubstr("preconditioner"));
+  EXPECT_TRUE(std::filesystem::is_empty(tmp.path()));  // Open MPI's session folder removed
+  const auto report = read_json(ramp.dir / "case-out" / "report.json");
+  EXPECT_EQ(report["status"], "success");
+  EXPECT_EQ(report["solver"]["linear"], "amg");
+  EXPECT_EQ(report["solver"]["amg"], "gamg");
+  EXPECT_EQ(report["solver"]["forcing"], "eisenstat-walker");
+  for (const char* phase : {"assembly", "preconditioner", "solve", "projection"}) {
+    EXPECT_GT(report["seconds"][phase].get<double>(), 0.0) << phase;
+  }
+  EXPECT_LT(report["max_normal_slip"].get<double>(), 1e-12);
+  // Inexact Newton: the tolerances given to the linear solves vary, never below pcg_tolerance.
+  std::set<double> tolerances;
+  for (const auto& inc : report["increments"]) {
+    EXPECT_EQ(inc["linear_tolerances"].size(), inc["pcg_iterations"].size());
+    for (const auto& t : inc["linear_tolerances"]) tolerances.insert(t.get<double>());
+  }
+  EXPECT_GT(tolerances.size(), 2u);
+  EXPECT_GE(*tolerances.begin(), 1e-3);
 }
 
 TEST(DeformCommand, FailedMotionKeepsLastValidMeshAndMarksFailedCells) {

@@ -175,6 +175,9 @@ TEST_F(CaseFile, AppliesDefaults) {
   EXPECT_EQ(c.material.law, material.law);
   EXPECT_EQ(c.material.drop_jacobian, material.drop_jacobian);
   EXPECT_EQ(c.solver.max_increment_splits, solver.max_increment_splits);
+  EXPECT_EQ(c.solver.linear, deform::LinearSolverKind::jacobi_pcg);
+  EXPECT_EQ(c.solver.amg, deform::AmgPackage::gamg);
+  EXPECT_EQ(c.solver.forcing, deform::ForcingTerm::fixed);
   EXPECT_TRUE(c.pictures.empty());
   EXPECT_EQ(c.output, dir / "case-out");
   EXPECT_FALSE(c.cad.has_value());
@@ -216,6 +219,28 @@ TEST_F(CaseFile, ReadsDeflectionFormAndRestart) {
   const std::string error = error_with("  ramp: {role: sliding, deflection: {file: plane.csv, form: spline}}\nrestart: nowhere.hmr\n");
   EXPECT_THAT(error, HasSubstr(at(5) + "restart: "));
   EXPECT_THAT(error, HasSubstr("patches.ramp.deflection.form: expected one of curve, displacement, got 'spline'"));
+}
+
+TEST_F(CaseFile, ReadsLinearSolverMultigridAndForcing) {
+  const Case c = parse(std::string(kBase) + "solver: {linear: amg, amg: hypre, forcing: eisenstat-walker}\n");
+  EXPECT_EQ(c.solver.linear, deform::LinearSolverKind::amg);
+  EXPECT_EQ(c.solver.amg, deform::AmgPackage::hypre);
+  EXPECT_EQ(c.solver.forcing, deform::ForcingTerm::eisenstat_walker);
+  const Case matrix_free = parse(std::string(kBase) + "solver:\n  linear: jacobi-pcg\n  amg: gamg\n  forcing: fixed\n");
+  EXPECT_EQ(matrix_free.solver.linear, deform::LinearSolverKind::jacobi_pcg);
+  EXPECT_EQ(matrix_free.solver.amg, deform::AmgPackage::gamg);
+  EXPECT_EQ(matrix_free.solver.forcing, deform::ForcingTerm::fixed);
+}
+
+TEST_F(CaseFile, RejectsUnknownLinearSolverMultigridAndForcing) {
+  const std::string error = error_with(
+      "solver:\n"
+      "  linear: cholesky\n"
+      "  amg: [gamg]\n"
+      "  forcing: adaptive\n");
+  EXPECT_THAT(error, HasSubstr(at(5) + "solver.linear: expected one of jacobi-pcg, amg, got 'cholesky'"));
+  EXPECT_THAT(error, HasSubstr(at(6) + "solver.amg: expected one of gamg, hypre, got a list"));
+  EXPECT_THAT(error, HasSubstr(at(7) + "solver.forcing: expected one of fixed, eisenstat-walker, got 'adaptive'"));
 }
 
 TEST_F(CaseFile, RejectsBadLawFlagAndPictures) {

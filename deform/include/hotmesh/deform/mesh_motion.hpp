@@ -5,7 +5,9 @@
 // analogy with geometric nonlinearity by the paper's Newton-Raphson cycle (eqs. 7-8):
 //     R(u) = K(x + u) u - f,      K(n) p = -R(n),      u(n+1) = u(n) + p,
 // K rebuilt at the current geometry every iteration, until ||R|| <= tol ||R0||. Each linear
-// system is solved by Jacobi-preconditioned CG on the free degrees of freedom. After every
+// system is solved by preconditioned CG on the free degrees of freedom, matrix-free with
+// nodal Jacobi (the paper's) or assembled in nodal frames with algebraic multigrid
+// (SolverOptions::linear). After every
 // increment the cells are checked; an increment that inverts a cell or whose Newton cycle
 // fails is retried as two half increments (recursively, up to a limit). If it still fails,
 // the run stops with the last valid mesh and a message naming the cell and increment.
@@ -66,6 +68,7 @@ struct NewtonStep {
   int pcg_iterations = 0;          ///< of the solve that followed (0 on the last entry)
   bool pcg_converged = true;
   double pcg_reduction = 0.0;      ///< ||r|| / ||r0|| reached by PCG
+  double linear_tolerance = 0.0;   ///< the relative tolerance that solve was given (inexact Newton)
   double max_projection = 0.0;     ///< largest move of a sliding node back onto its boundary after the step
 };
 
@@ -88,8 +91,9 @@ struct IncrementRecord {
 
 struct MotionTimings {
   double setup = 0.0;       ///< material, shapes, constraints
-  double assembly = 0.0;    ///< element matrices
-  double solve = 0.0;       ///< PCG
+  double assembly = 0.0;    ///< element matrices (and, with amg, the matrix in nodal frames)
+  double preconditioner = 0.0;  ///< nodal Jacobi blocks, or the multigrid hierarchy
+  double solve = 0.0;       ///< the preconditioned CG iterations
   double projection = 0.0;  ///< sliding nodes onto their boundaries
   double quality = 0.0;
   double total = 0.0;

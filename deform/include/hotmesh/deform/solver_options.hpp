@@ -2,7 +2,34 @@
 // file (io) fills them; the solver reads them. One struct per concern, no global settings.
 #pragma once
 
+#include <string_view>
+
 namespace hotmesh::deform {
+
+/// How each Newton step's linear system K(n) p = -R(n) is solved (docs/method.md).
+enum class LinearSolverKind {
+  jacobi_pcg,  ///< the paper's matrix-free PCG with nodal Jacobi (section 3), projected for sliding (eq. 16)
+  amg,         ///< assembled in nodal frames (PETSc), CG preconditioned by algebraic multigrid
+};
+
+/// The algebraic multigrid of the `amg` solver.
+enum class AmgPackage {
+  gamg,   ///< PETSc's smoothed-aggregation PCGAMG with the rigid-body near-null space
+  hypre,  ///< hypre's BoomerAMG (classical AMG, nodal coarsening)
+};
+
+/// The tolerance of each inner linear solve.
+enum class ForcingTerm {
+  fixed,            ///< pcg_tolerance every time
+  eisenstat_walker, ///< adaptive (inexact Newton), from the observed Newton rate, never below pcg_tolerance
+};
+
+/// The names the case file and report.json use: jacobi-pcg, amg; gamg, hypre; fixed, eisenstat-walker.
+constexpr std::string_view to_string(LinearSolverKind k) { return k == LinearSolverKind::amg ? "amg" : "jacobi-pcg"; }
+constexpr std::string_view to_string(AmgPackage p) { return p == AmgPackage::hypre ? "hypre" : "gamg"; }
+constexpr std::string_view to_string(ForcingTerm f) {
+  return f == ForcingTerm::eisenstat_walker ? "eisenstat-walker" : "fixed";
+}
 
 /// Increments, Newton-Raphson (eqs. 7-8) and the inner PCG solves (section 3).
 struct SolverOptions {
@@ -15,6 +42,9 @@ struct SolverOptions {
   /// An increment that inverts a cell or whose Newton iteration fails is retried as two
   /// half increments, recursively, at most this many times in a row (0: never).
   int max_increment_splits = 4;
+  LinearSolverKind linear = LinearSolverKind::jacobi_pcg;
+  AmgPackage amg = AmgPackage::gamg;
+  ForcingTerm forcing = ForcingTerm::fixed;
 };
 
 /// How the pseudo-material's Lamé parameters vary from element to element.

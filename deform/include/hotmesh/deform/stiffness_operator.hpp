@@ -29,11 +29,17 @@ CellColoring color_cells(const ElementList& cells, std::size_t node_count);
 class StiffnessOperator final : public LinearOperator {
  public:
   /// The mesh must have only quad4 (2D) or only hex8 (3D) cells; `lame` has one entry per
-  /// cell. Throws hotmesh::InputError otherwise. Keeps a reference to mesh.cells.
-  StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian);
+  /// cell. Throws hotmesh::InputError otherwise. Keeps a reference to mesh.cells. Without
+  /// `store`, the element matrices are not kept (the amg solver computes them while it
+  /// assembles): update(), apply(), diagonal() and element_matrix() are then not available,
+  /// element_matrix_at() is.
+  StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian, bool store = true);
 
   /// Recomputes every K_e at `points` (parallel over cells).
   void update(std::span<const Vec3> points);
+  bool stores_matrices() const { return !matrices_.empty() || cells_->size() == 0; }
+  /// K_e of cell c at `points`, computed now, row-major into k.
+  void element_matrix_at(CellId c, std::span<const Vec3> points, std::span<double> k) const;
 
   std::size_t size() const override { return nodes_ * static_cast<std::size_t>(dim_); }
   /// y = K x for dof vectors laid out node after node (x_0, y_0, [z_0,] x_1, ...).

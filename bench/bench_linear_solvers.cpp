@@ -1,0 +1,158 @@
+// hotmesh benchmark: the two linear solvers of the Newton steps on whole motions — the
+// paper's matrix-free Jacobi-PCG against the system assembled in nodal frames and solved with
+// algebraic multigrid (PETSc's GAMG), each with the fixed inner tolerance and with the
+// Eisenstat-Walker forcing term (inexact Newton).
+//
+//   ninja -C build bench_linear_solvers && build/bench/bench_linear_solvers [CASE.yaml ...] [--runs 3]
+//                                          [--threads 1] [--hypre]
+//
+// Without cases: the samples ramp2d and shear2d, with and without sliding. scripts/bench.sh adds
+// stator-well sectors written by make_stator_well. Each case runs as `hotmesh deform` would
+// (read and check the case, rebuild the deflected walls, deform::move_mesh) without writing the
+// outputs, with every solver and forcing; prints a Markdown table of medians over the runs:
+// the motion's time split into assembly (element matrices, and for amg the matrix in frames),
+// preconditioner (Jacobi blocks, or the multigrid hierarchy), solve (the CG iterations) and
+// projection (sliding nodes), the Newton and linear iteration totals, the time per linear
+// iteration, and the other load (the mean number of cores other processes kept busy).
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/io/case_file.hpp"
+#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/io/mesh_files.hpp"
+#include "machine_load.hpp"
+
+using namespace hotmesh;
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+struct Solver {
+  deform::LinearSolverKind linear;
+  deform::AmgPackage amg;
+  deform::ForcingTerm forcing;
+  std::string name() const {
+    return linear == deform::LinearSolverKind::amg ? fmt::format("amg ({})", deform::to_string(amg))
+                                                   : std::string(deform::to_string(linear));
+  }
+};
+
+struct Run {
+  deform::MotionTimings motion;
+  std::size_t newton = 0;
+  std::size_t linear = 0;
+  double others = 0.0;
+  bool success = false;
+};
+
+Run run_case(const io::Case& base, const io::LoadedMesh& loaded, const io::CaseSetup& setup, const Solver& s) {
+  io::Case c = base;
+  c.solver.linear = s.linear;
+  c.solver.amg = s.amg;
+  c.solver.forcing = s.forcing;
+  Run r;
+  const bench::LoadProbe load;
+  const deform::MotionResult result = deform::move_mesh(loaded.mesh, setup.motions, c.material, c.solver);
+  r.others = load.others();
+  r.motion = result.timings;
+  r.success = result.success;
+  for (const auto& increment : result.increments) {
+    if (!increment.newton.empty()) r.newton += increment.newton.size() - 1;
+    for (const auto& step : increment.newton) r.linear += static_cast<std::size_t>(step.pcg_iterations);
+  }
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> files;
+  int runs = 3, threads = 1;
+  bool hypre = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--runs" && i + 1 < argc) {
+      runs = std::max(1, std::atoi(argv[++i]));
+    } else if (arg == "--threads" && i + 1 < argc) {
+      threads = std::max(1, std::atoi(argv[++i]));
+    } else if (arg == "--hypre") {
+      hypre = true;
+    } else if (!arg.starts_with("-")) {
+      files.emplace_back(arg);
+    } else {
+      std::fprintf(stderr, "usage: bench_linear_solvers [CASE.yaml ...] [--runs N] [--threads N] [--hypre]\n");
+      return 2;
+    }
+  }
+  if (files.empty()) {
+    for (const char* name : {"ramp2d/ramp2d.yaml", "ramp2d/ramp2d-sliding.yaml", "shear2d/shear2d.yaml",
+                             "shear2d/shear2d-sliding.yaml"}) {
+      files.push_back(std::string(HOTMESH_SAMPLES) + "/" + name);
+    }
+  }
+  std::vector<Solver> solvers;
+  for (const auto forcing : {deform::ForcingTerm::fixed, deform::ForcingTerm::eisenstat_walker}) {
+    solvers.push_back({deform::LinearSolverKind::jacobi_pcg, deform::AmgPackage::gamg, forcing});
+    solvers.push_back({deform::LinearSolverKind::amg, deform::AmgPackage::gamg, forcing});
+    if (hypre) solvers.push_back({deform::LinearSolverKind::amg, deform::AmgPackage::hypre, forcing});
+  }
+  try {
+    omp_set_num_threads(threads);
+    fmt::print("{} thread{}, median of {} runs.\n\n", threads, threads > 1 ? "s" : "", runs);
+    fmt::print("| case | cells | solver | forcing | motion s | assembly s | preconditioner s | solve s | projection s | "
+               "Newton iterations | linear iterations | ms per linear iteration | other load |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (const std::string& file : files) {
+      const io::Case c = io::read_case(file);
+      const io::LoadedMesh loaded = io::read_mesh(c.mesh);
+      io::check_case_against_mesh(c, loaded.mesh);
+      const io::CaseSetup setup = io::set_up_case(c, loaded.mesh);
+      for (const Solver& s : solvers) {
+        std::vector<Run> all;
+        for (int k = 0; k < runs; ++k) {
+          all.push_back(run_case(c, loaded, setup, s));
+          std::fprintf(stderr, "%s, %s, %s, run %d: %.3f s, %zu Newton, %zu linear iterations%s\n", file.c_str(),
+                       s.name().c_str(), std::string(deform::to_string(s.forcing)).c_str(), k + 1, all.back().motion.total,
+                       all.back().newton, all.back().linear, all.back().success ? "" : " (the motion failed)");
+        }
+        const auto column = [&all](auto field) {
+          std::vector<double> v;
+          for (const Run& r : all) v.push_back(field(r));
+          return median(v);
+        };
+        const Run& first = all.front();
+        const double solve = column([](const Run& r) { return r.motion.solve; });
+        const std::string name = std::filesystem::path(file).filename().string();
+        fmt::print("| {} | {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.3f} | {} | {} | {:.3f} | {:.2f} |\n", name,
+                   loaded.mesh.cell_count(), s.name(), deform::to_string(s.forcing),
+                   column([](const Run& r) { return r.motion.total; }),
+                   column([](const Run& r) { return r.motion.assembly; }),
+                   column([](const Run& r) { return r.motion.preconditioner; }), solve,
+                   column([](const Run& r) { return r.motion.projection; }), first.newton, first.linear,
+                   1e3 * solve / static_cast<double>(std::max<std::size_t>(1, first.linear)),
+                   column([](const Run& r) { return r.others; }));
+        if (!first.success) fmt::print("\nThe motion of {} failed with {}.\n\n", name, s.name());
+        std::fflush(stdout);
+      }
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_linear_solvers: %s\n", e.what());
+    return 1;
+  }
+}

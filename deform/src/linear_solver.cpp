@@ -1,0 +1,53 @@
+// hotmesh deform: the choice of linear solver, and the forcing term of inexact Newton.
+#include "linear_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "petsc_solver.hpp"
+
+namespace hotmesh::deform::detail {
+
+std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& options);  // jacobi_pcg.cpp
+
+std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options) {
+  switch (options.linear) {
+    case LinearSolverKind::jacobi_pcg: return make_jacobi_pcg_solver(options);
+    case LinearSolverKind::amg: return make_amg_solver(options);
+  }
+  return make_jacobi_pcg_solver(options);
+}
+
+bool stores_element_matrices(const SolverOptions& options) { return options.linear != LinearSolverKind::amg; }
+
+void LinearSolver::update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
+                          MotionTimings& timings) {
+  const auto start = std::chrono::steady_clock::now();
+  k.update(s.points);
+  timings.assembly += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  k.apply(u, r);
+  s.periodic.fold(r);
+  s.constraints.project(r);
+}
+
+double Forcing::next(int n, double residual, double initial) {
+  const double floor = options_.pcg_tolerance;
+  double eta = floor;
+  if (options_.forcing == ForcingTerm::eisenstat_walker && n > 0 && previous_residual_ > 0.0) {
+    constexpr double kGamma = 0.9, kAlpha = 2.0, kMax = 0.1;
+    const double ratio = residual / previous_residual_;
+    eta = kGamma * std::pow(ratio, kAlpha);
+    const double safeguard = kGamma * std::pow(previous_eta_, kAlpha);
+    if (safeguard > 0.1) eta = std::max(eta, safeguard);
+    eta = std::min(eta, kMax);
+    // Solving beyond what the Newton tolerance asks of this step is wasted.
+    if (residual > 0.0) eta = std::max(eta, 0.5 * options_.newton_tolerance * initial / residual);
+    eta = std::clamp(eta, floor, std::max(kMax, floor));
+  }
+  previous_residual_ = residual;
+  previous_eta_ = eta;
+  return eta;
+}
+
+}  // namespace hotmesh::deform::detail

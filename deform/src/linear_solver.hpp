@@ -1,0 +1,105 @@
+// hotmesh deform (internal): the linear solve of a Newton step (eq. 8), as a strategy the
+// Newton loop calls once per iteration:
+//     K(n) p = -R(n)  on the admissible subspace: fixed and prescribed nodes still, sliding
+//                      nodes tangential (eq. 16), periodic slaves following their masters,
+// from p = 0. Two implementations, chosen by SolverOptions::linear:
+//  - jacobi-pcg: the paper's matrix-free PCG on P T^T K T P with nodal Jacobi (section 3);
+//  - amg: the same operator assembled in nodal frames (nodal_frames.hpp) into a PETSc matrix,
+//    solved by CG with algebraic multigrid (petsc_solver.cpp).
+// Both see the same system and give the same p to the solver tolerance (tests/deform).
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "hotmesh/deform/constraints.hpp"
+#include "hotmesh/deform/linear_algebra.hpp"
+#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/deform/solver_options.hpp"
+#include "hotmesh/deform/stiffness_operator.hpp"
+#include "periodic.hpp"
+
+namespace hotmesh::deform::detail {
+
+/// The system of one Newton step: K(n) as element matrices at the current geometry, the
+/// directions nodes may not move in (with the current normals of sliding nodes), periodic
+/// pairs, and the current points (the AMG near-null space is built from them).
+struct ConstrainedSystem {
+  const StiffnessOperator& stiffness;
+  const NodeConstraints& constraints;
+  const PeriodicCoupling& periodic;
+  std::span<const Vec3> points;
+};
+
+struct LinearSolveResult {
+  int iterations = 0;
+  bool converged = false;
+  bool breakdown = false;    ///< the operator or preconditioner is not SPD on the subspace
+  double reduction = 0.0;    ///< ||r|| / ||r0|| reached
+};
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  /// The element pass of a Newton step: K(n) at s.points (k is s.stiffness) and the residual
+  /// r = P T^T K(n) u of eq. (7): folded onto periodic masters, only its tangential part F_t at
+  /// sliding nodes (eq. 17). Adds the element work to timings.assembly. By default k.update()
+  /// and one product; the amg solver without stored element matrices assembles its matrix in
+  /// the same pass.
+  virtual void update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
+                      MotionTimings& timings);
+  /// Solves the system for p from p = 0 to ||r|| <= tolerance ||rhs||. `rhs` lies in the
+  /// admissible subspace (projected, folded); so does p, with p = 0 at slaves (the Newton loop
+  /// expands u afterwards). Adds its times to timings.assembly (what it assembles beyond the
+  /// element matrices), .preconditioner and .solve.
+  virtual LinearSolveResult solve(const ConstrainedSystem& system, std::span<const double> rhs, std::span<double> p,
+                                  double tolerance, MotionTimings& timings) = 0;
+  /// A new increment (or piece of one) starts: preconditioners kept for reuse are dropped.
+  virtual void begin_increment() {}
+};
+
+/// The solver SolverOptions::linear names. `amg` initialises PETSc (and MPI) on first use.
+std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options);
+/// Whether that solver wants the element matrices stored (jacobi-pcg) or computes them itself
+/// while it assembles (amg: 4.6 kB less per hex).
+bool stores_element_matrices(const SolverOptions& options);
+
+/// P T^T K T P: the stiffness restricted to the admissible subspace — periodic slaves expanded
+/// from their masters before the element loop and folded back after it (periodic.hpp), the
+/// normal component at sliding nodes removed (eq. 16), fixed nodes zeroed.
+class ConstrainedOperator final : public LinearOperator {
+ public:
+  ConstrainedOperator(const StiffnessOperator& k, const NodeConstraints& c, const PeriodicCoupling& periodic)
+      : k_(k), c_(c), periodic_(periodic), expanded_(periodic.empty() ? 0 : k.size()) {}
+  std::size_t size() const override { return k_.size(); }
+  void apply(std::span<const double> x, std::span<double> y) const override;
+
+ private:
+  const StiffnessOperator& k_;
+  const NodeConstraints& c_;
+  const PeriodicCoupling& periodic_;
+  mutable std::vector<double> expanded_;  ///< work space (an operator is used by one thread)
+};
+
+/// Inexact Newton: the tolerance of each inner solve. `fixed` gives pcg_tolerance every time.
+/// `eisenstat_walker` is Eisenstat and Walker's choice 2 (SIAM J. Sci. Comput. 17, 1996),
+///     eta_n = gamma (||R_n|| / ||R_n-1||)^alpha,   gamma = 0.9, alpha = 2,
+/// safeguarded by gamma eta_n-1^alpha when that exceeds 0.1, capped at eta_max = 0.1, never
+/// below pcg_tolerance, and not tighter than the Newton tolerance needs:
+/// eta_n >= 0.5 newton_tolerance ||R_0|| / ||R_n||. The first solve of an increment uses
+/// pcg_tolerance.
+class Forcing {
+ public:
+  explicit Forcing(const SolverOptions& options) : options_(options) {}
+  /// Tolerance for the solve that follows the residual ||R_n|| (n = 0, 1, ... in an increment).
+  double next(int n, double residual, double initial);
+
+ private:
+  SolverOptions options_;
+  double previous_residual_ = 0.0;
+  double previous_eta_ = 0.0;
+};
+
+}  // namespace hotmesh::deform::detail

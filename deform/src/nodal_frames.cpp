@@ -1,0 +1,233 @@
+// hotmesh deform: nodal frames for the assembled linear solve (see nodal_frames.hpp).
+#include "nodal_frames.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hotmesh/deform/linear_algebra.hpp"
+#include "parallel.hpp"
+
+namespace hotmesh::deform::detail {
+namespace {
+
+/// Unit vectors completing the orthonormal `count` first columns of q (d x d, row-major).
+void complete_basis(std::array<double, 9>& q, int count, int d) {
+  const auto set_column = [&](int c, const Vec3& v) {
+    for (int i = 0; i < d; ++i) q[static_cast<std::size_t>(i * d + c)] = v[static_cast<std::size_t>(i)];
+  };
+  const auto column = [&](int c) {
+    Vec3 v;
+    for (int i = 0; i < d; ++i) v[static_cast<std::size_t>(i)] = q[static_cast<std::size_t>(i * d + c)];
+    return v;
+  };
+  if (d == 2) {
+    const Vec3 n = column(0);
+    set_column(1, {-n.y, n.x, 0.0});
+    return;
+  }
+  const Vec3 n = column(0);
+  if (count == 2) {
+    const Vec3 t = cross(n, column(1));
+    set_column(2, t / norm(t));
+    return;
+  }
+  // The Cartesian axis least aligned with n, made orthogonal to it; then n x t1.
+  const Vec3 a = std::abs(n.x) <= std::abs(n.y) && std::abs(n.x) <= std::abs(n.z) ? Vec3{1, 0, 0}
+                 : std::abs(n.y) <= std::abs(n.z)                                  ? Vec3{0, 1, 0}
+                                                                                   : Vec3{0, 0, 1};
+  Vec3 t1 = a - dot(a, n) * n;
+  t1 = t1 / norm(t1);
+  set_column(1, t1);
+  set_column(2, cross(n, t1));
+}
+
+/// out = Q_a^T K_ab Q_b for D x D blocks; k and out have row stride `stride`.
+template <std::size_t D>
+void turn_block(const double* qa, const double* k, const double* qb, double* out, std::size_t stride) {
+  std::array<std::array<double, D>, D> kq{};
+  for (std::size_t i = 0; i < D; ++i) {
+    for (std::size_t j = 0; j < D; ++j) {
+      double s = 0.0;
+      for (std::size_t l = 0; l < D; ++l) s += k[i * stride + l] * qb[l * D + j];
+      kq[i][j] = s;
+    }
+  }
+  for (std::size_t i = 0; i < D; ++i) {
+    for (std::size_t j = 0; j < D; ++j) {
+      double s = 0.0;
+      for (std::size_t l = 0; l < D; ++l) s += qa[l * D + i] * kq[l][j];
+      out[i * stride + j] = s;
+    }
+  }
+}
+
+}  // namespace
+
+NodalFrames::NodalFrames(std::size_t nodes, int dimension)
+    : dim_(dimension),
+      owner_(nodes),
+      constrained_(nodes, 0),
+      cartesian_(nodes, 1),
+      frames_(nodes * static_cast<std::size_t>(dimension * dimension), 0.0) {
+  for (std::size_t n = 0; n < nodes; ++n) owner_[n] = static_cast<NodeId>(n);
+}
+
+std::span<const double> NodalFrames::frame(NodeId n) const {
+  const auto dd = static_cast<std::size_t>(dim_ * dim_);
+  return {frames_.data() + static_cast<std::size_t>(n) * dd, dd};
+}
+
+void NodalFrames::update(const NodeConstraints& constraints, const PeriodicCoupling& periodic) {
+  const int d = dim_;
+  const auto dd = static_cast<std::size_t>(d * d);
+  const auto nodes = static_cast<std::ptrdiff_t>(owner_.size());
+#pragma omp parallel for schedule(static) if (nodes >= kParallelNodes)
+  for (std::ptrdiff_t i = 0; i < nodes; ++i) {
+    const auto n = static_cast<NodeId>(i);
+    const auto k = static_cast<std::size_t>(i);
+    owner_[k] = n;
+    std::array<double, 9> q{};
+    const auto normals = constraints.normals(n);
+    if (constraints.is_fixed(n) || normals.empty()) {
+      for (int c = 0; c < d; ++c) q[static_cast<std::size_t>(c * d + c)] = 1.0;
+      constrained_[k] = constraints.is_fixed(n) ? d : 0;
+      cartesian_[k] = 1;
+    } else {
+      const int count = static_cast<int>(normals.size());
+      for (int c = 0; c < count; ++c) {
+        for (int r = 0; r < d; ++r) q[static_cast<std::size_t>(r * d + c)] = normals[static_cast<std::size_t>(c)][static_cast<std::size_t>(r)];
+      }
+      complete_basis(q, count, d);
+      constrained_[k] = count;
+      cartesian_[k] = 0;
+    }
+    std::copy(q.begin(), q.begin() + static_cast<std::ptrdiff_t>(dd), frames_.begin() + static_cast<std::ptrdiff_t>(k * dd));
+  }
+  // Slaves: Q_s = R Q_m, the unknowns of the master.
+  for (const PeriodicPair& p : periodic.pairs()) {
+    const auto s = static_cast<std::size_t>(p.slave), m = static_cast<std::size_t>(p.master);
+    owner_[s] = p.master;
+    cartesian_[s] = 0;
+    const Rotation& r = periodic.rotation(p.rotation);
+    for (int i = 0; i < d; ++i) {
+      for (int j = 0; j < d; ++j) {
+        double v = 0.0;
+        for (int l = 0; l < d; ++l) v += r.entry(static_cast<std::size_t>(i), static_cast<std::size_t>(l)) * frames_[m * dd + static_cast<std::size_t>(l * d + j)];
+        frames_[s * dd + static_cast<std::size_t>(i * d + j)] = v;
+      }
+    }
+  }
+}
+
+void NodalFrames::transform_element(std::span<const NodeId> nodes, std::span<const double> ke, std::span<double> out,
+                                    std::span<std::int32_t> blocks) const {
+  const auto d = static_cast<std::size_t>(dim_);
+  const std::size_t corners = nodes.size();
+  const std::size_t n = corners * d;
+  for (std::size_t a = 0; a < corners; ++a) blocks[a] = static_cast<std::int32_t>(owner(nodes[a]));
+  for (std::size_t a = 0; a < corners; ++a) {
+    const auto na = static_cast<std::size_t>(nodes[a]);
+    for (std::size_t b = 0; b < corners; ++b) {
+      const auto nb = static_cast<std::size_t>(nodes[b]);
+      const double* k = ke.data() + a * d * n + b * d;
+      double* o = out.data() + a * d * n + b * d;
+      if (cartesian_[na] && cartesian_[nb]) {
+        for (std::size_t i = 0; i < d; ++i) std::copy(k + i * n, k + i * n + d, o + i * n);
+      } else if (d == 2) {
+        turn_block<2>(frames_.data() + na * 4, k, frames_.data() + nb * 4, o, n);
+      } else {
+        turn_block<3>(frames_.data() + na * 9, k, frames_.data() + nb * 9, o, n);
+      }
+    }
+  }
+  // Constrained components keep only their diagonal.
+  for (std::size_t a = 0; a < corners; ++a) {
+    const auto c = static_cast<std::size_t>(constrained(nodes[a]));
+    for (std::size_t i = 0; i < c; ++i) {
+      const std::size_t r = a * d + i;
+      const double diagonal = out[r * n + r];
+      for (std::size_t j = 0; j < n; ++j) {
+        out[r * n + j] = 0.0;
+        out[j * n + r] = 0.0;
+      }
+      out[r * n + r] = diagonal;
+    }
+  }
+}
+
+void NodalFrames::to_frames(std::span<const double> r, std::span<double> out) const {
+  const auto d = static_cast<std::size_t>(dim_);
+  const auto nodes = static_cast<std::ptrdiff_t>(owner_.size());
+#pragma omp parallel for schedule(static) if (nodes >= kParallelNodes)
+  for (std::ptrdiff_t i = 0; i < nodes; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double* q = frames_.data() + k * d * d;
+    const auto c = static_cast<std::size_t>(constrained_[k]);
+    for (std::size_t j = 0; j < d; ++j) {
+      double s = 0.0;
+      if (!is_slave(static_cast<NodeId>(i)) && j >= c) {
+        for (std::size_t l = 0; l < d; ++l) s += q[l * d + j] * r[k * d + l];
+      }
+      out[k * d + j] = s;
+    }
+  }
+}
+
+void NodalFrames::from_frames(std::span<const double> p, std::span<double> out) const {
+  const auto d = static_cast<std::size_t>(dim_);
+  const auto nodes = static_cast<std::ptrdiff_t>(owner_.size());
+#pragma omp parallel for schedule(static) if (nodes >= kParallelNodes)
+  for (std::ptrdiff_t i = 0; i < nodes; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double* q = frames_.data() + k * d * d;
+    const auto c = static_cast<std::size_t>(constrained_[k]);
+    const bool slave = is_slave(static_cast<NodeId>(i));
+    for (std::size_t l = 0; l < d; ++l) {
+      double s = 0.0;
+      if (!slave) {
+        for (std::size_t j = c; j < d; ++j) s += q[l * d + j] * p[k * d + j];
+      }
+      out[k * d + l] = s;
+    }
+  }
+}
+
+std::vector<std::vector<double>> NodalFrames::near_null_space(std::span<const Vec3> points, bool rotations) const {
+  const auto d = static_cast<std::size_t>(dim_);
+  Vec3 centre{};
+  for (const Vec3& p : points) centre += p;
+  centre = centre / static_cast<double>(std::max<std::size_t>(points.size(), 1));
+  const std::size_t count = d + (rotations ? (d == 2 ? 1 : 3) : 0);
+  std::vector<std::vector<double>> modes;
+  std::vector<double> cartesian(points.size() * d);
+  for (std::size_t m = 0; m < count; ++m) {
+    for (std::size_t n = 0; n < points.size(); ++n) {
+      const Vec3 r = points[n] - centre;
+      Vec3 v{};
+      if (m < d) {
+        v[m] = 1.0;
+      } else if (d == 2) {
+        v = {-r.y, r.x, 0.0};
+      } else {
+        Vec3 axis{};
+        axis[m - d] = 1.0;
+        v = cross(axis, r);
+      }
+      for (std::size_t i = 0; i < d; ++i) cartesian[n * d + i] = v[i];
+    }
+    std::vector<double> mode(cartesian.size());
+    to_frames(cartesian, mode);
+    // Modified Gram-Schmidt, twice, against the modes kept so far.
+    const double before = norm2(mode);
+    for (int pass = 0; pass < 2; ++pass) {
+      for (const auto& kept : modes) axpy(-dot(kept, mode), kept, mode);
+    }
+    const double after = norm2(mode);
+    if (!(after > 1e-8 * before)) continue;  // vanishes on the unknowns (e.g. a translation all fixed)
+    for (double& x : mode) x /= after;
+    modes.push_back(std::move(mode));
+  }
+  return modes;
+}
+
+}  // namespace hotmesh::deform::detail

@@ -1,0 +1,25 @@
+// hotmesh deform (internal): the assembled linear solver (SolverOptions::linear = amg). The
+// system in nodal frames (nodal_frames.hpp) is assembled into a PETSc matrix with block size
+// d, preallocated once from the node graph, and solved by CG with algebraic multigrid (PCGAMG
+// with the rigid-body near-null space, or hypre's BoomerAMG). PETSc and MPI types stay in
+// petsc_solver.cpp; PETSc is initialised on first use, once per process, and finalised at exit.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "linear_solver.hpp"
+#include "nodal_frames.hpp"
+
+namespace hotmesh::deform::detail {
+
+std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options);
+
+/// For tests: K~ of the system in `frames` (updated by the caller), assembled into a PETSc
+/// matrix exactly as the amg solver does it, applied to x~ (MatMult). With `twice`, assembled
+/// a second time into the same matrix, as every Newton step after the first does.
+std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const NodalFrames& frames,
+                                            std::span<const double> x, bool twice = false);
+
+}  // namespace hotmesh::deform::detail

@@ -1,0 +1,378 @@
+// Tests of the linear solve of a Newton step (eq. 8) in its two forms: the constraints as
+// nodal frames (sliding normals first, periodic slaves sharing their masters' unknowns), the
+// operator assembled in them into PETSc against the matrix-free projected operator P T^T K T P,
+// the rigid-body near-null space, and the AMG solvers against the matrix-free Jacobi-PCG on
+// small 2D and 3D systems with fixed, sliding (one and two normals) and periodic nodes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "hotmesh/deform/material.hpp"
+#include "hotmesh/deform/structured_mesh.hpp"
+#include "linear_solver.hpp"
+#include "nodal_frames.hpp"
+#include "periodic.hpp"
+#include "petsc_solver.hpp"
+#include "test_support.hpp"
+
+namespace hotmesh::deform {
+namespace {
+
+using detail::ConstrainedOperator;
+using detail::ConstrainedSystem;
+using detail::NodalFrames;
+
+/// An annular sector about z (2D: quads in the x-y plane; 3D: hexes) with its constraints as
+/// hotmesh's set-up makes them: the inner wall fixed, the outer wall sliding along tilted
+/// radial normals, in 3D the bottom sliding too (nodes on the outer and bottom walls have two
+/// normals), and the faces theta = 0 (masters) and theta = angle (slaves, fixed as unknowns)
+/// periodic. The element matrices are computed at randomly displaced points.
+struct SectorSystem {
+  Mesh mesh;
+  NodeConstraints constraints;
+  detail::PeriodicCoupling periodic;
+  StiffnessOperator stiffness;
+  std::vector<Vec3> points;
+
+  explicit SectorSystem(int dimension)
+      : mesh(make_mesh(dimension)),
+        constraints(mesh.node_count(), dimension),
+        periodic(static_cast<std::size_t>(dimension)),
+        stiffness(mesh, element_lame(mesh, {}), true),
+        points(mesh.points) {
+    const double angle = kAngle * std::numbers::pi / 180.0;
+    const geometry::Axis z({0, 0, 0}, {0, 0, 1});
+    periodic.add(mesh, *mesh.find_patch("per_lo"), *mesh.find_patch("per_hi"), z, angle, 1e-9);
+    for (NodeId n : mesh.find_patch("per_hi")->nodes) constraints.fix(n);
+    for (NodeId n : mesh.find_patch("inner")->nodes) constraints.fix(n);
+    for (NodeId n : mesh.find_patch("outer")->nodes) {
+      const Vec3& p = mesh.points[static_cast<std::size_t>(n)];
+      const double tilt = 0.3 * std::sin(7.0 * p.z + 3.0 * p.y);
+      constraints.constrain(n, {p.x, p.y, tilt});  // radial, tilted out of the x-y plane in 3D
+    }
+    if (dimension == 3) {
+      for (NodeId n : mesh.find_patch("bottom")->nodes) {
+        const Vec3& p = mesh.points[static_cast<std::size_t>(n)];
+        constraints.constrain(n, {0.2 * p.y, -0.1, 1.0});
+      }
+    }
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+    for (Vec3& p : points) p += Vec3{jitter(random), jitter(random), dimension == 3 ? jitter(random) : 0.0};
+    stiffness.update(points);
+  }
+
+  int dimension() const { return mesh.dimension; }
+  ConstrainedSystem system() const { return {stiffness, constraints, periodic, points}; }
+  NodalFrames frames() const {
+    NodalFrames f(mesh.node_count(), mesh.dimension);
+    f.update(constraints, periodic);
+    return f;
+  }
+
+  static constexpr double kAngle = 20.0;  // degrees
+  static Mesh make_mesh(int dimension) {
+    if (dimension == 3) {
+      Mesh m = test::annular_sector(5, 4, 3, 1.0, 2.0, 0.0, 0.5, kAngle);
+      test::jiggle_interior(m, 0.2);
+      return m;
+    }
+    const auto rs = uniform_line(1.0, 2.0, 6);
+    const auto ts = uniform_line(0.0, kAngle * std::numbers::pi / 180.0, 5);
+    Mesh m = structured_quads(rs, ts, {"inner", "outer", "per_lo", "per_hi"});
+    for (auto& p : m.points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), 0.0};
+    test::jiggle_interior(m, 0.2);
+    return m;
+  }
+};
+
+std::vector<double> random_vector(std::size_t n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<double> v(n);
+  for (double& x : v) x = value(random);
+  return v;
+}
+
+double max_abs(std::span<const double> v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+double max_difference(std::span<const double> a, std::span<const double> b) {
+  double m = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
+  return m;
+}
+
+/// The unknowns of a random x~: constrained components and slaves' own rows zeroed.
+std::vector<double> admissible(const NodalFrames& frames, std::vector<double> x) {
+  std::vector<double> cartesian(x.size());
+  frames.from_frames(x, cartesian);
+  frames.to_frames(cartesian, x);
+  return x;
+}
+
+class FramesIn : public ::testing::TestWithParam<int> {};
+
+TEST_P(FramesIn, AreOrthonormalWithTheConstrainedNormalsFirstAndSlavesTurnedByTheRotation) {
+  const SectorSystem s(GetParam());
+  const NodalFrames f = s.frames();
+  const auto d = static_cast<std::size_t>(s.dimension());
+  std::size_t two_normals = 0, slaves = 0;
+  for (std::size_t n = 0; n < s.mesh.node_count(); ++n) {
+    const auto node = static_cast<NodeId>(n);
+    const auto q = f.frame(node);
+    for (std::size_t i = 0; i < d; ++i) {
+      for (std::size_t j = 0; j < d; ++j) {
+        double qtq = 0.0;
+        for (std::size_t l = 0; l < d; ++l) qtq += q[l * d + i] * q[l * d + j];
+        EXPECT_NEAR(qtq, i == j ? 1.0 : 0.0, 1e-14) << n;
+      }
+    }
+    if (f.is_slave(node)) {
+      ++slaves;
+      continue;
+    }
+    const auto normals = s.constraints.normals(node);
+    EXPECT_EQ(f.constrained(node), s.constraints.is_fixed(node) ? s.dimension() : static_cast<int>(normals.size()));
+    if (normals.size() == 2) ++two_normals;
+    for (std::size_t k = 0; k < normals.size(); ++k) {
+      for (std::size_t l = 0; l < d; ++l) EXPECT_NEAR(q[l * d + k], normals[k][l], 1e-14) << n;
+    }
+  }
+  EXPECT_EQ(slaves, s.periodic.pairs().size());
+  if (s.dimension() == 3) {
+    EXPECT_GT(two_normals, 0u);
+  }
+  for (const auto& p : s.periodic.pairs()) {
+    EXPECT_EQ(f.owner(p.slave), p.master);
+    const auto qs = f.frame(p.slave), qm = f.frame(p.master);
+    for (std::size_t i = 0; i < d; ++i) {
+      for (std::size_t j = 0; j < d; ++j) {
+        double rq = 0.0;
+        for (std::size_t l = 0; l < d; ++l) rq += s.periodic.rotation(p.rotation).entry(i, l) * qm[l * d + j];
+        EXPECT_NEAR(qs[i * d + j], rq, 1e-14);
+      }
+    }
+  }
+}
+
+TEST_P(FramesIn, AssembledOperatorAgreesWithTheMatrixFreeProjectedOperator) {
+  const SectorSystem s(GetParam());
+  const NodalFrames f = s.frames();
+  const auto x = admissible(f, random_vector(s.stiffness.size(), 1));
+  // Matrix-free: y = P T^T K T P x in Cartesian components, then written in the frames.
+  std::vector<double> cartesian(x.size()), y(x.size()), expected(x.size());
+  f.from_frames(x, cartesian);
+  ConstrainedOperator(s.stiffness, s.constraints, s.periodic).apply(cartesian, y);
+  f.to_frames(y, expected);
+  const auto assembled = detail::assembled_frame_product(s.system(), f, x);
+  EXPECT_LE(max_difference(assembled, expected), 1e-12 * max_abs(expected));
+  EXPECT_GT(max_abs(expected), 0.0);
+  // Assembled again into the same matrix (every Newton step after the first): the same.
+  const auto again = detail::assembled_frame_product(s.system(), f, x, true);
+  EXPECT_LE(max_difference(again, expected), 1e-12 * max_abs(expected));
+  // From element matrices computed during the assembly instead of stored ones: the same.
+  const StiffnessOperator streamed(s.mesh, element_lame(s.mesh, {}), true, false);
+  ASSERT_FALSE(streamed.stores_matrices());
+  const ConstrainedSystem on_the_fly{streamed, s.constraints, s.periodic, s.points};
+  const auto computed = detail::assembled_frame_product(on_the_fly, f, x, true);
+  EXPECT_LE(max_difference(computed, expected), 1e-12 * max_abs(expected));
+}
+
+TEST_P(FramesIn, ConstrainedComponentsKeepOnlyAPositiveDiagonalAndNodesWithoutUnknownsAreLeftOut) {
+  const SectorSystem s(GetParam());
+  const NodalFrames f = s.frames();
+  const auto d = static_cast<std::size_t>(s.dimension());
+  // x~ on the constrained components only: the normals of sliding nodes, fixed nodes, slaves.
+  auto x = random_vector(s.stiffness.size(), 2);
+  std::size_t normals = 0, left_out = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const auto node = static_cast<NodeId>(i / d);
+    const bool constrained = f.is_slave(node) || i % d < static_cast<std::size_t>(f.constrained(node));
+    x[i] = constrained ? 1.0 + 0.5 * x[i] : 0.0;  // away from zero on the constrained ones
+  }
+  const auto y = detail::assembled_frame_product(s.system(), f, x);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const auto node = static_cast<NodeId>(i / d);
+    if (f.is_slave(node) || f.constrained(node) == s.dimension()) {
+      EXPECT_EQ(y[i], 0.0) << i;  // no unknowns at all: not in the matrix
+      ++left_out;
+    } else if (x[i] == 0.0) {
+      EXPECT_EQ(y[i], 0.0) << i;  // an unknown: no coupling to the constrained components
+    } else {
+      EXPECT_GT(y[i] / x[i], 0.0) << i;  // a constrained normal: its own positive diagonal
+      ++normals;
+    }
+  }
+  EXPECT_GT(normals, 0u);
+  EXPECT_GT(left_out, 0u);
+}
+
+TEST_P(FramesIn, SolutionsStayTangentialAtSlidingNodesAndMatchAcrossPeriodicFaces) {
+  const SectorSystem s(GetParam());
+  const NodalFrames f = s.frames();
+  const auto d = static_cast<std::size_t>(s.dimension());
+  std::vector<double> p(s.stiffness.size());
+  f.from_frames(random_vector(p.size(), 3), p);
+  for (std::size_t n = 0; n < s.mesh.node_count(); ++n) {
+    const auto node = static_cast<NodeId>(n);
+    Vec3 pn{};
+    for (std::size_t i = 0; i < d; ++i) pn[i] = p[n * d + i];
+    if (s.constraints.is_fixed(node)) {
+      EXPECT_EQ(norm(pn), 0.0) << n;  // fixed nodes and slaves
+    }
+    for (const Vec3& normal : s.constraints.normals(node)) EXPECT_LT(std::abs(dot(pn, normal)), 1e-15) << n;
+  }
+  s.periodic.expand(p);
+  for (const auto& pair : s.periodic.pairs()) {
+    const auto m = static_cast<std::size_t>(pair.master) * d, sl = static_cast<std::size_t>(pair.slave) * d;
+    const Vec3 turned = s.periodic.rotation(pair.rotation).vector({p[m], p[m + 1], d == 3 ? p[m + 2] : 0.0});
+    for (std::size_t i = 0; i < d; ++i) EXPECT_NEAR(p[sl + i], turned[i], 1e-15);
+  }
+}
+
+TEST_P(FramesIn, NearNullSpaceIsOrthonormalAndRigidWithoutConstraints) {
+  const SectorSystem s(GetParam());
+  const NodeConstraints free(s.mesh.node_count(), s.dimension());
+  const detail::PeriodicCoupling none(static_cast<std::size_t>(s.dimension()));
+  NodalFrames f(s.mesh.node_count(), s.dimension());
+  f.update(free, none);
+  const auto modes = f.near_null_space(s.points);
+  ASSERT_EQ(modes.size(), s.dimension() == 2 ? 3u : 6u);
+  std::vector<double> y(s.stiffness.size());
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    for (std::size_t j = 0; j < modes.size(); ++j) EXPECT_NEAR(dot(modes[i], modes[j]), i == j ? 1.0 : 0.0, 1e-12);
+    s.stiffness.apply(modes[i], y);  // K z = 0: the element matrices vanish on rigid motions
+    EXPECT_LT(max_abs(y), 1e-10 * s.stiffness.element_matrix(0)[0]) << i;
+  }
+  // With the constraints, the modes live on the unknowns only.
+  const NodalFrames constrained = s.frames();
+  const auto d = static_cast<std::size_t>(s.dimension());
+  for (const auto& mode : constrained.near_null_space(s.points)) {
+    for (std::size_t i = 0; i < mode.size(); ++i) {
+      const auto node = static_cast<NodeId>(i / d);
+      if (constrained.is_slave(node) || i % d < static_cast<std::size_t>(constrained.constrained(node))) {
+        EXPECT_EQ(mode[i], 0.0) << i;
+      }
+    }
+  }
+}
+
+/// The Newton residual R = P T^T K u of the amg solver's single element pass (element
+/// matrices computed, not stored) equals the matrix-free one, and the matrix it assembled on
+/// the way solves the same step.
+TEST_P(FramesIn, AmgElementPassGivesTheResidualAndMatrixOfStoredElementMatrices) {
+  SectorSystem s(GetParam());
+  auto u = random_vector(s.stiffness.size(), 5);
+  s.periodic.expand(u);
+  SolverOptions options;
+  std::vector<double> expected(u.size()), r(u.size());
+  MotionTimings timings;
+  auto jacobi = detail::make_linear_solver(options);
+  jacobi->update(s.stiffness, s.system(), u, expected, timings);
+  options.linear = LinearSolverKind::amg;
+  StiffnessOperator streamed(s.mesh, element_lame(s.mesh, {}), true, false);
+  const ConstrainedSystem on_the_fly{streamed, s.constraints, s.periodic, s.points};
+  auto amg = detail::make_linear_solver(options);
+  amg->update(streamed, on_the_fly, u, r, timings);
+  EXPECT_LE(max_difference(r, expected), 1e-12 * max_abs(expected));
+  EXPECT_GT(timings.assembly, 0.0);
+  std::vector<double> p_amg(u.size()), p_jacobi(u.size());
+  for (double& x : r) x = -x;
+  EXPECT_TRUE(amg->solve(on_the_fly, r, p_amg, 1e-11, timings).converged);
+  EXPECT_TRUE(jacobi->solve(s.system(), r, p_jacobi, 1e-11, timings).converged);
+  EXPECT_LE(max_difference(p_amg, p_jacobi), 1e-8 * max_abs(p_jacobi));
+}
+
+INSTANTIATE_TEST_SUITE_P(TwoAndThreeDimensions, FramesIn, ::testing::Values(2, 3),
+                         [](const auto& param_info) { return param_info.param == 2 ? std::string("Quads") : std::string("Hexes"); });
+
+struct SolverCase {
+  int dimension;
+  LinearSolverKind linear;
+  AmgPackage amg;
+};
+
+class LinearSolverOn : public ::testing::TestWithParam<SolverCase> {};
+
+/// One Newton step's system solved to 1e-10 by the matrix-free Jacobi-PCG and by the solver
+/// under test: the same p, tangential at sliding nodes, zero at fixed nodes and slaves.
+TEST_P(LinearSolverOn, SolvesTheSameStepAsMatrixFreeJacobiPcg) {
+  const SectorSystem s(GetParam().dimension);
+  std::vector<double> rhs = random_vector(s.stiffness.size(), 4);
+  s.periodic.fold(rhs);
+  s.constraints.project(rhs);
+  const auto solve = [&](LinearSolverKind kind, AmgPackage amg) {
+    SolverOptions options;
+    options.linear = kind;
+    options.amg = amg;
+    auto solver = detail::make_linear_solver(options);
+    std::vector<double> p(rhs.size(), 1.0);  // overwritten: solves start from p = 0
+    MotionTimings timings;
+    solver->begin_increment();
+    const auto result = solver->solve(s.system(), rhs, p, 1e-11, timings);
+    EXPECT_TRUE(result.converged);
+    EXPECT_FALSE(result.breakdown);
+    EXPECT_LE(result.reduction, 1e-11);
+    EXPECT_GT(result.iterations, 0);
+    return p;
+  };
+  const auto reference = solve(LinearSolverKind::jacobi_pcg, AmgPackage::gamg);
+  const auto p = solve(GetParam().linear, GetParam().amg);
+  EXPECT_LE(max_difference(p, reference), 1e-8 * max_abs(reference));
+  const auto d = static_cast<std::size_t>(s.dimension());
+  for (std::size_t n = 0; n < s.mesh.node_count(); ++n) {
+    const auto node = static_cast<NodeId>(n);
+    Vec3 pn{};
+    for (std::size_t i = 0; i < d; ++i) pn[i] = p[n * d + i];
+    if (s.constraints.is_fixed(node)) {
+      EXPECT_EQ(norm(pn), 0.0);
+    }
+    for (const Vec3& normal : s.constraints.normals(node)) EXPECT_LT(std::abs(dot(pn, normal)), 1e-14 * max_abs(p));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    GamgAndHypre, LinearSolverOn,
+    ::testing::Values(SolverCase{2, LinearSolverKind::amg, AmgPackage::gamg},
+                      SolverCase{3, LinearSolverKind::amg, AmgPackage::gamg},
+                      SolverCase{2, LinearSolverKind::amg, AmgPackage::hypre},
+                      SolverCase{3, LinearSolverKind::amg, AmgPackage::hypre}),
+    [](const auto& param_info) {
+      const SolverCase& c = param_info.param;
+      return std::string(c.dimension == 2 ? "Quads" : "Hexes") + (c.amg == AmgPackage::gamg ? "Gamg" : "Hypre");
+    });
+
+TEST(Forcing, FixedGivesThePcgToleranceEveryTime) {
+  SolverOptions o;
+  o.pcg_tolerance = 1e-3;
+  detail::Forcing f(o);
+  EXPECT_EQ(f.next(0, 1.0, 1.0), 1e-3);
+  EXPECT_EQ(f.next(1, 0.9, 1.0), 1e-3);
+  EXPECT_EQ(f.next(2, 1e-3, 1.0), 1e-3);
+}
+
+TEST(Forcing, EisenstatWalkerLoosensWhileNewtonIsSlowAndNeverGoesBelowThePcgTolerance) {
+  SolverOptions o;
+  o.pcg_tolerance = 1e-3;
+  o.newton_tolerance = 1e-4;
+  o.forcing = ForcingTerm::eisenstat_walker;
+  detail::Forcing f(o);
+  EXPECT_EQ(f.next(0, 1.0, 1.0), 1e-3);          // the first solve of an increment
+  EXPECT_DOUBLE_EQ(f.next(1, 0.9, 1.0), 0.1);    // slow: 0.9 * 0.9^2, capped at 0.1
+  EXPECT_DOUBLE_EQ(f.next(2, 0.09, 1.0), 0.009);  // fast: 0.9 * 0.1^2
+  // Near the Newton tolerance a solve need not reduce the residual far below it.
+  EXPECT_DOUBLE_EQ(f.next(3, 9e-4, 1.0), 0.5 * 1e-4 / 9e-4);
+  o.newton_tolerance = 1e-12;
+  detail::Forcing g(o);
+  EXPECT_EQ(g.next(0, 1.0, 1.0), 1e-3);
+  EXPECT_EQ(g.next(1, 1e-3, 1.0), 1e-3);  // 0.9 * 1e-6, but never below pcg_tolerance
+}
+
+}  // namespace
+}  // namespace hotmesh::deform
