@@ -67,7 +67,7 @@ TEST(DeformCommand, AmgSolverRunsWithoutMpirunAndReportsItsPhases) {
   yaml.replace(yaml.find("solver:\n"), 8, "solver:\n  linear: amg\n  forcing: eisenstat-walker\n");
   const RampCase ramp(yaml);
   test::TempDir tmp;
-  const auto r = run_command("TMPDIR=" + shell_quote(tmp.path().string()) + " " + HOTMESH_EXE + " deform " + ramp.case_file());
+  const auto r = test::run_command("TMPDIR=" + shell_quote(tmp.path().string()) + " " + HOTMESH_EXE + " deform " + ramp.case_file());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("linear solver amg (gamg)"));
   EXPECT_THAT(r.output, HasSubstr("preconditioner"));
