@@ -45,7 +45,7 @@ json record_json(const deform::IncrementRecord& r) {
   json newton = json::array();
   for (const auto& s : r.newton) {
     newton.push_back({number(s.residual), s.pcg_iterations, s.pcg_converged, number(s.pcg_reduction),
-                      number(s.max_projection)});
+                      number(s.linear_tolerance), number(s.max_projection)});
   }
   return {{"increment", r.increment},
           {"stage", {r.lambda_begin, r.lambda_end}},
@@ -69,8 +69,12 @@ deform::IncrementRecord record_from_json(const json& j) {
   r.lambda_end = j.at("stage").at(1).get<double>();
   r.split_depth = j.at("split_depth").get<int>();
   for (const json& s : j.at("newton")) {
-    r.newton.push_back({number_from(s.at(0)), s.at(1).get<int>(), s.at(2).get<bool>(), number_from(s.at(3)),
-                        number_from(s.at(4))});
+    r.newton.push_back({.residual = number_from(s.at(0)),
+                        .pcg_iterations = s.at(1).get<int>(),
+                        .pcg_converged = s.at(2).get<bool>(),
+                        .pcg_reduction = number_from(s.at(3)),
+                        .linear_tolerance = number_from(s.at(4)),
+                        .max_projection = number_from(s.at(5))});
   }
   r.converged = j.at("converged").get<bool>();
   r.accepted = j.at("accepted").get<bool>();
@@ -85,13 +89,19 @@ deform::IncrementRecord record_from_json(const json& j) {
 }
 
 json timings_json(const deform::MotionTimings& t) {
-  return {{"setup", t.setup},   {"assembly", t.assembly}, {"solve", t.solve},
-          {"projection", t.projection}, {"quality", t.quality},   {"total", t.total}};
+  return {{"setup", t.setup},           {"assembly", t.assembly}, {"preconditioner", t.preconditioner},
+          {"solve", t.solve},           {"projection", t.projection}, {"quality", t.quality},
+          {"total", t.total}};
 }
 
 deform::MotionTimings timings_from_json(const json& j) {
-  return {j.at("setup").get<double>(),   j.at("assembly").get<double>(), j.at("solve").get<double>(),
-          j.at("projection").get<double>(), j.at("quality").get<double>(), j.at("total").get<double>()};
+  return {.setup = j.at("setup").get<double>(),
+          .assembly = j.at("assembly").get<double>(),
+          .preconditioner = j.at("preconditioner").get<double>(),
+          .solve = j.at("solve").get<double>(),
+          .projection = j.at("projection").get<double>(),
+          .quality = j.at("quality").get<double>(),
+          .total = j.at("total").get<double>()};
 }
 
 std::string local_time_now() {

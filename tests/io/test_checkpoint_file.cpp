@@ -47,13 +47,13 @@ deform::MotionCheckpoint some_state(const deform::Mesh& mesh) {
   rejected.increment = 3;
   rejected.lambda_begin = 0.25;
   rejected.lambda_end = 0.375;
-  rejected.newton = {{1.5, 12, true, 1e-3, 1e-17}, {std::numeric_limits<double>::infinity(), 0, false, 0.0, 0.0}};
+  rejected.newton = {{1.5, 12, true, 1e-3, 1e-3, 1e-17}, {std::numeric_limits<double>::infinity(), 0, false, 0.0, 0.0, 0.0}};
   rejected.failure = "the Newton-Raphson cycle diverged (\"quoted\")";
   rejected.residual_reduction = std::numeric_limits<double>::quiet_NaN();
   deform::IncrementRecord accepted;
   accepted.increment = 2;
   accepted.split_depth = 0;
-  accepted.newton = {{2.0, 40, true, 1e-4, 0.1}, {1e-5, 0, true, 0.0, 0.0}};
+  accepted.newton = {{2.0, 40, true, 1e-4, 0.25, 0.1}, {1e-5, 0, true, 0.0, 0.0, 0.0}};
   accepted.converged = accepted.accepted = true;
   accepted.residual_reduction = 5e-6;
   accepted.min_scaled_jacobian = 0.7071067811865476;
@@ -63,7 +63,7 @@ deform::MotionCheckpoint some_state(const deform::Mesh& mesh) {
   s.records = {accepted, rejected};
   s.max_normal_slip = 3e-18;
   s.max_sliding_projection_distance = 1e-9;
-  s.timings = {0.1, 0.2, 0.3, 0.4, 0.5, 1.6};
+  s.timings = {0.1, 0.2, 0.25, 0.3, 0.4, 0.5, 1.6};
   return s;
 }
 
@@ -103,6 +103,7 @@ TEST(CheckpointFile, RoundTripKeepsEveryFieldBitForBit) {
   EXPECT_TRUE(a.accepted);
   EXPECT_TRUE(same_bits(a.min_scaled_jacobian, 0.7071067811865476));
   EXPECT_TRUE(same_bits(a.newton[0].max_projection, 0.1));
+  EXPECT_TRUE(same_bits(a.newton[0].linear_tolerance, 0.25));
   EXPECT_EQ(a.newton[0].pcg_iterations, 40);
   EXPECT_EQ(a.worst_cell, 5);
   const auto& r = s.records[1];
@@ -113,6 +114,7 @@ TEST(CheckpointFile, RoundTripKeepsEveryFieldBitForBit) {
   EXPECT_EQ(r.failure, expected.records[1].failure);
   EXPECT_TRUE(same_bits(s.max_sliding_projection_distance, 1e-9));
   EXPECT_TRUE(same_bits(s.timings.total, 1.6));
+  EXPECT_TRUE(same_bits(s.timings.preconditioner, 0.25));
 
   const CheckpointInfo info = read_checkpoint_info(dir / "checkpoint.hmc");
   EXPECT_EQ(info.finished_increments, 2);
