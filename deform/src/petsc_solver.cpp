@@ -380,10 +380,13 @@ class AmgSolver final : public LinearSolver {
       default_option("-hotmesh_pc_hypre_boomeramg_nodal_coarsen", "6");
       default_option("-hotmesh_pc_hypre_boomeramg_strong_threshold", "0.5");
     }
-    char reuse[32] = "preconditioner";
+    // BoomerAMG kept across Newton steps needed 20 times the iterations on the ramp; its
+    // set-up is cheap, so hypre rebuilds every step.
+    std::array<char, 32> reuse{};
+    std::strcpy(reuse.data(), options_.amg == AmgPackage::hypre ? "none" : "preconditioner");
     PetscBool set = PETSC_FALSE;
-    check(PetscOptionsGetString(nullptr, "hotmesh_", "-amg_reuse", reuse, sizeof reuse, &set), "PetscOptionsGetString");
-    const std::string r = reuse;
+    check(PetscOptionsGetString(nullptr, "hotmesh_", "-amg_reuse", reuse.data(), reuse.size(), &set), "PetscOptionsGetString");
+    const std::string r = reuse.data();
     reuse_ = r == "none" ? Reuse::none : r == "preconditioner" ? Reuse::preconditioner : Reuse::interpolation;
     if (options_.amg == AmgPackage::hypre && reuse_ == Reuse::interpolation) reuse_ = Reuse::none;  // GAMG only
     check(PetscOptionsGetBool(nullptr, "hotmesh_", "-amg_rotations", &rotations_, &set), "PetscOptionsGetBool");
