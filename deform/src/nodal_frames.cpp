@@ -155,25 +155,11 @@ void NodalFrames::transform_element(std::span<const NodeId> nodes, std::span<con
   }
 }
 
-void NodalFrames::to_frames(std::span<const double> r, std::span<double> out) const {
-  const auto d = static_cast<std::size_t>(dim_);
-  const auto nodes = static_cast<std::ptrdiff_t>(owner_.size());
-#pragma omp parallel for schedule(static) if (nodes >= kParallelNodes)
-  for (std::ptrdiff_t i = 0; i < nodes; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const double* q = frames_.data() + k * d * d;
-    const auto c = static_cast<std::size_t>(constrained_[k]);
-    for (std::size_t j = 0; j < d; ++j) {
-      double s = 0.0;
-      if (!is_slave(static_cast<NodeId>(i)) && j >= c) {
-        for (std::size_t l = 0; l < d; ++l) s += q[l * d + j] * r[k * d + l];
-      }
-      out[k * d + j] = s;
-    }
-  }
-}
+void NodalFrames::to_frames(std::span<const double> r, std::span<double> out) const { turn(r, out, true); }
 
-void NodalFrames::from_frames(std::span<const double> p, std::span<double> out) const {
+void NodalFrames::from_frames(std::span<const double> p, std::span<double> out) const { turn(p, out, false); }
+
+void NodalFrames::turn(std::span<const double> v, std::span<double> out, bool into_frames) const {
   const auto d = static_cast<std::size_t>(dim_);
   const auto nodes = static_cast<std::ptrdiff_t>(owner_.size());
 #pragma omp parallel for schedule(static) if (nodes >= kParallelNodes)
@@ -182,12 +168,13 @@ void NodalFrames::from_frames(std::span<const double> p, std::span<double> out) 
     const double* q = frames_.data() + k * d * d;
     const auto c = static_cast<std::size_t>(constrained_[k]);
     const bool slave = is_slave(static_cast<NodeId>(i));
-    for (std::size_t l = 0; l < d; ++l) {
+    for (std::size_t a = 0; a < d; ++a) {
       double s = 0.0;
-      if (!slave) {
-        for (std::size_t j = c; j < d; ++j) s += q[l * d + j] * p[k * d + j];
+      for (std::size_t b = 0; b < d && !slave; ++b) {
+        // Q^T v keeps the unconstrained components a; Q v uses the unconstrained components b.
+        if (into_frames ? a >= c : b >= c) s += (into_frames ? q[b * d + a] : q[a * d + b]) * v[k * d + b];
       }
-      out[k * d + l] = s;
+      out[k * d + a] = s;
     }
   }
 }

@@ -65,6 +65,9 @@ class NodalFrames {
   std::vector<std::vector<double>> near_null_space(std::span<const Vec3> points, bool rotations = true) const;
 
  private:
+  /// Q_n^T v_n (into the frames) or Q_n v_n (out of them) on the unconstrained components.
+  void turn(std::span<const double> v, std::span<double> out, bool into_frames) const;
+
   int dim_;
   std::vector<NodeId> owner_;
   std::vector<int> constrained_;
