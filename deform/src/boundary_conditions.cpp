@@ -26,16 +26,6 @@ int priority(BoundaryRole role) {
   return 0;
 }
 
-double bounding_diagonal(const Mesh& mesh, std::span<const NodeId> nodes) {
-  Vec3 lo = mesh.points[static_cast<std::size_t>(nodes.front())], hi = lo;
-  for (NodeId n : nodes) {
-    const Vec3& p = mesh.points[static_cast<std::size_t>(n)];
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  return norm(hi - lo);
-}
-
 /// Best-fit plane (line in 2D) of a slip patch; throws if the patch is not planar.
 SlipPlane slip_plane(const Mesh& mesh, const Patch& patch) {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -61,7 +51,7 @@ SlipPlane slip_plane(const Mesh& mesh, const Patch& patch) {
   const Vec3 origin{centre.x(), centre.y(), centre.z()};
   double worst = 0.0;
   for (NodeId n : patch.nodes) worst = std::max(worst, std::abs(dot(mesh.points[static_cast<std::size_t>(n)] - origin, normal)));
-  const double size = bounding_diagonal(mesh, patch.nodes);
+  const double size = bounding_diagonal(mesh.points, patch.nodes);
   if (worst > 1e-6 * size) {
     throw InputError(fmt::format("patch '{}' has role slip but is not planar: a node is {:.3g} off its best-fit {} "
                                  "(patch size {:.3g}); slip keeps nodes on a plane, use sliding for curved walls",
@@ -74,7 +64,7 @@ SlipPlane slip_plane(const Mesh& mesh, const Patch& patch) {
 /// tolerance, listing them.
 std::vector<double> locate(const Mesh& mesh, std::span<const Vec3> points, const Patch& patch, const PatchMotion& m,
                            std::span<const NodeId> nodes) {
-  const double tolerance = m.tolerance > 0.0 ? m.tolerance : 1e-3 * bounding_diagonal(mesh, patch.nodes);
+  const double tolerance = m.tolerance > 0.0 ? m.tolerance : 1e-3 * bounding_diagonal(mesh.points, patch.nodes);
   std::vector<geometry::ShapePoint> found(nodes.size());
 #pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
@@ -168,12 +158,7 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
   }
 
   // Periodic pairs: slaves follow their masters and take no role of their own.
-  Vec3 lo = mesh.points.front(), hi = lo;
-  for (const Vec3& p : mesh.points) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  const double mesh_size = norm(hi - lo);
+  const double mesh_size = bounding_diagonal(mesh.points);
   for (const PatchMotion& m : patches) {
     if (m.role != BoundaryRole::periodic || m.partner.empty()) continue;
     const std::size_t partner = patch_index(m.partner);
@@ -344,7 +329,7 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
     if (m.role != BoundaryRole::prescribed && m.role != BoundaryRole::sliding) continue;
     std::size_t overruled = 0;
     double largest = 0.0;
-    const double tolerance = 1e-6 * bounding_diagonal(mesh, mesh.patches[p].nodes);
+    const double tolerance = 1e-6 * bounding_diagonal(mesh.points, mesh.patches[p].nodes);
     for (NodeId n : mesh.patches[p].nodes) {
       if (is_slave(n) || role_priority(n) <= priority(m.role)) continue;
       const PatchMotion& winner = *motion_of[static_cast<std::size_t>(owner[static_cast<std::size_t>(n)])];

@@ -32,4 +32,27 @@ void Mesh::derive_node_sets() {
   }
 }
 
+namespace {
+template <class PointAt>
+double box_diagonal(std::size_t count, PointAt point_at) {
+  if (count == 0) return 0.0;
+  Vec3 lo = point_at(0), hi = lo;
+  for (std::size_t i = 1; i < count; ++i) {
+    const Vec3& p = point_at(i);
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  return norm(hi - lo);
+}
+}  // namespace
+
+double bounding_diagonal(std::span<const Vec3> points) {
+  return box_diagonal(points.size(), [&](std::size_t i) -> const Vec3& { return points[i]; });
+}
+
+double bounding_diagonal(std::span<const Vec3> points, std::span<const NodeId> nodes) {
+  return box_diagonal(nodes.size(),
+                      [&](std::size_t i) -> const Vec3& { return points[static_cast<std::size_t>(nodes[i])]; });
+}
+
 }  // namespace hotmesh::deform

@@ -57,7 +57,7 @@ class Motion {
         stiffness_(mesh, element_lame(mesh, material), material.drop_jacobian, detail::stores_element_matrices(solver)),
         linear_(detail::make_linear_solver(solver)),
         dim_(static_cast<std::size_t>(mesh.dimension)),
-        size_(bounding_diagonal(mesh.points)) {}
+        size_(std::max(bounding_diagonal(mesh.points), 1e-300)) {}
 
   MotionResult run(const MotionCheckpoint* resume) {
     const auto start = Clock::now();
@@ -317,15 +317,6 @@ class Motion {
       for (std::size_t c = 0; c < dim_; ++c) p[c] += u[i * dim_ + c];
       out[i] = p;
     }
-  }
-
-  static double bounding_diagonal(std::span<const Vec3> points) {
-    Vec3 lo = points.front(), hi = lo;
-    for (const Vec3& p : points) {
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-    return std::max(norm(hi - lo), 1e-300);
   }
 
   const Mesh& mesh_;

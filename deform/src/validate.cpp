@@ -98,15 +98,6 @@ void check_structure(const Mesh& mesh) {
   bad_faces.raise_if_any();
 }
 
-double bounding_diagonal(const Mesh& mesh) {
-  Vec3 lo = mesh.points.front(), hi = mesh.points.front();
-  for (const Vec3& p : mesh.points) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  return norm(hi - lo);
-}
-
 void check_coordinates(const Mesh& mesh) {
   Problems non_finite("nodes have non-finite coordinates");
   for (std::size_t n = 0; n < mesh.node_count(); ++n) {
@@ -115,7 +106,7 @@ void check_coordinates(const Mesh& mesh) {
   non_finite.raise_if_any();
   if (mesh.dimension != 2) return;
   const double z0 = mesh.points.front().z;
-  const double tolerance = 1e-9 * std::max(bounding_diagonal(mesh), 1e-300);
+  const double tolerance = 1e-9 * std::max(bounding_diagonal(mesh.points), 1e-300);
   Problems off_plane(fmt::format("nodes of this 2D mesh are off the plane z = {:.9g} of its first node", z0));
   for (std::size_t n = 0; n < mesh.node_count(); ++n) {
     if (std::abs(mesh.points[n].z - z0) > tolerance) off_plane.add(node_text(mesh, static_cast<NodeId>(n)));
@@ -150,7 +141,7 @@ void check_unused_nodes(const Mesh& mesh) {
 /// tolerance of node p lies, along each axis, in p's grid cell or in the neighbour on the
 /// side of p's nearer cell wall, so 2^d cells are searched per node.
 void check_duplicate_nodes(const Mesh& mesh, double relative_tolerance) {
-  const double diagonal = bounding_diagonal(mesh);
+  const double diagonal = bounding_diagonal(mesh.points);
   if (mesh.node_count() < 2) return;
   const double tolerance = relative_tolerance * diagonal;
   if (tolerance <= 0.0) {

@@ -97,6 +97,12 @@ struct Mesh {
   friend bool operator==(const Mesh&, const Mesh&) = default;
 };
 
+/// Length of the diagonal of the axis-aligned box around `points` (0 for no points): the
+/// length scale that relative tolerances and reported distances refer to.
+double bounding_diagonal(std::span<const Vec3> points);
+/// The same for the points of the nodes `nodes` only.
+double bounding_diagonal(std::span<const Vec3> points, std::span<const NodeId> nodes);
+
 /// The points of one element, gathered from a coordinate array.
 struct ElementPoints {
   std::array<Vec3, kMaxElementNodes> p{};
