@@ -4,7 +4,8 @@
 // meshes, report.json and restart.hmr (the state the next coupling iteration continues from)
 // to the output folder. If the motion fails it keeps the last valid mesh, writes failed.vtu
 // marking the failed cells and exits with code 1. --resume continues a killed run from its
-// checkpoint. Running out of memory is reported with the phase and exit code 4.
+// checkpoint. Running out of memory is reported with the phase and exit code 4. Under mpirun
+// every rank runs this command; rank 0 alone logs progress and writes files.
 #include <CLI/CLI.hpp>
 #include <omp.h>
 #include <spdlog/spdlog.h>
@@ -20,6 +21,7 @@
 #include "deform_checkpoint.hpp"
 #include "deform_outputs.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/deform/processes.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/case_setup.hpp"
@@ -27,6 +29,7 @@
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/io/output_folder.hpp"
 #include "hotmesh/io/restart_file.hpp"
+#include "logging.hpp"
 
 namespace hotmesh::app {
 namespace {
@@ -86,8 +89,14 @@ void log_newton_step(const deform::NewtonProgress& p, spdlog::level::level_enum 
 
 void report_out_of_memory(const RunState& state) {
   std::string sizes = state.nodes > 0 ? fmt::format(" on a mesh of {} nodes and {} cells", state.nodes, state.cells) : "";
-  spdlog::error("out of memory while {}{} (peak memory of this process {:.2f} GB)", state.phase, sizes,
+  const deform::Processes job = deform::processes();
+  const std::string rank = job.count > 1 ? fmt::format(" in rank {} of {}", job.rank, job.count) : "";
+  spdlog::error("out of memory{} while {}{} (peak memory of this process {:.2f} GB)", rank, state.phase, sizes,
                 static_cast<double>(peak_memory_bytes()) / 1e9);
+  if (job.count > 1) {
+    spdlog::error("every rank keeps the whole mesh and its share of the matrix: with fewer ranks per machine each "
+                  "has more memory");
+  }
   if (state.checkpoint_increments >= 0) {
     spdlog::error("the last checkpoint, {} increments done, is kept in {}: run the same command with --resume where "
                   "more memory is available (or with fewer threads) to continue from it",
@@ -126,7 +135,7 @@ std::optional<io::Checkpoint> prepare_output(const Options& options, const io::C
     refuse_to_replace_checkpoint(output, options.force);
   }
   for (const auto& name : names) io::refuse_overwriting_input(output / name, inputs);
-  if (resumed) remove_leftover_temporaries(output, names);
+  if (resumed && deform::processes().root()) remove_leftover_temporaries(output, names);
   return resumed;
 }
 
@@ -138,6 +147,12 @@ int run_deform(const Options& options, RunState& state) {
   auto t = Clock::now();
   const io::Case c = io::read_case(options.case_file);
   spdlog::info("case {}", c.file.string());
+  const deform::Processes job = deform::processes();
+  if (job.count > 1 && c.solver.linear != deform::LinearSolverKind::amg) {
+    throw InputError::in(c.file.string(), fmt::format("solver.linear: {} runs in one process; with mpirun ({} "
+                                                      "processes) use `linear: amg`",
+                                                      deform::to_string(c.solver.linear), job.count));
+  }
   state.phase = "reading the mesh";
   io::LoadedMesh loaded = io::read_mesh(c.mesh);
   const deform::Mesh& mesh = loaded.mesh;
@@ -184,7 +199,8 @@ int run_deform(const Options& options, RunState& state) {
                  checkpoint_path.string(), info.written_at, info.finished_increments, info.increments, info.lambda,
                  omp_get_max_threads());
   } else {
-    spdlog::info("moving the mesh in {} increments on {} threads, linear solver {}{}", increments, omp_get_max_threads(),
+    spdlog::info("moving the mesh in {} increments on {}{} threads, linear solver {}{}", increments,
+                 job.count > 1 ? fmt::format("{} processes of ", job.count) : "", omp_get_max_threads(),
                  deform::to_string(c.solver.linear),
                  c.solver.linear == deform::LinearSolverKind::amg ? fmt::format(" ({})", deform::to_string(c.solver.amg)) : "");
   }
@@ -200,6 +216,7 @@ int run_deform(const Options& options, RunState& state) {
     log_newton_step(p, newton_level, sliding, seconds_since(start));
   };
   observers.checkpoint = [&](const deform::MotionCheckpoint& k) {
+    if (!job.root()) return;
     checkpoints.write(k);
     state.checkpoint_increments = k.finished_increments;
   };
@@ -213,8 +230,10 @@ int run_deform(const Options& options, RunState& state) {
   spdlog::info("motion {:.2f} s: assembly {:.2f} s, preconditioner {:.2f} s, solve {:.2f} s, projection {:.2f} s",
                m.total, m.assembly, m.preconditioner, m.solve, m.projection);
 
-  // 4. Outputs, each written atomically; on failure the last valid mesh.
+  // 4. Outputs, each written atomically; on failure the last valid mesh. Every rank holds
+  // the same result: rank 0 writes it.
   state.phase = "writing the outputs";
+  if (!job.root()) return result.success ? 0 : 1;
   t = Clock::now();
   RunOutputs outputs = write_outputs(output, c, mesh, setup, result, options.binary);
   if (result.success) {  // the state the next coupling iteration restarts from
@@ -263,6 +282,8 @@ Command add_deform_command(CLI::App& parent) {
       ->check(CLI::PositiveNumber);
   return [options] {
     RunState state;
+    const deform::Processes job = deform::start_processes();  // mpirun: MPI, this process's rank
+    if (!job.root()) quiet_other_ranks(job.rank);
     try {
       return run_deform(*options, state);
     } catch (const std::bad_alloc&) {

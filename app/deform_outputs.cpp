@@ -1,5 +1,7 @@
 #include "deform_outputs.hpp"
 
+#include "hotmesh/deform/processes.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <fstream>
@@ -137,7 +139,8 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
                  {"max_increment_splits", c.solver.max_increment_splits},
                  {"linear", deform::to_string(c.solver.linear)},
                  {"amg", deform::to_string(c.solver.amg)},
-                 {"forcing", deform::to_string(c.solver.forcing)}};
+                 {"forcing", deform::to_string(c.solver.forcing)},
+                 {"processes", deform::processes().count}};
   j["increments"] = json::array();
   std::size_t newton_total = 0, pcg_total = 0;
   for (const auto& r : result.increments) {

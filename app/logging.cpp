@@ -16,4 +16,10 @@ void configure_logging(int verbosity) {
   spdlog::set_default_logger(logger);
 }
 
+void quiet_other_ranks(int rank) {
+  auto logger = spdlog::default_logger();
+  logger->set_pattern(fmt::format("[rank {}] %^%l%$ %v", rank));
+  logger->set_level(spdlog::level::err);
+}
+
 }  // namespace hotmesh::app

@@ -1,14 +1,17 @@
 // hotmesh: command line entry point. Parses the command line, sets up logging and turns
 // errors into exit codes: 0 success, 1 the work failed, 2 bad input (files, case keys,
-// options), 3 internal error, 4 out of memory.
+// options), 3 internal error, 4 out of memory (the exit code of mpirun too).
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <exception>
 #include <new>
+#include <thread>
 #include <vector>
 
 #include "commands.hpp"
+#include "hotmesh/deform/processes.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "logging.hpp"
 
@@ -41,19 +44,27 @@ int main(int argc, char** argv) {
   }
   hotmesh::app::configure_logging(quiet ? -1 : verbose);
 
+  // Several processes of an MPI job (hotmesh deform under mpirun) end together: a rank that
+  // stops alone would leave the others waiting for it. A bad input stops every rank at the
+  // same place: rank 0 reports it.
+  const auto finish = [](int code) {
+    if (hotmesh::deform::processes().count > 1 && code > 1) hotmesh::deform::abort_processes(code);
+    return code;
+  };
   try {
     for (auto& [sub, run] : commands) {
-      if (sub->parsed()) return run();
+      if (sub->parsed()) return finish(run());
     }
     return 2;
   } catch (const hotmesh::InputError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
+    if (hotmesh::deform::processes().root()) spdlog::error("{}", e.what());
+    else std::this_thread::sleep_for(std::chrono::seconds(2));  // rank 0 reports, and ends the job
+    return finish(2);
   } catch (const std::bad_alloc&) {
     spdlog::error("out of memory: this machine (or its limits for this process) cannot hold the job");
-    return hotmesh::app::kExitOutOfMemory;
+    return finish(hotmesh::app::kExitOutOfMemory);
   } catch (const std::exception& e) {
     spdlog::critical("internal error: {} (please report this with the command line and input files)", e.what());
-    return 3;
+    return finish(3);
   }
 }

@@ -18,10 +18,14 @@
 // of the KSP and PC can be given with the prefix `hotmesh_`, e.g.
 // PETSC_OPTIONS="-hotmesh_pc_gamg_threshold 0.05 -hotmesh_ksp_view".
 //
-// MPI: this backend runs on PETSC_COMM_SELF today; every process solves the whole system.
-// The distributed version (the item 3) keeps this structure: node ownership ranges
-// for the block rows, MatXAIJSetPreallocation with diagonal and off-diagonal counts, the same
-// MatSetValuesBlocked (PETSc stashes rows owned elsewhere) and vectors with ghosts.
+// With several processes (mpirun, hotmesh/deform/processes.hpp) every rank keeps the whole
+// mesh, but the matrix and the element work are distributed: PETSc's partitioner (PT-Scotch)
+// splits the cells along their faces, each node's block row goes to the lowest rank among its
+// cells (rows numbered rank by rank, so each rank owns a contiguous range), each rank computes
+// the K_e of its cells and adds them with MatSetValuesBlocked (PETSc sends the rows owned
+// elsewhere), the residual is summed over the ranks, CG and the multigrid run on the
+// distributed matrix, and the solution is gathered on every rank. With one process the same
+// code runs on PETSC_COMM_SELF and adds straight into the AIJ values.
 #include "petsc_solver.hpp"
 
 #include <petscksp.h>
@@ -29,15 +33,14 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <mutex>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "parallel.hpp"
+#include "rank_exchange.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {
@@ -49,56 +52,6 @@ void check(PetscErrorCode code, const char* what) {
   if (code != 0) throw std::runtime_error(std::string("PETSc failed in ") + what + " (error code " + std::to_string(code) + ")");
 }
 
-// --- The PETSc session: initialised on the first amg solve, finalised at exit -------------
-
-std::filesystem::path g_session_dir;  ///< Open MPI's session directory of a singleton run
-bool g_initialised_here = false;
-
-void finalize_petsc() {
-  if (g_initialised_here) PetscFinalize();
-  if (!g_session_dir.empty()) {
-    std::error_code ec;
-    std::filesystem::remove_all(g_session_dir, ec);
-  }
-}
-
-/// A process not started by mpirun is an MPI singleton. Open MPI then starts a daemon and
-/// probes every network transport, 0.3-0.4 s here; a run that needs no other process needs
-/// neither (0.04 s). Concurrent singletons of one user also share, and race to create and
-/// remove, one session directory under /tmp: each gets its own. Values the user set win.
-void configure_singleton() {
-  if (std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_SIZE") || std::getenv("PMIX_RANK")) return;
-  setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
-  setenv("OMPI_MCA_pml", "ob1", 0);
-  setenv("OMPI_MCA_btl", "self", 0);
-  if (!std::getenv("OMPI_MCA_orte_tmpdir_base")) {
-    std::error_code ec;
-    std::string pattern = (std::filesystem::temp_directory_path(ec) / "hotmesh-mpi-XXXXXX").string();
-    if (!ec && mkdtemp(pattern.data())) {
-      g_session_dir = pattern;
-      setenv("OMPI_MCA_orte_tmpdir_base", pattern.c_str(), 1);
-    }
-  }
-}
-
-void start_petsc() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    PetscBool initialised = PETSC_FALSE;
-    check(PetscInitialized(&initialised), "PetscInitialized");
-    if (initialised) return;  // an embedding program runs PETSc already
-    configure_singleton();
-    // No PETSc signal handlers: crashes stay the program's (and the sanitizers') business.
-    static char name[] = "hotmesh", no_handler[] = "-no_signal_handler";
-    static char* arguments[] = {name, no_handler, nullptr};
-    int argc = 2;
-    char** argv = arguments;
-    check(PetscInitialize(&argc, &argv, nullptr, nullptr), "PetscInitialize");
-    g_initialised_here = true;
-    std::atexit(finalize_petsc);
-  });
-}
-
 void default_option(const char* name, const char* value) {
   PetscBool set = PETSC_FALSE;
   check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
@@ -107,24 +60,126 @@ void default_option(const char* name, const char* value) {
 
 // --- The matrix K~ in nodal frames -------------------------------------------------------
 
+/// The cells around each node (CSR).
+struct NodeCells {
+  std::vector<std::int64_t> start;
+  std::vector<CellId> cells;
+
+  NodeCells(const ElementList& list, std::size_t nodes) : start(nodes + 1, 0) {
+    for (NodeId n : list.all_nodes()) ++start[static_cast<std::size_t>(n) + 1];
+    for (std::size_t i = 1; i <= nodes; ++i) start[i] += start[i - 1];
+    std::vector<std::int64_t> fill(start.begin(), start.end() - 1);
+    cells.resize(static_cast<std::size_t>(start.back()));
+    for (std::size_t c = 0; c < list.size(); ++c) {
+      for (NodeId n : list.nodes(c)) cells[static_cast<std::size_t>(fill[static_cast<std::size_t>(n)]++)] = static_cast<CellId>(c);
+    }
+  }
+  std::span<const CellId> of(std::size_t node) const {
+    return {cells.data() + start[node], static_cast<std::size_t>(start[node + 1] - start[node])};
+  }
+};
+
+/// A copy in memory from PetscMalloc, for PETSc to free.
+PetscInt* petsc_copy(const std::vector<PetscInt>& v) {
+  PetscInt* copy = nullptr;
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wold-style-cast"
+  check(PetscMalloc1(std::max<std::size_t>(v.size(), 1), &copy), "PetscMalloc1");
+#pragma GCC diagnostic pop
+  std::copy(v.begin(), v.end(), copy);
+  return copy;
+}
+
+/// The rank that does each cell's element work. With several processes: PETSc's partitioner
+/// (PT-Scotch by default, -hotmesh_mat_partitioning_type to change) on the graph of cells
+/// that share a face (d nodes or more), each rank giving the edges of its share of the cells.
+std::vector<int> partition_cells(const ElementList& list, const NodeCells& around, int d, const Processes& job) {
+  std::vector<int> rank_of(list.size(), 0);
+  if (job.count == 1) return rank_of;
+  const Share mine = share_of(list.size(), job.rank, job.count);
+  std::vector<PetscInt> offsets{0}, neighbours;
+  std::vector<CellId> touching;
+  for (std::size_t c = mine.begin; c < mine.end; ++c) {
+    touching.clear();
+    for (NodeId n : list.nodes(c)) {
+      for (CellId other : around.of(static_cast<std::size_t>(n))) {
+        if (other != static_cast<CellId>(c)) touching.push_back(other);
+      }
+    }
+    std::sort(touching.begin(), touching.end());
+    for (std::size_t i = 0; i < touching.size();) {
+      std::size_t j = i;
+      while (j < touching.size() && touching[j] == touching[i]) ++j;
+      if (static_cast<int>(j - i) >= d) neighbours.push_back(static_cast<PetscInt>(touching[i]));
+      i = j;
+    }
+    offsets.push_back(static_cast<PetscInt>(neighbours.size()));
+  }
+  // MatCreateMPIAdj takes arrays from PetscMalloc and frees them with the matrix.
+  PetscInt* ia = petsc_copy(offsets);
+  PetscInt* ja = petsc_copy(neighbours);
+  Mat graph = nullptr;
+  check(MatCreateMPIAdj(PETSC_COMM_WORLD, static_cast<PetscInt>(mine.end - mine.begin), static_cast<PetscInt>(list.size()),
+                        ia, ja, nullptr, &graph),
+        "MatCreateMPIAdj");
+  MatPartitioning partitioner = nullptr;
+  check(MatPartitioningCreate(PETSC_COMM_WORLD, &partitioner), "MatPartitioningCreate");
+  check(MatPartitioningSetAdjacency(partitioner, graph), "MatPartitioningSetAdjacency");
+  check(MatPartitioningSetType(partitioner, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType");
+  check(PetscObjectSetOptionsPrefix(reinterpret_cast<PetscObject>(partitioner), "hotmesh_"), "PetscObjectSetOptionsPrefix");
+  check(MatPartitioningSetFromOptions(partitioner), "MatPartitioningSetFromOptions");
+  IS part = nullptr, all = nullptr;
+  check(MatPartitioningApply(partitioner, &part), "MatPartitioningApply");
+  check(ISAllGather(part, &all), "ISAllGather");
+  const PetscInt* ranks = nullptr;
+  check(ISGetIndices(all, &ranks), "ISGetIndices");
+  std::copy(ranks, ranks + list.size(), rank_of.begin());
+  check(ISRestoreIndices(all, &ranks), "ISRestoreIndices");
+  ISDestroy(&all);
+  ISDestroy(&part);
+  MatPartitioningDestroy(&partitioner);
+  MatDestroy(&graph);
+  return rank_of;
+}
+
 /// The block rows of the matrix: one per node with at least one unknown (free or sliding);
 /// a slave shares its master's. Fixed nodes (and slaves of fixed masters) have none and are
 /// left out: as rows holding only a diagonal they would be isolated vertices of the matrix
 /// graph, which PCGAMG makes aggregates of one node (whose d rows cannot carry the rigid-body
 /// rotations, see AmgSolver::rotations_), and work for nothing. The set does not change
-/// during a run: sliding nodes keep at least one tangential direction.
+/// during a run: sliding nodes keep at least one tangential direction. A node's row belongs
+/// to the lowest rank among its cells; rows are numbered rank by rank, nodes in order within
+/// a rank (with one process: in node order).
 struct BlockRows {
   std::vector<PetscInt> of_node;  ///< block row of each node's unknowns (a slave: its master's), -1 for none
   std::vector<NodeId> node_of;    ///< the node each block row belongs to
+  std::vector<PetscInt> first;    ///< rank r owns the block rows [first[r], first[r + 1])
   PetscInt count = 0;
 
-  explicit BlockRows(const NodalFrames& frames) : of_node(frames.node_count(), -1) {
+  BlockRows(const NodalFrames& frames, const NodeCells& around, std::span<const int> rank_of_cell, int ranks)
+      : of_node(frames.node_count(), -1), first(static_cast<std::size_t>(ranks) + 1, 0) {
     const int d = frames.dimension();
+    std::vector<int> owner(of_node.size(), 0);
     for (std::size_t n = 0; n < of_node.size(); ++n) {
       const auto node = static_cast<NodeId>(n);
-      if (frames.is_slave(node) || frames.constrained(node) == d) continue;
-      of_node[n] = count++;
-      node_of.push_back(node);
+      if (frames.is_slave(node) || frames.constrained(node) == d) {
+        owner[n] = -1;
+        continue;
+      }
+      int lowest = ranks;
+      for (CellId c : around.of(n)) lowest = std::min(lowest, rank_of_cell[static_cast<std::size_t>(c)]);
+      owner[n] = lowest == ranks ? 0 : lowest;
+      ++first[static_cast<std::size_t>(owner[n]) + 1];
+    }
+    for (std::size_t r = 1; r < first.size(); ++r) first[r] += first[r - 1];
+    count = first.back();
+    node_of.resize(static_cast<std::size_t>(count));
+    std::vector<PetscInt> next(first.begin(), first.end() - 1);
+    for (std::size_t n = 0; n < of_node.size(); ++n) {
+      if (owner[n] < 0) continue;
+      const PetscInt row = next[static_cast<std::size_t>(owner[n])]++;
+      of_node[n] = row;
+      node_of[static_cast<std::size_t>(row)] = static_cast<NodeId>(n);
     }
     for (std::size_t n = 0; n < of_node.size(); ++n) {
       const auto node = static_cast<NodeId>(n);
@@ -132,6 +187,8 @@ struct BlockRows {
     }
   }
   PetscInt operator[](NodeId n) const { return of_node[static_cast<std::size_t>(n)]; }
+  PetscInt begin(int rank) const { return first[static_cast<std::size_t>(rank)]; }
+  PetscInt end(int rank) const { return first[static_cast<std::size_t>(rank) + 1]; }
 
   /// A full vector (d entries per node) at the block rows, and back (zero elsewhere).
   void gather(std::span<const double> full, std::span<double> rows, std::size_t d) const {
@@ -149,56 +206,46 @@ struct BlockRows {
   }
 };
 
-/// A square matrix of block size d over the block rows, preallocated from the node graph
-/// with slaves merged into their masters.
-Mat create_frame_matrix(const ElementList& cells, const NodalFrames& frames, const BlockRows& rows) {
-  const std::size_t nodes = frames.node_count();
+/// A square matrix of block size d over the block rows, the rows of `rank` stored by it,
+/// preallocated from the node graph with slaves merged into their masters.
+Mat create_frame_matrix(const ElementList& cells, const NodeCells& around, const NodalFrames& frames,
+                        const BlockRows& rows, const Processes& job) {
   const int d = frames.dimension();
-  // node -> cells (CSR)
-  std::vector<std::int64_t> start(nodes + 1, 0);
-  for (NodeId n : cells.all_nodes()) ++start[static_cast<std::size_t>(n) + 1];
-  for (std::size_t i = 1; i <= nodes; ++i) start[i] += start[i - 1];
-  std::vector<std::int64_t> fill(start.begin(), start.end() - 1);
-  std::vector<CellId> adjacent(static_cast<std::size_t>(start.back()));
-  for (std::size_t c = 0; c < cells.size(); ++c) {
-    for (NodeId n : cells.nodes(c)) adjacent[static_cast<std::size_t>(fill[static_cast<std::size_t>(n)]++)] = static_cast<CellId>(c);
-  }
+  const PetscInt lo = rows.begin(job.rank), hi = rows.end(job.rank);
   // Every node adds the blocks of its cells' nodes to its own block row (a master's row thus
-  // gathers its slaves' neighbours too).
-  std::vector<std::vector<NodeId>> members(static_cast<std::size_t>(rows.count));
-  for (std::size_t n = 0; n < nodes; ++n) {
+  // gathers its slaves' neighbours too); columns in [lo, hi) are the diagonal part.
+  std::vector<std::vector<NodeId>> members(static_cast<std::size_t>(hi - lo));
+  for (std::size_t n = 0; n < frames.node_count(); ++n) {
     const PetscInt row = rows[static_cast<NodeId>(n)];
-    if (row >= 0) members[static_cast<std::size_t>(row)].push_back(static_cast<NodeId>(n));
+    if (row >= lo && row < hi) members[static_cast<std::size_t>(row - lo)].push_back(static_cast<NodeId>(n));
   }
-  std::vector<PetscInt> blocks_per_row(static_cast<std::size_t>(rows.count), 0);
+  std::vector<PetscInt> diagonal(members.size(), 0), off_diagonal(members.size(), 0);
   std::vector<PetscInt> mark(static_cast<std::size_t>(rows.count), -1);
-  for (PetscInt row = 0; row < rows.count; ++row) {
-    PetscInt count = 0;
-    for (const NodeId member : members[static_cast<std::size_t>(row)]) {
-      const auto m = static_cast<std::size_t>(member);
-      for (auto k = start[m]; k < start[m + 1]; ++k) {
-        for (NodeId n : cells.nodes(static_cast<std::size_t>(adjacent[static_cast<std::size_t>(k)]))) {
+  for (PetscInt row = lo; row < hi; ++row) {
+    for (const NodeId member : members[static_cast<std::size_t>(row - lo)]) {
+      for (CellId c : around.of(static_cast<std::size_t>(member))) {
+        for (NodeId n : cells.nodes(static_cast<std::size_t>(c))) {
           const PetscInt column = rows[n];
-          if (column >= 0 && mark[static_cast<std::size_t>(column)] != row) {
-            mark[static_cast<std::size_t>(column)] = row;
-            ++count;
-          }
+          if (column < 0 || mark[static_cast<std::size_t>(column)] == row) continue;
+          mark[static_cast<std::size_t>(column)] = row;
+          ++(column >= lo && column < hi ? diagonal : off_diagonal)[static_cast<std::size_t>(row - lo)];
         }
       }
     }
-    blocks_per_row[static_cast<std::size_t>(row)] = count;
   }
-  const PetscInt size = rows.count * d;
+  const PetscInt local = (hi - lo) * d, size = rows.count * d;
   Mat a = nullptr;
-  check(MatCreate(PETSC_COMM_SELF, &a), "MatCreate");
-  check(MatSetSizes(a, size, size, size, size), "MatSetSizes");
+  check(MatCreate(job.count > 1 ? PETSC_COMM_WORLD : PETSC_COMM_SELF, &a), "MatCreate");
+  check(MatSetSizes(a, local, local, size, size), "MatSetSizes");
   check(MatSetBlockSize(a, d), "MatSetBlockSize");
   check(MatSetType(a, MATAIJ), "MatSetType");
   check(MatSetOptionsPrefix(a, "hotmesh_"), "MatSetOptionsPrefix");
   check(MatSetFromOptions(a), "MatSetFromOptions");
-  check(MatXAIJSetPreallocation(a, d, blocks_per_row.data(), nullptr, nullptr, nullptr), "MatXAIJSetPreallocation");
+  check(MatXAIJSetPreallocation(a, d, diagonal.data(), off_diagonal.data(), nullptr, nullptr), "MatXAIJSetPreallocation");
   check(MatSetOption(a, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   check(MatSetOption(a, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+  // Every assembly sends the same rows to the same ranks: PETSc keeps the pattern.
+  check(MatSetOption(a, MAT_SUBSET_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
   return a;
 }
 
@@ -251,11 +298,13 @@ struct ElementPass {
   }
 };
 
-/// K~ into the preallocated `a`, from every cell's K_e (and the residual, see ElementPass).
-/// The first assembly goes through MatSetValuesBlocked and fixes the sparsity; later ones add
-/// each K~_e straight into the AIJ values, cells of a colour in parallel.
+/// K~ into the preallocated `a`, from the K_e of this rank's cells `local` (and their part of
+/// the residual, see ElementPass). The first assembly goes through MatSetValuesBlocked and
+/// fixes the sparsity; later ones add each K~_e straight into the AIJ values, cells of a
+/// colour in parallel, when one process holds the whole matrix, and go through
+/// MatSetValuesBlocked again when it is distributed.
 void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& frames, const BlockRows& rows,
-                           const AssemblyOrder& order, bool first) {
+                           const AssemblyOrder& order, std::span<const CellId> local, bool first) {
   const ConstrainedSystem& s = pass.s;
   const ElementList& cells = s.stiffness.cells();
   const auto d = static_cast<std::size_t>(frames.dimension());
@@ -263,12 +312,13 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
   const std::size_t corners = n / d;
   PetscBool aij = PETSC_FALSE;
   check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a), MATSEQAIJ, &aij), "PetscObjectTypeCompare");
-  if (first || !aij) {  // MatSetValuesBlocked: any matrix type (and, later, rows owned by other processes)
+  if (first || !aij) {  // MatSetValuesBlocked: any matrix type, rows owned by other processes
     if (!first) check(MatZeroEntries(a), "MatZeroEntries");
     std::array<double, 24 * 24> scratch{}, values{};
     std::array<std::int32_t, 8> owners{};
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      const double* ke = pass.matrix(static_cast<CellId>(c), {scratch.data(), n * n});
+    for (const CellId cell : local) {
+      const auto c = static_cast<std::size_t>(cell);
+      const double* ke = pass.matrix(cell, {scratch.data(), n * n});
       pass.residual(cells.nodes(c), ke, n, d);
       frames.transform_element(cells.nodes(c), {ke, n * n}, {values.data(), n * n}, {owners.data(), corners});
       std::array<PetscInt, 8> index{};  // negative for a fixed node: PETSc skips it
@@ -326,10 +376,13 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
   check(MatRestoreRowIJ(a, 0, PETSC_FALSE, PETSC_FALSE, &size, &ia, &ja, &done), "MatRestoreRowIJ");
 }
 
-void copy_to(std::span<const double> from, Vec to) {
+/// The part of `full` (every row) that this rank owns of `to`.
+void copy_to(std::span<const double> full, Vec to) {
+  PetscInt lo = 0, hi = 0;
+  check(VecGetOwnershipRange(to, &lo, &hi), "VecGetOwnershipRange");
   PetscScalar* x = nullptr;
   check(VecGetArrayWrite(to, &x), "VecGetArrayWrite");
-  std::copy(from.begin(), from.end(), x);
+  std::copy(full.begin() + lo, full.begin() + hi, x);
   check(VecRestoreArrayWrite(to, &x), "VecRestoreArrayWrite");
 }
 
@@ -354,7 +407,7 @@ void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows
     copy_to(compressed, vectors[k]);
   }
   MatNullSpace space = nullptr;
-  check(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(), &space),
+  check(MatNullSpaceCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a)), PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(), &space),
         "MatNullSpaceCreate");
   check(MatSetNearNullSpace(a, space), "MatSetNearNullSpace");
   check(MatNullSpaceDestroy(&space), "MatNullSpaceDestroy");
@@ -367,7 +420,7 @@ enum class Reuse { none, interpolation, preconditioner };
 
 class AmgSolver final : public LinearSolver {
  public:
-  explicit AmgSolver(const SolverOptions& options) : options_(options) {
+  explicit AmgSolver(const SolverOptions& options) : options_(options), job_(processes()) {
     start_petsc();
     if (options_.amg == AmgPackage::gamg) {
       // One symmetric Gauss-Seidel sweep as smoother on every level. The default Chebyshev/
@@ -394,6 +447,8 @@ class AmgSolver final : public LinearSolver {
 
   ~AmgSolver() override {
     if (ksp_) KSPDestroy(&ksp_);
+    if (to_all_) VecScatterDestroy(&to_all_);
+    if (all_) VecDestroy(&all_);
     if (b_) VecDestroy(&b_);
     if (x_) VecDestroy(&x_);
     if (a_) MatDestroy(&a_);
@@ -414,6 +469,7 @@ class AmgSolver final : public LinearSolver {
     const auto t = Clock::now();
     std::fill(r.begin(), r.end(), 0.0);
     assemble(s, u, r);
+    sum_over_processes(r);  // each rank added its cells' part
     s.periodic.fold(r);
     s.constraints.project(r);
     timings.assembly += seconds_since(t);
@@ -457,7 +513,7 @@ class AmgSolver final : public LinearSolver {
     check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
     check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
     check(KSPGetResidualNorm(ksp_, &residual), "KSPGetResidualNorm");
-    copy_from(x_, solution_);
+    gather_solution();
     rows_->scatter(solution_, full_, d);
     frames_->from_frames(full_, p);
     timings.solve += seconds_since(t);
@@ -477,7 +533,7 @@ class AmgSolver final : public LinearSolver {
   void assemble(const ConstrainedSystem& s, std::span<const double> u, std::span<double> r) {
     if (!a_) create(s);
     frames_->update(s.constraints, s.periodic);
-    assemble_frame_matrix(a_, {s, u, r}, *frames_, *rows_, *order_, !pattern_);
+    assemble_frame_matrix(a_, {s, u, r}, *frames_, *rows_, *order_, local_cells_, !pattern_);
     pattern_ = true;
     assembled_ = true;
   }
@@ -487,15 +543,22 @@ class AmgSolver final : public LinearSolver {
     const std::size_t nodes = s.stiffness.size() / static_cast<std::size_t>(d);
     frames_.emplace(nodes, d);
     frames_->update(s.constraints, s.periodic);
-    rows_.emplace(*frames_);
+    const ElementList& cells = s.stiffness.cells();
+    const NodeCells around(cells, nodes);
+    const std::vector<int> rank_of_cell = partition_cells(cells, around, d, job_);
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (rank_of_cell[c] == job_.rank) local_cells_.push_back(static_cast<CellId>(c));
+    }
+    rows_.emplace(*frames_, around, rank_of_cell, job_.count);
     order_.emplace(s.stiffness, *frames_);
-    a_ = create_frame_matrix(s.stiffness.cells(), *frames_, *rows_);
+    a_ = create_frame_matrix(cells, around, *frames_, *rows_, job_);
     check(MatCreateVecs(a_, &x_, &b_), "MatCreateVecs");
+    if (job_.count > 1) check(VecScatterCreateToAll(x_, &to_all_, &all_), "VecScatterCreateToAll");
     full_.assign(s.stiffness.size(), 0.0);
     rhs_.assign(static_cast<std::size_t>(rows_->count) * static_cast<std::size_t>(d), 0.0);
     solution_.assign(rhs_.size(), 0.0);
 
-    check(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+    check(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a_)), &ksp_), "KSPCreate");
     check(KSPSetOptionsPrefix(ksp_, "hotmesh_"), "KSPSetOptionsPrefix");
     check(KSPSetType(ksp_, KSPCG), "KSPSetType");
     // Stop on ||b - A x|| <= tol ||b||, as the matrix-free PCG does.
@@ -515,7 +578,20 @@ class AmgSolver final : public LinearSolver {
     check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
   }
 
+  /// The solution on every rank (the whole vector: each keeps the whole mesh).
+  void gather_solution() {
+    if (!to_all_) {
+      copy_from(x_, solution_);
+      return;
+    }
+    check(VecScatterBegin(to_all_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(to_all_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    copy_from(all_, solution_);
+  }
+
   SolverOptions options_;
+  Processes job_;
+  std::vector<CellId> local_cells_;  ///< the cells whose element work this rank does
   Reuse reuse_ = Reuse::preconditioner;
   /// Rotations in the near-null space (-hotmesh_amg_rotations). Off: PCGAMG of PETSc 3.18
   /// makes aggregates of one node here and there, whose d rows cannot carry 3 (2D) or 6 (3D)
@@ -530,6 +606,8 @@ class AmgSolver final : public LinearSolver {
   KSP ksp_ = nullptr;
   Vec b_ = nullptr;
   Vec x_ = nullptr;
+  VecScatter to_all_ = nullptr;  ///< x_ to all_ on every rank (several processes)
+  Vec all_ = nullptr;
   bool fresh_ = true;
   bool pattern_ = false;    ///< the sparsity is fixed (after the first assembly)
   bool assembled_ = false;  ///< update() assembled K~ for the coming solve()
@@ -544,12 +622,18 @@ std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options) { re
 std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const NodalFrames& frames,
                                             std::span<const double> x, bool twice) {
   start_petsc();
-  const BlockRows rows(frames);
+  const ElementList& cells = system.stiffness.cells();
+  const NodeCells around(cells, frames.node_count());
+  const Processes one;
+  const std::vector<int> rank_of_cell(cells.size(), 0);
+  const BlockRows rows(frames, around, rank_of_cell, one.count);
   const auto d = static_cast<std::size_t>(frames.dimension());
   const AssemblyOrder order(system.stiffness, frames);
-  Mat a = create_frame_matrix(system.stiffness.cells(), frames, rows);
-  assemble_frame_matrix(a, {system, {}, {}}, frames, rows, order, true);
-  if (twice) assemble_frame_matrix(a, {system, {}, {}}, frames, rows, order, false);
+  std::vector<CellId> all(cells.size());
+  std::iota(all.begin(), all.end(), CellId{0});
+  Mat a = create_frame_matrix(cells, around, frames, rows, one);
+  assemble_frame_matrix(a, {system, {}, {}}, frames, rows, order, all, true);
+  if (twice) assemble_frame_matrix(a, {system, {}, {}}, frames, rows, order, all, false);
   Vec vx = nullptr, vy = nullptr;
   check(MatCreateVecs(a, &vx, &vy), "MatCreateVecs");
   std::vector<double> compressed(static_cast<std::size_t>(rows.count) * d);

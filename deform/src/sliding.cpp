@@ -2,9 +2,12 @@
 #include "sliding.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "parallel.hpp"
+#include "rank_exchange.hpp"
 
 namespace hotmesh::deform::detail {
 
@@ -23,35 +26,46 @@ void SlidingNodes::set_displacement(std::span<double> u, NodeId n, const Vec3& d
 void SlidingNodes::begin_increment(double a, double b, std::span<const Vec3> x, std::span<double> u) {
   auto& nodes = setup_.sliding;
   forcing_.assign(nodes.size(), {});
+  if (processes().count > 1) placed_.assign(nodes.size() * kPlacementWidth, 0.0);
 
   const double share = (b - a) / (1.0 - a);  // 1 / (N - k + 1) for equal increments (eq. 22)
-#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
-  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
-    const auto k = static_cast<std::size_t>(i);
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    forcing_[k] = share * (nodes[k].target - x[static_cast<std::size_t>(nodes[k].node)]);
+  }
+  const Share mine = my_share(nodes.size());
+  const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
+#pragma omp parallel for schedule(dynamic, 64) if (count >= kParallelProjections)
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
+    const auto k = mine.begin + static_cast<std::size_t>(i);
     SlidingNode& s = nodes[k];
     const Vec3& start = x[static_cast<std::size_t>(s.node)];
-    forcing_[k] = share * (s.target - start);
     const Placement p = place_sliding_node(s, start + forcing_[k], b, setup_.slip_planes);
     set_displacement(u, s.node, p.point - start);
     setup_.constraints.set_normals(s.node, {p.normals.data(), static_cast<std::size_t>(p.normal_count)});
+    record(k, p.point - start, p);
   }
+  share_placements(u);
 }
 
 double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double> u) {
   auto& nodes = setup_.sliding;
   double largest = 0.0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(max : largest) \
-    if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
-  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
-    SlidingNode& s = nodes[static_cast<std::size_t>(i)];
+  const Share mine = my_share(nodes.size());
+  const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
+#pragma omp parallel for schedule(dynamic, 64) reduction(max : largest) if (count >= kParallelProjections)
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
+    const auto k = mine.begin + static_cast<std::size_t>(i);
+    SlidingNode& s = nodes[k];
     const Vec3& start = x[static_cast<std::size_t>(s.node)];
     const Vec3 moved = start + displacement(u, s.node);
     const Placement p = place_sliding_node(s, moved, b, setup_.slip_planes);
     largest = std::max(largest, distance(p.point, moved));
     set_displacement(u, s.node, p.point - start);
     setup_.constraints.set_normals(s.node, {p.normals.data(), static_cast<std::size_t>(p.normal_count)});
+    record(k, p.point - start, p);
   }
-  return largest;
+  share_placements(u);
+  return max_over_processes(largest);
 }
 
 double SlidingNodes::normal_component(std::span<const double> p) const {
@@ -65,14 +79,68 @@ double SlidingNodes::normal_component(std::span<const double> p) const {
 
 void SlidingNodes::end_increment(std::span<const double> u) {
   auto& nodes = setup_.sliding;
-#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
-  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
-    const auto k = static_cast<std::size_t>(i);
+  const Share mine = my_share(nodes.size());
+  const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
+#pragma omp parallel for schedule(dynamic, 64) if (count >= kParallelProjections)
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
+    const auto k = mine.begin + static_cast<std::size_t>(i);
     SlidingNode& s = nodes[k];
     // Section 4.3: the slide vector a = dx2 - dx1 moves the target, which is projected on the
     // boundary of the complete deformation.
     const Vec3 a = displacement(u, s.node) - forcing_[k];
     s.target = place_sliding_node(s, s.target + a, 1.0, setup_.slip_planes).point;
+  }
+  share_targets();
+}
+
+// With several processes each rank placed its share of the nodes; every rank needs them all.
+// A node's projection hints travel with it, so a node's projections do not depend on the
+// number of ranks.
+
+void SlidingNodes::record(std::size_t k, const Vec3& displacement, const Placement& p) {
+  if (placed_.empty()) return;
+  double* item = placed_.data() + k * kPlacementWidth;
+  item[0] = displacement.x, item[1] = displacement.y, item[2] = displacement.z;
+  item[3] = p.normal_count;
+  for (std::size_t j = 0; j < p.normals.size(); ++j) {
+    item[4 + 3 * j] = p.normals[j].x, item[5 + 3 * j] = p.normals[j].y, item[6 + 3 * j] = p.normals[j].z;
+  }
+  std::copy(setup_.sliding[k].hints.begin(), setup_.sliding[k].hints.end(), item + kHintsAt);
+}
+
+void SlidingNodes::share_placements(std::span<double> u) {
+  if (placed_.empty()) return;
+  auto& nodes = setup_.sliding;
+  gather_shares(placed_, kPlacementWidth);
+  const Share mine = my_share(nodes.size());
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    if (k >= mine.begin && k < mine.end) continue;
+    // The placing rank's own inputs, so that every rank holds the same bits.
+    const double* item = placed_.data() + k * kPlacementWidth;
+    set_displacement(u, nodes[k].node, {item[0], item[1], item[2]});
+    decltype(Placement::normals) normals;
+    for (std::size_t j = 0; j < normals.size(); ++j) normals[j] = {item[4 + 3 * j], item[5 + 3 * j], item[6 + 3 * j]};
+    setup_.constraints.set_normals(nodes[k].node, {normals.data(), static_cast<std::size_t>(item[3])});
+    std::copy(item + kHintsAt, item + kPlacementWidth, nodes[k].hints.begin());
+  }
+}
+
+void SlidingNodes::share_targets() {
+  if (processes().count == 1) return;
+  auto& nodes = setup_.sliding;
+  constexpr std::size_t kWidth = 3 + SlidingNode::kMaxShapes;  // target, hints
+  std::vector<double> items(nodes.size() * kWidth);
+  const Share mine = my_share(nodes.size());
+  for (std::size_t k = mine.begin; k < mine.end; ++k) {
+    double* item = items.data() + k * kWidth;
+    item[0] = nodes[k].target.x, item[1] = nodes[k].target.y, item[2] = nodes[k].target.z;
+    std::copy(nodes[k].hints.begin(), nodes[k].hints.end(), item + 3);
+  }
+  gather_shares(items, kWidth);
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    const double* item = items.data() + k * kWidth;
+    nodes[k].target = {item[0], item[1], item[2]};
+    std::copy(item + 3, item + kWidth, nodes[k].hints.begin());
   }
 }
 

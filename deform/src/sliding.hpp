@@ -11,6 +11,7 @@
 #pragma once
 
 #include <span>
+#include <tuple>
 #include <vector>
 
 #include "boundary_conditions.hpp"
@@ -43,9 +44,20 @@ class SlidingNodes {
   Vec3 displacement(std::span<const double> u, NodeId n) const;
   void set_displacement(std::span<double> u, NodeId n, const Vec3& d) const;
 
+  /// Several processes: each rank places its share of the nodes (rank_exchange.hpp) and
+  /// record()s the placements (u, normals, hints), which share_placements() gives every rank;
+  /// share_targets() does the same for the targets of end_increment().
+  void record(std::size_t k, const Vec3& displacement, const Placement& p);
+  void share_placements(std::span<double> u);
+  void share_targets();
+  /// u (3), the normal count, the normals (3 each), the hints.
+  static constexpr std::size_t kHintsAt = 4 + 3 * std::tuple_size_v<decltype(Placement::normals)>;
+  static constexpr std::size_t kPlacementWidth = kHintsAt + SlidingNode::kMaxShapes;
+
   BoundarySetup& setup_;
   std::size_t dim_;
   std::vector<Vec3> forcing_;  ///< dx1 = u0s of the current increment, per sliding node
+  std::vector<double> placed_;  ///< kPlacementWidth per sliding node (several processes only)
 };
 
 }  // namespace hotmesh::deform::detail
