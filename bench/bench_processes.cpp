@@ -1,0 +1,104 @@
+// hotmesh benchmark: one process against two under mpirun, with the amg solver. Each case is
+// run as a user runs it — `hotmesh deform`, then `mpirun -n 2 hotmesh deform` — one thread
+// per process, so that one process uses one core and two processes both cores; one process
+// with two OpenMP threads is the comparison. Reports per run the wall time, the motion's
+// phases (assembly: element matrices into the PETSc matrix and the residual; set-up: the
+// multigrid hierarchy; solve: CG; projection: sliding nodes onto the CAD) and rank 0's peak
+// memory (report.json).
+//
+// Run:   ninja -C build bench_processes hotmesh make_stator_well && build/bench/bench_processes [CELLS,...]
+// Cases: the sliding ramp (7 000 quads), and the stator-well sector (sliding, periodic,
+// passive) generated at each size in CELLS (default 18000,60000).
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "hotmesh/io/atomic_file.hpp"
+#include "machine_load.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<long> sizes(int argc, char** argv) {
+  std::vector<long> out;
+  std::stringstream list(argc > 1 ? argv[1] : "18000,60000");
+  for (std::string item; std::getline(list, item, ',');) out.push_back(std::stol(item));
+  return out;
+}
+
+bool run(const std::string& command) { return std::system(command.c_str()) == 0; }
+
+/// A copy of the case with the amg solver.
+fs::path amg_case(const fs::path& original) {
+  std::string text = hotmesh::io::read_file(original);
+  text = std::regex_replace(text, std::regex("solver: \\{increments: 16\\}"), "solver: {increments: 16, linear: amg}");
+  text = std::regex_replace(text, std::regex("\nsolver:\n"), "\nsolver:\n  linear: amg\n");
+  const fs::path copy = original.parent_path() / "amg.yaml";
+  hotmesh::io::write_file_atomically(copy, text);
+  return copy;
+}
+
+struct Layout {
+  const char* name;
+  int processes;
+  int threads;
+};
+
+void time_case(const std::string& label, const fs::path& case_file) {
+  for (const Layout layout : {Layout{"1 process, 1 thread", 1, 1}, Layout{"1 process, 2 threads", 1, 2},
+                              Layout{"2 processes, 1 thread each", 2, 1}}) {
+    const fs::path out = case_file.parent_path() / "out";
+    const std::string launcher =
+        layout.processes > 1 ? fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 {} -n {} ",
+                                           HOTMESH_MPIEXEC, layout.processes)
+                             : std::string();
+    const hotmesh::bench::LoadProbe load;
+    if (!run(fmt::format("OMP_WAIT_POLICY=passive OMP_NUM_THREADS={} {}{} -q deform --force '{}' -o '{}'", layout.threads,
+                         launcher, HOTMESH_EXE, case_file.string(), out.string()))) {
+      std::printf("| %s | %s | failed |\n", label.c_str(), layout.name);
+      continue;
+    }
+    const double other = load.others();
+    const auto r = nlohmann::json::parse(hotmesh::io::read_file(out / "report.json"));
+    const auto& s = r["seconds"];
+    std::printf("| %s | %s | %ld | %ld | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f | %.2f |\n", label.c_str(),
+                layout.name, r["newton_iterations"].get<long>(), r["pcg_iterations"].get<long>(),
+                r["wall_seconds"].get<double>(), s["motion"].get<double>(), s["assembly"].get<double>(),
+                s["preconditioner"].get<double>(), s["solve"].get<double>(), s["projection"].get<double>(),
+                r["peak_memory_bytes"].get<double>() / 1e6, other);
+    std::fflush(stdout);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const fs::path folder = fs::temp_directory_path() / "hotmesh-bench-processes";
+  fs::remove_all(folder);
+  std::printf("### One process against two (`linear: amg`, 16 increments)\n\n");
+  std::printf("| case | layout | Newton | CG | wall s | motion s | assembly s | set-up s | solve s | projection s | "
+              "peak memory rank 0 (MB) | other load |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  const fs::path ramp = folder / "ramp2d";
+  fs::create_directories(ramp);
+  for (const char* name : {"ramp2d.msh", "ramp.csv", "ramp2d-sliding.yaml"}) {
+    fs::copy_file(fs::path(HOTMESH_SAMPLES) / "ramp2d" / name, ramp / name);
+  }
+  time_case("ramp2d-sliding", amg_case(ramp / "ramp2d-sliding.yaml"));
+  for (const long cells : sizes(argc, argv)) {
+    const fs::path dir = folder / fmt::format("stator-{}", cells);
+    if (!run(fmt::format("{} --cells {} '{}' > /dev/null", HOTMESH_MAKE_STATOR_WELL, cells, dir.string()))) return 1;
+    time_case(fmt::format("stator well {} cells", cells), amg_case(dir / "case_small.yaml"));
+  }
+  fs::remove_all(folder);
+  return 0;
+}

@@ -1,0 +1,148 @@
+// hotmesh deform under mpirun: the cells partitioned among 2 and 4 processes (oversubscribed
+// on a machine with fewer cores) move the stator-well sector — 3D, sliding disc walls,
+// passive and periodic faces — to where one process moves it: with the tolerances tightened
+// to 1e-10 the meshes agree to 1e-8 of the domain. Rank 0 alone writes the outputs; a killed
+// job resumes on another number of ranks; a rank out of memory ends the job with exit code 4;
+// a case the ranks cannot run (jacobi-pcg) is refused once, with exit code 2 from mpirun.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "hotmesh/io/mesh_files.hpp"
+#include "run_command.hpp"
+#include "test_support.hpp"
+
+namespace hotmesh::samples {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Open MPI's launcher: allowed to run as root (CI containers), on more ranks than cores,
+/// one thread per rank.
+std::string mpirun(int ranks) {
+  return fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 {} -n {} "
+                     "--oversubscribe --mca mpi_yield_when_idle 1 ",
+                     HOTMESH_MPIEXEC, ranks);
+}
+
+bool under_sanitizers() {
+#if defined(__SANITIZE_ADDRESS__)
+  return true;
+#else
+  return false;
+#endif
+}
+
+nlohmann::json report(const fs::path& out) {
+  std::ifstream in(out / "report.json");
+  return nlohmann::json::parse(in);
+}
+
+class Processes : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir;
+    const auto generate = test::run_command(std::string(HOTMESH_MAKE_STATOR_WELL) + " --cells 2000 " +
+                                            test::shell_quote(dir_->path().string()));
+    ASSERT_EQ(generate.exit_code, 0) << generate.output;
+    // The amg solver, tolerances tightened, 4 increments.
+    std::string text = test::read_text(*dir_ / "case_small.yaml");
+    text = std::regex_replace(text, std::regex("solver: \\{increments: 16\\}"),
+                              "solver: {increments: 4, linear: amg, newton_tolerance: 1.0e-10, pcg_tolerance: 1.0e-10, "
+                              "max_newton_iterations: 60}");
+    test::write_text(*dir_ / "tight.yaml", text);
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+
+  /// `hotmesh deform` of the tight case on `ranks` processes (0: without mpirun) into `out`.
+  static test::CommandResult deform(int ranks, const fs::path& out, const std::string& options = "") {
+    return test::run_command((ranks > 0 ? mpirun(ranks) : std::string()) + HOTMESH_EXE + " deform " +
+                             test::shell_quote((*dir_ / "tight.yaml").string()) + " -o " + test::shell_quote(out.string()) +
+                             options);
+  }
+
+  /// The run on `ranks` processes into out-<ranks>, once per test program.
+  static fs::path run(int ranks) {
+    const fs::path out = *dir_ / fmt::format("out-{}", ranks);
+    if (fs::exists(out / "report.json")) return out;
+    const auto r = deform(ranks, out);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return out;
+  }
+
+  static double largest_distance(const fs::path& a, const fs::path& b) {
+    const auto ma = io::read_mesh(a / "deformed.msh").mesh, mb = io::read_mesh(b / "deformed.msh").mesh;
+    double largest = 0.0;
+    for (std::size_t i = 0; i < ma.points.size(); ++i) largest = std::max(largest, distance(ma.points[i], mb.points[i]));
+    return largest / deform::bounding_diagonal(ma.points);
+  }
+
+  static test::TempDir* dir_;
+};
+test::TempDir* Processes::dir_ = nullptr;
+
+TEST_F(Processes, OneTwoAndFourRanksMoveTheSectorAlike) {
+  const fs::path serial = run(0);
+  const fs::path two = run(2);
+  EXPECT_LT(largest_distance(serial, two), 1e-8);
+  EXPECT_EQ(report(two)["solver"]["processes"], 2);
+  EXPECT_EQ(report(serial)["solver"]["processes"], 1);
+  // The same increments, sliding and periodic checks as one process.
+  EXPECT_EQ(report(two)["increments"].size(), report(serial)["increments"].size());
+  EXPECT_LT(report(two)["periodic_max_mismatch"].get<double>(), 1e-12);
+  if (under_sanitizers()) return;  // four ranks under the sanitizers: minutes
+  const fs::path four = run(4);
+  EXPECT_LT(largest_distance(serial, four), 1e-8);
+  EXPECT_LT(largest_distance(two, four), 1e-8);
+}
+
+/// A job of two ranks killed after its second increment resumes in one process (the
+/// checkpoint knows nothing of the partition) and ends where an uninterrupted run does.
+TEST_F(Processes, AKilledJobResumesOnAnotherNumberOfRanks) {
+  const fs::path out = *dir_ / "out-killed";
+  const auto killed = deform(2, out, " --stop-after-increment 2");
+  EXPECT_NE(killed.exit_code, 0) << killed.output;
+  ASSERT_TRUE(fs::exists(out / "checkpoint.hmc")) << killed.output;
+  EXPECT_FALSE(fs::exists(out / "report.json"));
+  const auto resumed = deform(0, out, " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_EQ(report(out)["resumed_from"]["finished_increments"], 2);
+  EXPECT_LT(largest_distance(run(0), out), 1e-8);
+}
+
+/// One rank out of memory ends the whole job with exit code 4, says which rank, and keeps the
+/// checkpoint of the increments done.
+TEST_F(Processes, ARankOutOfMemoryEndsTheJobWithExitCode4) {
+  const fs::path out = *dir_ / "out-memory";
+  const auto r = deform(2, out, " --fail-allocation-in-increment 2");
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_NE(r.output.find("out of memory in rank 1 of 2 while moving the mesh (increment 2 of 4)"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("the last checkpoint, 1 increments done"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "checkpoint.hmc"));
+}
+
+TEST_F(Processes, JacobiPcgIsRefusedOnceWithExitCode2) {
+  std::string text = test::read_text(*dir_ / "tight.yaml");
+  text = std::regex_replace(text, std::regex("linear: amg"), "linear: jacobi-pcg");
+  test::write_text(*dir_ / "jacobi.yaml", text);
+  const auto r = test::run_command(mpirun(2) + HOTMESH_EXE + " deform " + test::shell_quote((*dir_ / "jacobi.yaml").string()) +
+                                   " -o " + test::shell_quote((*dir_ / "out-jacobi").string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const std::string message = "solver.linear: jacobi-pcg runs in one process";
+  const auto first = r.output.find(message);
+  ASSERT_NE(first, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(message, first + 1), std::string::npos) << "reported by more than rank 0:\n" << r.output;
+  EXPECT_FALSE(fs::exists(*dir_ / "out-jacobi" / "report.json"));
+}
+
+}  // namespace
+}  // namespace hotmesh::samples
