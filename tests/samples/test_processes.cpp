@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <string>
 
 #include "hotmesh/io/mesh_files.hpp"
 #include "run_command.hpp"
@@ -23,11 +23,22 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Open MPI's launcher: allowed to run as root (CI containers), on more ranks than cores,
-/// one thread per rank.
+/// one thread per rank. Under the sanitizers, without LeakSanitizer: Open MPI's runtime in a
+/// launched process (its event thread, the plugins it unloads at exit) leaves allocations LSan
+/// cannot attribute; hotmesh's own code is leak-checked in the one-process tests.
 std::string mpirun(int ranks) {
-  return fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 {} -n {} "
+  return fmt::format("ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" OMPI_ALLOW_RUN_AS_ROOT=1 "
+                     "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 {} -n {} "
                      "--oversubscribe --mca mpi_yield_when_idle 1 ",
                      HOTMESH_MPIEXEC, ranks);
+}
+
+/// `text` with its first `from` replaced by `to`; fails the test if there is none.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "no '" << from << "' in the case";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
 }
 
 bool under_sanitizers() {
@@ -52,9 +63,9 @@ class Processes : public ::testing::Test {
     ASSERT_EQ(generate.exit_code, 0) << generate.output;
     // The amg solver, tolerances tightened, 4 increments.
     std::string text = test::read_text(*dir_ / "case_small.yaml");
-    text = std::regex_replace(text, std::regex("solver: \\{increments: 16\\}"),
-                              "solver: {increments: 4, linear: amg, newton_tolerance: 1.0e-10, pcg_tolerance: 1.0e-10, "
-                              "max_newton_iterations: 60}");
+    text = replaced(text, "solver: {increments: 16}",
+                    "solver: {increments: 4, linear: amg, newton_tolerance: 1.0e-10, pcg_tolerance: 1.0e-10, "
+                    "max_newton_iterations: 60}");
     test::write_text(*dir_ / "tight.yaml", text);
   }
   static void TearDownTestSuite() {
@@ -132,7 +143,7 @@ TEST_F(Processes, ARankOutOfMemoryEndsTheJobWithExitCode4) {
 
 TEST_F(Processes, JacobiPcgIsRefusedOnceWithExitCode2) {
   std::string text = test::read_text(*dir_ / "tight.yaml");
-  text = std::regex_replace(text, std::regex("linear: amg"), "linear: jacobi-pcg");
+  text = replaced(text, "linear: amg", "linear: jacobi-pcg");
   test::write_text(*dir_ / "jacobi.yaml", text);
   const auto r = test::run_command(mpirun(2) + HOTMESH_EXE + " deform " + test::shell_quote((*dir_ / "jacobi.yaml").string()) +
                                    " -o " + test::shell_quote((*dir_ / "out-jacobi").string()));
