@@ -23,9 +23,10 @@
 // splits the cells along their faces, each node's block row goes to the lowest rank among its
 // cells (rows numbered rank by rank, so each rank owns a contiguous range), each rank computes
 // the K_e of its cells and adds them with MatSetValuesBlocked (PETSc sends the rows owned
-// elsewhere), the residual is summed over the ranks, CG and the multigrid run on the
-// distributed matrix, and the solution is gathered on every rank. With one process the same
-// code runs on PETSC_COMM_SELF and adds straight into the AIJ values.
+// elsewhere; later assemblies add straight into the values of the rank's own rows), the
+// residual is summed over the ranks, CG and the multigrid run on the distributed matrix, and
+// the solution is gathered on every rank. With one process the same code runs on
+// PETSC_COMM_SELF.
 #include "petsc_solver.hpp"
 
 #include <petscksp.h>
@@ -298,22 +299,61 @@ struct ElementPass {
   }
 };
 
+/// The stored values of one SeqAIJ part of the matrix (the whole matrix with one process; the
+/// diagonal or the off-diagonal block of a rank's rows of an MPIAIJ matrix).
+class AijValues {
+ public:
+  explicit AijValues(Mat part) : part_(part) {
+    PetscBool done = PETSC_FALSE;
+    check(MatGetRowIJ(part_, 0, PETSC_FALSE, PETSC_FALSE, &rows_, &ia_, &ja_, &done), "MatGetRowIJ");
+    if (!done) throw std::runtime_error("PETSc: MatGetRowIJ gave no row structure");
+    check(MatSeqAIJGetArray(part_, &v_), "MatSeqAIJGetArray");
+    std::fill(v_, v_ + ia_[rows_], 0.0);
+  }
+  ~AijValues() {
+    MatSeqAIJRestoreArray(part_, &v_);  // marks the values changed
+    PetscBool done = PETSC_FALSE;
+    MatRestoreRowIJ(part_, 0, PETSC_FALSE, PETSC_FALSE, &rows_, &ia_, &ja_, &done);
+  }
+  AijValues(const AijValues&) = delete;
+  AijValues& operator=(const AijValues&) = delete;
+
+  /// Adds the d x d block `in` (row stride `stride`) at local block row `row`, whose first
+  /// column is the local scalar column `column`; the d rows of a block row share a pattern.
+  void add(PetscInt row, PetscInt column, const double* in, std::size_t stride, std::size_t d) const {
+    const auto bs = static_cast<PetscInt>(d);
+    const PetscInt* begin = ja_ + ia_[row * bs];
+    const auto k = std::lower_bound(begin, ja_ + ia_[row * bs + 1], column) - begin;
+    for (std::size_t i = 0; i < d; ++i) {
+      PetscScalar* out = v_ + ia_[row * bs + static_cast<PetscInt>(i)] + k;
+      for (std::size_t j = 0; j < d; ++j) out[j] += in[i * stride + j];
+    }
+  }
+
+ private:
+  Mat part_;
+  PetscInt rows_ = 0;
+  const PetscInt* ia_ = nullptr;
+  const PetscInt* ja_ = nullptr;
+  PetscScalar* v_ = nullptr;
+};
+
 /// K~ into the preallocated `a`, from the K_e of this rank's cells `local` (and their part of
 /// the residual, see ElementPass). The first assembly goes through MatSetValuesBlocked and
-/// fixes the sparsity; later ones add each K~_e straight into the AIJ values, cells of a
-/// colour in parallel, when one process holds the whole matrix, and go through
-/// MatSetValuesBlocked again when it is distributed.
+/// fixes the sparsity; later ones add each block straight into the AIJ values of this rank's
+/// rows (diagonal part and, when the matrix is distributed, off-diagonal part, whose columns
+/// PETSc numbers in the sorted order of `garray`), and only the blocks of rows owned by
+/// other ranks go through MatSetValuesBlocked. With one process the cells of a colour are
+/// added in parallel.
 void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& frames, const BlockRows& rows,
                            const AssemblyOrder& order, std::span<const CellId> local, bool first) {
   const ConstrainedSystem& s = pass.s;
   const ElementList& cells = s.stiffness.cells();
   const auto d = static_cast<std::size_t>(frames.dimension());
+  const auto bs = static_cast<PetscInt>(d);
   const auto n = static_cast<std::size_t>(s.stiffness.element_size());
   const std::size_t corners = n / d;
-  PetscBool aij = PETSC_FALSE;
-  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a), MATSEQAIJ, &aij), "PetscObjectTypeCompare");
-  if (first || !aij) {  // MatSetValuesBlocked: any matrix type, rows owned by other processes
-    if (!first) check(MatZeroEntries(a), "MatZeroEntries");
+  if (first) {
     std::array<double, 24 * 24> scratch{}, values{};
     std::array<std::int32_t, 8> owners{};
     for (const CellId cell : local) {
@@ -329,51 +369,70 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
     }
     check(MatAssemblyBegin(a, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(a, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    if (first) check(MatSetOption(a, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
+    check(MatSetOption(a, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
     return;
   }
-  PetscInt size = 0;
-  const PetscInt* ia = nullptr;
-  const PetscInt* ja = nullptr;
-  PetscBool done = PETSC_FALSE;
-  check(MatGetRowIJ(a, 0, PETSC_FALSE, PETSC_FALSE, &size, &ia, &ja, &done), "MatGetRowIJ");
-  if (!done) throw std::runtime_error("PETSc: MatGetRowIJ gave no row structure");
-  PetscScalar* v = nullptr;
-  check(MatSeqAIJGetArray(a, &v), "MatSeqAIJGetArray");
-  std::fill(v, v + ia[size], 0.0);
-  const auto add = [&](CellId cell) {
-    std::array<double, 24 * 24> scratch{}, values{};
-    std::array<std::int32_t, 8> owners{};
-    const auto nodes = cells.nodes(static_cast<std::size_t>(cell));
-    const double* ke = pass.matrix(cell, {scratch.data(), n * n});
-    pass.residual(nodes, ke, n, d);
-    frames.transform_element(nodes, {ke, n * n}, {values.data(), n * n}, {owners.data(), corners});
-    for (std::size_t p = 0; p < corners; ++p) {
-      const PetscInt row = rows[owners[p]];
-      if (row < 0) continue;
-      const PetscInt* begin = ja + ia[row * static_cast<PetscInt>(d)];
-      const PetscInt* end = ja + ia[row * static_cast<PetscInt>(d) + 1];
-      for (std::size_t q = 0; q < corners; ++q) {
-        const PetscInt column = rows[owners[q]];
-        if (column < 0) continue;
-        // The block's first column in the row; the d rows of a block row share their pattern.
-        const auto k = std::lower_bound(begin, end, column * static_cast<PetscInt>(d)) - begin;
-        for (std::size_t i = 0; i < d; ++i) {
-          PetscScalar* out = v + ia[row * static_cast<PetscInt>(d) + static_cast<PetscInt>(i)] + k;
-          const double* in = values.data() + (p * d + i) * n + q * d;
-          for (std::size_t j = 0; j < d; ++j) out[j] += in[j];
+  PetscBool distributed = PETSC_FALSE;
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a), MATMPIAIJ, &distributed), "PetscObjectTypeCompare");
+  Mat diagonal_part = a, off_diagonal_part = nullptr;
+  const PetscInt* garray = nullptr;  // global scalar column of each off-diagonal column, ascending
+  if (distributed) check(MatMPIAIJGetSeqAIJ(a, &diagonal_part, &off_diagonal_part, &garray), "MatMPIAIJGetSeqAIJ");
+  PetscInt lo = 0, hi = 0, off_columns = 0;
+  check(MatGetOwnershipRange(a, &lo, &hi), "MatGetOwnershipRange");
+  const PetscInt first_row = lo / bs, end_row = hi / bs;
+  {
+    const AijValues diagonal(diagonal_part);
+    std::optional<AijValues> off;
+    if (off_diagonal_part) {
+      off.emplace(off_diagonal_part);
+      check(MatGetSize(off_diagonal_part, nullptr, &off_columns), "MatGetSize");
+    }
+    const auto add = [&](CellId cell, bool may_send) {
+      std::array<double, 24 * 24> scratch{}, values{};
+      std::array<std::int32_t, 8> owners{};
+      std::array<PetscInt, 8> index{};
+      const auto nodes = cells.nodes(static_cast<std::size_t>(cell));
+      const double* ke = pass.matrix(cell, {scratch.data(), n * n});
+      pass.residual(nodes, ke, n, d);
+      frames.transform_element(nodes, {ke, n * n}, {values.data(), n * n}, {owners.data(), corners});
+      for (std::size_t k = 0; k < corners; ++k) index[k] = rows[owners[k]];
+      for (std::size_t p = 0; p < corners; ++p) {
+        const PetscInt row = index[p];
+        if (row < 0) continue;
+        const double* block_row = values.data() + p * d * n;
+        if (row < first_row || row >= end_row) {  // another rank's row: PETSc sends it
+          if (!may_send) throw std::logic_error("assemble_frame_matrix: a row of another rank in a parallel loop");
+          check(MatSetValuesBlocked(a, 1, &row, static_cast<PetscInt>(corners), index.data(), block_row, ADD_VALUES),
+                "MatSetValuesBlocked");
+          continue;
+        }
+        for (std::size_t q = 0; q < corners; ++q) {
+          const PetscInt column = index[q];
+          if (column < 0) continue;
+          if (column >= first_row && column < end_row) {
+            diagonal.add(row - first_row, (column - first_row) * bs, block_row + q * d, n, d);
+          } else {
+            const auto k = std::lower_bound(garray, garray + off_columns, column * bs) - garray;
+            off->add(row - first_row, static_cast<PetscInt>(k), block_row + q * d, n, d);
+          }
         }
       }
-    }
-  };
-  for (const auto& colour : order.colours) {
-    const auto count = static_cast<std::ptrdiff_t>(colour.size());
+    };
+    if (distributed) {
+      for (const CellId cell : local) add(cell, true);
+    } else {
+      for (const auto& colour : order.colours) {
+        const auto count = static_cast<std::ptrdiff_t>(colour.size());
 #pragma omp parallel for schedule(static) if (count >= kParallelCells)
-    for (std::ptrdiff_t k = 0; k < count; ++k) add(colour[static_cast<std::size_t>(k)]);
+        for (std::ptrdiff_t k = 0; k < count; ++k) add(colour[static_cast<std::size_t>(k)], false);
+      }
+      for (const CellId cell : order.with_slaves) add(cell, false);
+    }
+  }  // the values are given back before PETSc adds the rows other ranks sent
+  if (distributed) {
+    check(MatAssemblyBegin(a, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(a, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   }
-  for (const CellId cell : order.with_slaves) add(cell);
-  check(MatSeqAIJRestoreArray(a, &v), "MatSeqAIJRestoreArray");  // marks the values changed
-  check(MatRestoreRowIJ(a, 0, PETSC_FALSE, PETSC_FALSE, &size, &ia, &ja, &done), "MatRestoreRowIJ");
 }
 
 /// The part of `full` (every row) that this rank owns of `to`.
