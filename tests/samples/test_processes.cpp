@@ -23,13 +23,14 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Open MPI's launcher: allowed to run as root (CI containers), on more ranks than cores,
-/// one thread per rank. Under the sanitizers, without LeakSanitizer: Open MPI's runtime in a
+/// one thread per rank, shared memory between ranks without the cross-memory attach that
+/// containers often forbid (ptrace). Under the sanitizers, without LeakSanitizer: Open MPI's runtime in a
 /// launched process (its event thread, the plugins it unloads at exit) leaves allocations LSan
 /// cannot attribute; hotmesh's own code is leak-checked in the one-process tests.
 std::string mpirun(int ranks) {
   return fmt::format("ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" OMPI_ALLOW_RUN_AS_ROOT=1 "
                      "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 {} -n {} "
-                     "--oversubscribe --mca mpi_yield_when_idle 1 ",
+                     "--oversubscribe --mca mpi_yield_when_idle 1 --mca btl_vader_single_copy_mechanism none ",
                      HOTMESH_MPIEXEC, ranks);
 }
 
