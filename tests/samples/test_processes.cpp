@@ -3,7 +3,8 @@
 // passive and periodic faces — to where one process moves it: with the tolerances tightened
 // to 1e-10 the meshes agree to 1e-8 of the domain. Rank 0 alone writes the outputs; a killed
 // job resumes on another number of ranks; a rank out of memory ends the job with exit code 4;
-// a case the ranks cannot run (jacobi-pcg) is refused once, with exit code 2 from mpirun.
+// a case the ranks cannot run (jacobi-pcg) is refused once, with exit code 2 from mpirun, as is
+// a launch by another MPI's launcher.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -22,16 +23,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// Under the sanitizers, a process whose Open MPI is not an isolated singleton runs without
+/// LeakSanitizer: Open MPI's runtime (its event thread, the plugins it unloads at exit) leaves
+/// allocations LSan cannot attribute. hotmesh's own code is leak-checked in the one-process
+/// runs.
+const std::string kOpenMpiRuntime = "ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" ";
+
 /// Open MPI's launcher: allowed to run as root (CI containers), on more ranks than cores,
 /// one thread per rank, shared memory between ranks without the cross-memory attach that
-/// containers often forbid (ptrace). Under the sanitizers, without LeakSanitizer: Open MPI's runtime in a
-/// launched process (its event thread, the plugins it unloads at exit) leaves allocations LSan
-/// cannot attribute; hotmesh's own code is leak-checked in the one-process tests.
+/// containers often forbid (ptrace).
 std::string mpirun(int ranks) {
-  return fmt::format("ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" OMPI_ALLOW_RUN_AS_ROOT=1 "
-                     "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 {} -n {} "
-                     "--oversubscribe --mca mpi_yield_when_idle 1 --mca btl_vader_single_copy_mechanism none ",
-                     HOTMESH_MPIEXEC, ranks);
+  return kOpenMpiRuntime + fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
+                                       "{} -n {} --oversubscribe --mca mpi_yield_when_idle 1 "
+                                       "--mca btl_vader_single_copy_mechanism none ",
+                                       HOTMESH_MPIEXEC, ranks);
 }
 
 /// `text` with its first `from` replaced by `to`; fails the test if there is none.
@@ -140,6 +145,18 @@ TEST_F(Processes, ARankOutOfMemoryEndsTheJobWithExitCode4) {
       << r.output;
   EXPECT_NE(r.output.find("the last checkpoint, 1 increments done"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(out / "checkpoint.hmc"));
+}
+
+/// Started by another MPI's launcher (MPICH's mpiexec sets PMI_SIZE), hotmesh's Open MPI would
+/// see one process of its own in each launched process, all writing the same files: refused.
+TEST_F(Processes, AnotherMpisLauncherIsRefusedWithExitCode2) {
+  const auto r = test::run_command(kOpenMpiRuntime + "PMI_SIZE=2 PMI_RANK=0 " + HOTMESH_EXE + " deform " +
+                                   test::shell_quote((*dir_ / "tight.yaml").string()) + " -o " +
+                                   test::shell_quote((*dir_ / "out-launcher").string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("an MPI launcher started hotmesh as one of 2 processes"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Open MPI's mpirun"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(*dir_ / "out-launcher" / "report.json"));
 }
 
 TEST_F(Processes, JacobiPcgIsRefusedOnceWithExitCode2) {
