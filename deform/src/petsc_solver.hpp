@@ -2,7 +2,8 @@
 // system in nodal frames (nodal_frames.hpp) is assembled into a PETSc matrix with block size
 // d, preallocated once from the node graph, and solved by CG with algebraic multigrid (PCGAMG
 // with the rigid-body near-null space, or hypre's BoomerAMG). PETSc and MPI types stay in
-// petsc_solver.cpp; PETSc is initialised on first use, once per process, and finalised at exit.
+// petsc_solver.cpp and frame_matrix.hpp (the matrix); PETSc is initialised on first use, once
+// per process (rank_exchange.hpp), and finalised at exit.
 #pragma once
 
 #include <memory>
