@@ -86,16 +86,6 @@ void expect_same_mesh(const fs::path& case_file, int increments = 0) {
   EXPECT_LT(amg.result.periodic_max_mismatch, 1e-12);
 }
 
-/// The numerical comparisons of the larger cases take minutes under the sanitizers; the
-/// sanitizer build runs the smaller ones, which take the same code paths.
-bool under_sanitizers() {
-#if defined(__SANITIZE_ADDRESS__)
-  return true;
-#else
-  return false;
-#endif
-}
-
 TEST(LinearSolvers, AmgAndJacobiPcgGiveTheSameRamp) {
   const fs::path ramp = kSamples / "ramp2d" / "ramp2d.yaml";
   expect_same_mesh(ramp);
@@ -106,7 +96,7 @@ TEST(LinearSolvers, AmgAndJacobiPcgGiveTheSameRamp) {
 }
 
 TEST(LinearSolvers, AmgAndJacobiPcgGiveTheSameSlidingRamp) {
-  if (under_sanitizers()) GTEST_SKIP() << "a minute in the Release build; run there";
+  if (test::under_sanitizers()) GTEST_SKIP() << "a minute in the Release build; run there";
   expect_same_mesh(kSamples / "ramp2d" / "ramp2d-sliding.yaml");
 }
 
@@ -119,7 +109,7 @@ TEST(LinearSolvers, AmgAndJacobiPcgGiveTheSameSlidingShear) {
 /// The stator-well sector of about 2 000 cells (the generator writes mesh, CAD, tables and
 /// case files): sliding disc walls, passive inlet and outlet, periodic faces; 8 increments.
 TEST(LinearSolvers, AmgAndJacobiPcgGiveTheSameStatorWellSector) {
-  if (under_sanitizers()) GTEST_SKIP() << "a minute in the Release build; run there";
+  if (test::under_sanitizers()) GTEST_SKIP() << "a minute in the Release build; run there";
   test::TempDir dir;
   const auto generate = test::run_command(std::string(HOTMESH_MAKE_STATOR_WELL) + " --cells 2000 " +
                                           test::shell_quote(dir.path().string()));

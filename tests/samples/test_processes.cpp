@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -29,11 +31,27 @@ namespace fs = std::filesystem;
 /// runs.
 const std::string kOpenMpiRuntime = "ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" ";
 
+/// `env -u` for every variable of Open MPI's runtime in this process's environment: a test
+/// that ran the amg solver in this process started an MPI singleton, which wrote them
+/// (OMPI_MCA_ess=singleton, ...), and mpirun or hotmesh started with them would join that
+/// singleton's job instead of starting their own.
+std::string without_open_mpi_runtime() {
+  std::string command = "env";
+  for (char** variable = environ; *variable; ++variable) {
+    const std::string entry = *variable;
+    const std::string name = entry.substr(0, entry.find('='));
+    for (const char* prefix : {"OMPI_", "PMIX_", "OPAL_"}) {
+      if (name.rfind(prefix, 0) == 0) command += " -u " + name;
+    }
+  }
+  return command + " ";
+}
+
 /// Open MPI's launcher: allowed to run as root (CI containers), on more ranks than cores,
 /// one thread per rank, shared memory between ranks without the cross-memory attach that
 /// containers often forbid (ptrace).
 std::string mpirun(int ranks) {
-  return kOpenMpiRuntime + fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
+  return without_open_mpi_runtime() + kOpenMpiRuntime + fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
                                        "{} -n {} --oversubscribe --mca mpi_yield_when_idle 1 "
                                        "--mca btl_vader_single_copy_mechanism none ",
                                        HOTMESH_MPIEXEC, ranks);
@@ -45,14 +63,6 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   EXPECT_NE(at, std::string::npos) << "no '" << from << "' in the case";
   if (at != std::string::npos) text.replace(at, from.size(), to);
   return text;
-}
-
-bool under_sanitizers() {
-#if defined(__SANITIZE_ADDRESS__)
-  return true;
-#else
-  return false;
-#endif
 }
 
 nlohmann::json report(const fs::path& out) {
@@ -115,7 +125,7 @@ TEST_F(Processes, OneTwoAndFourRanksMoveTheSectorAlike) {
   // The same increments, sliding and periodic checks as one process.
   EXPECT_EQ(report(two)["increments"].size(), report(serial)["increments"].size());
   EXPECT_LT(report(two)["periodic_max_mismatch"].get<double>(), 1e-12);
-  if (under_sanitizers()) return;  // four ranks under the sanitizers: minutes
+  if (test::under_sanitizers()) return;  // four ranks under the sanitizers: minutes
   const fs::path four = run(4);
   EXPECT_LT(largest_distance(serial, four), 1e-8);
   EXPECT_LT(largest_distance(two, four), 1e-8);
@@ -150,7 +160,7 @@ TEST_F(Processes, ARankOutOfMemoryEndsTheJobWithExitCode4) {
 /// Started by another MPI's launcher (MPICH's mpiexec sets PMI_SIZE), hotmesh's Open MPI would
 /// see one process of its own in each launched process, all writing the same files: refused.
 TEST_F(Processes, AnotherMpisLauncherIsRefusedWithExitCode2) {
-  const auto r = test::run_command(kOpenMpiRuntime + "PMI_SIZE=2 PMI_RANK=0 " + HOTMESH_EXE + " deform " +
+  const auto r = test::run_command(without_open_mpi_runtime() + kOpenMpiRuntime + "PMI_SIZE=2 PMI_RANK=0 " + HOTMESH_EXE + " deform " +
                                    test::shell_quote((*dir_ / "tight.yaml").string()) + " -o " +
                                    test::shell_quote((*dir_ / "out-launcher").string()));
   EXPECT_EQ(r.exit_code, 2) << r.output;

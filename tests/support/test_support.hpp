@@ -24,6 +24,17 @@ class TempDir {
 };
 
 std::filesystem::path data_path(std::string_view name);  ///< tests/data/<name>
+
+/// Whether this test program runs under AddressSanitizer: the numerical comparisons of the
+/// larger cases take minutes there, and the sanitizer build runs smaller ones that take the
+/// same code paths.
+constexpr bool under_sanitizers() {
+#if defined(__SANITIZE_ADDRESS__)
+  return true;
+#else
+  return false;
+#endif
+}
 std::string read_text(const std::filesystem::path& path);
 void write_text(const std::filesystem::path& path, std::string_view text);
 
