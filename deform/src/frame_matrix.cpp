@@ -205,6 +205,7 @@ void ElementPass::frame_element(CellId cell, const NodalFrames& frames, const Bl
       for (std::size_t j = 0; j < n; ++j) sum += ke[row * n + j] * ue[j];
       r[static_cast<std::size_t>(nodes[row / d]) * d + row % d] += sum;
     }
+    add_node_stiffness(nodes, {ke, n * n}, d, node_stiffness);
   }
   std::array<std::int32_t, 8> owners{};
   frames.transform_element(nodes, {ke, n * n}, {out.values.data(), n * n}, {owners.data(), corners});

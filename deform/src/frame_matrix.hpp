@@ -96,6 +96,7 @@ struct ElementPass {
   const ConstrainedSystem& s;
   std::span<const double> u;
   std::span<double> r;
+  std::span<double> node_stiffness;  ///< with u: each corner's stiffness added (add_node_stiffness)
 
   /// K~_e of `cell` in `frames`, its corners' block rows; adds K_e u_e into r.
   void frame_element(CellId cell, const NodalFrames& frames, const BlockRows& rows, FrameElement& out) const;

@@ -21,11 +21,40 @@ std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options) {
 
 bool stores_element_matrices(const SolverOptions& options) { return options.linear != LinearSolverKind::amg; }
 
+void add_node_stiffness(std::span<const NodeId> nodes, std::span<const double> ke, std::size_t d,
+                        std::span<double> node_stiffness) {
+  const std::size_t n = nodes.size() * d;
+  for (std::size_t a = 0; a < nodes.size(); ++a) {
+    double trace = 0.0;
+    for (std::size_t i = 0; i < d; ++i) trace += ke[(a * d + i) * n + a * d + i];
+    node_stiffness[static_cast<std::size_t>(nodes[a])] += trace / static_cast<double>(d);
+  }
+}
+
+double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d) {
+  double sum = 0.0;
+  for (std::size_t node = 0; node < node_stiffness.size(); ++node) {
+    if (!(node_stiffness[node] > 0.0)) continue;
+    for (std::size_t c = 0; c < d; ++c) {
+      const double scaled = r[node * d + c] / node_stiffness[node];
+      sum += scaled * scaled;
+    }
+  }
+  return std::sqrt(sum);
+}
+
 void LinearSolver::update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
-                          MotionTimings& timings) {
+                          std::span<double> node_stiffness, MotionTimings& timings) {
   const auto start = std::chrono::steady_clock::now();
   k.update(s.points);
   timings.assembly += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
+  const auto d = static_cast<std::size_t>(k.dofs_per_node());
+  const ElementList& cells = k.cells();
+  for (std::size_t c = 0; c < cells.size(); ++c) {  // in cell order: deterministic, cheap next to a product
+    add_node_stiffness(cells.nodes(c), k.element_matrix(static_cast<CellId>(c)), d, node_stiffness);
+  }
+  s.periodic.fold_nodal(node_stiffness);
   k.apply(u, r);
   s.periodic.fold(r);
   s.constraints.project(r);

@@ -47,9 +47,10 @@ class LinearSolver {
   /// r = P T^T K(n) u of eq. (7): folded onto periodic masters, only its tangential part F_t at
   /// sliding nodes (eq. 17). Adds the element work to timings.assembly. By default k.update()
   /// and one product; the amg solver without stored element matrices assembles its matrix in
-  /// the same pass.
+  /// the same pass. Also writes each node's stiffness (one value per node, see
+  /// add_node_stiffness), which scales the Newton residual's norm (mesh_motion.cpp).
   virtual void update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
-                      MotionTimings& timings);
+                      std::span<double> node_stiffness, MotionTimings& timings);
   /// Solves the system for p from p = 0 to ||r|| <= tolerance ||rhs||. `rhs` lies in the
   /// admissible subspace (projected, folded); so does p, with p = 0 at slaves (the Newton loop
   /// expands u afterwards). Adds its times to timings.assembly (what it assembles beyond the
@@ -59,6 +60,19 @@ class LinearSolver {
   /// A new increment (or piece of one) starts: preconditioners kept for reuse are dropped.
   virtual void begin_increment() {}
 };
+
+/// Adds to each corner of a cell its share of the node's stiffness: the trace of the corner's
+/// d x d diagonal block of K_e over d (invariant under the rotations of nodal frames and
+/// periodic pairs). `ke` is the element matrix, row-major, of size (d * corners)^2.
+void add_node_stiffness(std::span<const NodeId> nodes, std::span<const double> ke, std::size_t d,
+                        std::span<double> node_stiffness);
+
+/// ||D^-1 R||: the Newton residual with each node's force divided by the node's stiffness,
+/// i.e. the displacement a Jacobi sweep would still move each node by (metres). Unlike ||R||
+/// it is not dominated by a few very stiff nodes (the smallest, most distorted cells of eq.
+/// (35)), so a Newton step that only settles those does not pass for convergence of the whole
+/// mesh. Nodes without stiffness (periodic slaves) carry no residual and are skipped.
+double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d);
 
 /// The solver SolverOptions::linear names. `amg` initialises PETSc (and MPI) on first use.
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options);

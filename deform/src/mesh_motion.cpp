@@ -221,7 +221,7 @@ class Motion {
     setup_.periodic.expand(u);  // slaves follow their masters
 
     std::vector<Vec3> trial(x.size());
-    std::vector<double> r(dofs), rhs(dofs), p(dofs);
+    std::vector<double> r(dofs), rhs(dofs), p(dofs), node_stiffness(dofs / dim_);
     double r0 = 0.0;
     linear_->begin_increment();
     detail::Forcing forcing(solver_);
@@ -230,8 +230,8 @@ class Motion {
       // K(n) at the current geometry (eq. 8) and R(n) = K(n) u(n) - f (eq. 7; f is K's action on
       // the boundary motion), with only its tangential part F_t at sliding nodes (eq. 17).
       const detail::ConstrainedSystem system{stiffness_, setup_.constraints, setup_.periodic, trial};
-      linear_->update(stiffness_, system, u, r, result_.timings);
-      const double residual = norm2(r);
+      linear_->update(stiffness_, system, u, r, node_stiffness, result_.timings);
+      const double residual = detail::scaled_residual_norm(r, node_stiffness, dim_);
       if (it == 0) r0 = residual;
       record.newton.push_back({residual, 0, true, 0.0});
       record.residual_reduction = r0 > 0.0 ? residual / r0 : 0.0;

@@ -97,6 +97,13 @@ void PeriodicCoupling::fold(std::span<double> f) const {
   }
 }
 
+void PeriodicCoupling::fold_nodal(std::span<double> values) const {
+  for (const PeriodicPair& p : pairs_) {
+    values[static_cast<std::size_t>(p.master)] += values[static_cast<std::size_t>(p.slave)];
+    values[static_cast<std::size_t>(p.slave)] = 0.0;
+  }
+}
+
 void PeriodicCoupling::fold_blocks(std::span<double> blocks) const {
   const std::size_t bb = dim_ * dim_;
   for (const PeriodicPair& p : pairs_) {

@@ -53,6 +53,7 @@ class PeriodicCoupling {
   void expand(std::span<double> u) const;         ///< u_s = R u_m
   void fold(std::span<double> f) const;           ///< f_m += R^T f_s, f_s = 0
   void fold_blocks(std::span<double> blocks) const;  ///< B_m += R^T B_s R, B_s = 0
+  void fold_nodal(std::span<double> values) const;   ///< v_m += v_s, v_s = 0 (one rotation-invariant value per node)
   /// Largest distance between a rotated master position and its slave.
   double mismatch(std::span<const Vec3> points) const;
 

@@ -140,15 +140,18 @@ class AmgSolver final : public LinearSolver {
   /// Without stored element matrices: one pass computes every K_e, adds its part of the
   /// residual and assembles K~ (the matrix is then ready for solve()).
   void update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
-              MotionTimings& timings) override {
+              std::span<double> node_stiffness, MotionTimings& timings) override {
     if (k.stores_matrices()) {
-      LinearSolver::update(k, s, u, r, timings);
+      LinearSolver::update(k, s, u, r, node_stiffness, timings);
       return;
     }
     const auto t = Clock::now();
     std::fill(r.begin(), r.end(), 0.0);
-    assemble(s, u, r);
+    std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
+    assemble(s, u, r, node_stiffness);
     sum_over_processes(r);  // each rank added its cells' part
+    sum_over_processes(node_stiffness);
+    s.periodic.fold_nodal(node_stiffness);
     s.periodic.fold(r);
     s.constraints.project(r);
     timings.assembly += seconds_since(t);
@@ -157,7 +160,7 @@ class AmgSolver final : public LinearSolver {
   LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p, double tolerance,
                           MotionTimings& timings) override {
     auto t = Clock::now();
-    if (!assembled_) assemble(s, {}, {});  // from the stored element matrices
+    if (!assembled_) assemble(s, {}, {}, {});  // from the stored element matrices
     assembled_ = false;
     timings.assembly += seconds_since(t);
     const auto d = static_cast<std::size_t>(s.stiffness.dofs_per_node());
@@ -209,10 +212,11 @@ class AmgSolver final : public LinearSolver {
 
  private:
   /// K~ of the system at its points, with the frames of its current normals.
-  void assemble(const ConstrainedSystem& s, std::span<const double> u, std::span<double> r) {
+  void assemble(const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
+                std::span<double> node_stiffness) {
     if (!a_) create(s);
     frames_->update(s.constraints, s.periodic);
-    assemble_frame_matrix(a_, {s, u, r}, *frames_, *rows_, *order_, local_cells_, !pattern_);
+    assemble_frame_matrix(a_, {s, u, r, node_stiffness}, *frames_, *rows_, *order_, local_cells_, !pattern_);
     pattern_ = true;
     assembled_ = true;
   }

@@ -265,22 +265,33 @@ TEST_P(FramesIn, NearNullSpaceIsOrthonormalAndRigidWithoutConstraints) {
 
 /// The Newton residual R = P T^T K u of the amg solver's single element pass (element
 /// matrices computed, not stored) equals the matrix-free one, and the matrix it assembled on
-/// the way solves the same step.
+/// the way solves the same step. Both passes give each node's stiffness as the trace of its
+/// diagonal block over d, folded onto periodic masters (the rotation keeps the trace).
 TEST_P(FramesIn, AmgElementPassGivesTheResidualAndMatrixOfStoredElementMatrices) {
   SectorSystem s(GetParam());
   auto u = random_vector(s.stiffness.size(), 5);
   s.periodic.expand(u);
   SolverOptions options;
   std::vector<double> expected(u.size()), r(u.size());
+  const std::size_t d = static_cast<std::size_t>(s.stiffness.dofs_per_node()), nodes = u.size() / d;
+  std::vector<double> stiffness_stored(nodes), stiffness_streamed(nodes);
   MotionTimings timings;
   auto jacobi = detail::make_linear_solver(options);
-  jacobi->update(s.stiffness, s.system(), u, expected, timings);
+  jacobi->update(s.stiffness, s.system(), u, expected, stiffness_stored, timings);
   options.linear = LinearSolverKind::amg;
   StiffnessOperator streamed(s.mesh, element_lame(s.mesh, {}), true, false);
   const ConstrainedSystem on_the_fly{streamed, s.constraints, s.periodic, s.points};
   auto amg = detail::make_linear_solver(options);
-  amg->update(streamed, on_the_fly, u, r, timings);
+  amg->update(streamed, on_the_fly, u, r, stiffness_streamed, timings);
   EXPECT_LE(max_difference(r, expected), 1e-12 * max_abs(expected));
+  std::vector<double> blocks(nodes * d * d), traces(nodes, 0.0);
+  s.stiffness.diagonal_blocks(blocks);
+  s.periodic.fold_blocks(blocks);
+  for (std::size_t n = 0; n < nodes; ++n) {
+    for (std::size_t i = 0; i < d; ++i) traces[n] += blocks[n * d * d + i * d + i] / static_cast<double>(d);
+  }
+  EXPECT_LE(max_difference(stiffness_stored, traces), 1e-12 * max_abs(traces));
+  EXPECT_LE(max_difference(stiffness_streamed, traces), 1e-12 * max_abs(traces));
   EXPECT_GT(timings.assembly, 0.0);
   std::vector<double> p_amg(u.size()), p_jacobi(u.size());
   for (double& x : r) x = -x;
@@ -347,6 +358,15 @@ INSTANTIATE_TEST_SUITE_P(
       const SolverCase& c = param_info.param;
       return std::string(c.dimension == 2 ? "Quads" : "Hexes") + (c.amg == AmgPackage::gamg ? "Gamg" : "Hypre");
     });
+
+/// The Newton residual's norm weighs a node by the displacement its force stands for: a node
+/// a thousand times stiffer, with a thousand times the force, counts as much as a soft one
+/// (in the plain norm it would hide the other completely); nodes without stiffness are left out.
+TEST(ScaledResidualNorm, DividesEachNodesForceByItsStiffness) {
+  const std::vector<double> r{3000.0, 4000.0, 0.3, 0.4, 5.0, 5.0};  // 2D, three nodes
+  const std::vector<double> stiffness{1000.0, 0.1, 0.0};
+  EXPECT_NEAR(detail::scaled_residual_norm(r, stiffness, 2), std::sqrt(5.0 * 5.0 + 5.0 * 5.0), 1e-12);
+}
 
 TEST(Forcing, FixedGivesThePcgToleranceEveryTime) {
   SolverOptions o;

@@ -67,16 +67,16 @@ int linear_iterations(const deform::MotionResult& r) {
   return total;
 }
 
-/// Both solvers to 1e-6 per linear solve and 1e-6 on the Newton residual. The meshes agree
-/// to 2e-5 of the domain: the ramp's boundary layer amplifies the Newton tolerance most
-/// (9e-6 measured; shear2d 1e-8, the stator sector 1e-11), while the runs at the default
-/// tolerances differ from these by 3.5e-4. AMG needs far fewer linear iterations.
+/// Both solvers to 1e-6 per linear solve and 1e-6 on the (stiffness-scaled) Newton residual.
+/// The meshes agree to 1e-6 of the domain (measured: ramp 4e-8, sliding ramp 9e-8, shear2d
+/// 4e-11, sliding shear 1.6e-9, the stator sector 4e-12), while the ramp at the default
+/// tolerances is 9.3e-6 from them. AMG needs far fewer linear iterations.
 void expect_same_mesh(const fs::path& case_file, int increments = 0) {
   const auto jacobi = run_case(case_file, deform::LinearSolverKind::jacobi_pcg, 1e-6, 1e-6, increments);
   const auto amg = run_case(case_file, deform::LinearSolverKind::amg, 1e-6, 1e-6, increments);
   ASSERT_TRUE(jacobi.result.success) << jacobi.result.message;
   ASSERT_TRUE(amg.result.success) << amg.result.message;
-  EXPECT_LT(largest_distance(jacobi, amg), 2e-5);
+  EXPECT_LT(largest_distance(jacobi, amg), 1e-6);
   EXPECT_EQ(amg.result.summary.inverted_cells, 0u);
   EXPECT_NEAR(amg.result.summary.min_scaled_jacobian, jacobi.result.summary.min_scaled_jacobian, 1e-4);
   EXPECT_LT(linear_iterations(amg.result), linear_iterations(jacobi.result) / 3);
@@ -89,10 +89,14 @@ void expect_same_mesh(const fs::path& case_file, int increments = 0) {
 TEST(LinearSolvers, AmgAndJacobiPcgGiveTheSameRamp) {
   const fs::path ramp = kSamples / "ramp2d" / "ramp2d.yaml";
   expect_same_mesh(ramp);
-  // The comparison can fail: at the default tolerances the mesh is elsewhere by more (3.5e-4).
+  // The comparison can fail: at the default tolerances the mesh is elsewhere by more (9.3e-6).
+  // And the defaults are close: the Newton residual scaled by each node's stiffness is not
+  // satisfied by settling the boundary layer's stiff cells alone (the plain norm left the
+  // default run 3.5e-4 from the converged mesh).
   const auto tight = run_case(ramp, deform::LinearSolverKind::amg, 1e-6, 1e-6);
   const auto loose = run_case(ramp, deform::LinearSolverKind::amg, 1e-3, 1e-4);
-  EXPECT_GT(largest_distance(loose, tight), 1e-4);
+  EXPECT_GT(largest_distance(loose, tight), 3e-6);
+  EXPECT_LT(largest_distance(loose, tight), 3e-5);
 }
 
 TEST(LinearSolvers, AmgAndJacobiPcgGiveTheSameSlidingRamp) {
