@@ -1,15 +1,21 @@
-// hotmesh benchmark: the stator-well sector solved at growing sizes with the current solver
-// (matrix-free Jacobi-PCG): the sample's case with sliding on, 16 increments, as a user runs it —
-// make_stator_well writes the mesh, CAD file and tables, `hotmesh deform` moves the mesh.
-// Reports per size the time, the Newton and PCG iterations and the peak memory (report.json).
+// hotmesh benchmark: the stator-well sector solved at growing sizes: the sample's case with
+// sliding on, 16 increments, as a user runs it — make_stator_well writes the mesh, CAD file and
+// tables, `hotmesh deform --binary` moves the mesh. Reports per size the time and its phases
+// (assembly, preconditioner, solve, projection), the Newton and linear iterations and the peak
+// memory, all from report.json.
 //
 // Run:   ninja -C build bench_stator_solve && build/bench/bench_stator_solve [CELLS,...]
-// (default 5000,18000,50000; each size runs in its own process; the largest takes minutes).
+//            [--linear jacobi-pcg|amg] [--forcing fixed|eisenstat-walker]
+// Default 5000,18000,50000 with the case's solver (the paper's matrix-free Jacobi-PCG, fixed
+// inner tolerance); each size runs in its own process. The paper's size (2700000) with
+// `--linear amg --forcing eisenstat-walker` takes about an hour and a half and 13 GB.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -21,11 +27,50 @@
 
 namespace {
 
-std::vector<long> sizes(int argc, char** argv) {
-  std::vector<long> out;
-  std::stringstream list(argc > 1 ? argv[1] : "5000,18000,50000");
-  for (std::string item; std::getline(list, item, ',');) out.push_back(std::stol(item));
-  return out;
+struct Options {
+  std::vector<long> sizes;
+  std::string linear, forcing;  ///< empty: the case's own (jacobi-pcg, fixed)
+};
+
+[[noreturn]] void usage() {
+  std::fprintf(stderr,
+               "usage: bench_stator_solve [CELLS,...] [--linear jacobi-pcg|amg] [--forcing fixed|eisenstat-walker]\n");
+  std::exit(2);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  std::string list = "5000,18000,50000";
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    if ((a == "--linear" || a == "--forcing") && i + 1 < argc) {
+      (a == "--linear" ? o.linear : o.forcing) = argv[++i];
+    } else if (!a.empty() && a.find_first_not_of("0123456789,") == std::string_view::npos) {
+      list = a;
+    } else {
+      usage();
+    }
+  }
+  if (!o.linear.empty() && o.linear != "jacobi-pcg" && o.linear != "amg") usage();
+  if (!o.forcing.empty() && o.forcing != "fixed" && o.forcing != "eisenstat-walker") usage();
+  std::stringstream items(list);
+  for (std::string item; std::getline(items, item, ',');) o.sizes.push_back(std::stol(item));
+  return o;
+}
+
+/// The generated case with the chosen solver: its flow-style `solver: {...}` map gains the keys.
+void choose_solver(const std::filesystem::path& file, const Options& o) {
+  std::string extra;
+  if (!o.linear.empty()) extra += ", linear: " + o.linear;
+  if (!o.forcing.empty()) extra += ", forcing: " + o.forcing;
+  if (extra.empty()) return;
+  const std::string text = hotmesh::io::read_file(file);
+  const std::regex solver(R"((\nsolver: \{[^}\n]*)\})");
+  if (!std::regex_search(text, solver)) {
+    std::fprintf(stderr, "bench_stator_solve: no `solver: {...}` line in %s\n", file.c_str());
+    std::exit(1);
+  }
+  hotmesh::io::write_file_atomically(file, std::regex_replace(text, solver, "$1" + extra + "}"));
 }
 
 int run(const std::string& command) {
@@ -36,26 +81,35 @@ int run(const std::string& command) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const Options options = parse(argc, argv);
   const auto folder = std::filesystem::temp_directory_path() / "hotmesh-bench-stator";
-  std::printf("### Stator-well sector, sliding on, 16 increments (`case_small.yaml` at growing sizes)\n\n");
-  std::printf("| target cells | hex cells | nodes | sliding nodes | Newton | PCG | wall s | solve s | ms per PCG iteration | "
-              "peak memory (MB) | min scaled Jacobian | other load |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const long cells : sizes(argc, argv)) {
+  std::printf("### Stator-well sector, sliding on, 16 increments (`case_small.yaml` at growing sizes), linear %s, forcing %s\n\n",
+              options.linear.empty() ? "jacobi-pcg" : options.linear.c_str(),
+              options.forcing.empty() ? "fixed" : options.forcing.c_str());
+  std::printf("| target cells | hex cells | nodes | sliding nodes | Newton | CG | wall s | assembly s | preconditioner s | "
+              "solve s | projection s | ms per CG iteration | peak memory (MB) | min scaled Jacobian | other load |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const long cells : options.sizes) {
     std::filesystem::remove_all(folder);
     const auto dir = folder / std::to_string(cells);
-    if (run(fmt::format("{} --cells {} '{}' > /dev/null", HOTMESH_MAKE_STATOR_WELL, cells, dir.string())) != 0) return 1;
+    if (run(fmt::format("{} --cells {} --binary '{}' > /dev/null", HOTMESH_MAKE_STATOR_WELL, cells, dir.string())) != 0) {
+      return 1;
+    }
+    choose_solver(dir / "case_small.yaml", options);
     const hotmesh::bench::LoadProbe load;
-    if (run(fmt::format("OMP_WAIT_POLICY=passive {} -q deform '{}'", HOTMESH_EXE, (dir / "case_small.yaml").string())) != 0) {
+    if (run(fmt::format("OMP_WAIT_POLICY=passive {} -q deform --binary '{}'", HOTMESH_EXE, (dir / "case_small.yaml").string())) !=
+        0) {
       return 1;
     }
     const double other = load.others();
     const auto r = nlohmann::json::parse(hotmesh::io::read_file(dir / "case_small-out" / "report.json"));
-    const double solve = r["seconds"]["solve"].get<double>();
+    const auto& seconds = r["seconds"];
+    const double solve = seconds["solve"].get<double>();
     const long pcg = r["pcg_iterations"].get<long>();
-    std::printf("| %ld | %ld | %ld | %ld | %ld | %ld | %.1f | %.1f | %.2f | %.0f | %.3f | %.2f |\n", cells,
+    std::printf("| %ld | %ld | %ld | %ld | %ld | %ld | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f | %.3f | %.2f |\n", cells,
                 r["mesh"]["cells"].get<long>(), r["mesh"]["nodes"].get<long>(), r["sliding_nodes"].get<long>(),
-                r["newton_iterations"].get<long>(), pcg, r["wall_seconds"].get<double>(), solve,
+                r["newton_iterations"].get<long>(), pcg, r["wall_seconds"].get<double>(), seconds["assembly"].get<double>(),
+                seconds["preconditioner"].get<double>(), solve, seconds["projection"].get<double>(),
                 1e3 * solve / static_cast<double>(pcg), r["peak_memory_bytes"].get<double>() / 1e6,
                 r["min_scaled_jacobian"].get<double>(), other);
     std::fflush(stdout);
