@@ -63,7 +63,9 @@ void LinearSolver::update(StiffnessOperator& k, const ConstrainedSystem& s, std:
 double Forcing::next(int n, double residual, double initial) {
   const double floor = options_.pcg_tolerance;
   double eta = floor;
-  if (options_.forcing == ForcingTerm::eisenstat_walker && n > 0 && previous_residual_ > 0.0) {
+  constexpr double kSufficientDecrease = 1e-4;  // t
+  const bool decreased = residual <= (1.0 - kSufficientDecrease * (1.0 - previous_eta_)) * previous_residual_;
+  if (options_.forcing == ForcingTerm::eisenstat_walker && n > 0 && previous_residual_ > 0.0 && decreased) {
     constexpr double kGamma = 0.9, kAlpha = 2.0, kMax = 0.1;
     const double ratio = residual / previous_residual_;
     eta = kGamma * std::pow(ratio, kAlpha);

@@ -103,7 +103,11 @@ class ConstrainedOperator final : public LinearOperator {
 /// safeguarded by gamma eta_n-1^alpha when that exceeds 0.1, capped at eta_max = 0.1, never
 /// below pcg_tolerance, and not tighter than the Newton tolerance needs:
 /// eta_n >= 0.5 newton_tolerance ||R_0|| / ||R_n||. The first solve of an increment uses
-/// pcg_tolerance.
+/// pcg_tolerance, and so does the solve after any step that failed the inexact Newton
+/// condition of sufficient decrease (Eisenstat and Walker, SIAM J. Optim. 4, 1994),
+///     ||R_n|| <= (1 - t (1 - eta_n-1)) ||R_n-1||,   t = 1e-4:
+/// choice 2 alone keeps eta near its cap while Newton stalls, and the loose solves then make
+/// no progress (the 2.7-million-cell stator well, docs/performance.md).
 class Forcing {
  public:
   explicit Forcing(const SolverOptions& options) : options_(options) {}

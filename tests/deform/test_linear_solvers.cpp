@@ -394,5 +394,22 @@ TEST(Forcing, EisenstatWalkerLoosensWhileNewtonIsSlowAndNeverGoesBelowThePcgTole
   EXPECT_EQ(g.next(1, 1e-3, 1.0), 1e-3);  // 0.9 * 1e-6, but never below pcg_tolerance
 }
 
+TEST(Forcing, EisenstatWalkerFallsBackToThePcgToleranceWhenNewtonStalls) {
+  SolverOptions o;
+  o.pcg_tolerance = 1e-3;
+  o.newton_tolerance = 1e-4;
+  o.forcing = ForcingTerm::eisenstat_walker;
+  detail::Forcing f(o);
+  EXPECT_EQ(f.next(0, 1.0, 1.0), 1e-3);
+  EXPECT_DOUBLE_EQ(f.next(1, 0.132, 1.0), 0.9 * 0.132 * 0.132);  // decreased: choice 2
+  // The step solved to eta left the residual where it was: no sufficient decrease, so the next
+  // solve is a full one, not another loose one (what stalled the 2.7M-cell sector).
+  EXPECT_EQ(f.next(2, 0.147, 1.0), 1e-3);
+  const double short_of_it = 0.147 * (1.0 - 1e-4 * (1.0 - 1e-3)) * (1.0 + 1e-9);
+  EXPECT_EQ(f.next(3, short_of_it, 1.0), 1e-3);
+  // A step that decreases enough brings choice 2 back: 0.9 (1/10)^2.
+  EXPECT_NEAR(f.next(4, 0.1 * short_of_it, 1.0), 0.009, 1e-12);
+}
+
 }  // namespace
 }  // namespace hotmesh::deform
