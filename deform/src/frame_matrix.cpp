@@ -261,17 +261,17 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
   const auto bs = static_cast<PetscInt>(d);
   const auto n = static_cast<std::size_t>(pass.s.stiffness.element_size());
   const auto corners = static_cast<PetscInt>(n / d);  // block rows and columns of K~_e
-  if (first) {
+  if (first) {  // the sparsity only: the values are added again below, as every later assembly adds them
+    const ElementPass pattern{pass.s, {}, {}, {}};
     FrameElement e;
     for (const CellId cell : local) {
-      pass.frame_element(cell, frames, rows, e);
+      pattern.frame_element(cell, frames, rows, e);
       check(MatSetValuesBlocked(a, corners, e.index.data(), corners, e.index.data(), e.values.data(), ADD_VALUES),
             "MatSetValuesBlocked");
     }
     check(MatAssemblyBegin(a, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(a, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
     check(MatSetOption(a, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
-    return;
   }
   PetscBool distributed = PETSC_FALSE;
   check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(a), MATMPIAIJ, &distributed), "PetscObjectTypeCompare");

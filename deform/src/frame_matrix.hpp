@@ -103,10 +103,12 @@ struct ElementPass {
 };
 
 /// K~ into the preallocated `a`, from the K_e of this rank's cells `local` (and their part of
-/// the residual, see ElementPass). The first assembly goes through MatSetValuesBlocked and
-/// fixes the sparsity; later ones add each block straight into the AIJ values of this rank's
-/// rows, and only the blocks of rows owned by other ranks go through MatSetValuesBlocked.
-/// With one process the cells of a colour are added in parallel.
+/// the residual, see ElementPass). Each block is added straight into the AIJ values of this
+/// rank's rows, and only the blocks of rows owned by other ranks go through
+/// MatSetValuesBlocked. With one process the cells of a colour are added in parallel. The
+/// first assembly first fixes the sparsity through MatSetValuesBlocked, then adds the values
+/// as every later one does: the same sums in the same order, so that a run resumed from a
+/// checkpoint (a new process, a first assembly) reproduces the uninterrupted run bit for bit.
 void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& frames, const BlockRows& rows,
                            const AssemblyOrder& order, std::span<const CellId> local, bool first);
 

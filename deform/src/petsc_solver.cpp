@@ -176,6 +176,10 @@ class AmgSolver final : public LinearSolver {
     t = Clock::now();
     const bool rebuild = fresh_ || reuse_ == Reuse::none;
     if (rebuild) set_near_null_space(a_, *frames_, *rows_, s.points, rotations_);
+    // Each increment's hierarchy from a new KSP, as in a new process: PCGAMG carries state from
+    // one set-up into the next, and a run resumed from a checkpoint would otherwise take other
+    // CG iterations than the uninterrupted run.
+    if (fresh_ && reuse_ != Reuse::interpolation) create_ksp();
     PC pc = nullptr;
     check(KSPGetPC(ksp_, &pc), "KSPGetPC");
     if (reuse_ == Reuse::interpolation) check(PCGAMGSetReuseInterpolation(pc, fresh_ ? PETSC_FALSE : PETSC_TRUE), "PCGAMGSetReuseInterpolation");
@@ -241,6 +245,12 @@ class AmgSolver final : public LinearSolver {
     rhs_.assign(static_cast<std::size_t>(rows_->count) * static_cast<std::size_t>(d), 0.0);
     solution_.assign(rhs_.size(), 0.0);
 
+    create_ksp();
+  }
+
+  /// CG with the multigrid preconditioner, options from PETSC_OPTIONS (prefix hotmesh_).
+  void create_ksp() {
+    if (ksp_) check(KSPDestroy(&ksp_), "KSPDestroy");
     check(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a_)), &ksp_), "KSPCreate");
     check(KSPSetOptionsPrefix(ksp_, "hotmesh_"), "KSPSetOptionsPrefix");
     check(KSPSetType(ksp_, KSPCG), "KSPSetType");
