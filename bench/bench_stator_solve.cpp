@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -64,13 +63,15 @@ void choose_solver(const std::filesystem::path& file, const Options& o) {
   if (!o.linear.empty()) extra += ", linear: " + o.linear;
   if (!o.forcing.empty()) extra += ", forcing: " + o.forcing;
   if (extra.empty()) return;
-  const std::string text = hotmesh::io::read_file(file);
-  const std::regex solver(R"((\nsolver: \{[^}\n]*)\})");
-  if (!std::regex_search(text, solver)) {
+  std::string text = hotmesh::io::read_file(file);
+  const auto line = text.find("\nsolver: {");
+  const auto end = line == std::string::npos ? line : text.find('}', line);
+  if (end == std::string::npos || text.find('\n', line + 1) < end) {
     std::fprintf(stderr, "bench_stator_solve: no `solver: {...}` line in %s\n", file.c_str());
     std::exit(1);
   }
-  hotmesh::io::write_file_atomically(file, std::regex_replace(text, solver, "$1" + extra + "}"));
+  text.insert(end, extra);
+  hotmesh::io::write_file_atomically(file, text);
 }
 
 int run(const std::string& command) {
