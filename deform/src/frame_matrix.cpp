@@ -3,7 +3,9 @@
 #include "frame_matrix.hpp"
 
 #include <algorithm>
+#include <array>
 #include <optional>
+#include <vector>
 
 #include "parallel.hpp"
 #include "rank_exchange.hpp"
@@ -261,12 +263,13 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
   const auto bs = static_cast<PetscInt>(d);
   const auto n = static_cast<std::size_t>(pass.s.stiffness.element_size());
   const auto corners = static_cast<PetscInt>(n / d);  // block rows and columns of K~_e
-  if (first) {  // the sparsity only: the values are added again below, as every later assembly adds them
-    const ElementPass pattern{pass.s, {}, {}, {}};
-    FrameElement e;
+  if (first) {  // the sparsity only (zero blocks, no K_e): the values are added below, as every later assembly adds them
+    const std::vector<double> zeros(n * n, 0.0);
+    std::array<PetscInt, 8> index{};
     for (const CellId cell : local) {
-      pattern.frame_element(cell, frames, rows, e);
-      check(MatSetValuesBlocked(a, corners, e.index.data(), corners, e.index.data(), e.values.data(), ADD_VALUES),
+      const auto nodes = pass.s.stiffness.cells().nodes(static_cast<std::size_t>(cell));
+      for (std::size_t k = 0; k < nodes.size(); ++k) index[k] = rows[frames.owner(nodes[k])];
+      check(MatSetValuesBlocked(a, corners, index.data(), corners, index.data(), zeros.data(), ADD_VALUES),
             "MatSetValuesBlocked");
     }
     check(MatAssemblyBegin(a, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");

@@ -179,7 +179,7 @@ class AmgSolver final : public LinearSolver {
     // Each increment's hierarchy from a new KSP, as in a new process: PCGAMG carries state from
     // one set-up into the next, and a run resumed from a checkpoint would otherwise take other
     // CG iterations than the uninterrupted run.
-    if (fresh_ && reuse_ != Reuse::interpolation) create_ksp();
+    if (!ksp_ || (fresh_ && reuse_ != Reuse::interpolation)) create_ksp();
     PC pc = nullptr;
     check(KSPGetPC(ksp_, &pc), "KSPGetPC");
     if (reuse_ == Reuse::interpolation) check(PCGAMGSetReuseInterpolation(pc, fresh_ ? PETSC_FALSE : PETSC_TRUE), "PCGAMGSetReuseInterpolation");
@@ -244,8 +244,6 @@ class AmgSolver final : public LinearSolver {
     full_.assign(s.stiffness.size(), 0.0);
     rhs_.assign(static_cast<std::size_t>(rows_->count) * static_cast<std::size_t>(d), 0.0);
     solution_.assign(rhs_.size(), 0.0);
-
-    create_ksp();
   }
 
   /// CG with the multigrid preconditioner, options from PETSC_OPTIONS (prefix hotmesh_).

@@ -377,11 +377,17 @@ TEST(Forcing, FixedGivesThePcgToleranceEveryTime) {
   EXPECT_EQ(f.next(2, 1e-3, 1.0), 1e-3);
 }
 
-TEST(Forcing, EisenstatWalkerLoosensWhileNewtonIsSlowAndNeverGoesBelowThePcgTolerance) {
+/// Eisenstat-Walker forcing with pcg_tolerance 1e-3 and newton_tolerance 1e-4.
+SolverOptions eisenstat_walker_options() {
   SolverOptions o;
   o.pcg_tolerance = 1e-3;
   o.newton_tolerance = 1e-4;
   o.forcing = ForcingTerm::eisenstat_walker;
+  return o;
+}
+
+TEST(Forcing, EisenstatWalkerLoosensWhileNewtonIsSlowAndNeverGoesBelowThePcgTolerance) {
+  SolverOptions o = eisenstat_walker_options();
   detail::Forcing f(o);
   EXPECT_EQ(f.next(0, 1.0, 1.0), 1e-3);          // the first solve of an increment
   EXPECT_DOUBLE_EQ(f.next(1, 0.9, 1.0), 0.1);    // slow: 0.9 * 0.9^2, capped at 0.1
@@ -395,11 +401,7 @@ TEST(Forcing, EisenstatWalkerLoosensWhileNewtonIsSlowAndNeverGoesBelowThePcgTole
 }
 
 TEST(Forcing, EisenstatWalkerFallsBackToThePcgToleranceWhenNewtonStalls) {
-  SolverOptions o;
-  o.pcg_tolerance = 1e-3;
-  o.newton_tolerance = 1e-4;
-  o.forcing = ForcingTerm::eisenstat_walker;
-  detail::Forcing f(o);
+  detail::Forcing f(eisenstat_walker_options());
   EXPECT_EQ(f.next(0, 1.0, 1.0), 1e-3);
   EXPECT_DOUBLE_EQ(f.next(1, 0.132, 1.0), 0.9 * 0.132 * 0.132);  // decreased: choice 2
   // The step solved to eta left the residual where it was: no sufficient decrease, so the next
