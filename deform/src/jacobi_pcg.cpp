@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 #include "hotmesh/deform/pcg.hpp"
 #include "linear_solver.hpp"
@@ -124,6 +125,13 @@ class NodalJacobi final : public LinearOperator {
   std::vector<double> blocks_;  ///< B_i, then M_i, row-major per node
 };
 
+/// ||D^-1 r|| with the system's node stiffness; the plain ||r|| without one.
+std::function<double(std::span<const double>)> residual_norm(const ConstrainedSystem& s) {
+  if (s.node_stiffness.empty()) return {};
+  const auto d = static_cast<std::size_t>(s.stiffness.dofs_per_node());
+  return [&s, d](std::span<const double> r) { return scaled_residual_norm(r, s.node_stiffness, d); };
+}
+
 class JacobiPcgSolver final : public LinearSolver {
  public:
   explicit JacobiPcgSolver(const SolverOptions& options) : max_iterations_(options.max_pcg_iterations) {}
@@ -140,7 +148,8 @@ class JacobiPcgSolver final : public LinearSolver {
                         {.relative_tolerance = tolerance,
                          .max_iterations = max_iterations_,
                          .record_history = false,
-                         .project = [&s](std::span<double> v) { s.constraints.project(v); }});
+                         .project = [&s](std::span<double> v) { s.constraints.project(v); },
+                         .norm = residual_norm(s)});
     timings.solve += seconds_since(t);
     return {cg.iterations, cg.converged, cg.breakdown,
             cg.initial_residual > 0.0 ? cg.final_residual / cg.initial_residual : 0.0};

@@ -60,11 +60,12 @@ void LinearSolver::update(StiffnessOperator& k, const ConstrainedSystem& s, std:
   s.constraints.project(r);
 }
 
-double Forcing::next(int n, double residual, double initial) {
+LinearTarget Forcing::next(int n, double residual, double initial) {
   const double floor = options_.pcg_tolerance;
   double eta = floor;
   constexpr double kSufficientDecrease = 1e-4;  // t
-  const bool decreased = residual <= (1.0 - kSufficientDecrease * (1.0 - previous_eta_)) * previous_residual_;
+  const bool decreased =
+      n == 0 || residual <= (1.0 - kSufficientDecrease * (1.0 - previous_eta_)) * previous_residual_;
   if (options_.forcing == ForcingTerm::eisenstat_walker && n > 0 && previous_residual_ > 0.0 && decreased) {
     constexpr double kGamma = 0.9, kAlpha = 2.0, kMax = 0.1;
     const double ratio = residual / previous_residual_;
@@ -78,7 +79,7 @@ double Forcing::next(int n, double residual, double initial) {
   }
   previous_residual_ = residual;
   previous_eta_ = eta;
-  return eta;
+  return {eta, n == 0 || !decreased};
 }
 
 }  // namespace hotmesh::deform::detail

@@ -25,12 +25,15 @@ namespace hotmesh::deform::detail {
 
 /// The system of one Newton step: K(n) as element matrices at the current geometry, the
 /// directions nodes may not move in (with the current normals of sliding nodes), periodic
-/// pairs, and the current points (the AMG near-null space is built from them).
+/// pairs, the current points (the AMG near-null space is built from them) and, when the
+/// Newton loop wants the solve to stop on its own norm ||D^-1 r|| (Forcing), each node's
+/// stiffness D as LinearSolver::update wrote it.
 struct ConstrainedSystem {
   const StiffnessOperator& stiffness;
   const NodeConstraints& constraints;
   const PeriodicCoupling& periodic;
   std::span<const Vec3> points;
+  std::span<const double> node_stiffness;  ///< empty: the solve stops on the plain ||r||
 };
 
 struct LinearSolveResult {
@@ -51,7 +54,9 @@ class LinearSolver {
   /// add_node_stiffness), which scales the Newton residual's norm (mesh_motion.cpp).
   virtual void update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
                       std::span<double> node_stiffness, MotionTimings& timings);
-  /// Solves the system for p from p = 0 to ||r|| <= tolerance ||rhs||. `rhs` lies in the
+  /// Solves the system for p from p = 0 to ||r|| <= tolerance ||rhs||, r = rhs - K p, or, when
+  /// the system carries the node stiffness D, to ||D^-1 r|| <= tolerance ||D^-1 rhs||: the
+  /// norm the Newton loop converges in (scaled_residual_norm, Forcing). `rhs` lies in the
   /// admissible subspace (projected, folded); so does p, with p = 0 at slaves (the Newton loop
   /// expands u afterwards). Adds its times to timings.assembly (what it assembles beyond the
   /// element matrices), .preconditioner and .solve.
@@ -97,6 +102,12 @@ class ConstrainedOperator final : public LinearOperator {
   mutable std::vector<double> expanded_;  ///< work space (an operator is used by one thread)
 };
 
+/// What the linear solve of a Newton step must reach.
+struct LinearTarget {
+  double tolerance = 0.0;     ///< the relative reduction of the residual
+  bool newton_norm = false;   ///< measured as ||D^-1 r||, the Newton loop's norm, not as ||r||
+};
+
 /// Inexact Newton: the tolerance of each inner solve. `fixed` gives pcg_tolerance every time.
 /// `eisenstat_walker` is Eisenstat and Walker's choice 2 (SIAM J. Sci. Comput. 17, 1996),
 ///     eta_n = gamma (||R_n|| / ||R_n-1||)^alpha,   gamma = 0.9, alpha = 2,
@@ -108,11 +119,16 @@ class ConstrainedOperator final : public LinearOperator {
 ///     ||R_n|| <= (1 - t (1 - eta_n-1)) ||R_n-1||,   t = 1e-4:
 /// choice 2 alone keeps eta near its cap while Newton stalls, and the loose solves then make
 /// no progress (the 2.7-million-cell stator well, docs/performance.md).
+/// The norm the solve stops on: the plain ||r|| costs a fraction of the CG iterations of
+/// ||D^-1 r||, but the stiffest cells dominate it and a solve can meet it leaving ||D^-1 R|| as
+/// it was. So the first solve of an increment, which sets the course of the increment, and the
+/// solve after a step that failed the condition of sufficient decrease (with either forcing)
+/// stop on ||D^-1 r||; the others on ||r|| (docs/method.md, inexact Newton).
 class Forcing {
  public:
   explicit Forcing(const SolverOptions& options) : options_(options) {}
-  /// Tolerance for the solve that follows the residual ||R_n|| (n = 0, 1, ... in an increment).
-  double next(int n, double residual, double initial);
+  /// The target of the solve that follows the residual ||R_n|| (n = 0, 1, ... in an increment).
+  LinearTarget next(int n, double residual, double initial);
 
  private:
   SolverOptions options_;

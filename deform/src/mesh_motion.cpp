@@ -229,7 +229,7 @@ class Motion {
       displace(x, u, trial);
       // K(n) at the current geometry (eq. 8) and R(n) = K(n) u(n) - f (eq. 7; f is K's action on
       // the boundary motion), with only its tangential part F_t at sliding nodes (eq. 17).
-      const detail::ConstrainedSystem system{stiffness_, setup_.constraints, setup_.periodic, trial};
+      const detail::ConstrainedSystem system{stiffness_, setup_.constraints, setup_.periodic, trial, {}};
       linear_->update(stiffness_, system, u, r, node_stiffness, result_.timings);
       const double residual = detail::scaled_residual_norm(r, node_stiffness, dim_);
       if (it == 0) r0 = residual;
@@ -254,13 +254,16 @@ class Motion {
       // K(n) p = -R(n) on the free degrees of freedom, from p = 0 (eq. 8, section 3); at
       // sliding nodes the projected operator solves eq. (16) and keeps p . n = 0 (eq. 19).
       for (std::size_t i = 0; i < dofs; ++i) rhs[i] = -r[i];
-      const double tolerance = forcing.next(it, residual, r0);
-      const auto solved = linear_->solve(system, rhs, p, tolerance, result_.timings);
+      const auto target = forcing.next(it, residual, r0);
+      const detail::ConstrainedSystem to_solve{stiffness_, setup_.constraints, setup_.periodic, trial,
+                                               target.newton_norm ? std::span<const double>(node_stiffness)
+                                                                  : std::span<const double>()};
+      const auto solved = linear_->solve(to_solve, rhs, p, target.tolerance, result_.timings);
       auto& step = record.newton.back();
       step.pcg_iterations = solved.iterations;
       step.pcg_converged = solved.converged;
       step.pcg_reduction = solved.reduction;
-      step.linear_tolerance = tolerance;
+      step.linear_tolerance = target.tolerance;
       if (solved.breakdown) {
         record.failure = "the linear solver broke down (the stiffness is not positive definite on the free nodes)";
         break;

@@ -10,11 +10,12 @@ PcgResult pcg(const LinearOperator& a, const LinearOperator& m, std::span<const 
   const std::size_t n = a.size();
   std::vector<double> r(n), z(n), d(n), q(n);
   PcgResult result;
+  const auto residual_norm = [&options](std::span<const double> v) { return options.norm ? options.norm(v) : norm2(v); };
 
   a.apply(x, q);  // r = b - A x
   for (std::size_t i = 0; i < n; ++i) r[i] = b[i] - q[i];
   if (options.project) options.project(r);
-  double rnorm = norm2(r);
+  double rnorm = residual_norm(r);
   result.initial_residual = rnorm;
   result.final_residual = rnorm;
   if (options.record_history) result.history.push_back(1.0);
@@ -42,7 +43,7 @@ PcgResult pcg(const LinearOperator& a, const LinearOperator& m, std::span<const 
     const double alpha = rz / dq;
     axpy(alpha, d, x);   // step 1: update the solution
     axpy(-alpha, q, r);  // step 2: update the residual
-    rnorm = norm2(r);
+    rnorm = residual_norm(r);
     result.iterations = k + 1;
     result.final_residual = rnorm;
     if (options.record_history) result.history.push_back(rnorm / result.initial_residual);

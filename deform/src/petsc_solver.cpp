@@ -5,8 +5,8 @@
 // nodal frames of the current normals (nodal_frames.hpp) added into a matrix of block size d
 // whose sparsity was preallocated once from the node graph, slaves merged into their masters
 // (MAT_NEW_NONZERO_LOCATION_ERR guards it). Then (solve()) the right-hand side is r~ = T^T r,
-// CG (KSPCG, stopping on the unpreconditioned residual as the matrix-free PCG does) with
-// algebraic multigrid solves K~ p~ = r~ from p~ = 0, and p = T p~. PCGAMG gets the
+// CG (KSPCG) with algebraic multigrid solves K~ p~ = r~ from p~ = 0, stopping on the norm
+// the system asks for as the matrix-free PCG does (converged()), and p = T p~. PCGAMG gets the
 // translations written in the frames as near-null space.
 //
 // The multigrid hierarchy is built at the first Newton step of an increment and kept for
@@ -93,6 +93,42 @@ void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows
   for (Vec& v : vectors) check(VecDestroy(&v), "VecDestroy");
 }
 
+/// When CG stops: at ||r~|| <= tolerance ||r~_0||, or, with the system's node stiffness D, at
+/// ||D^-1 r~|| <= tolerance ||D^-1 r~_0|| (the frames are orthonormal per node, so both equal
+/// the norms of r). The scaled norm needs the residual vector, which KSPCG keeps to itself:
+/// KSPBuildResidual forms it with one more product per iteration.
+struct StoppingTest {
+  double tolerance = 0.0;
+  double initial = 0.0;  ///< the norm of the right-hand side (p~ = 0 at the start)
+  double last = 0.0;     ///< the norm at the last iteration tested
+  bool scaled = false;
+  Vec weight = nullptr;  ///< D^-1 at this rank's rows (created with the first scaled solve)
+  Vec work = nullptr, residual = nullptr;
+
+  static PetscErrorCode converged(KSP ksp, PetscInt iteration, PetscReal norm, KSPConvergedReason* reason, void* self) {
+    auto& test = *static_cast<StoppingTest*>(self);
+    *reason = KSP_CONVERGED_ITERATING;
+    if (PetscIsInfOrNanReal(norm)) {
+      *reason = KSP_DIVERGED_NANORINF;
+      return 0;
+    }
+    if (iteration == 0) {
+      test.last = test.initial;
+      return 0;
+    }
+    test.last = norm;
+    if (test.scaled) {
+      Vec r = nullptr;
+      PetscErrorCode code = KSPBuildResidual(ksp, test.work, test.residual, &r);
+      if (code == 0) code = VecPointwiseMult(r, r, test.weight);
+      if (code == 0) code = VecNorm(r, NORM_2, &test.last);
+      if (code != 0) return code;
+    }
+    if (test.last <= test.tolerance * test.initial) *reason = KSP_CONVERGED_RTOL;
+    return 0;
+  }
+};
+
 // --- The solver ---------------------------------------------------------------------------
 
 enum class Reuse { none, interpolation, preconditioner };
@@ -130,6 +166,9 @@ class AmgSolver final : public LinearSolver {
     if (all_) VecDestroy(&all_);
     if (b_) VecDestroy(&b_);
     if (x_) VecDestroy(&x_);
+    for (Vec* v : {&stopping_.weight, &stopping_.work, &stopping_.residual}) {
+      if (*v) VecDestroy(v);
+    }
     if (a_) MatDestroy(&a_);
   }
   AmgSolver(const AmgSolver&) = delete;
@@ -167,7 +206,20 @@ class AmgSolver final : public LinearSolver {
     frames_->to_frames(rhs, full_);
     rows_->gather(full_, rhs_, d);
     LinearSolveResult result;
-    const double initial = norm2(rhs_);
+    const bool scaled = !s.node_stiffness.empty();
+    if (scaled) {
+      if (!stopping_.weight) {  // the first solve in the scaled norm
+        for (Vec* v : {&stopping_.weight, &stopping_.work, &stopping_.residual}) check(VecDuplicate(x_, v), "VecDuplicate");
+        weight_.assign(rhs_.size(), 1.0);
+      }
+      for (std::size_t i = 0; i < rhs_.size(); ++i) {
+        const double k = s.node_stiffness[static_cast<std::size_t>(rows_->node_of[i / d])];
+        weight_[i] = k > 0.0 ? 1.0 / k : 1.0;
+        solution_[i] = weight_[i] * rhs_[i];  // work space until the solve
+      }
+      copy_to(weight_, stopping_.weight);
+    }
+    const double initial = norm2(scaled ? std::span<const double>(solution_) : std::span<const double>(rhs_));
     if (!(initial > 0.0)) {
       std::fill(p.begin(), p.end(), 0.0);
       result.converged = true;
@@ -187,6 +239,10 @@ class AmgSolver final : public LinearSolver {
           "KSPSetReusePreconditioner");
     check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
     check(KSPSetTolerances(ksp_, tolerance, 1e-300, PETSC_DEFAULT, options_.max_pcg_iterations), "KSPSetTolerances");
+    stopping_.tolerance = tolerance;
+    stopping_.initial = initial;
+    stopping_.scaled = scaled;
+    check(KSPSetConvergenceTest(ksp_, StoppingTest::converged, &stopping_, nullptr), "KSPSetConvergenceTest");
     check(KSPSetUp(ksp_), "KSPSetUp");
     timings.preconditioner += seconds_since(t);
 
@@ -195,10 +251,9 @@ class AmgSolver final : public LinearSolver {
     check(KSPSolve(ksp_, b_, x_), "KSPSolve");
     PetscInt iterations = 0;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-    PetscReal residual = 0.0;
     check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
     check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
-    check(KSPGetResidualNorm(ksp_, &residual), "KSPGetResidualNorm");
+    const double residual = stopping_.last;
     gather_solution();
     rows_->scatter(solution_, full_, d);
     frames_->from_frames(full_, p);
@@ -252,7 +307,7 @@ class AmgSolver final : public LinearSolver {
     check(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a_)), &ksp_), "KSPCreate");
     check(KSPSetOptionsPrefix(ksp_, "hotmesh_"), "KSPSetOptionsPrefix");
     check(KSPSetType(ksp_, KSPCG), "KSPSetType");
-    // Stop on ||b - A x|| <= tol ||b||, as the matrix-free PCG does.
+    // The norm of b - A x for StoppingTest (the plain norm; the scaled one it forms itself).
     check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
     PC pc = nullptr;
     check(KSPGetPC(ksp_, &pc), "KSPGetPC");
@@ -304,6 +359,8 @@ class AmgSolver final : public LinearSolver {
   bool assembled_ = false;  ///< update() assembled K~ for the coming solve()
   std::vector<double> full_;             ///< d per node, in the frames
   std::vector<double> rhs_, solution_;  ///< d per block row
+  std::vector<double> weight_;           ///< D^-1 per block row, for a solve in the scaled norm
+  StoppingTest stopping_;
 };
 
 }  // namespace
