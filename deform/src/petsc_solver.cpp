@@ -207,19 +207,8 @@ class AmgSolver final : public LinearSolver {
     rows_->gather(full_, rhs_, d);
     LinearSolveResult result;
     const bool scaled = !s.node_stiffness.empty();
-    if (scaled) {
-      if (!stopping_.weight) {  // the first solve in the scaled norm
-        for (Vec* v : {&stopping_.weight, &stopping_.work, &stopping_.residual}) check(VecDuplicate(x_, v), "VecDuplicate");
-        weight_.assign(rhs_.size(), 1.0);
-      }
-      for (std::size_t i = 0; i < rhs_.size(); ++i) {
-        const double k = s.node_stiffness[static_cast<std::size_t>(rows_->node_of[i / d])];
-        weight_[i] = k > 0.0 ? 1.0 / k : 1.0;
-        solution_[i] = weight_[i] * rhs_[i];  // work space until the solve
-      }
-      copy_to(weight_, stopping_.weight);
-    }
-    const double initial = norm2(scaled ? std::span<const double>(solution_) : std::span<const double>(rhs_));
+    copy_to(rhs_, b_);
+    const double initial = scaled ? scaled_norm_of_b(s.node_stiffness, d) : norm2(rhs_);
     if (!(initial > 0.0)) {
       std::fill(p.begin(), p.end(), 0.0);
       result.converged = true;
@@ -247,7 +236,6 @@ class AmgSolver final : public LinearSolver {
     timings.preconditioner += seconds_since(t);
 
     t = Clock::now();
-    copy_to(rhs_, b_);
     check(KSPSolve(ksp_, b_, x_), "KSPSolve");
     PetscInt iterations = 0;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
@@ -299,6 +287,26 @@ class AmgSolver final : public LinearSolver {
     full_.assign(s.stiffness.size(), 0.0);
     rhs_.assign(static_cast<std::size_t>(rows_->count) * static_cast<std::size_t>(d), 0.0);
     solution_.assign(rhs_.size(), 0.0);
+  }
+
+  /// ||D^-1 b|| for StoppingTest, with D^-1 written at this rank's rows of its weight.
+  double scaled_norm_of_b(std::span<const double> node_stiffness, std::size_t d) {
+    if (!stopping_.weight) {  // the first solve in the scaled norm
+      for (Vec* v : {&stopping_.weight, &stopping_.work, &stopping_.residual}) check(VecDuplicate(x_, v), "VecDuplicate");
+    }
+    PetscInt lo = 0, hi = 0;
+    check(VecGetOwnershipRange(stopping_.weight, &lo, &hi), "VecGetOwnershipRange");
+    PetscScalar* w = nullptr;
+    check(VecGetArrayWrite(stopping_.weight, &w), "VecGetArrayWrite");
+    for (PetscInt i = lo; i < hi; ++i) {
+      const double k = node_stiffness[static_cast<std::size_t>(rows_->node_of[static_cast<std::size_t>(i) / d])];
+      w[i - lo] = k > 0.0 ? 1.0 / k : 1.0;
+    }
+    check(VecRestoreArrayWrite(stopping_.weight, &w), "VecRestoreArrayWrite");
+    check(VecPointwiseMult(stopping_.work, b_, stopping_.weight), "VecPointwiseMult");
+    PetscReal norm = 0.0;
+    check(VecNorm(stopping_.work, NORM_2, &norm), "VecNorm");
+    return norm;
   }
 
   /// CG with the multigrid preconditioner, options from PETSC_OPTIONS (prefix hotmesh_).
@@ -359,7 +367,6 @@ class AmgSolver final : public LinearSolver {
   bool assembled_ = false;  ///< update() assembled K~ for the coming solve()
   std::vector<double> full_;             ///< d per node, in the frames
   std::vector<double> rhs_, solution_;  ///< d per block row
-  std::vector<double> weight_;           ///< D^-1 per block row, for a solve in the scaled norm
   StoppingTest stopping_;
 };
 
