@@ -254,6 +254,7 @@ class Motion {
       // K(n) p = -R(n) on the free degrees of freedom, from p = 0 (eq. 8, section 3); at
       // sliding nodes the projected operator solves eq. (16) and keeps p . n = 0 (eq. 19).
       for (std::size_t i = 0; i < dofs; ++i) rhs[i] = -r[i];
+      // Its tolerance, and whether it stops on this loop's ||D^-1 r|| or the cheaper ||r||: Forcing.
       const auto target = forcing.next(it, residual, r0);
       const detail::ConstrainedSystem to_solve{stiffness_, setup_.constraints, setup_.periodic, trial,
                                                target.newton_norm ? std::span<const double>(node_stiffness)

@@ -6,7 +6,7 @@
 // whose sparsity was preallocated once from the node graph, slaves merged into their masters
 // (MAT_NEW_NONZERO_LOCATION_ERR guards it). Then (solve()) the right-hand side is r~ = T^T r,
 // CG (KSPCG) with algebraic multigrid solves K~ p~ = r~ from p~ = 0, stopping on the norm
-// the system asks for as the matrix-free PCG does (converged()), and p = T p~. PCGAMG gets the
+// the system asks for as the matrix-free PCG does (StoppingTest), and p = T p~. PCGAMG gets the
 // translations written in the frames as near-null space.
 //
 // The multigrid hierarchy is built at the first Newton step of an increment and kept for
