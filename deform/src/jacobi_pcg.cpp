@@ -125,9 +125,9 @@ class NodalJacobi final : public LinearOperator {
   std::vector<double> blocks_;  ///< B_i, then M_i, row-major per node
 };
 
-/// ||D^-1 r|| with the system's node stiffness; the plain ||r|| without one.
-std::function<double(std::span<const double>)> residual_norm(const ConstrainedSystem& s) {
-  if (s.node_stiffness.empty()) return {};
+/// ||D^-1 r|| with the system's node stiffness for the Newton norm; the plain ||r|| otherwise.
+std::function<double(std::span<const double>)> residual_norm(const ConstrainedSystem& s, bool newton_norm) {
+  if (!newton_norm) return {};
   const auto d = static_cast<std::size_t>(s.stiffness.dofs_per_node());
   return [&s, d](std::span<const double> r) { return scaled_residual_norm(r, s.node_stiffness, d); };
 }
@@ -137,7 +137,7 @@ class JacobiPcgSolver final : public LinearSolver {
   explicit JacobiPcgSolver(const SolverOptions& options) : max_iterations_(options.max_pcg_iterations) {}
 
   LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p,
-                          double tolerance, MotionTimings& timings) override {
+                          const LinearTarget& target, MotionTimings& timings) override {
     const ConstrainedOperator k(s.stiffness, s.constraints, s.periodic);
     auto t = Clock::now();
     const NodalJacobi m(s.stiffness, s.constraints, s.periodic);
@@ -145,11 +145,11 @@ class JacobiPcgSolver final : public LinearSolver {
     t = Clock::now();
     std::fill(p.begin(), p.end(), 0.0);
     const auto cg = pcg(k, m, rhs, p,
-                        {.relative_tolerance = tolerance,
+                        {.relative_tolerance = target.tolerance,
                          .max_iterations = max_iterations_,
                          .record_history = false,
                          .project = [&s](std::span<double> v) { s.constraints.project(v); },
-                         .norm = residual_norm(s)});
+                         .norm = residual_norm(s, target.newton_norm)});
     timings.solve += seconds_since(t);
     return {cg.iterations, cg.converged, cg.breakdown,
             cg.initial_residual > 0.0 ? cg.final_residual / cg.initial_residual : 0.0};

@@ -25,15 +25,20 @@ namespace hotmesh::deform::detail {
 
 /// The system of one Newton step: K(n) as element matrices at the current geometry, the
 /// directions nodes may not move in (with the current normals of sliding nodes), periodic
-/// pairs, the current points (the AMG near-null space is built from them) and, when the
-/// Newton loop wants the solve to stop on its own norm ||D^-1 r|| (Forcing), each node's
-/// stiffness D as LinearSolver::update wrote it.
+/// pairs, the current points (the AMG near-null space is built from them) and each node's
+/// stiffness D as LinearSolver::update wrote it (the Newton loop's norm ||D^-1 R||).
 struct ConstrainedSystem {
   const StiffnessOperator& stiffness;
   const NodeConstraints& constraints;
   const PeriodicCoupling& periodic;
   std::span<const Vec3> points;
-  std::span<const double> node_stiffness;  ///< empty: the solve stops on the plain ||r||
+  std::span<const double> node_stiffness;  ///< may be empty if no solve asks for the Newton norm
+};
+
+/// What the linear solve of a Newton step must reach.
+struct LinearTarget {
+  double tolerance = 0.0;     ///< the relative reduction of the residual
+  bool newton_norm = false;   ///< measured as ||D^-1 r||, the Newton loop's norm, not as ||r||
 };
 
 struct LinearSolveResult {
@@ -54,14 +59,14 @@ class LinearSolver {
   /// add_node_stiffness), which scales the Newton residual's norm (mesh_motion.cpp).
   virtual void update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
                       std::span<double> node_stiffness, MotionTimings& timings);
-  /// Solves the system for p from p = 0 to ||r|| <= tolerance ||rhs||, r = rhs - K p, or, when
-  /// the system carries the node stiffness D, to ||D^-1 r|| <= tolerance ||D^-1 rhs||: the
-  /// norm the Newton loop converges in (scaled_residual_norm, Forcing). `rhs` lies in the
+  /// Solves the system for p from p = 0 to ||r|| <= target.tolerance ||rhs||, r = rhs - K p,
+  /// or, with target.newton_norm, to ||D^-1 r|| <= target.tolerance ||D^-1 rhs||: the norm the
+  /// Newton loop converges in (scaled_residual_norm, Forcing). `rhs` lies in the
   /// admissible subspace (projected, folded); so does p, with p = 0 at slaves (the Newton loop
   /// expands u afterwards). Adds its times to timings.assembly (what it assembles beyond the
   /// element matrices), .preconditioner and .solve.
   virtual LinearSolveResult solve(const ConstrainedSystem& system, std::span<const double> rhs, std::span<double> p,
-                                  double tolerance, MotionTimings& timings) = 0;
+                                  const LinearTarget& target, MotionTimings& timings) = 0;
   /// A new increment (or piece of one) starts: preconditioners kept for reuse are dropped.
   virtual void begin_increment() {}
 };
@@ -100,12 +105,6 @@ class ConstrainedOperator final : public LinearOperator {
   const NodeConstraints& c_;
   const PeriodicCoupling& periodic_;
   mutable std::vector<double> expanded_;  ///< work space (an operator is used by one thread)
-};
-
-/// What the linear solve of a Newton step must reach.
-struct LinearTarget {
-  double tolerance = 0.0;     ///< the relative reduction of the residual
-  bool newton_norm = false;   ///< measured as ||D^-1 r||, the Newton loop's norm, not as ||r||
 };
 
 /// Inexact Newton: the tolerance of each inner solve. `fixed` gives pcg_tolerance every time.

@@ -229,7 +229,7 @@ class Motion {
       displace(x, u, trial);
       // K(n) at the current geometry (eq. 8) and R(n) = K(n) u(n) - f (eq. 7; f is K's action on
       // the boundary motion), with only its tangential part F_t at sliding nodes (eq. 17).
-      const detail::ConstrainedSystem system{stiffness_, setup_.constraints, setup_.periodic, trial, {}};
+      const detail::ConstrainedSystem system{stiffness_, setup_.constraints, setup_.periodic, trial, node_stiffness};
       linear_->update(stiffness_, system, u, r, node_stiffness, result_.timings);
       const double residual = detail::scaled_residual_norm(r, node_stiffness, dim_);
       if (it == 0) r0 = residual;
@@ -256,10 +256,7 @@ class Motion {
       for (std::size_t i = 0; i < dofs; ++i) rhs[i] = -r[i];
       // Its tolerance, and whether it stops on this loop's ||D^-1 r|| or the cheaper ||r||: Forcing.
       const auto target = forcing.next(it, residual, r0);
-      const detail::ConstrainedSystem to_solve{stiffness_, setup_.constraints, setup_.periodic, trial,
-                                               target.newton_norm ? std::span<const double>(node_stiffness)
-                                                                  : std::span<const double>()};
-      const auto solved = linear_->solve(to_solve, rhs, p, target.tolerance, result_.timings);
+      const auto solved = linear_->solve(system, rhs, p, target, result_.timings);
       auto& step = record.newton.back();
       step.pcg_iterations = solved.iterations;
       step.pcg_converged = solved.converged;

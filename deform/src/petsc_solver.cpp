@@ -93,7 +93,7 @@ void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows
   for (Vec& v : vectors) check(VecDestroy(&v), "VecDestroy");
 }
 
-/// When CG stops: at ||r~|| <= tolerance ||r~_0||, or, with the system's node stiffness D, at
+/// When CG stops: at ||r~|| <= tolerance ||r~_0||, or, in the Newton norm with the node stiffness D, at
 /// ||D^-1 r~|| <= tolerance ||D^-1 r~_0|| (the frames are orthonormal per node, so both equal
 /// the norms of r). The scaled norm needs the residual vector, which KSPCG keeps to itself:
 /// KSPBuildResidual forms it with one more product per iteration.
@@ -196,8 +196,8 @@ class AmgSolver final : public LinearSolver {
     timings.assembly += seconds_since(t);
   }
 
-  LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p, double tolerance,
-                          MotionTimings& timings) override {
+  LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p,
+                          const LinearTarget& target, MotionTimings& timings) override {
     auto t = Clock::now();
     if (!assembled_) assemble(s, {}, {}, {});  // from the stored element matrices
     assembled_ = false;
@@ -206,7 +206,7 @@ class AmgSolver final : public LinearSolver {
     frames_->to_frames(rhs, full_);
     rows_->gather(full_, rhs_, d);
     LinearSolveResult result;
-    const bool scaled = !s.node_stiffness.empty();
+    const bool scaled = target.newton_norm;
     copy_to(rhs_, b_);
     const double initial = scaled ? scaled_norm_of_b(s.node_stiffness, d) : norm2(rhs_);
     if (!(initial > 0.0)) {
@@ -227,8 +227,10 @@ class AmgSolver final : public LinearSolver {
     check(KSPSetReusePreconditioner(ksp_, reuse_ == Reuse::preconditioner && !fresh_ ? PETSC_TRUE : PETSC_FALSE),
           "KSPSetReusePreconditioner");
     check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
-    check(KSPSetTolerances(ksp_, tolerance, 1e-300, PETSC_DEFAULT, options_.max_pcg_iterations), "KSPSetTolerances");
-    stopping_.tolerance = tolerance;
+    // StoppingTest decides convergence; PETSc keeps only the iteration limit.
+    check(KSPSetTolerances(ksp_, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, options_.max_pcg_iterations),
+          "KSPSetTolerances");
+    stopping_.tolerance = target.tolerance;
     stopping_.initial = initial;
     stopping_.scaled = scaled;
     check(KSPSetConvergenceTest(ksp_, StoppingTest::converged, &stopping_, nullptr), "KSPSetConvergenceTest");
@@ -300,7 +302,7 @@ class AmgSolver final : public LinearSolver {
     check(VecGetArrayWrite(stopping_.weight, &w), "VecGetArrayWrite");
     for (PetscInt i = lo; i < hi; ++i) {
       const double k = node_stiffness[static_cast<std::size_t>(rows_->node_of[static_cast<std::size_t>(i) / d])];
-      w[i - lo] = k > 0.0 ? 1.0 / k : 1.0;
+      w[i - lo] = k > 0.0 ? 1.0 / k : 0.0;  // as scaled_residual_norm, which skips such nodes
     }
     check(VecRestoreArrayWrite(stopping_.weight, &w), "VecRestoreArrayWrite");
     check(VecPointwiseMult(stopping_.work, b_, stopping_.weight), "VecPointwiseMult");
