@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>  // setenv (POSIX)
 #include <optional>
 #include <vector>
 
@@ -72,6 +73,11 @@ std::vector<int> partition_cells(const ElementList& list, const NodeCells& aroun
   check(MatPartitioningSetType(partitioner, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType");
   check(PetscObjectSetOptionsPrefix(reinterpret_cast<PetscObject>(partitioner), "hotmesh_"), "PetscObjectSetOptionsPrefix");
   check(MatPartitioningSetFromOptions(partitioner), "MatPartitioningSetFromOptions");
+  // PT-Scotch's threaded algorithms let the partition depend on how the threads are scheduled:
+  // on a loaded machine two runs of one case on two ranks took other CG iterations and wrote
+  // other meshes (2 runs in 6 on the 18 000-cell sector). One thread per rank makes the
+  // partition, and so the run, the same every time; a user's SCOTCH_PTHREAD_NUMBER stands.
+  setenv("SCOTCH_PTHREAD_NUMBER", "1", 0);
   IS part = nullptr, all = nullptr;
   check(MatPartitioningApply(partitioner, &part), "MatPartitioningApply");
   check(ISAllGather(part, &all), "ISAllGather");
