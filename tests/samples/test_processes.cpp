@@ -2,10 +2,10 @@
 // on a machine with fewer cores) move the stator-well sector — 3D, sliding disc walls,
 // passive and periodic faces — to where one process moves it: with the tolerances tightened
 // to 1e-10 the meshes agree to 1e-8 of the domain; runs on two ranks repeat bit for bit on a
-// busy machine. Rank 0 alone writes the outputs; a killed
-// job resumes on another number of ranks; a rank out of memory ends the job with exit code 4;
-// a case the ranks cannot run (jacobi-pcg) is refused once, with exit code 2 from mpirun, as is
-// a launch by another MPI's launcher.
+// busy machine. Rank 0 alone writes the outputs; a killed job resumes on another number of
+// ranks; a rank out of memory ends the job with exit code 4; a case the ranks cannot run
+// (jacobi-pcg) is refused once, with exit code 2 from mpirun, as is a launch by another MPI's
+// launcher.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
