@@ -180,11 +180,11 @@ TEST_F(Processes, AKilledJobResumesOnAnotherNumberOfRanks) {
   EXPECT_LT(largest_distance(run(0), out), 1e-8);
 }
 
-/// Two runs of one case on two ranks write the same mesh, even on a busy machine: PT-Scotch's
+/// Runs of one case on two ranks repeat bit for bit, even on a busy machine: PT-Scotch's
 /// threads, scheduled differently from run to run, made other partitions (2 loaded runs in 6
 /// of the 18 000-cell sector), so other CG iterations and other meshes, until the partitioner
-/// was given one thread. Three runs of that sector stopped after their first increment: the same
-/// CG iterations and the same nodes bit for bit, with every core also kept half busy.
+/// was given one thread. Three runs of that sector stopped after their first increment, with
+/// every core also kept half busy: the same CG iterations and the same nodes.
 TEST_F(Processes, RunsOnTwoRanksRepeatOnABusyMachine) {
   if (test::under_sanitizers()) GTEST_SKIP() << "three 18 000-cell runs under the sanitizers: minutes";
   const fs::path dir = *dir_ / "repeat";
@@ -200,27 +200,27 @@ TEST_F(Processes, RunsOnTwoRanksRepeatOnABusyMachine) {
   std::vector<deform::MotionCheckpoint> runs;
   {
     const BusyCores busy;
-    for (int run = 0; run < 3; ++run) {
-      const fs::path out = dir / fmt::format("out-{}", run);
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      const fs::path out = dir / fmt::format("out-{}", attempt);
       const auto r = test::run_command(mpirun(2) + HOTMESH_EXE + " deform " + test::shell_quote(repeat.file.string()) +
                                        " -o " + test::shell_quote(out.string()) + " --stop-after-increment 1");
       ASSERT_TRUE(fs::exists(out / "checkpoint.hmc")) << r.output;
       runs.push_back(io::read_checkpoint(out / "checkpoint.hmc", mesh, inputs).state);
     }
   }
-  const auto cg_iterations = [](const deform::MotionCheckpoint& run) {
+  const auto cg_iterations = [](const deform::MotionCheckpoint& state) {
     std::vector<int> counts;
-    for (const auto& step : run.records.at(0).newton) counts.push_back(step.pcg_iterations);
+    for (const auto& step : state.records.at(0).newton) counts.push_back(step.pcg_iterations);
     return counts;
   };
-  for (std::size_t run = 1; run < runs.size(); ++run) {
-    EXPECT_EQ(cg_iterations(runs[run]), cg_iterations(runs[0])) << "run " << run + 1;
-    ASSERT_EQ(runs[run].points.size(), runs[0].points.size());
-    std::size_t moved = 0;
+  for (std::size_t k = 1; k < runs.size(); ++k) {
+    EXPECT_EQ(cg_iterations(runs[k]), cg_iterations(runs[0])) << "run " << k + 1;
+    ASSERT_EQ(runs[k].points.size(), runs[0].points.size());
+    std::size_t elsewhere = 0;
     for (std::size_t i = 0; i < runs[0].points.size(); ++i) {
-      if (runs[run].points[i] != runs[0].points[i]) ++moved;
+      if (runs[k].points[i] != runs[0].points[i]) ++elsewhere;
     }
-    EXPECT_EQ(moved, 0U) << "run " << run + 1 << ": nodes elsewhere than in the first run";
+    EXPECT_EQ(elsewhere, 0U) << "run " << k + 1 << ": nodes elsewhere than in the first run";
   }
 }
 
