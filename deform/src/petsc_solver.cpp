@@ -30,6 +30,9 @@
 #include "petsc_solver.hpp"
 
 #include <petscksp.h>
+#if defined(__GLIBC__)
+#include <malloc.h>  // malloc_trim
+#endif
 
 #include <algorithm>
 #include <array>
@@ -91,6 +94,17 @@ void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows
   check(MatSetNearNullSpace(a, space), "MatSetNearNullSpace");
   check(MatNullSpaceDestroy(&space), "MatNullSpaceDestroy");
   for (Vec& v : vectors) check(VecDestroy(&v), "VecDestroy");
+}
+
+/// Gives the pages of freed memory back to the system. Each increment's hierarchy is built anew,
+/// and the old one and the set-up's work space are freed in pieces that glibc keeps inside its
+/// heap: on two ranks of the 300 000-cell sector each grew from 1.12 to 1.45 GB over ten
+/// increments (0.15 GB per increment at 2.7 million cells), and stayed at 1.12 GB with the free
+/// pages released (docs/performance.md).
+void release_free_memory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }
 
 /// When CG stops: at ||r~|| <= tolerance ||r~_0||, or, in the Newton norm with the node stiffness D, at
@@ -235,6 +249,7 @@ class AmgSolver final : public LinearSolver {
     stopping_.scaled = scaled;
     check(KSPSetConvergenceTest(ksp_, StoppingTest::converged, &stopping_, nullptr), "KSPSetConvergenceTest");
     check(KSPSetUp(ksp_), "KSPSetUp");
+    if (rebuild) release_free_memory();
     timings.preconditioner += seconds_since(t);
 
     t = Clock::now();
