@@ -98,7 +98,7 @@ void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows
 
 /// Gives the pages of freed memory back to the system. Each increment's hierarchy is built anew,
 /// and the old one and the set-up's work space are freed in pieces that glibc keeps inside its
-/// heap: on two ranks of the 300 000-cell sector each grew from 1.12 to 1.45 GB over ten
+/// heap: on two ranks of the 300 000-cell sector each grew from 1.14 to 1.45 GB over ten
 /// increments (0.15 GB per increment at 2.7 million cells), and stayed at 1.12 GB with the free
 /// pages released (docs/performance.md).
 void release_free_memory() {
