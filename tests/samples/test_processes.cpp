@@ -124,11 +124,16 @@ class Processes : public ::testing::Test {
     dir_ = nullptr;
   }
 
+  /// `hotmesh deform` of `case_file` on `ranks` processes (0: without mpirun) into `out`.
+  static test::CommandResult deform_case(int ranks, const fs::path& case_file, const fs::path& out,
+                                         const std::string& options = "") {
+    return test::run_command((ranks > 0 ? mpirun(ranks) : std::string()) + HOTMESH_EXE + " deform " +
+                             test::shell_quote(case_file.string()) + " -o " + test::shell_quote(out.string()) + options);
+  }
+
   /// `hotmesh deform` of the tight case on `ranks` processes (0: without mpirun) into `out`.
   static test::CommandResult deform(int ranks, const fs::path& out, const std::string& options = "") {
-    return test::run_command((ranks > 0 ? mpirun(ranks) : std::string()) + HOTMESH_EXE + " deform " +
-                             test::shell_quote((*dir_ / "tight.yaml").string()) + " -o " + test::shell_quote(out.string()) +
-                             options);
+    return deform_case(ranks, *dir_ / "tight.yaml", out, options);
   }
 
   /// The run on `ranks` processes into out-<ranks>, once per test program.
@@ -202,8 +207,7 @@ TEST_F(Processes, RunsOnTwoRanksRepeatOnABusyMachine) {
     const BusyCores busy;
     for (int attempt = 0; attempt < 3; ++attempt) {
       const fs::path out = dir / fmt::format("out-{}", attempt);
-      const auto r = test::run_command(mpirun(2) + HOTMESH_EXE + " deform " + test::shell_quote(repeat.file.string()) +
-                                       " -o " + test::shell_quote(out.string()) + " --stop-after-increment 1");
+      const auto r = deform_case(2, repeat.file, out, " --stop-after-increment 1");
       ASSERT_TRUE(fs::exists(out / "checkpoint.hmc")) << r.output;
       runs.push_back(io::read_checkpoint(out / "checkpoint.hmc", mesh, inputs).state);
     }
@@ -252,8 +256,7 @@ TEST_F(Processes, JacobiPcgIsRefusedOnceWithExitCode2) {
   std::string text = test::read_text(*dir_ / "tight.yaml");
   text = replaced(text, "linear: amg", "linear: jacobi-pcg");
   test::write_text(*dir_ / "jacobi.yaml", text);
-  const auto r = test::run_command(mpirun(2) + HOTMESH_EXE + " deform " + test::shell_quote((*dir_ / "jacobi.yaml").string()) +
-                                   " -o " + test::shell_quote((*dir_ / "out-jacobi").string()));
+  const auto r = deform_case(2, *dir_ / "jacobi.yaml", *dir_ / "out-jacobi");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   const std::string message = "solver.linear: jacobi-pcg runs in one process";
   const auto first = r.output.find(message);
