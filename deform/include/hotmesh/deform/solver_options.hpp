@@ -34,7 +34,7 @@ constexpr std::string_view to_string(ForcingTerm f) {
 /// Increments, Newton-Raphson (eqs. 7-8) and the inner PCG solves (section 3).
 struct SolverOptions {
   int increments = 16;              ///< N: the prescribed motion is applied in N steps
-  double newton_tolerance = 1e-4;   ///< stop at ||R|| <= tol * ||R0|| (the paper's value)
+  double newton_tolerance = 1e-4;   ///< stop at ||D^-1 R|| <= tol * ||D^-1 R0|| (the paper's value, there for ||R||)
   int max_newton_iterations = 30;
   double pcg_tolerance = 1e-3;      ///< relative residual of each inner linear solve
   int max_pcg_iterations = 5000;
