@@ -63,6 +63,9 @@ struct RunState {
   int checkpoint_increments = -1;    ///< increments done in the last checkpoint written, -1: none
 };
 
+/// "1 thread", "2 threads".
+std::string counted(int count, const char* noun) { return fmt::format("{} {}{}", count, noun, count == 1 ? "" : "s"); }
+
 std::string piece_of(int split_depth) { return split_depth > 0 ? fmt::format(" (1/{} piece)", 1 << split_depth) : ""; }
 
 void log_increment(const deform::IncrementRecord& r, int increments) {
@@ -81,9 +84,9 @@ void log_increment(const deform::IncrementRecord& r, int increments) {
 }
 
 void log_newton_step(const deform::NewtonProgress& p, spdlog::level::level_enum level, bool sliding, double run_seconds) {
-  spdlog::log(level, "increment {}/{}{} Newton {}: residual {:.2e} of initial, PCG {}{}{}, {:.1f} s (run {:.0f} s)",
+  spdlog::log(level, "increment {}/{}{} Newton {}: residual {:.2e} of initial, PCG {}{}{}{}, {:.1f} s (run {:.0f} s)",
               p.step.increment, p.increments, piece_of(p.step.split_depth), p.iteration, p.residual_reduction,
-              p.pcg_iterations, p.pcg_converged ? "" : " (not converged)",
+              p.pcg_iterations, p.newton_norm ? " in the Newton norm" : "", p.pcg_converged ? "" : " (not converged)",
               sliding ? fmt::format(", sliding projection {:.2e}", p.max_projection) : "", p.seconds, run_seconds);
 }
 
@@ -195,12 +198,12 @@ int run_deform(const Options& options, RunState& state) {
   const int increments = c.solver.increments;
   if (resumed) {
     const io::CheckpointInfo& info = resumed->info;
-    spdlog::info("resuming from {} (written {}): {} of {} increments done, stage {:.4f}; on {} threads",
+    spdlog::info("resuming from {} (written {}): {} of {} increments done, stage {:.4f}; on {}",
                  checkpoint_path.string(), info.written_at, info.finished_increments, info.increments, info.lambda,
-                 omp_get_max_threads());
+                 counted(omp_get_max_threads(), "thread"));
   } else {
-    spdlog::info("moving the mesh in {} increments on {}{} threads, linear solver {}{}", increments,
-                 job.count > 1 ? fmt::format("{} processes of ", job.count) : "", omp_get_max_threads(),
+    spdlog::info("moving the mesh in {} increments on {}{}, linear solver {}{}", increments,
+                 job.count > 1 ? fmt::format("{} processes of ", job.count) : "", counted(omp_get_max_threads(), "thread"),
                  deform::to_string(c.solver.linear),
                  c.solver.linear == deform::LinearSolverKind::amg ? fmt::format(" ({})", deform::to_string(c.solver.amg)) : "");
   }

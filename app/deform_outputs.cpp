@@ -144,13 +144,15 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["increments"] = json::array();
   std::size_t newton_total = 0, pcg_total = 0;
   for (const auto& r : result.increments) {
-    json pcg = json::array(), tolerances = json::array(), residuals = json::array(), projections = json::array();
+    json pcg = json::array(), tolerances = json::array(), norms = json::array(), residuals = json::array(),
+         projections = json::array();
     for (std::size_t i = 0; i < r.newton.size(); ++i) {
       residuals.push_back(r.newton[i].residual);
       if (i + 1 < r.newton.size() && result.sliding_nodes > 0) projections.push_back(r.newton[i].max_projection);
       if (i + 1 < r.newton.size()) {
         pcg.push_back(r.newton[i].pcg_iterations);
         tolerances.push_back(r.newton[i].linear_tolerance);
+        norms.push_back(r.newton[i].linear_newton_norm ? "newton" : "residual");
       }
       pcg_total += static_cast<std::size_t>(r.newton[i].pcg_iterations);
     }
@@ -163,6 +165,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
                                {"newton_iterations", r.newton.empty() ? 0 : r.newton.size() - 1},
                                {"pcg_iterations", pcg},
                                {"linear_tolerances", tolerances},
+                               {"linear_norms", norms},
                                {"residuals", residuals},
                                {"residual_reduction", r.residual_reduction},
                                {"min_scaled_jacobian", r.min_scaled_jacobian},

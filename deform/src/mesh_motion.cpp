@@ -262,6 +262,7 @@ class Motion {
       step.pcg_converged = solved.converged;
       step.pcg_reduction = solved.reduction;
       step.linear_tolerance = target.tolerance;
+      step.linear_newton_norm = target.newton_norm;
       if (solved.breakdown) {
         record.failure = "the linear solver broke down (the stiffness is not positive definite on the free nodes)";
         break;
@@ -306,6 +307,7 @@ class Motion {
                        .residual_reduction = record.residual_reduction,
                        .pcg_iterations = done.pcg_iterations,
                        .pcg_converged = done.pcg_converged,
+                       .newton_norm = done.linear_newton_norm,
                        .max_projection = done.max_projection,
                        .seconds = seconds});
   }

@@ -45,7 +45,7 @@ json record_json(const deform::IncrementRecord& r) {
   json newton = json::array();
   for (const auto& s : r.newton) {
     newton.push_back({number(s.residual), s.pcg_iterations, s.pcg_converged, number(s.pcg_reduction),
-                      number(s.linear_tolerance), number(s.max_projection)});
+                      number(s.linear_tolerance), number(s.max_projection), s.linear_newton_norm});
   }
   return {{"increment", r.increment},
           {"stage", {r.lambda_begin, r.lambda_end}},
@@ -74,7 +74,9 @@ deform::IncrementRecord record_from_json(const json& j) {
                         .pcg_converged = s.at(2).get<bool>(),
                         .pcg_reduction = number_from(s.at(3)),
                         .linear_tolerance = number_from(s.at(4)),
-                        .max_projection = number_from(s.at(5))});
+                        .max_projection = number_from(s.at(5)),
+                        // Absent from the checkpoints of hotmesh before 2026-11-22: not recorded.
+                        .linear_newton_norm = s.size() > 6 && s.at(6).get<bool>()});
   }
   r.converged = j.at("converged").get<bool>();
   r.accepted = j.at("accepted").get<bool>();

@@ -53,7 +53,7 @@ deform::MotionCheckpoint some_state(const deform::Mesh& mesh) {
   deform::IncrementRecord accepted;
   accepted.increment = 2;
   accepted.split_depth = 0;
-  accepted.newton = {{2.0, 40, true, 1e-4, 0.25, 0.1}, {1e-5, 0, true, 0.0, 0.0, 0.0}};
+  accepted.newton = {{2.0, 40, true, 1e-4, 0.25, 0.1, true}, {1e-5, 0, true, 0.0, 0.0, 0.0}};
   accepted.converged = accepted.accepted = true;
   accepted.residual_reduction = 5e-6;
   accepted.min_scaled_jacobian = 0.7071067811865476;
@@ -105,6 +105,8 @@ TEST(CheckpointFile, RoundTripKeepsEveryFieldBitForBit) {
   EXPECT_TRUE(same_bits(a.newton[0].max_projection, 0.1));
   EXPECT_TRUE(same_bits(a.newton[0].linear_tolerance, 0.25));
   EXPECT_EQ(a.newton[0].pcg_iterations, 40);
+  EXPECT_TRUE(a.newton[0].linear_newton_norm);
+  EXPECT_FALSE(a.newton[1].linear_newton_norm);
   EXPECT_EQ(a.worst_cell, 5);
   const auto& r = s.records[1];
   EXPECT_FALSE(r.accepted);

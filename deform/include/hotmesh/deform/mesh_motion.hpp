@@ -64,12 +64,13 @@ struct PatchMotion {
 using NodeRoleCode = std::uint8_t;
 
 struct NewtonStep {
-  double residual = 0.0;           ///< ||R|| before this step's linear solve
+  double residual = 0.0;           ///< ||D^-1 R|| (the Newton norm) before this step's linear solve
   int pcg_iterations = 0;          ///< of the solve that followed (0 on the last entry)
   bool pcg_converged = true;
   double pcg_reduction = 0.0;      ///< ||r|| / ||r0|| reached by PCG
   double linear_tolerance = 0.0;   ///< the relative tolerance that solve was given (inexact Newton)
   double max_projection = 0.0;     ///< largest move of a sliding node back onto its boundary after the step
+  bool linear_newton_norm = false; ///< that solve stopped on ||D^-1 r||, the Newton norm, not on ||r||
 };
 
 struct IncrementRecord {
@@ -80,7 +81,7 @@ struct IncrementRecord {
   std::vector<NewtonStep> newton;
   bool converged = false;     ///< the Newton cycle reached the tolerance
   bool accepted = false;      ///< converged and no cell inverted
-  double residual_reduction = 0.0;  ///< final ||R|| / ||R0||
+  double residual_reduction = 0.0;  ///< final ||D^-1 R|| / ||D^-1 R0||
   double min_scaled_jacobian = 0.0;
   std::size_t inverted_cells = 0;
   CellId worst_cell = -1;
@@ -185,9 +186,10 @@ struct NewtonProgress {
   MotionStep step;                 ///< the increment (or piece) being solved
   int increments = 0;              ///< N
   int iteration = 0;               ///< 1, 2, ...: Newton steps done in this attempt
-  double residual_reduction = 0.0;  ///< ||R|| / ||R0|| after the step
+  double residual_reduction = 0.0;  ///< ||D^-1 R|| / ||D^-1 R0|| after the step
   int pcg_iterations = 0;          ///< of the step's linear solve
   bool pcg_converged = true;
+  bool newton_norm = false;        ///< the solve stopped on ||D^-1 r|| (NewtonStep::linear_newton_norm)
   double max_projection = 0.0;     ///< largest move of a sliding node back onto its boundary
   double seconds = 0.0;            ///< since the attempt started
 };
