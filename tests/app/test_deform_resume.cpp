@@ -61,7 +61,7 @@ void expect_same_outputs(const std::filesystem::path& a, const std::filesystem::
   ASSERT_EQ(ra["increments"].size(), rb["increments"].size());
   for (std::size_t i = 0; i < ra["increments"].size(); ++i) {
     for (const char* key : {"increment", "stage", "split_depth", "accepted", "newton_iterations", "pcg_iterations",
-                            "residuals", "min_scaled_jacobian", "max_projection_distance"}) {
+                            "linear_tolerances", "linear_norms", "residuals", "min_scaled_jacobian", "max_projection_distance"}) {
       EXPECT_EQ(ra["increments"][i][key], rb["increments"][i][key]) << "increment record " << i << ", " << key;
     }
   }

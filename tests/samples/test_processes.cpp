@@ -185,6 +185,24 @@ TEST_F(Processes, AKilledJobResumesOnAnotherNumberOfRanks) {
   EXPECT_LT(largest_distance(run(0), out), 1e-8);
 }
 
+/// A job of two ranks killed after its second increment and resumed on two ranks ends with the
+/// very mesh of the uninterrupted job: the partition, made by one PT-Scotch thread, is the same
+/// in both jobs, and each increment's hierarchy comes from a new KSP.
+TEST_F(Processes, AKilledJobResumedOnTwoRanksEndsBitForBitAsTheUninterruptedOne) {
+  const fs::path out = *dir_ / "out-killed-2";
+  const auto killed = deform(2, out, " --stop-after-increment 2");
+  ASSERT_TRUE(fs::exists(out / "checkpoint.hmc")) << killed.output;
+  const auto resumed = deform(2, out, " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  const fs::path straight = run(2);
+  for (const char* name : {"deformed.msh", "restart.hmr"}) {
+    EXPECT_TRUE(test::read_text(straight / name) == test::read_text(out / name)) << name << " differs";
+  }
+  const auto a = report(straight)["increments"], b = report(out)["increments"];
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i]["pcg_iterations"], b[i]["pcg_iterations"]) << i;
+}
+
 /// Runs of one case on two ranks repeat bit for bit, even on a busy machine: PT-Scotch's
 /// threads, scheduled differently from run to run, made other partitions (2 loaded runs in 6
 /// of the 18 000-cell sector), so other CG iterations and other meshes, until the partitioner
