@@ -100,7 +100,9 @@ void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows
 /// and the old one and the set-up's work space are freed in pieces that glibc keeps inside its
 /// heap: on two ranks of the 300 000-cell sector each grew from 1.14 to 1.45 GB over ten
 /// increments (0.15 GB per increment at 2.7 million cells), and stayed at 1.12 GB with the free
-/// pages released (docs/performance.md).
+/// pages released after each set-up. Released after the old hierarchy is destroyed too, before
+/// the new set-up: else that set-up's peak sits on the old hierarchy's resident free pages, and
+/// at 2.7 million cells it rose by 0.2-0.4 GB per increment (docs/performance.md).
 void release_free_memory() {
 #if defined(__GLIBC__)
   malloc_trim(0);
@@ -328,7 +330,10 @@ class AmgSolver final : public LinearSolver {
 
   /// CG with the multigrid preconditioner, options from PETSC_OPTIONS (prefix hotmesh_).
   void create_ksp() {
-    if (ksp_) check(KSPDestroy(&ksp_), "KSPDestroy");
+    if (ksp_) {
+      check(KSPDestroy(&ksp_), "KSPDestroy");
+      release_free_memory();
+    }
     check(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a_)), &ksp_), "KSPCreate");
     check(KSPSetOptionsPrefix(ksp_, "hotmesh_"), "KSPSetOptionsPrefix");
     check(KSPSetType(ksp_, KSPCG), "KSPSetType");
