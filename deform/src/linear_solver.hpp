@@ -81,7 +81,8 @@ void add_node_stiffness(std::span<const NodeId> nodes, std::span<const double> k
 /// i.e. the displacement a Jacobi sweep would still move each node by (in the mesh's length
 /// unit). Unlike ||R|| it is not dominated by a few very stiff nodes (the smallest, most
 /// distorted cells of eq. (35)), so a Newton step that only settles those does not pass for
-/// convergence of the whole mesh. Nodes without stiffness (periodic slaves) carry no residual and are skipped.
+/// convergence of the whole mesh. Nodes without stiffness (periodic slaves) carry no residual
+/// and are skipped.
 double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d);
 
 /// The solver SolverOptions::linear names. `amg` initialises PETSc (and MPI) on first use.

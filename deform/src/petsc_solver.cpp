@@ -100,9 +100,9 @@ void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows
 /// and the old one and the set-up's work space are freed in pieces that glibc keeps inside its
 /// heap: on two ranks of the 300 000-cell sector each grew from 1.14 to 1.45 GB over ten
 /// increments (0.15 GB per increment at 2.7 million cells), and stayed at 1.12 GB with the free
-/// pages released after each set-up. Released after the old hierarchy is destroyed too, before
-/// the new set-up: else that set-up's peak sits on the old hierarchy's resident free pages, and
-/// at 2.7 million cells it rose by 0.2-0.4 GB per increment (docs/performance.md).
+/// pages released after each set-up. Released before each set-up too, once the old hierarchy is
+/// destroyed: else the set-up's peak sits on the old hierarchy's resident free pages, and at 2.7
+/// million cells it rose by 0.2-0.4 GiB per increment (docs/performance.md).
 void release_free_memory() {
 #if defined(__GLIBC__)
   malloc_trim(0);
@@ -250,8 +250,9 @@ class AmgSolver final : public LinearSolver {
     stopping_.initial = initial;
     stopping_.scaled = scaled;
     check(KSPSetConvergenceTest(ksp_, StoppingTest::converged, &stopping_, nullptr), "KSPSetConvergenceTest");
+    if (rebuild) release_free_memory();  // the old hierarchy's pages, before the new set-up's peak
     check(KSPSetUp(ksp_), "KSPSetUp");
-    if (rebuild) release_free_memory();
+    if (rebuild) release_free_memory();  // the set-up's work space
     timings.preconditioner += seconds_since(t);
 
     t = Clock::now();
@@ -330,10 +331,7 @@ class AmgSolver final : public LinearSolver {
 
   /// CG with the multigrid preconditioner, options from PETSC_OPTIONS (prefix hotmesh_).
   void create_ksp() {
-    if (ksp_) {
-      check(KSPDestroy(&ksp_), "KSPDestroy");
-      release_free_memory();
-    }
+    if (ksp_) check(KSPDestroy(&ksp_), "KSPDestroy");
     check(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a_)), &ksp_), "KSPCreate");
     check(KSPSetOptionsPrefix(ksp_, "hotmesh_"), "KSPSetOptionsPrefix");
     check(KSPSetType(ksp_, KSPCG), "KSPSetType");

@@ -11,6 +11,7 @@
 
 #include "hotmesh/deform/structured_mesh.hpp"
 #include "hotmesh/io/gmsh.hpp"
+#include "output_folders.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
 
@@ -19,8 +20,6 @@ namespace hotmesh::test {
 inline const std::filesystem::path kSample = std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "ramp2d";
 
 inline CommandResult hotmesh(const std::string& arguments) { return run_command(std::string(HOTMESH_EXE) + " " + arguments); }
-
-inline nlohmann::json read_json(const std::filesystem::path& p) { return nlohmann::json::parse(read_text(p)); }
 
 /// A copy of the ramp sample in a temporary folder, with its case file replaced by `yaml`.
 struct RampCase {

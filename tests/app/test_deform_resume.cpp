@@ -29,6 +29,7 @@ namespace {
 using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
 using ::testing::Not;
+using test::expect_same_outputs;
 using test::hotmesh;
 using test::read_json;
 using test::shell_quote;
@@ -48,32 +49,6 @@ struct SlidingRamp {
                        options);
   }
 };
-
-/// Files of two output folders that must be identical, byte for byte.
-void expect_same_outputs(const std::filesystem::path& a, const std::filesystem::path& b) {
-  for (const char* name : {"deformed.msh", "deformed.vtu", "restart.hmr"}) {
-    ASSERT_TRUE(std::filesystem::exists(b / name)) << name;
-    EXPECT_TRUE(test::read_text(a / name) == test::read_text(b / name)) << name << " differs";
-  }
-  // report.json: every increment with its iterations and residuals (times differ).
-  const auto ra = read_json(a / "report.json"), rb = read_json(b / "report.json");
-  EXPECT_EQ(rb["status"], "success");
-  ASSERT_EQ(ra["increments"].size(), rb["increments"].size());
-  for (std::size_t i = 0; i < ra["increments"].size(); ++i) {
-    for (const char* key : {"increment", "stage", "split_depth", "accepted", "newton_iterations", "pcg_iterations",
-                            "linear_tolerances", "linear_norms", "residuals", "min_scaled_jacobian", "max_projection_distance"}) {
-      EXPECT_EQ(ra["increments"][i][key], rb["increments"][i][key]) << "increment record " << i << ", " << key;
-    }
-  }
-  for (const char* key : {"newton_iterations", "pcg_iterations", "min_scaled_jacobian", "max_normal_slip",
-                          "max_sliding_projection_distance", "sliding_nodes"}) {
-    EXPECT_EQ(ra[key], rb[key]) << key;
-  }
-  EXPECT_FALSE(std::filesystem::exists(b / io::kCheckpointName)) << "the checkpoint outlived the run";
-  for (const auto& entry : std::filesystem::directory_iterator(b)) {
-    EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(".tmp-")));
-  }
-}
 
 TEST(DeformResume, RunStoppedAfterAnIncrementResumesToTheSameOutputs) {
   SlidingRamp ramp;
