@@ -163,6 +163,10 @@ int run_deform(const Options& options, RunState& state) {
                                                       "processes) use `linear: amg`",
                                                       deform::to_string(c.solver.linear), job.count));
   }
+  // Every file the case names is checked before any work: the CAD file too, whether or not a
+  // patch takes faces from it.
+  state.phase = "reading the CAD file";
+  const std::optional<geometry::CadModel> cad = io::read_case_cad(c);
   state.phase = "reading the mesh";
   io::LoadedMesh loaded = io::read_mesh(c.mesh);
   const deform::Mesh& mesh = loaded.mesh;
@@ -192,7 +196,7 @@ int run_deform(const Options& options, RunState& state) {
   // 2. The deflected shapes, from the FEM tables (section 4.2).
   state.phase = "building the deflected shapes";
   t = Clock::now();
-  const io::CaseSetup setup = io::set_up_case(c, mesh, previous ? &*previous : nullptr);
+  const io::CaseSetup setup = io::set_up_case(c, mesh, previous ? &*previous : nullptr, cad ? &*cad : nullptr);
   for (const auto& s : setup.shapes) {
     spdlog::info("patch {}: deflected shape through {} FEM nodes (degree {})", s.patch, s.reconstruction.used_nodes,
                  s.reconstruction.degree);

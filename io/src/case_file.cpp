@@ -136,11 +136,10 @@ class CaseParser {
     if (!text) return std::nullopt;
     const fs::path path = resolve(*text);
     std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status)) {
+    if (!fs::exists(path, ec)) {
       reader_.error(e, cat("file not found: ", path.string(), " (relative paths start from the case file's folder)"));
-    } else if (fs::is_directory(status)) {
-      reader_.error(e, cat(path.string(), " is a folder, expected a file"));
+    } else if (const std::string problem = input_file_problem(path); !problem.empty()) {
+      reader_.error(e, cat(path.string(), " ", problem));
     } else {
       return path;
     }

@@ -161,6 +161,7 @@ json parse_header(detail::BinaryReader& in, const std::filesystem::path& path) {
 
 /// The beginning of a file: its magic line, header length and header.
 std::string read_header_bytes(const std::filesystem::path& path) {
+  require_input_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError::in(path.string(), std::string("cannot open: ") + std::strerror(errno));
   std::string bytes(kMagic.size() + sizeof(std::uint64_t), '\0');
@@ -201,6 +202,7 @@ std::vector<InputFingerprint> input_fingerprints(const Case& c) {
   std::vector<InputFingerprint> result;
   std::vector<char> buffer(1 << 20);
   for (const auto& file : c.inputs()) {
+    require_input_file(file);
     std::ifstream in(file, std::ios::binary);
     if (!in) throw InputError::in(file.string(), std::string("cannot open: ") + std::strerror(errno));
     InputFingerprint f{file, 0, detail::kFnvOffset};

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <set>
@@ -141,6 +142,59 @@ TEST(DeformCommand, BadCaseIsAUserErrorAndWritesNothing) {
   EXPECT_EQ(roles.exit_code, 2);
   EXPECT_THAT(roles.output, HasSubstr("case.yaml:2: patches: mesh patch 'right' has no role"));
   EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
+}
+
+// Issue 18, item 7: a FIFO as the case, mesh, table or CAD file blocked hotmesh forever.
+TEST(DeformCommand, NamedPipesAsInputsAreRefusedWithoutWaiting) {
+  const std::string yaml =
+      "mesh: ramp2d.msh\npatches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: sliding}\n"
+      "  bottom: {role: sliding, deflection: {file: ramp.csv}}\n";
+  for (const char* name : {"case.yaml", "ramp2d.msh", "ramp.csv"}) {
+    RampCase ramp(yaml);
+    std::filesystem::remove(ramp.dir / name);
+    ASSERT_EQ(::mkfifo((ramp.dir / name).c_str(), 0600), 0);
+    // `timeout` ends the test, not hotmesh's bug, if a read blocks again.
+    const auto r = test::run_command("timeout 60 " + std::string(HOTMESH_EXE) + " deform " + ramp.case_file());
+    EXPECT_EQ(r.exit_code, 2) << name << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("is a named pipe (FIFO), not a regular file")) << name;
+  }
+  RampCase ramp(yaml + "cad: part.step\n");
+  ASSERT_EQ(::mkfifo((ramp.dir / "part.step").c_str(), 0600), 0);
+  const auto r = test::run_command("timeout 60 " + std::string(HOTMESH_EXE) + " deform " + ramp.case_file());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("case.yaml:7: cad: " + (ramp.dir / "part.step").string() + " is a named pipe"));
+}
+
+// Issue 18, item 9: a damaged `cad:` file that no patch uses was accepted, one that a patch
+// used was blamed on the patch's table; a NUL byte cut the message short and a 2 MB value was
+// echoed whole.
+TEST(DeformCommand, EveryNamedFileIsCheckedAndMessagesStayReadable) {
+  const std::string yaml =
+      "mesh: ramp2d.msh\npatches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: sliding}\n"
+      "  bottom: {role: sliding, deflection: {file: ramp.csv}}\n";
+  RampCase ramp(yaml + "cad: part.step\n");
+  const std::string step = test::read_text(std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "stator_well" /
+                                           "stator_well.step");
+  test::write_text(ramp.dir / "part.step", step.substr(0, step.size() / 3));  // truncated
+  const auto truncated = hotmesh("deform " + ramp.case_file());
+  EXPECT_EQ(truncated.exit_code, 2) << truncated.output;
+  EXPECT_THAT(truncated.output, HasSubstr((ramp.dir / "part.step").string() + ": cannot be read as STEP"));
+  EXPECT_THAT(truncated.output, Not(HasSubstr("ramp.csv")));
+  EXPECT_THAT(truncated.output, Not(HasSubstr("mesh ")));  // refused before the mesh is read
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
+
+  test::write_text(ramp.dir / "case.yaml", yaml);
+  constexpr char kNul[] = "x,y,d\0x,dy\n0,0,0,0\n";
+  test::write_text(ramp.dir / "ramp.csv", std::string(kNul, sizeof kNul - 1));
+  const auto nul = hotmesh("deform " + ramp.case_file());
+  EXPECT_EQ(nul.exit_code, 2);
+  EXPECT_THAT(nul.output, HasSubstr("ramp.csv:1: unknown column 'd\\x00x'; expected x,y,dx,dy"));
+
+  test::write_text(ramp.dir / "case.yaml", "mesh: " + std::string(2'000'000, 'm') + ".msh\npatches: {left: {role: fixed}}\n");
+  const auto wide = hotmesh("deform " + ramp.case_file());
+  EXPECT_EQ(wide.exit_code, 2);
+  EXPECT_THAT(wide.output, HasSubstr("more bytes)"));
+  EXPECT_LT(wide.output.size(), 20'000u);
 }
 
 TEST(DeformCommand, RefusesOutputFolderHoldingInputsUnlessForced) {
