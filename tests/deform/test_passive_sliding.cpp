@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "hotmesh/deform/mesh_motion.hpp"
@@ -138,22 +139,26 @@ std::shared_ptr<geometry::BoundaryShape> disc_face(double bulge, double rise) {
   return std::make_shared<geometry::RevolvedShape>(std::move(rebuilt.curve), axis);
 }
 
+/// An annular sector: the disc face (inner) slides over its deflected shape, the casing
+/// (outer) and the floor are fixed, the sides periodic, and the top z = 1 is the passive inlet.
+std::vector<PatchMotion> disc_sector(std::shared_ptr<geometry::BoundaryShape> face) {
+  std::vector<PatchMotion> motions{{"inner", BoundaryRole::sliding, std::move(face)}, {"outer", BoundaryRole::fixed},
+                                   {"bottom", BoundaryRole::fixed},                  {"top", BoundaryRole::passive},
+                                   {"per_lo", BoundaryRole::periodic},               {"per_hi", BoundaryRole::periodic}};
+  motions[4].partner = "per_hi";
+  motions[4].angle = kSector * std::numbers::pi / 180.0;
+  return motions;
+}
+
 TEST(PassiveSliding, InletOnASlidingDiscFaceStaysPlanarAndMeetsTheDeflectedFace) {
-  // An annular sector: the disc face (inner) slides over its deflected shape, the casing
-  // (outer) and the floor are fixed, the sides periodic, and the top z = 1 is the passive
-  // inlet. The face's material point at the inlet rises to z = 1.1; the face's nodes slide
-  // down it to where it crosses the inlet, and the inlet stays in its plane.
+  // The face's material point at the inlet rises to z = 1.1; the face's nodes slide down it to
+  // where it crosses the inlet, and the inlet stays in its plane.
   const Mesh mesh = test::annular_sector(6, 4, 8, 1.0, 2.0, 0.0, 1.0, kSector);
   const auto face = disc_face(0.15, 0.1);
-  std::vector<PatchMotion> motions{{"inner", BoundaryRole::sliding, face}, {"outer", BoundaryRole::fixed},
-                                   {"bottom", BoundaryRole::fixed},       {"top", BoundaryRole::passive},
-                                   {"per_lo", BoundaryRole::periodic},    {"per_hi", BoundaryRole::periodic}};
   const double angle = kSector * std::numbers::pi / 180.0;
-  motions[4].partner = "per_hi";
-  motions[4].angle = angle;
   SolverOptions options;
   options.increments = 4;
-  const MotionResult r = move_mesh(mesh, motions, {}, options);
+  const MotionResult r = move_mesh(mesh, disc_sector(face), {}, options);
   ASSERT_TRUE(r.success) << r.message;
   EXPECT_EQ(r.summary.inverted_cells, 0u);
   EXPECT_GT(r.summary.min_scaled_jacobian, 0.3);
@@ -178,6 +183,28 @@ TEST(PassiveSliding, InletOnASlidingDiscFaceStaysPlanarAndMeetsTheDeflectedFace)
   detail::PeriodicCoupling periodic(3);
   periodic.add(mesh, *mesh.find_patch("per_lo"), *mesh.find_patch("per_hi"), geometry::Axis(), angle, 1e-9);
   EXPECT_LT(passive_mismatch(mesh, r, "top", periodic), 1e-12);
+}
+
+TEST(PassiveSliding, ResumingMakesTheSameMovesAsTheInletFollowsItsRim) {
+  // The surface is solved from where its rim stands, which a checkpoint holds: a resumed run
+  // moves it as the uninterrupted run does, to the bit.
+  const Mesh mesh = test::annular_sector(4, 2, 6, 1.0, 2.0, 0.0, 1.0, kSector);
+  const auto motions = disc_sector(disc_face(0.15, 0.1));
+  SolverOptions options;
+  options.increments = 3;
+  std::vector<MotionCheckpoint> checkpoints;
+  MotionObservers observers;
+  observers.checkpoint = [&checkpoints](const MotionCheckpoint& c) { checkpoints.push_back(c); };
+  const MotionResult straight = move_mesh(mesh, motions, {}, options, observers);
+  ASSERT_TRUE(straight.success) << straight.message;
+  ASSERT_EQ(checkpoints.size(), 3u);
+  for (const MotionCheckpoint& c : {checkpoints[0], checkpoints[1]}) {
+    const MotionResult resumed = move_mesh(mesh, motions, {}, options, {}, nullptr, &c);
+    ASSERT_TRUE(resumed.success) << resumed.message;
+    ASSERT_EQ(resumed.points.size(), straight.points.size());
+    EXPECT_EQ(std::memcmp(resumed.points.data(), straight.points.data(), straight.points.size() * sizeof(Vec3)), 0)
+        << "resumed after increment " << c.finished_increments;
+  }
 }
 
 }  // namespace
