@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <map>
 #include <unordered_map>
@@ -32,13 +33,13 @@ Vec3 known_value(const RimDisplacement& rim, NodeId n) {
 
 std::pair<std::int64_t, const Rotation*> PassiveSurface::owner(std::size_t i) const {
   if (unknown_[i] >= 0) return {unknown_[i], nullptr};
-  if (master_of_[i] >= 0) return {unknown_[static_cast<std::size_t>(master_of_[i])], &periodic_->rotation(rotation_of_[i])};
+  if (master_of_[i] >= 0) return {unknown_[static_cast<std::size_t>(master_of_[i])], &rotations_[rotation_of_[i]]};
   return {-1, nullptr};
 }
 
 PassiveSurface::PassiveSurface(const Mesh& mesh, std::span<const Vec3> points, const Patch& patch,
                                const RimDisplacement& rim, const PeriodicCoupling& periodic)
-    : name_(patch.name), dim_(static_cast<std::size_t>(mesh.dimension)), nodes_(patch.nodes), periodic_(&periodic) {
+    : name_(patch.name), dim_(static_cast<std::size_t>(mesh.dimension)), nodes_(patch.nodes) {
   const std::size_t d = dim_;
   // Local numbering of the surface's nodes, and what is known about each.
   std::unordered_map<NodeId, std::size_t> local;
@@ -56,17 +57,27 @@ PassiveSurface::PassiveSurface(const Mesh& mesh, std::span<const Vec3> points, c
   // master is in the surface and unknown, else known from the master's rim displacement.
   master_of_.assign(n, -1);
   rotation_of_.assign(n, 0);
+  // The rotations it needs, copied: the set-up that owns the PeriodicCoupling may move.
+  std::vector<std::int64_t> local_rotation;
+  const auto rotation = [&](std::size_t r) {
+    if (local_rotation.size() <= r) local_rotation.resize(r + 1, -1);
+    if (local_rotation[r] < 0) {
+      local_rotation[r] = static_cast<std::int64_t>(rotations_.size());
+      rotations_.push_back(periodic.rotation(r));
+    }
+    return static_cast<std::size_t>(local_rotation[r]);
+  };
   for (const PeriodicPair& p : periodic.pairs()) {
     const auto s = local.find(p.slave), m = local.find(p.master);
     if (s == local.end() || known_[s->second]) continue;
     const bool master_known = m != local.end() ? known_[m->second] != 0 : rim(p.master).has_value();
     if (master_known) {  // a master on the rim, in the surface or not
       known_[s->second] = kTied;
-      ties_.push_back({s->second, p.master, m != local.end() ? static_cast<std::int64_t>(m->second) : -1, p.rotation});
+      ties_.push_back({s->second, p.master, m != local.end() ? static_cast<std::int64_t>(m->second) : -1, rotation(p.rotation)});
       if (m == local.end()) rim_nodes_.push_back(p.master);
     } else if (m != local.end()) {
       master_of_[s->second] = static_cast<std::int64_t>(m->second);
-      rotation_of_[s->second] = p.rotation;
+      rotation_of_[s->second] = rotation(p.rotation);
     }
   }
   // Unknowns: nodes neither known nor slaves of a surface node.
@@ -169,7 +180,7 @@ std::vector<Vec3> PassiveSurface::solve(const RimDisplacement& rim) const {
   }
   for (const Tie& t : ties_) {
     const Vec3 master = t.local_master >= 0 ? result[static_cast<std::size_t>(t.local_master)] : known_value(rim, t.master);
-    result[t.slave] = periodic_->rotation(t.rotation).vector(master);
+    result[t.slave] = rotations_[t.rotation].vector(master);
   }
   if (unknowns_ == 0) return result;
 

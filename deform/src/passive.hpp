@@ -51,7 +51,7 @@ class PassiveSurface {
     std::size_t slave = 0;  ///< local index of a periodic slave known through its master
     NodeId master = 0;
     std::int64_t local_master = -1;  ///< its local index if it is a node of the surface
-    std::size_t rotation = 0;
+    std::size_t rotation = 0;  ///< index into rotations_
   };
   /// u_i = T_i U (the unknown of node i, or of its master turned by R), or -1 for known nodes.
   std::pair<std::int64_t, const Rotation*> owner(std::size_t i) const;
@@ -59,13 +59,13 @@ class PassiveSurface {
   std::string name_;
   std::size_t dim_ = 3;
   std::vector<NodeId> nodes_;
-  const PeriodicCoupling* periodic_ = nullptr;
+  std::vector<Rotation> rotations_;     ///< those of the periodic pairs it ties
   static constexpr char kFromRim = 1;  ///< known_: the rim gives its displacement
   static constexpr char kTied = 2;     ///< known_: a periodic slave, from its master on the rim
   std::vector<char> known_;            ///< per local node: 0 (solved for), kFromRim or kTied
   std::vector<Tie> ties_;                   ///< known slaves, from their masters
   std::vector<std::int64_t> master_of_;     ///< per local node: local master of an unknown slave, or -1
-  std::vector<std::size_t> rotation_of_;
+  std::vector<std::size_t> rotation_of_;  ///< index into rotations_
   std::vector<std::int64_t> unknown_;       ///< per local node: index of its unknown, or -1
   std::size_t unknowns_ = 0;
   std::vector<Spring> springs_;
