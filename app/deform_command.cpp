@@ -236,8 +236,14 @@ int run_deform(const Options& options, RunState& state) {
     state.checkpoint_increments = k.finished_increments;
   };
   state.phase = "moving the mesh";
-  const deform::MotionResult result = deform::move_mesh(mesh, setup.motions, c.material, c.solver, observers,
-                                                        restart ? &*restart : nullptr, resumed ? &resumed->state : nullptr);
+  const deform::MotionResult result = [&] {
+    try {
+      return deform::move_mesh(mesh, setup.motions, c.material, c.solver, observers, restart ? &*restart : nullptr,
+                               resumed ? &resumed->state : nullptr);
+    } catch (const deform::FreeRigidMotion& e) {  // the roles as a whole: the case's `patches:`
+      throw InputError::at(c.file.string(), c.patches_line, fmt::format("patches: {}", e.what()));
+    }
+  }();
   const std::optional<io::CheckpointInfo> resumed_from = resumed ? std::optional(resumed->info) : std::nullopt;
   resumed.reset();  // its copy of the mesh is no longer needed
   for (const auto& note : result.notes) spdlog::warn("{}", note);

@@ -45,6 +45,7 @@ void SlidingNodes::begin_increment(double a, double b, std::span<const Vec3> x, 
     record(k, p.point - start, p);
   }
   share_placements(u);
+  follow_sliding_rims(setup_, x, u);
 }
 
 double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double> u) {
@@ -65,6 +66,7 @@ double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double
     record(k, p.point - start, p);
   }
   share_placements(u);
+  follow_sliding_rims(setup_, x, u);
   return max_over_processes(largest);
 }
 

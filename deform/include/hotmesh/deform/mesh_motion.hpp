@@ -30,6 +30,7 @@
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/boundary_shape.hpp"
+#include "hotmesh/geometry/input_error.hpp"
 
 namespace hotmesh::deform {
 
@@ -206,11 +207,20 @@ struct MotionObservers {
   CheckpointObserver checkpoint;  ///< after every accepted attempt, with the state to resume from
 };
 
+/// The patch roles leave the mesh free to move as a rigid body: no fixed or prescribed node,
+/// slip or sliding normal, or periodic pair resists some translation or rotation, so the
+/// mesh's position is not determined. what() names the free motions; a caller with a case file
+/// may place the error at its `patches:`.
+class FreeRigidMotion : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 /// Moves `mesh` (validated) as its patches prescribe. Every mesh patch needs an entry in
 /// `patches`. Throws hotmesh::InputError for a set-up the solver cannot take (unknown patch,
 /// missing shape, patch nodes off their shape, a slip patch that is not planar, cells other
-/// than quad4/hex8, nothing held in place); a failure of the motion itself is reported in
-/// the result.
+/// than quad4/hex8) and FreeRigidMotion for roles that leave a rigid-body motion free; a
+/// failure of the motion itself is reported in the result.
 /// With `start`, the run continues from a previous one (see MotionStart): the patch shapes
 /// must then start (stage 0) where the previous run ended.
 /// With `resume`, the run picks up an interrupted run of the same set-up (same mesh, patches,
