@@ -144,8 +144,7 @@ class DistanceTally {
   }
   DistanceCheck result(double tolerance) const {
     DistanceCheck c = check_;
-    c.max_distance = std::max(worst_, 0.0);
-    if (std::isnan(worst_)) c.max_distance = worst_;
+    c.max_distance = std::max(worst_, 0.0);  // NaN stays NaN
     c.mean_distance = c.nodes == 0 ? 0.0 : sum_ / static_cast<double>(c.nodes);
     c.passed = c.max_distance <= tolerance;  // false for NaN too
     return c;
@@ -380,11 +379,12 @@ Command add_check_command(CLI::App& parent) {
   CLI::App* cmd = parent.add_subcommand(
       "check", "Distance of mesh boundary nodes to their CAD faces or to the deflected shape; exit code 1 above --tol");
   cmd->add_option("mesh,--mesh", options->mesh,
-                  "Mesh (.msh): undeformed, or deformed when tables are given; with --case, default: the case's mesh")
+                  "Mesh (.msh) to check: undeformed, or deformed when tables are given; with --case, default: the "
+                  "case's own mesh")
       ->check(CLI::ExistingFile);
   cmd->add_option("--case", options->case_file,
-                  "Case file (YAML) giving the patches, faces, tables and axis; the mesh is then compared with its "
-                  "deflected walls, or, when it is the case's own mesh, with its undeformed walls")
+                  "Case file (YAML) giving the patches, faces, tables and axis: a mesh deformed by the case is "
+                  "compared with its deflected walls, the case's own mesh with its undeformed walls")
       ->check(CLI::ExistingFile);
   cmd->add_option("--cad", options->cad, "CAD file (.step, .stp, .iges, .igs) with the faces --map names")
       ->check(CLI::ExistingFile);

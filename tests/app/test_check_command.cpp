@@ -259,7 +259,7 @@ TEST(CheckCommand, UserErrorsNameWhatIsWrong) {
 TEST(CheckCommand, StatorWellCasingOnEitherSideOfTheBladeIsCheckedPerProfile) {
   test::TempDir dir;
   const std::filesystem::path sample = kSamples / "stator_well";
-  const std::string readme = "check --cad " + q(sample / "stator_well.step") + " --mesh " + q(sample / "stator_well.msh") +
+  const std::string readme = "check --cad " + q(sample / "stator_well.step") + " " + q(sample / "stator_well.msh") +
                              " --map casing=3,4 --map disc_base=39 --format junit -o " + q(dir / "check.xml");
   const auto r = hotmesh("-q " + readme);
   ASSERT_EQ(r.exit_code, 0) << r.output;
