@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <optional>
 
 #include <fmt/format.h>
@@ -193,6 +194,13 @@ class Motion {
     earlier_seconds_ = c.timings.total;
   }
 
+  /// The residual ||D^-1 R|| (a length) that rounding alone leaves in a mesh of this size at
+  /// rest: an increment with nothing to move (zero deflection on a curved sliding wall) starts
+  /// there, and no relative reduction of it can be asked for.
+  double round_off_residual(std::size_t dofs) const {
+    return 64.0 * std::numeric_limits<double>::epsilon() * size_ * std::sqrt(static_cast<double>(dofs));
+  }
+
   /// One increment: Newton-Raphson from the current mesh to stage b. Returns the new points.
   std::vector<Vec3> attempt(const MotionStep& piece, IncrementRecord& record) {
     const auto start = Clock::now();
@@ -241,7 +249,7 @@ class Motion {
                                      residual / r0);
         break;
       }
-      if (residual <= solver_.newton_tolerance * r0 || r0 == 0.0) {
+      if (residual <= solver_.newton_tolerance * r0 || residual <= round_off_residual(dofs)) {
         record.converged = true;
         break;
       }

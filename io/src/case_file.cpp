@@ -199,10 +199,13 @@ class CaseParser {
     const auto integer = [&](std::string_view key, int& field, int low) {
       if (const Entry* x = m.find(key)) field = reader_.integer_in(*x, low).value_or(field);
     };
+    // Relative tolerances: below about 1e-14 double precision cannot reach them, and the
+    // solvers would iterate on rounding until their limit.
     const auto fraction = [&](std::string_view key, double& field) {
-      const auto open_unit = [](double v) { return v > 0.0 && v < 1.0; };
+      const auto reachable = [](double v) { return v >= 1e-14 && v < 1.0; };
       if (const Entry* x = m.find(key)) {
-        field = reader_.number_where(*x, open_unit, "between 0 and 1 (exclusive)").value_or(field);
+        field = reader_.number_where(*x, reachable, "at least 1e-14 (what double precision reaches) and below 1")
+                    .value_or(field);
       }
     };
     deform::SolverOptions& s = c_.solver;

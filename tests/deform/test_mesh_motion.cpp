@@ -288,6 +288,41 @@ TEST(MeshMotion, ImpossibleMotionStopsWithLastValidMeshNamingCellAndIncrement) {
   EXPECT_EQ(r.increments.back().split_depth, 2);
 }
 
+/// The inner square of a clustered ring, rotated as rotating_inner_square does, at `scale`.
+MotionResult rotate_ring_at_scale(double scale) {
+  Mesh mesh = clustered_ring();
+  for (Vec3& p : mesh.points) p = scale * p;
+  validate_mesh(mesh);
+  const double inner = 0.25 * scale;
+  const std::vector<Vec3> square{{inner, -inner, 0}, {inner, inner, 0}, {-inner, inner, 0}, {-inner, -inner, 0},
+                                 {inner, -inner, 0}};
+  auto shape = std::make_shared<test::TestCurveShape>(square, test::rotation(std::numbers::pi / 8));
+  SolverOptions options;
+  options.increments = 4;
+  const std::vector<PatchMotion> motions{{"inner", BoundaryRole::prescribed, shape, 0.0},
+                                         {"outer", BoundaryRole::fixed, nullptr, 0.0}};
+  return move_mesh(mesh, motions, {}, options);
+}
+
+// Issue 18, item 8: the range validate_mesh accepts (1e-30 across to 1e30 from the origin) is
+// one the method is scale-invariant in: the same motion at 1e-25 and 1e25 ends in the same
+// mesh, scaled, with the same iterations.
+TEST(MeshMotion, MovesAMeshTheSameAtEveryScaleItAccepts) {
+  const MotionResult unit = rotate_ring_at_scale(1.0);
+  ASSERT_TRUE(unit.success) << unit.message;
+  for (const double scale : {1e-25, 1e25}) {
+    const MotionResult r = rotate_ring_at_scale(scale);
+    ASSERT_TRUE(r.success) << scale << ": " << r.message;
+    double worst = 0.0;
+    for (std::size_t n = 0; n < r.points.size(); ++n) worst = std::max(worst, distance((1.0 / scale) * r.points[n], unit.points[n]));
+    EXPECT_LT(worst, 1e-9) << scale;
+    ASSERT_EQ(r.increments.size(), unit.increments.size()) << scale;
+    for (std::size_t k = 0; k < r.increments.size(); ++k) {
+      EXPECT_EQ(r.increments[k].newton.size(), unit.increments[k].newton.size()) << scale << ", increment " << k;
+    }
+  }
+}
+
 TEST(MeshMotion, SetUpErrorsAreInputErrors) {
   const Mesh mesh = test::unit_square(3, 3);
   auto motions = all_patches(mesh, BoundaryRole::fixed);

@@ -403,15 +403,26 @@ TEST_F(CaseFile, RejectsValuesOutOfRange) {
       "axis: {origin: [0, .nan, 0], direction: [0, 0, 0]}\n"));  // 14
   ASSERT_THAT(lines, SizeIs(10));
   EXPECT_EQ(lines[0], at(5) + "solver.increments: must be an integer >= 1, got 0");
-  EXPECT_EQ(lines[1], at(6) + "solver.newton_tolerance: must be between 0 and 1 (exclusive), got 1");
+  EXPECT_EQ(lines[1], at(6) + "solver.newton_tolerance: must be at least 1e-14 (what double precision reaches) and below 1, got 1");
   EXPECT_EQ(lines[2], at(7) + "solver.max_newton_iterations: expected a whole number, got '3.5'");
-  EXPECT_EQ(lines[3], at(8) + "solver.pcg_tolerance: must be between 0 and 1 (exclusive), got -1e-3");
+  EXPECT_EQ(lines[3], at(8) + "solver.pcg_tolerance: must be at least 1e-14 (what double precision reaches) and below 1, got -1e-3");
   EXPECT_EQ(lines[4], at(9) + "solver.max_pcg_iterations: must be an integer >= 1, got 0");
   EXPECT_EQ(lines[5], at(10) + "solver.threads: must be an integer >= 0, got -1");
   EXPECT_EQ(lines[6], at(12) + "material.alpha_s: must be > 0, got 0");
   EXPECT_EQ(lines[7], at(13) + "material.alpha_v: must be >= 0, got -0.1");
   EXPECT_EQ(lines[8], at(14) + "axis.origin[1]: must be a finite number, got .nan");
   EXPECT_THAT(lines[9], StartsWith(at(14) + "axis.direction: must not be [0, 0, 0]"));
+}
+
+// Issue 18, item 8: `pcg_tolerance: 1e-300` ran on and was reported as a stiffness that is
+// not positive definite.
+TEST_F(CaseFile, RejectsTolerancesBeyondDoublePrecision) {
+  const auto lines = lines_of(error_with("solver: {pcg_tolerance: 1e-300, newton_tolerance: 1e-15}\n"));
+  ASSERT_THAT(lines, SizeIs(2));
+  EXPECT_EQ(lines[0], at(4) + "solver.newton_tolerance: must be at least 1e-14 (what double precision reaches) and "
+                              "below 1, got 1e-15");
+  EXPECT_THAT(lines[1], HasSubstr("solver.pcg_tolerance: must be at least 1e-14"));
+  EXPECT_EQ(parse(std::string(kBase) + "solver: {pcg_tolerance: 1e-14}\n").solver.pcg_tolerance, 1e-14);
 }
 
 TEST_F(CaseFile, RejectsDeflectionOptionsOutOfRange) {
