@@ -140,6 +140,22 @@ TEST(DeformCommand, BadCaseIsAUserErrorAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
 }
 
+TEST(DeformCommand, HugeIncrementCountIsRefusedAtOnce) {
+  // Issue 18: `increments: 1000000000` took more than 13 GB before increment 1. Refused as the
+  // case is read, in a process limited to 1 GB of address space (not under AddressSanitizer,
+  // which reserves terabytes).
+  RampCase ramp(
+      "mesh: ramp2d.msh\nsolver: {increments: 1000000000}\n"
+      "patches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: fixed}\n"
+      "  bottom: {role: prescribed, deflection: {file: ramp.csv}}\n");
+  const std::string limit = test::under_sanitizers() ? "" : "ulimit -v 1000000 && ";
+  const auto r = test::run_command(limit + HOTMESH_EXE + " deform " + ramp.case_file());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("case.yaml:2: solver.increments: must be at most 10000, got 1000000000: the "
+                                  "paper's cases take 16"));
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
+}
+
 TEST(DeformCommand, RefusesOutputFolderHoldingInputsUnlessForced) {
   RampCase ramp(
       "mesh: ramp2d.msh\nsolver: {increments: 2}\n"
