@@ -88,7 +88,9 @@ TEST(Sliding, RampNodesEndOnTheDeflectedWallAndSlideTangentially) {
   const double size = std::sqrt(5.0);
   EXPECT_LT(off / size, 1e-9);
   for (NodeId n : mesh.find_patch("top")->nodes) EXPECT_NEAR(r.points[static_cast<std::size_t>(n)].y, 1.0, 1e-9 * size);
-  EXPECT_LT(r.max_sliding_projection_distance, 1e-3);
+  EXPECT_LT(r.final_projection_distance / r.length_scale, 1e-3);
+  EXPECT_LE(r.final_projection_distance, r.max_projection_distance);
+  EXPECT_DOUBLE_EQ(r.length_scale, size);
   EXPECT_LT(r.max_normal_slip, 1e-12 * size);  // every Newton step kept u_s . n = 0 (eq. 19)
   // The corner on the slip wall ends where the deflected wall meets x = 2.
   const Vec3 corner = r.points[21];
@@ -218,7 +220,8 @@ TEST(Sliding, ResumingFromAnyCheckpointMakesTheSameMoves) {
     EXPECT_TRUE(same(resumed.points, straight.points)) << "resumed after increment " << c.finished_increments;
     EXPECT_EQ(resumed.increments.size(), straight.increments.size());
     EXPECT_EQ(resumed.max_normal_slip, straight.max_normal_slip);
-    EXPECT_EQ(resumed.max_sliding_projection_distance, straight.max_sliding_projection_distance);
+    EXPECT_EQ(resumed.max_projection_distance, straight.max_projection_distance);
+    EXPECT_EQ(resumed.final_projection_distance, straight.final_projection_distance);
   }
 
   // The sliding nodes' targets are part of the state: resuming with those of an earlier
