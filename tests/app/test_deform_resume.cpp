@@ -266,6 +266,29 @@ TEST(DeformResume, OutOfMemoryExitsWithCodeFourAndKeepsTheCheckpoint) {
   expect_same_outputs(ramp.dir / "straight", ramp.dir / "out");
 }
 
+TEST(DeformResume, TooLittleMemoryForTheThreadsExitsWithCodeFour) {
+  // Issue 18: out of memory around the OpenMP loops ended the run with "libgomp: Thread
+  // creation failed" and exit code 1 (which means the motion failed) once the first loop
+  // large enough to run in parallel started its threads. The ramp sample (2280 cells) in one
+  // increment on 64 threads, whose stacks of 8 MB do not fit in 400 MB of address space: the
+  // run stops before any work, as out of memory. (Not under AddressSanitizer, which reserves
+  // terabytes of address space.)
+  if (test::under_sanitizers()) GTEST_SKIP() << "ulimit -v does not work under AddressSanitizer";
+  std::string yaml = test::read_text(test::kSample / "ramp2d.yaml");
+  yaml.replace(yaml.find("increments: 16"), 14, "increments: 1");
+  const test::RampCase ramp(yaml);
+  const std::string limited = "ulimit -s 8192 && ulimit -v 400000 && env -u OMP_STACKSIZE -u GOMP_STACKSIZE " +
+                              std::string(HOTMESH_EXE) + " deform " + ramp.case_file();
+  const auto r = test::run_command(limited + " --threads 64");
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("out of memory while starting 64 threads"));
+  EXPECT_THAT(r.output, Not(HasSubstr("libgomp")));
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
+  // With the threads it can hold, the same run goes through.
+  const auto fits = test::run_command(limited + " --threads 2");
+  EXPECT_EQ(fits.exit_code, 0) << fits.output;
+}
+
 TEST(DeformCommand, ProgressLinePerNewtonStepOnRequest) {
   SlidingRamp ramp;
   const auto plain = hotmesh(ramp.deform("a"));

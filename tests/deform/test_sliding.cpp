@@ -5,8 +5,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <new>
 
 #include "hotmesh/deform/constraints.hpp"
 #include "hotmesh/deform/material.hpp"
@@ -32,6 +34,24 @@ std::shared_ptr<test::TestCurveShape> ramp_wall(Ramp ramp) {
       std::vector<Vec3>{{0, 0, 0}, {Ramp::a, 0, 0}, {Ramp::b, 0, 0}, {2, 0, 0}},
       [ramp](const Vec3& p, double lambda) { return p + Vec3{0.0, lambda * ramp.lift(p.x), 0.0}; });
 }
+
+/// A wall whose projections run out of memory after `calls` of them, as one that allocated
+/// would under a memory limit.
+class ExhaustedWall final : public geometry::BoundaryShape {
+ public:
+  ExhaustedWall(std::shared_ptr<const geometry::BoundaryShape> wall, int calls) : wall_(std::move(wall)), calls_(calls) {}
+  geometry::ShapePoint project(const Vec3& p, double lambda, double hint) const override {
+    if (calls_.fetch_sub(1) <= 0) throw std::bad_alloc();
+    return wall_->project(p, lambda, hint);
+  }
+  geometry::ShapePoint at(double t, double lambda, const Vec3& reference) const override {
+    return wall_->at(t, lambda, reference);
+  }
+
+ private:
+  std::shared_ptr<const geometry::BoundaryShape> wall_;
+  mutable std::atomic<int> calls_;
+};
 
 std::shared_ptr<test::TestCurveShape> still_wall(double y) {
   return std::make_shared<test::TestCurveShape>(std::vector<Vec3>{{0, y, 0}, {2, y, 0}},
@@ -107,6 +127,19 @@ TEST(Sliding, GathersMoreNodesOnTheRampWithoutLosingQuality) {
   ASSERT_TRUE(sliding.success) << sliding.message;
   EXPECT_GT(nodes_on_ramp(mesh, sliding), nodes_on_ramp(mesh, fixed));
   EXPECT_GE(sliding.summary.min_scaled_jacobian, fixed.summary.min_scaled_jacobian);
+}
+
+TEST(Sliding, OutOfMemoryInAProjectionLeavesTheRunAsBadAlloc) {
+  // Issue 18: an exception thrown inside an OpenMP loop ends the process (std::terminate,
+  // SIGABRT) instead of reaching the command, which exits with code 4 on std::bad_alloc. The
+  // projections run in such loops: at set-up (locating the nodes), at the start of an
+  // increment, after each Newton step and at the end of an increment.
+  const Mesh mesh = ramp_mesh(0, true);
+  for (const int calls : {0, 25, 60, 400, 2000}) {
+    auto motions = ramp_motions(true, {});
+    motions[2].shape = std::make_shared<ExhaustedWall>(motions[2].shape, calls);
+    EXPECT_THROW(move_mesh(mesh, motions, {}, {}), std::bad_alloc) << "after " << calls << " projections";
+  }
 }
 
 TEST(Sliding, ProjectedPcgKeepsEveryIterateTangential) {
