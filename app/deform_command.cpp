@@ -22,6 +22,7 @@
 #include "deform_outputs.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/deform/processes.hpp"
+#include "hotmesh/deform/threads.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/atomic_file.hpp"
@@ -163,6 +164,10 @@ int run_deform(const Options& options, RunState& state) {
                                                       "processes) use `linear: amg`",
                                                       deform::to_string(c.solver.linear), job.count));
   }
+  // The threads before the mesh, while memory is plentiful (deform/threads.hpp).
+  const int threads = options.threads >= 0 ? options.threads : c.solver.threads;
+  state.phase = fmt::format("starting {}", counted(threads > 0 ? threads : omp_get_max_threads(), "thread"));
+  deform::start_threads(threads);
   // Every file the case names is checked before any work: the CAD file too, whether or not a
   // patch takes faces from it.
   state.phase = "reading the CAD file";
@@ -180,8 +185,6 @@ int run_deform(const Options& options, RunState& state) {
   auto fingerprints = io::input_fingerprints(c);
   io::OutputFolder folder;  // removed again if the run fails before writing in it
   std::optional<io::Checkpoint> resumed = prepare_output(options, c, mesh, output, fingerprints, folder);
-  const int threads = options.threads >= 0 ? options.threads : c.solver.threads;
-  if (threads > 0) omp_set_num_threads(threads);
 
   // A restarted run continues from the state a previous run saved (section 4.3).
   std::optional<io::RestartState> previous;

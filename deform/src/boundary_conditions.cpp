@@ -70,11 +70,15 @@ std::vector<double> locate(const Mesh& mesh, std::span<const Vec3> points, const
                            std::span<const NodeId> nodes) {
   const double tolerance = m.tolerance > 0.0 ? m.tolerance : 1e-3 * bounding_diagonal(mesh.points, patch.nodes);
   std::vector<geometry::ShapePoint> found(nodes.size());
+  LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
 #pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    found[k] = m.shape->project(points[static_cast<std::size_t>(nodes[k])], 0.0);
+    errors.run([&] {
+      const auto k = static_cast<std::size_t>(i);
+      found[k] = m.shape->project(points[static_cast<std::size_t>(nodes[k])], 0.0);
+    });
   }
+  errors.rethrow();
   std::size_t off = 0;
   std::string examples;
   std::vector<double> parameters(nodes.size());

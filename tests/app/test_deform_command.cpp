@@ -9,6 +9,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <fmt/format.h>
@@ -197,6 +199,22 @@ TEST(DeformCommand, EveryNamedFileIsCheckedAndMessagesStayReadable) {
   EXPECT_LT(wide.output.size(), 20'000u);
 }
 
+TEST(DeformCommand, HugeIncrementCountIsRefusedAtOnce) {
+  // Issue 18: `increments: 1000000000` took more than 13 GB before increment 1. Refused as the
+  // case is read, in a process limited to 1 GB of address space (not under AddressSanitizer,
+  // which reserves terabytes).
+  RampCase ramp(
+      "mesh: ramp2d.msh\nsolver: {increments: 1000000000}\n"
+      "patches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: fixed}\n"
+      "  bottom: {role: prescribed, deflection: {file: ramp.csv}}\n");
+  const std::string limit = test::under_sanitizers() ? "" : "ulimit -v 1000000 && ";
+  const auto r = test::run_command(limit + HOTMESH_EXE + " deform " + ramp.case_file());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("case.yaml:2: solver.increments: must be at most 10000, got 1000000000: the "
+                                  "paper's cases take 16"));
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
+}
+
 TEST(DeformCommand, RefusesOutputFolderHoldingInputsUnlessForced) {
   RampCase ramp(
       "mesh: ramp2d.msh\nsolver: {increments: 2}\n"
@@ -243,6 +261,77 @@ TEST(DeformCommand, RestartFromSavedStateMatchesAStraightRun) {
   EXPECT_THAT(report["restarted_from"].get<std::string>(), HasSubstr("first-out/restart.hmr"));
   EXPECT_GT(report["sliding_nodes"].get<int>(), 0);
   EXPECT_LT(report["max_normal_slip"].get<double>(), 1e-12);
+}
+
+/// The largest number of `values` (a JSON array), 0 if empty.
+double largest_of(const nlohmann::json& values) {
+  double largest = 0.0;
+  for (const auto& v : values) largest = std::max(largest, v.get<double>());
+  return largest;
+}
+
+TEST(DeformCommand, ReportGivesEveryLengthAbsoluteAndRelativeAndRealMaxima) {
+  // Issue 18: max_sliding_projection_distance was the last Newton step's, and relative, while
+  // increments[].max_projection_distance was absolute; periodic_max_mismatch was relative,
+  // max_normal_slip absolute; a rejected attempt's unchecked quality read 0. The coarse
+  // sliding ramp in one increment of at most 6 Newton steps: attempts that do not converge are
+  // rejected and split, their pieces accepted.
+  test::TempDir dir;
+  write_coarse_ramp(dir.path());
+  std::string yaml = ramp_case("full.csv", 1);
+  yaml.replace(yaml.find("newton_tolerance: 1.0e-6"), 24, "newton_tolerance: 1.0e-4, max_newton_iterations: 6");
+  test::write_text(dir / "case.yaml", yaml);
+  const auto r = hotmesh("-q deform " + shell_quote((dir / "case.yaml").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto report = read_json(dir / "case-out" / "report.json");
+  const double scale = report["length_scale"].get<double>();
+  EXPECT_DOUBLE_EQ(scale, std::sqrt(5.0));  // the diagonal of the undeformed channel, 2 x 1
+  const auto expect_relative = [scale](const nlohmann::json& object, const std::string& key) {
+    ASSERT_TRUE(object.contains(key) && object.contains(key + "_relative")) << key;
+    EXPECT_EQ(object[key + "_relative"].get<double>(), object[key].get<double>() / scale) << key;
+  };
+  for (const char* key : {"max_projection_distance", "final_projection_distance", "max_normal_slip", "max_periodic_mismatch"}) {
+    expect_relative(report, key);
+  }
+  ASSERT_EQ(report["deflections"].size(), 1u);
+  expect_relative(report["deflections"][0], "max_node_distance_to_cad");
+  expect_relative(report["deflections"][0], "max_node_residual");
+
+  double largest = 0.0, last = 0.0, slip = 0.0, rejected_largest = 0.0;
+  std::size_t rejected = 0;
+  for (const auto& attempt : report["increments"]) {
+    expect_relative(attempt, "max_normal_slip");
+    const auto& steps = attempt["max_projection_distance"];
+    ASSERT_EQ(steps.size(), attempt["newton_iterations"].get<std::size_t>());
+    ASSERT_EQ(attempt["max_projection_distance_relative"].size(), steps.size());
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      EXPECT_EQ(attempt["max_projection_distance_relative"][i].get<double>(), steps[i].get<double>() / scale);
+    }
+    if (!attempt["converged"].get<bool>()) {  // quality never checked: unknown, not 0
+      ++rejected;
+      EXPECT_TRUE(attempt["min_scaled_jacobian"].is_null()) << attempt["stage"];
+      EXPECT_TRUE(attempt["inverted_cells"].is_null()) << attempt["stage"];
+      rejected_largest = std::max(rejected_largest, largest_of(steps));
+      continue;
+    }
+    EXPECT_GT(attempt["min_scaled_jacobian"].get<double>(), 0.0);
+    EXPECT_EQ(attempt["inverted_cells"], 0);
+    largest = std::max(largest, largest_of(steps));
+    last = steps.back().get<double>();
+    slip = std::max(slip, attempt["max_normal_slip"].get<double>());
+  }
+  ASSERT_GT(rejected, 0u) << "the test needs attempts that do not converge";
+  // The maxima run over every Newton step of the accepted attempts, the rejected ones left out.
+  EXPECT_EQ(report["max_projection_distance"].get<double>(), largest);
+  EXPECT_GT(largest, last);  // not the last step's
+  EXPECT_GT(rejected_largest, largest);  // the rejected attempts' moves were undone
+  EXPECT_EQ(report["final_projection_distance"].get<double>(), last);
+  EXPECT_EQ(report["max_normal_slip"].get<double>(), slip);
+  EXPECT_EQ(report["max_periodic_mismatch"], 0.0);  // no periodic pairs
+  // The deprecated keys keep their old meaning for one version (docs/report-json.md).
+  EXPECT_EQ(report["max_sliding_projection_distance"], report["final_projection_distance_relative"]);
+  EXPECT_EQ(report["periodic_max_mismatch"], report["max_periodic_mismatch_relative"]);
+  EXPECT_GT(report["min_scaled_jacobian"].get<double>(), 0.0);  // of the final mesh
 }
 
 TEST(DeformCommand, RestartRefusesAnotherMeshOrChangedRoles) {

@@ -425,6 +425,24 @@ TEST_F(CaseFile, RejectsTolerancesBeyondDoublePrecision) {
   EXPECT_EQ(parse(std::string(kBase) + "solver: {pcg_tolerance: 1e-14}\n").solver.pcg_tolerance, 1e-14);
 }
 
+TEST_F(CaseFile, RefusesIncrementCountsBeyondTheBoundSayingWhatToDo) {
+  // Issue 18: `increments: 1000000000` took more than 13 GB before increment 1.
+  const auto lines = lines_of(error_with(
+      "solver:\n"                          // 4
+      "  increments: 1000000000\n"         // 5
+      "  max_increment_splits: 1000\n"));  // 6
+  ASSERT_THAT(lines, SizeIs(2));
+  EXPECT_THAT(lines[0], StartsWith(at(5) + "solver.increments: must be at most 10000, got 1000000000: "));
+  EXPECT_THAT(lines[0], HasSubstr("the paper's cases take 16"));
+  EXPECT_THAT(lines[0], HasSubstr("max_increment_splits"));
+  EXPECT_EQ(lines[1], at(6) + "solver.max_increment_splits: must be an integer from 0 to 20, got 1000");
+  EXPECT_THAT(error_with("solver: {increments: 10001}\n"), HasSubstr("must be at most 10000, got 10001"));
+  EXPECT_THAT(error_with("solver: {increments: 99999999999}\n"), HasSubstr("must be at most 10000"));
+  const Case c = parse(std::string(kBase) + "solver: {increments: 10000, max_increment_splits: 20}\n");
+  EXPECT_EQ(c.solver.increments, kMaxIncrements);
+  EXPECT_EQ(c.solver.max_increment_splits, kMaxIncrementSplits);
+}
+
 TEST_F(CaseFile, RejectsDeflectionOptionsOutOfRange) {
   const auto lines = lines_of(error_with(
       "  blade: {role: prescribed, deflection: {file: blade.csv, degree: 6, faces: [2, 0, 2]}}\n"
