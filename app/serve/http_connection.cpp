@@ -172,6 +172,19 @@ void refuse(int fd, int status, const std::string& message) {
   [[maybe_unused]] const ssize_t ignored = ::send(fd, answer.data(), answer.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
 }
 
+/// Closes a connection whose client may still be sending (a refused request's body, headers
+/// above the bound): reads and drops what comes for up to a second, so that the client, done
+/// sending, reads the answer rather than a reset (closing with unread data resets).
+void close_lingering(int fd) {
+  ::shutdown(fd, SHUT_WR);
+  const Clock::time_point deadline = Clock::now() + std::chrono::seconds(1);
+  char buffer[16 * 1024];
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+    if (left.count() <= 0 || !wait_for(fd, POLLIN, left) || ::recv(fd, buffer, sizeof buffer, 0) <= 0) break;
+  }
+}
+
 }  // namespace
 
 void close_connection_after_answer() { t_close_after_answer = true; }
@@ -179,6 +192,7 @@ void close_connection_after_answer() { t_close_after_answer = true; }
 void serve_connection(int fd, const ConnectionLimits& limits, const std::function<bool()>& stopping,
                       const RequestProcessor& process) {
   Received received;
+  bool unread = false;  // the client may still be sending: close lingering
   for (std::size_t left = limits.max_requests; left > 0; --left) {
     const Head head = read_head(fd, received, limits, Clock::now(), stopping);
     if (head == Head::too_slow) {
@@ -187,14 +201,17 @@ void serve_connection(int fd, const ConnectionLimits& limits, const std::functio
                          std::chrono::duration<double>(limits.head_timeout).count()));
     } else if (head == Head::too_large) {
       refuse(fd, 431, fmt::format("the request line and headers are larger than {} bytes", limits.max_head_bytes));
+      unread = true;
     }
     if (head != Head::complete) break;
     ConnectionStream stream(fd, received, limits.io_timeout);
     bool close = false;
     t_close_after_answer = false;
     const bool ok = process(stream, left == 1, close);
+    unread = t_close_after_answer;
     if (!ok || close || t_close_after_answer) break;
   }
+  if (unread) close_lingering(fd);
   ::shutdown(fd, SHUT_RDWR);
   ::close(fd);
 }
