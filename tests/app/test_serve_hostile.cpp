@@ -139,6 +139,18 @@ TEST(ServeHostile, RequestsForAnotherHostNameAreRefused) {
   EXPECT_EQ(server.stop(SIGTERM), 0) << server.log();
 }
 
+TEST(ServeHostile, BoundToEveryAddressTheMachinesOwnNamesAreServed) {
+  test::ServeProcess server({"--bind", "0.0.0.0"});
+  Api api(server.port());
+  char name[256] = "";
+  ASSERT_EQ(::gethostname(name, sizeof name - 1), 0);
+  EXPECT_EQ(api.get("/api/health", {{"Host", host(server, name)}}).status, 200) << name;
+  EXPECT_EQ(api.get("/api/health", {{"Host", host(server, "localhost")}}).status, 200);
+  expect_error(api.get("/api/health", {{"Host", host(server, "attacker.example")}}), 403, "not a name of this service");
+  EXPECT_THAT(server.log(), HasSubstr("answering requests for Host"));
+  EXPECT_EQ(server.stop(SIGTERM), 0) << server.log();
+}
+
 TEST(ServeHostile, ARequestWithoutHostIsRefused) {
   test::ServeProcess server;
   RawConnection raw(server.port());
