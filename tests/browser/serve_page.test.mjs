@@ -313,14 +313,14 @@ async function run() {
       `sidebar ${layout.aside.right}, overflow ${layout.asideOverflow} px`);
     check(layout.reconstructBottom < 1000, `step 2 stays on the first screen: Reconstruct at ${layout.reconstructBottom} px`);
 
-    // Faces 9-12 (stator_front): planes, a cylinder through (0, 0, 0.03) along (0, 0, -1) and a
-    // surface of revolution about (0, 0, 0) along (0, 0, 1): one line, the engine axis.
-    for (const id of [9, 10, 11, 12]) await page.check(`#faces input[value="${id}"]`);
+    // Faces 40-42 (disc_down): a cylinder through (0, 0, 0.083) along (0, 0, -1) and two
+    // surfaces of revolution about (0, 0, 0) along (0, 0, 1): one line, the engine axis.
+    for (const id of [40, 41, 42]) await page.check(`#faces input[value="${id}"]`);
     check(await page.inputValue('#axis') === '0,0,0,0,0,1', `the axis is prefilled: ${await page.inputValue('#axis')}`);
-    check((await page.textContent('#axis-note')).includes('faces 10, 11'), 'the note names the faces it comes from');
+    check((await page.textContent('#axis-note')).includes('faces 40, 41, 42'), 'the note names the faces it comes from');
 
-    // The sample's own (r, z) table about that axis.
-    const statorTable = path.join(args.samples, 'stator_well', 'stator_front.csv');
+    // The sample's own (r, z) table about that axis (issue 18: the page had no axis field).
+    const statorTable = path.join(args.samples, 'stator_well', 'disc_down.csv');
     await page.setInputFiles('#csv-file', statorTable);
     await page.selectOption('#form', 'displacement');
     const previous = await page.getAttribute('#download-step', 'href');
@@ -329,10 +329,22 @@ async function run() {
       !document.getElementById('error').hidden, previous);
     check(await page.isHidden('#error'), `the (r, z) table is accepted: ${await page.textContent('#error')}`);
     const statorRows = fs.readFileSync(statorTable, 'utf8').split('\n').filter((line) => /^[0-9]/.test(line)).length;
-    check((await page.$$('#node-markers circle')).length === statorRows, `the ${statorRows} nodes of stator_front.csv are drawn`);
+    check((await page.$$('#node-markers circle')).length === statorRows, `the ${statorRows} nodes of disc_down.csv are drawn`);
     const statorDistance = JSON.parse(await page.$eval('#summary dd[data-key="max_node_distance_to_cad"]', (dd) => dd.dataset.value));
     check(statorDistance < 1e-9, `the nodes lie on the faces about that axis: ${statorDistance} m`);
     await page.screenshot({ path: statorScreenshot, fullPage: true });
+
+    // Fit view holds all that is drawn: the curve and the arrows as amplified (here 100 times).
+    await page.$eval('#amplification', (slider) => {
+      slider.value = '2';
+      slider.dispatchEvent(new Event('input', { bubbles: true }));
+    });
+    await page.click('#fit-view');
+    const [vx, vy, vw, vh] = (await page.getAttribute('#plot', 'viewBox')).split(' ').map(Number);
+    const inView = ([x, svgY]) => x >= vx && x <= vx + vw && svgY >= vy && svgY <= vy + vh;
+    const drawnCurve = pathPoints(await page.getAttribute('#deformed-curve', 'd')).map(([x, y]) => [x, -y]);
+    const arrowTips = await page.$$eval('#arrows line', (ls) => ls.map((l) => [Number(l.getAttribute('x2')), Number(l.getAttribute('y2'))]));
+    check(drawnCurve.every(inView) && arrowTips.every(inView), 'the fitted view holds the curve and arrows amplified 100 times');
 
     // A malformed axis is the page's own error; an emptied field is filled from the faces again.
     await page.fill('#axis', '0,0,1');
@@ -340,7 +352,7 @@ async function run() {
     await page.waitForSelector('#error:not([hidden])');
     check((await page.textContent('#error')).includes('axis: expected x,y,z,dx,dy,dz'), 'a malformed axis is named');
     await page.fill('#axis', '');
-    await page.uncheck('#faces input[value="12"]');
+    await page.uncheck('#faces input[value="40"]');
     check(await page.inputValue('#axis') === '0,0,0,0,0,1', 'an emptied axis field is prefilled again');
     check(!problems.some((p) => p.startsWith('page error')), `no script errors on the page: ${problems.join('; ')}`);
   } finally {

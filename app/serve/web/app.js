@@ -284,12 +284,25 @@ function showDownloads(curve) {
 /// Plot coordinates of a curve-plane pair: meridional (r, z) shows z across and r up.
 function toPlot(curve, p) { return curve.frame === 'rz' ? [p[1], p[0]] : [p[0], p[1]]; }
 
+/// The reconstructed curve with its deflection amplified `a` times, r(t) + a (c(t) - r(t)).
+function amplifiedCurve(curve, a) {
+  return curve.deformed.samples.map((s, i) => {
+    const u = curve.undeformed.samples[i];
+    return toPlot(curve, [u[1] + a * (s[1] - u[1]), u[2] + a * (s[2] - u[2])]);
+  });
+}
+
+/// Where a node's deflection arrow ends, Q + a δ.
+function arrowTip(curve, node, a) {
+  return toPlot(curve, [node.point[0] + a * node.deflection[0], node.point[1] + a * node.deflection[1]]);
+}
+
+/// Everything drawn at the current amplification.
 function plotPoints(curve) {
+  const a = state.amplification;
   const points = curve.undeformed.samples.map((s) => toPlot(curve, [s[1], s[2]]));
-  if (curve.deformed) {
-    for (const s of curve.deformed.samples) points.push(toPlot(curve, [s[1], s[2]]));
-  }
-  for (const node of curve.nodes) points.push(toPlot(curve, node.point));
+  if (curve.deformed) points.push(...amplifiedCurve(curve, a));
+  for (const node of curve.nodes) points.push(toPlot(curve, node.point), arrowTip(curve, node, a));
   return points;
 }
 
@@ -345,17 +358,13 @@ function draw() {
   const undeformed = curve.undeformed.samples.map((s) => toPlot(curve, [s[1], s[2]]));
   element('path', { d: pathData(undeformed), class: 'cad-curve', id: 'cad-curve' }, world);
   if (curve.deformed) {
-    const amplified = curve.deformed.samples.map((s, i) => {
-      const u = curve.undeformed.samples[i];
-      return toPlot(curve, [u[1] + a * (s[1] - u[1]), u[2] + a * (s[2] - u[2])]);
-    });
-    element('path', { d: pathData(amplified), class: 'deformed-curve', id: 'deformed-curve' }, world);
+    element('path', { d: pathData(amplifiedCurve(curve, a)), class: 'deformed-curve', id: 'deformed-curve' }, world);
   }
   const arrows = element('g', { id: 'arrows' }, world);
   const nodes = element('g', { id: 'node-markers' }, world);
   for (const node of curve.nodes) {
     const [x, y] = toPlot(curve, node.point);
-    const [tx, ty] = toPlot(curve, [node.point[0] + a * node.deflection[0], node.point[1] + a * node.deflection[1]]);
+    const [tx, ty] = arrowTip(curve, node, a);
     if (Math.hypot(tx - x, ty - y) > 0) {
       element('line', { x1: x, y1: -y, x2: tx, y2: -ty, class: 'arrow', 'marker-end': 'url(#arrow-head)' }, arrows);
     }
