@@ -16,7 +16,9 @@
 #include <ctime>
 #include <iostream>
 #include <memory>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "commands.hpp"
 #include "hotmesh/geometry/input_error.hpp"
