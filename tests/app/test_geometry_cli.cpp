@@ -83,6 +83,20 @@ TEST(CadCli, FilesWithoutFacesOrNotCadAreUserErrors) {
   EXPECT_EQ(hotmesh("cad --unit furlong " + cad("screw.step")).exit_code, 2);
 }
 
+// Issue 18, item 3: the issue's own command, which ended in a segmentation fault (exit 139).
+TEST(CadCli, StepFileWithABadReferenceIsAUserError) {
+  test::TempDir dir;
+  const std::filesystem::path step = std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "stator_well" / "stator_well.step";
+  const auto bad = dir / "bad.step";
+  ASSERT_EQ(run_command("sed \"s/^#62 = VERTEX_POINT('',#63);/#62 = VERTEX_POINT('',#9999999);/\" " +
+                        shell_quote(step.string()) + " > " + shell_quote(bad.string()))
+                .exit_code,
+            0);
+  const auto r = hotmesh("cad " + shell_quote(bad.string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(bad.string() + ": the STEP file is damaged"));
+}
+
 TEST(CurveCli, ReconstructsTheConeFromCartesianNodes) {
   test::TempDir dir;
   test::write_text(dir / "nodes.csv", cone_nodes(21));
