@@ -226,8 +226,7 @@ TEST(ServeHostile, JsonRoutesTakeOnlyApplicationJson) {
   EXPECT_EQ(server.stop(SIGTERM), 0) << server.log();
 }
 
-// Fails (the server dies with SIGSEGV, no answer) until OpenCASCADE's signals in the STEP
-// translation become errors (issue 18, item 3, geometry/src/cad_reader.cpp).
+// Before issue 18 item 3 (geometry/src/cad_reader.cpp), the server died with SIGSEGV here.
 TEST(ServeHostile, AStepFileThatCrashesOpenCascadeIsAnErrorAndTheServerLivesOn) {
   test::TempDir tmp;
   test::ServeProcess server({}, {{"TMPDIR", tmp.path().string()}});
@@ -235,7 +234,7 @@ TEST(ServeHostile, AStepFileThatCrashesOpenCascadeIsAnErrorAndTheServerLivesOn) 
   Reply r;
   ASSERT_NO_THROW(r = api.upload("bad.step", step_with_a_dangling_reference(), "m")) << server.log();
   // A corrupt CAD file, like every other one: 422 naming the file as the client knows it.
-  expect_error(r, 422, "bad.step");
+  expect_error(r, 422, "bad.step: the STEP file is damaged");
   EXPECT_THAT(r.body["message"].get<std::string>(), ::testing::Not(HasSubstr("hotmesh-serve-")));
   EXPECT_TRUE(uploads_left(tmp.path()).empty());
   EXPECT_EQ(api.get("/api/health").status, 200);
