@@ -89,6 +89,7 @@ int run_serve(const Options& o) {
   limits.max_body_bytes = o.max_body_mib << 20;
   limits.max_nodes = o.max_nodes;
   limits.max_points = std::max(limits.max_points, o.max_nodes);
+  limits.cad_check.hotmesh = std::filesystem::read_symlink("/proc/self/exe");  // this program
   SignalStop signals;  // before any thread starts, so that all of them inherit the mask
   serve::GeometryService service(o.root.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.root), limits);
   const auto header_timeout = std::chrono::milliseconds(std::lround(o.header_timeout * 1000));

@@ -96,6 +96,7 @@ std::shared_ptr<StoredModel> read_model(GeometryService::State& state, PrivateFi
   const PrivateFile file = std::move(copy);
   std::optional<geometry::CadModel> cad;
   try {
+    check_cad_in_child(state.limits.cad_check, file.path(), unit);
     cad.emplace(geometry::CadModel::read(file.path(), {.unit = unit}));
   } catch (const InputError& e) {
     throw ApiError::unprocessable(replaced(e.what(), file.path().string(), name));

@@ -242,6 +242,23 @@ TEST(ServeHostile, AStepFileThatCrashesOpenCascadeIsAnErrorAndTheServerLivesOn) 
   EXPECT_EQ(server.stop(SIGTERM), 0) << server.log();
 }
 
+// OpenCASCADE recovers from the dangling reference itself but abandons the file's model
+// (about 1.5 MB); read in a child first, the service keeps none of it. Before, 30 uploads
+// grew the service by 45 MB. The first uploads warm up the allocator's arenas of the
+// connection threads (about 13 MB), then the service stays flat.
+TEST(ServeHostile, DamagedStepFilesUploadedAgainAndAgainCostTheServiceNoMemory) {
+  if (test::under_sanitizers()) GTEST_SKIP() << "AddressSanitizer's quarantine holds freed memory";
+  test::TempDir tmp;
+  test::ServeProcess server({}, {{"TMPDIR", tmp.path().string()}});
+  Api api(server.port());
+  const std::string damaged = step_with_a_dangling_reference();
+  for (int i = 0; i < 40; ++i) ASSERT_EQ(api.upload("bad.step", damaged, "m").status, 422) << server.log();
+  const long before = server.rss_kib();
+  for (int i = 0; i < 30; ++i) ASSERT_EQ(api.upload("bad.step", damaged, "m").status, 422);
+  EXPECT_LT(server.rss_kib() - before, 4 * 1024) << "KiB grown over 30 damaged uploads";
+  EXPECT_EQ(server.stop(SIGTERM), 0) << server.log();
+}
+
 TEST(ServeHostile, UploadsAreRemovedWhetherTheRequestFailsOrNot) {
   test::TempDir tmp;
   test::ServeProcess server({}, {{"TMPDIR", tmp.path().string()}});
