@@ -23,21 +23,6 @@ using ::testing::HasSubstr;
 
 constexpr double kSector = 10.0;  // degrees
 
-/// The inner wall r = 1, z in [0, 1] of an annular sector, deflected by (dr, dz)(z): a surface
-/// of revolution about z built by the geometry kernel from meridional FEM samples.
-std::shared_ptr<geometry::BoundaryShape> inner_wall(double dr, double dz) {
-  geometry::DeflectionSamples samples;
-  samples.frame = geometry::SampleFrame::meridional;
-  for (int j = 0; j <= 10; ++j) {
-    const double z = j / 10.0;
-    samples.points.push_back({1.0, z, 0.0});
-    samples.deflections.push_back({dr * z * (1.0 - z) * 4.0, dz * z, 0.0});
-  }
-  const geometry::Axis axis;
-  auto rebuilt = geometry::reconstruct_from_nodes(geometry::meridional_samples(samples, axis), {});
-  return std::make_shared<geometry::RevolvedShape>(std::move(rebuilt.curve), axis);
-}
-
 std::vector<PatchMotion> sector_motions(std::shared_ptr<geometry::BoundaryShape> inner, BoundaryRole sides) {
   std::vector<PatchMotion> m{{"inner", BoundaryRole::prescribed, std::move(inner)},
                              {"outer", BoundaryRole::fixed},
@@ -58,7 +43,7 @@ TEST(Periodic, AxisymmetricMotionWithPeriodicFacesEqualsSlipFaces) {
   tight.increments = 4;
   tight.newton_tolerance = 1e-9;
   tight.pcg_tolerance = 1e-10;
-  const auto shape = inner_wall(0.3, 0.0);
+  const auto shape = test::deflected_cylinder(1.0, 0.3, 0.0, 10);
   const MotionResult periodic = move_mesh(mesh, sector_motions(shape, BoundaryRole::periodic), {}, tight);
   const MotionResult slip = move_mesh(mesh, sector_motions(shape, BoundaryRole::slip), {}, tight);
   ASSERT_TRUE(periodic.success) << periodic.message;
@@ -91,7 +76,7 @@ TEST(Periodic, TwistingMotionKeepsThePeriodicFacesMatched) {
 
 TEST(Periodic, FacesThatDoNotMatchAreNamed) {
   const Mesh mesh = test::annular_sector(3, 2, 2, 1.0, 2.0, 0.0, 1.0, kSector);
-  auto motions = sector_motions(inner_wall(0.1, 0.0), BoundaryRole::periodic);
+  auto motions = sector_motions(test::deflected_cylinder(1.0, 0.1, 0.0, 10), BoundaryRole::periodic);
   motions[4].angle = -motions[4].angle;  // the wrong way round
   try {
     move_mesh(mesh, motions, {}, {});
@@ -128,7 +113,7 @@ TEST(Passive, SurfaceAcrossPeriodicFacesMovesAxisymmetrically) {
   // too: the rim node of a slave edge is known through its master (the stator well's inlet and
   // outlet, samples/stator_well, are such surfaces).
   const Mesh mesh = test::annular_sector(6, 4, 4, 1.0, 2.0, 0.0, 1.0, kSector);
-  auto motions = sector_motions(inner_wall(0.0, 0.2), BoundaryRole::periodic);
+  auto motions = sector_motions(test::deflected_cylinder(1.0, 0.0, 0.2, 10), BoundaryRole::periodic);
   motions[3].role = BoundaryRole::passive;  // top
   const MotionResult r = move_mesh(mesh, motions, {}, {});
   ASSERT_TRUE(r.success) << r.message;

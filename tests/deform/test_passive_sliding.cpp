@@ -124,21 +124,6 @@ TEST(PassiveSliding, ChannelBetweenSlidingWallsWithPassiveEndsNeedsNoFixedPatch)
 
 constexpr double kSector = 10.0;  // degrees
 
-/// The disc face r = 1, z in [0, 1] about z, deflected by (dr, dz) = (4 bulge z (1 - z), rise z):
-/// it bulges out and rises through the plane z = 1 of the inlet.
-std::shared_ptr<geometry::BoundaryShape> disc_face(double bulge, double rise) {
-  geometry::DeflectionSamples samples;
-  samples.frame = geometry::SampleFrame::meridional;
-  for (int j = 0; j <= 20; ++j) {
-    const double z = j / 20.0;
-    samples.points.push_back({1.0, z, 0.0});
-    samples.deflections.push_back({4.0 * bulge * z * (1.0 - z), rise * z, 0.0});
-  }
-  const geometry::Axis axis;
-  auto rebuilt = geometry::reconstruct_from_nodes(geometry::meridional_samples(samples, axis), {});
-  return std::make_shared<geometry::RevolvedShape>(std::move(rebuilt.curve), axis);
-}
-
 /// An annular sector: the disc face (inner) slides over its deflected shape, the casing
 /// (outer) and the floor are fixed, the sides periodic, and the top z = 1 is the passive inlet.
 std::vector<PatchMotion> disc_sector(std::shared_ptr<geometry::BoundaryShape> face) {
@@ -154,7 +139,7 @@ TEST(PassiveSliding, InletOnASlidingDiscFaceStaysPlanarAndMeetsTheDeflectedFace)
   // The face's material point at the inlet rises to z = 1.1; the face's nodes slide down it to
   // where it crosses the inlet, and the inlet stays in its plane.
   const Mesh mesh = test::annular_sector(6, 4, 8, 1.0, 2.0, 0.0, 1.0, kSector);
-  const auto face = disc_face(0.15, 0.1);
+  const auto face = test::deflected_cylinder(1.0, 0.15, 0.1, 20);
   const double angle = kSector * std::numbers::pi / 180.0;
   SolverOptions options;
   options.increments = 4;
@@ -189,7 +174,7 @@ TEST(PassiveSliding, ResumingMakesTheSameMovesAsTheInletFollowsItsRim) {
   // The surface is solved from where its rim stands, which a checkpoint holds: a resumed run
   // moves it as the uninterrupted run does, to the bit.
   const Mesh mesh = test::annular_sector(4, 2, 6, 1.0, 2.0, 0.0, 1.0, kSector);
-  const auto motions = disc_sector(disc_face(0.15, 0.1));
+  const auto motions = disc_sector(test::deflected_cylinder(1.0, 0.15, 0.1, 20));
   SolverOptions options;
   options.increments = 3;
   std::vector<MotionCheckpoint> checkpoints;

@@ -119,23 +119,9 @@ TEST(RigidModes, SquareWithSlipWallsOnlyIsHeld) {
 
 constexpr double kSector = 10.0;  // degrees
 
-/// The cylinder r = radius, z in [0, 1], about z, bulging out by 4 bulge z (1 - z).
-std::shared_ptr<geometry::BoundaryShape> cylinder(double radius, double bulge) {
-  geometry::DeflectionSamples samples;
-  samples.frame = geometry::SampleFrame::meridional;
-  for (int j = 0; j <= 8; ++j) {
-    const double z = j / 8.0;
-    samples.points.push_back({radius, z, 0.0});
-    samples.deflections.push_back({4.0 * bulge * z * (1.0 - z), 0.0, 0.0});
-  }
-  const geometry::Axis axis;
-  auto rebuilt = geometry::reconstruct_from_nodes(geometry::meridional_samples(samples, axis), {});
-  return std::make_shared<geometry::RevolvedShape>(std::move(rebuilt.curve), axis);
-}
-
 std::vector<PatchMotion> coaxial_sector(BoundaryRole sides) {
-  std::vector<PatchMotion> m{{"inner", BoundaryRole::sliding, cylinder(1.0, 0.1)},
-                             {"outer", BoundaryRole::sliding, cylinder(2.0, 0.0)},
+  std::vector<PatchMotion> m{{"inner", BoundaryRole::sliding, test::deflected_cylinder(1.0, 0.1, 0.0, 8)},
+                             {"outer", BoundaryRole::sliding, test::deflected_cylinder(2.0, 0.0, 0.0, 8)},
                              {"bottom", BoundaryRole::slip},
                              {"top", BoundaryRole::slip},
                              {"per_lo", sides},
@@ -195,7 +181,7 @@ TEST(RigidModes, RadialNormalsLeaveTheTurnAboutTheirAxisAndTheShiftAlongIt) {
 TEST(RigidModes, SectorWithNothingToMoveEndsAtTheUndeformedMesh) {
   const Mesh mesh = test::annular_sector(3, 2, 4, 1.0, 2.0, 0.0, 1.0, kSector);
   std::vector<PatchMotion> motions = coaxial_sector(BoundaryRole::slip);
-  motions[0].shape = cylinder(1.0, 0.0);
+  motions[0].shape = test::deflected_cylinder(1.0, 0.0, 0.0, 8);
   const MotionResult r = move_mesh(mesh, motions, {}, {});
   ASSERT_TRUE(r.success) << r.message;
   EXPECT_EQ(r.increments.size(), 16u);  // no increment split

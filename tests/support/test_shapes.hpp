@@ -11,7 +11,13 @@
 #include <limits>
 #include <vector>
 
+#include <memory>
+
+#include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/boundary_shape.hpp"
+#include "hotmesh/geometry/boundary_shapes.hpp"
+#include "hotmesh/geometry/deflection_samples.hpp"
+#include "hotmesh/geometry/reconstruction.hpp"
 
 namespace hotmesh::test {
 
@@ -81,6 +87,23 @@ inline TestCurveShape::Motion rotation(double angle, Vec3 centre = {}) {
     const Vec3 r = p - centre;
     return centre + Vec3{c * r.x - s * r.y, s * r.x + c * r.y, r.z};
   };
+}
+
+/// The cylinder r = radius, z in [0, 1], about the z axis, deflected by (dr, dz) =
+/// (4 bulge z (1 - z), rise z): a surface of revolution that the geometry kernel builds from
+/// `intervals` + 1 meridional FEM nodes, as for a wall of a real case.
+inline std::shared_ptr<geometry::BoundaryShape> deflected_cylinder(double radius, double bulge, double rise,
+                                                                  int intervals) {
+  geometry::DeflectionSamples samples;
+  samples.frame = geometry::SampleFrame::meridional;
+  for (int j = 0; j <= intervals; ++j) {
+    const double z = static_cast<double>(j) / intervals;
+    samples.points.push_back({radius, z, 0.0});
+    samples.deflections.push_back({4.0 * bulge * z * (1.0 - z), rise * z, 0.0});
+  }
+  const geometry::Axis axis;
+  auto rebuilt = geometry::reconstruct_from_nodes(geometry::meridional_samples(samples, axis), {});
+  return std::make_shared<geometry::RevolvedShape>(std::move(rebuilt.curve), axis);
 }
 
 }  // namespace hotmesh::test
