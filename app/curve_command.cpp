@@ -89,7 +89,7 @@ int run_curve(const Options& o) {
   // The folder is made only once the inputs have been read and the curve built.
   std::vector<std::filesystem::path> inputs{o.fem};
   if (!o.cad.empty()) inputs.emplace_back(o.cad);
-  io::prepare_output_folder(o.output, inputs, o.force);
+  const io::OutputFolder folder_guard = io::prepare_output_folder(o.output, inputs, o.force);
   const std::filesystem::path folder(o.output);
   for (const char* name : {"undeformed.csv", "deformed.csv", "curves.step", "curves.igs", "plot.svg", "summary.json"}) {
     io::refuse_overwriting_input(folder / name, inputs);

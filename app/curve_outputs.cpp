@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "cad_json.hpp"
 #include "hotmesh/io/atomic_file.hpp"
@@ -52,8 +53,7 @@ io::PlotPoint plot_point(const Vec2& p, bool meridional) {
   return meridional ? io::PlotPoint{p.y, p.x} : io::PlotPoint{p.x, p.y};
 }
 
-void draw_picture(const std::filesystem::path& path, const CurveRun& run, const std::vector<double>& t,
-                  double amplification) {
+io::Figure picture(const CurveRun& run, const std::vector<double>& t, double amplification) {
   const bool meridional = run.axis.has_value();
   const DeflectedCurve& curve = run.fit.curve;
   io::FigureLayout layout;
@@ -91,7 +91,7 @@ void draw_picture(const std::filesystem::path& path, const CurveRun& run, const 
   figure.legend("FEM deflections" + times, arrows);
   figure.legend("reconstructed c(t)" + times, deformed);
   if (!run.fit.report.rejected_nodes.empty()) figure.legend("rejected nodes", {io::colors::black, 1.0}, true);
-  figure.save(path);
+  return figure;
 }
 
 }  // namespace
@@ -163,22 +163,23 @@ nlohmann::json curve_summary(const CurveRun& run, double amplification) {
 
 std::string write_curve_outputs(const std::filesystem::path& folder, const CurveRun& run,
                                 const CurveOutputOptions& options) {
+  // Everything is computed first, so a failure leaves no partial outputs behind.
   const DeflectedCurve& curve = run.fit.curve;
   const bool meridional = run.axis.has_value();
   const std::vector<double> t = sample_parameters(curve, std::max<std::size_t>(options.samples, 2));
-  io::write_file_atomically(folder / "undeformed.csv", curve_csv(curve, t, 0.0, meridional));
-  io::write_file_atomically(folder / "deformed.csv", curve_csv(curve, t, 1.0, meridional));
-
   const geometry::CadExport content = curve_export(run);
-  io::write_file_atomically(folder / "curves.step", geometry::to_step(content));
-  io::write_file_atomically(folder / "curves.igs", geometry::to_iges(content));
-
   const double amplification =
       options.amplification > 0.0 ? options.amplification : amplification_for(run, curve_size(curve, t));
-  draw_picture(folder / "plot.svg", run, t, amplification);
+  const io::Figure figure = picture(run, t, amplification);
   nlohmann::json summary = curve_summary(run, amplification);
   summary["files"] = {"undeformed.csv", "deformed.csv", "curves.step", "curves.igs", "plot.svg", "summary.json"};
   const std::string text = summary.dump(2) + "\n";
+  const std::pair<const char*, std::string> files[] = {{"undeformed.csv", curve_csv(curve, t, 0.0, meridional)},
+                                                       {"deformed.csv", curve_csv(curve, t, 1.0, meridional)},
+                                                       {"curves.step", geometry::to_step(content)},
+                                                       {"curves.igs", geometry::to_iges(content)}};
+  for (const auto& [name, file] : files) io::write_file_atomically(folder / name, file);
+  figure.save(folder / "plot.svg");
   io::write_file_atomically(folder / "summary.json", text);
   return text;
 }

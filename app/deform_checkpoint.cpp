@@ -54,17 +54,4 @@ void refuse_to_replace_checkpoint(const std::filesystem::path& folder, bool forc
                                                     io::kCheckpointName, what));
 }
 
-void remove_leftover_temporaries(const std::filesystem::path& folder, std::span<const std::string> names) {
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
-    const std::string file = entry.path().filename().string();
-    for (const auto& name : names) {
-      if (file.rfind(name + ".tmp-", 0) == 0) {
-        spdlog::debug("removing {}, left by the interrupted run", entry.path().string());
-        std::filesystem::remove(entry.path(), ec);
-      }
-    }
-  }
-}
-
 }  // namespace hotmesh::app

@@ -49,8 +49,4 @@ class CheckpointWriter {
 /// if `folder` holds one, unless `force`.
 void refuse_to_replace_checkpoint(const std::filesystem::path& folder, bool force);
 
-/// The temporary files a killed run left beside the outputs `names` in `folder` (an atomic
-/// write that never finished): removed before a resumed run writes.
-void remove_leftover_temporaries(const std::filesystem::path& folder, std::span<const std::string> names);
-
 }  // namespace hotmesh::app

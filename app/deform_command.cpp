@@ -24,6 +24,7 @@
 #include "hotmesh/deform/processes.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/case_file.hpp"
+#include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "hotmesh/io/mesh_files.hpp"
@@ -110,11 +111,12 @@ void report_out_of_memory(const RunState& state) {
   }
 }
 
-/// Makes the output folder ready; with --resume, reads the checkpoint in it and checks it
-/// against this run's inputs (`fingerprints`).
+/// Makes the output folder ready (`folder`); with --resume, reads the checkpoint in it and
+/// checks it against this run's inputs (`fingerprints`).
 std::optional<io::Checkpoint> prepare_output(const Options& options, const io::Case& c, const deform::Mesh& mesh,
                                              const std::filesystem::path& output,
-                                             std::span<const io::InputFingerprint> fingerprints) {
+                                             std::span<const io::InputFingerprint> fingerprints,
+                                             io::OutputFolder& folder) {
   const auto inputs = c.inputs();
   const auto names = output_names(c, mesh);
   std::optional<io::Checkpoint> resumed;
@@ -134,11 +136,16 @@ std::optional<io::Checkpoint> prepare_output(const Options& options, const io::C
                    "uninterrupted run", resumed->info.hotmesh_version, HOTMESH_VERSION);
     }
   } else {
-    io::prepare_output_folder(output, inputs, options.force);
+    folder = io::prepare_output_folder(output, inputs, options.force);
     refuse_to_replace_checkpoint(output, options.force);
   }
   for (const auto& name : names) io::refuse_overwriting_input(output / name, inputs);
-  if (resumed && deform::processes().root()) remove_leftover_temporaries(output, names);
+  // Only rank 0 writes: the other ranks leave the folder to it.
+  if (deform::processes().root()) {
+    io::remove_stale_temporaries(output, names);
+  } else {
+    folder.keep();
+  }
   return resumed;
 }
 
@@ -167,7 +174,8 @@ int run_deform(const Options& options, RunState& state) {
   const std::filesystem::path checkpoint_path = output / io::kCheckpointName;
   state.phase = "checking the inputs";
   auto fingerprints = io::input_fingerprints(c);
-  std::optional<io::Checkpoint> resumed = prepare_output(options, c, mesh, output, fingerprints);
+  io::OutputFolder folder;  // removed again if the run fails before writing in it
+  std::optional<io::Checkpoint> resumed = prepare_output(options, c, mesh, output, fingerprints, folder);
   const int threads = options.threads >= 0 ? options.threads : c.solver.threads;
   if (threads > 0) omp_set_num_threads(threads);
 

@@ -47,7 +47,7 @@ double binomial(int n, int k) {
 
 }  // namespace
 
-std::vector<BezierPiece> bezier_pieces(const BSplineCurve2d& curve, std::span<const double> breaks) {
+std::vector<BezierPiece> bezier_pieces(const BSplineCurve2d& curve, std::span<const double> breaks, double snap) {
   const auto p = static_cast<std::size_t>(curve.degree());
   std::vector<double> knots = curve.knots();
   std::vector<Homogeneous> poles(curve.poles().size());
@@ -61,15 +61,17 @@ std::vector<BezierPiece> bezier_pieces(const BSplineCurve2d& curve, std::span<co
     const auto mult = static_cast<std::size_t>(std::count(knots.begin(), knots.end(), b));
     for (std::size_t m = mult; m < p; ++m) insert_knot(knots, poles, p, b);
   }
-  // Now the pole groups between consecutive distinct knots are the Bezier pieces.
+  // Now the pole groups between consecutive distinct knots are the Bezier pieces. A knot that
+  // is not a break lies within `snap` of one (a curve end or a knot of another curve that
+  // differs by rounding): the piece holding the interval's middle stands for the interval.
   std::vector<BezierPiece> pieces;
   pieces.reserve(breaks.size() - 1);
   for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
     const double mid = 0.5 * (breaks[b] + breaks[b + 1]);
     const auto it = std::upper_bound(knots.begin(), knots.end(), mid);
-    const auto span = static_cast<std::size_t>(it - knots.begin()) - 1;
-    if (knots[span] != breaks[b] || knots[span + 1] != breaks[b + 1]) {
-      throw std::logic_error("bezier_pieces: breaks must include every knot of the curve");
+    const auto span = std::clamp<std::size_t>(static_cast<std::size_t>(it - knots.begin()), p + 1, poles.size()) - 1;
+    if (std::abs(knots[span] - breaks[b]) > snap || std::abs(knots[span + 1] - breaks[b + 1]) > snap) {
+      throw std::logic_error("bezier_pieces: a knot of the curve lies between two breaks");
     }
     BezierPiece piece;
     for (std::size_t i = span - p; i <= span; ++i) {

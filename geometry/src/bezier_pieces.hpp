@@ -19,10 +19,12 @@ struct BezierPiece {
   int degree() const { return static_cast<int>(weights.size()) - 1; }
 };
 
-/// The Bezier pieces of `curve` between consecutive `breaks` (strictly increasing, inside the
-/// curve's parameter range, including every knot of the curve that lies between the first
-/// and last break).
-std::vector<BezierPiece> bezier_pieces(const BSplineCurve2d& curve, std::span<const double> breaks);
+/// The Bezier pieces of `curve` between consecutive `breaks` (strictly increasing, more than
+/// `snap` apart). Every knot of the curve between the first and last break, and each end of
+/// the curve, is a break or lies within `snap` of one (knots of two curves, or a curve end and
+/// an FEM node, that differ by rounding): the piece is then the curve's polynomial piece that
+/// holds most of the interval, to be read on [breaks[i], breaks[i + 1]].
+std::vector<BezierPiece> bezier_pieces(const BSplineCurve2d& curve, std::span<const double> breaks, double snap);
 
 /// The same piece written with degree `degree` (>= its own).
 BezierPiece elevated(const BezierPiece& piece, int degree);

@@ -6,9 +6,15 @@
 #include <GeomConvert.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
 #include <IFSelect_ReturnStatus.hxx>
+#include <Interface_CheckIterator.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_InterfaceModel.hxx>
+#include <Transfer_TransientProcess.hxx>
 #include <IGESControl_Reader.hxx>
 #include <IGESData_IGESEntity.hxx>
+#include <OSD_Signal.hxx>
 #include <STEPControl_Reader.hxx>
+#include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 #include <StepRepr_RepresentationItem.hxx>
 #include <TCollection_HAsciiString.hxx>
@@ -99,6 +105,35 @@ std::string status_text(IFSelect_ReturnStatus status) {
   return "unknown reader status";
 }
 
+/// A damaged entity (a reference to one that is missing or of the wrong type) fails to
+/// translate, often with a fault that OpenCASCADE catches itself (FaultsAsFailures), and its
+/// face would be left out silently, renumbering the faces after it: refused, naming them.
+/// Real CAD files translate without a single failure.
+template <class Reader>
+void refuse_failed_entities(Reader& reader, const std::filesystem::path& path, const char* format_name) {
+  const Handle(Interface_InterfaceModel) model = reader.WS()->Model();
+  const Interface_CheckIterator checks = reader.WS()->TransferReader()->TransientProcess()->CheckList(false);
+  std::vector<std::string> failed;
+  for (checks.Start(); checks.More(); checks.Next()) {
+    const Handle(Interface_Check)& check = checks.Value();
+    if (check->NbFails() == 0) continue;
+    std::string entity = "the file as a whole";
+    if (const Handle(Standard_Transient) e = check->Entity(); !e.IsNull() && !model.IsNull() && model->Contains(e)) {
+      entity = std::string("entity ") + model->StringLabel(e)->ToCString() + " (" + model->TypeName(e, false) + ")";
+    } else if (checks.Number() > 0) {
+      entity = "entity number " + std::to_string(checks.Number());
+    }
+    failed.push_back(entity + ": " + check->CFail(1));
+  }
+  if (failed.empty()) return;
+  std::string list;
+  for (std::size_t i = 0; i < std::min<std::size_t>(failed.size(), 5); ++i) list += "\n  " + failed[i];
+  if (failed.size() > 5) list += "\n  ... and " + std::to_string(failed.size() - 5) + " more";
+  throw InputError::in(path.string(), std::string("the ") + format_name + " file is damaged: " +
+                                          std::to_string(failed.size()) + " of its entities could not be translated, "
+                                          "so faces would be missing and the others renumbered:" + list);
+}
+
 /// Reads and transfers the file; fills the faces in exploration order and their names (while
 /// the reader, which owns the entity records, is alive).
 template <class Reader>
@@ -112,6 +147,7 @@ void transfer(Reader& reader, const std::filesystem::path& path, const char* for
     throw InputError::in(path.string(), std::string("the ") + format_name + " file holds no shapes");
   }
   reader.TransferRoots();
+  refuse_failed_entities(reader, path, format_name);
   shape = reader.OneShape();
   TopTools_IndexedMapOfShape map;
   TopExp::MapShapes(shape, TopAbs_FACE, map);
@@ -203,6 +239,10 @@ CadModel CadModel::read(const std::filesystem::path& path, const CadReadOptions&
   try {
     detail::OcctSession session;
     session.use_unit(options.unit);
+    // A damaged file (a reference to a missing or wrong entity) can make the translation
+    // follow a null pointer: a bad input, not a crash.
+    const detail::FaultsAsFailures faults;
+    OCC_CATCH_SIGNALS
     if (format == Format::step) {
       STEPControl_Reader reader;
       transfer(reader, path, "STEP", impl->shape, impl->faces, names);
@@ -223,7 +263,15 @@ CadModel CadModel::read(const std::filesystem::path& path, const CadReadOptions&
       impl->info.push_back(std::move(info));
     }
   } catch (const Standard_Failure& e) {
-    throw InputError::in(path.string(), std::string("OpenCASCADE could not read the file: ") + e.GetMessageString());
+    // A fault (FaultsAsFailures) comes as OSD_SIGSEGV, or as a plain failure when it was a
+    // stack overflow; either way the file, not hotmesh, is at fault.
+    const std::string what = e.GetMessageString();
+    const bool fault = e.IsKind(STANDARD_TYPE(OSD_Signal)) || what.find("Signal") != std::string::npos;
+    throw InputError::in(path.string(), std::string("the ") + (format == Format::step ? "STEP" : "IGES") +
+                                            " file is damaged: " +
+                                            (fault ? "its translation faulted inside OpenCASCADE (an entity refers to "
+                                                     "a missing one, to itself or to one of the wrong type)"
+                                                   : "OpenCASCADE could not translate it: " + what));
   }
   return CadModel(std::move(impl));
 }

@@ -36,16 +36,19 @@ DeflectedCurve::DeflectedCurve(BSplineCurve2d undeformed, BSplineCurve2d interpo
   build_pieces();
 }
 
+double DeflectedCurve::sliver() const { return 1e-12 * (last_parameter() - first_parameter()); }
+
 void DeflectedCurve::build_pieces() {
   std::vector<double> breaks = undeformed_.breakpoints();
   if (interpolant_) {
     const std::vector<double> more = interpolant_->breakpoints();
     breaks.insert(breaks.end(), more.begin(), more.end());
     std::sort(breaks.begin(), breaks.end());
-    // Knots of the two curves that differ by rounding only would make slivers of pieces that
-    // Newton cannot cross: keep one of them (a polynomial piece evaluated that far beyond its
-    // span is the same to rounding).
-    const double sliver = 1e-12 * (breaks.back() - breaks.front());
+    // Knots of the two curves that differ by rounding only (an FEM node on a CAD knot: a face
+    // end, the junction of two faces) would make slivers of pieces that Newton cannot cross:
+    // keep one of them (a polynomial piece evaluated that far beyond its span is the same to
+    // rounding).
+    const double sliver = this->sliver();
     std::vector<double> kept{breaks.front()};
     for (std::size_t i = 1; i + 1 < breaks.size(); ++i) {
       if (breaks[i] - kept.back() > sliver && breaks.back() - breaks[i] > sliver) kept.push_back(breaks[i]);
@@ -107,7 +110,10 @@ BSplineCurve2d DeflectedCurve::stage(double lambda) const {
   breaks.push_back(pieces_.front().begin);
   for (const Piece& piece : pieces_) breaks.push_back(piece.end);
 
-  const std::vector<detail::BezierPiece> r = detail::bezier_pieces(undeformed_, breaks);
+  // Breaks are more than a sliver apart and each knot build_pieces dropped lies within a
+  // sliver of a kept one, so a piece's own ends lie within two slivers of its breaks.
+  const double snap = 2 * sliver();
+  const std::vector<detail::BezierPiece> r = detail::bezier_pieces(undeformed_, breaks, snap);
   const auto inside_begin = static_cast<std::ptrdiff_t>(
       std::find_if(pieces_.begin(), pieces_.end(), [](const Piece& p) { return p.region == Region::inside; }) -
       pieces_.begin());
@@ -115,7 +121,7 @@ BSplineCurve2d DeflectedCurve::stage(double lambda) const {
       std::find_if(pieces_.begin(), pieces_.end(), [](const Piece& p) { return p.region == Region::after; }) -
       pieces_.begin());
   const std::vector<double> inner_breaks(breaks.begin() + inside_begin, breaks.begin() + inside_end + 1);
-  const std::vector<detail::BezierPiece> c = detail::bezier_pieces(*interpolant_, inner_breaks);
+  const std::vector<detail::BezierPiece> c = detail::bezier_pieces(*interpolant_, inner_breaks, snap);
 
   std::vector<detail::BezierPiece> result;
   result.reserve(pieces_.size());

@@ -8,7 +8,12 @@
 #include <UnitsMethods.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
+#include <OSD.hxx>
 
+#include <pthread.h>
+
+#include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 namespace hotmesh::geometry::detail {
@@ -36,6 +41,52 @@ OcctSession::~OcctSession() {
   }
   if (saved_unit_in_mm_ > 0.0) UnitsMethods::SetCasCadeLengthUnit(saved_unit_in_mm_, UnitsMethods_LengthUnit_Millimeter);
   Message::DefaultMessenger()->ChangePrinters() = printers_;
+}
+
+namespace {
+
+// Every signal OSD::SetSignal handles, and those whose handling hotmesh keeps from it.
+constexpr int kOcctSignals[] = {SIGFPE, SIGHUP, SIGINT, SIGQUIT, SIGILL, SIGBUS, SIGSYS, SIGSEGV};
+constexpr int kFaults[] = {SIGILL, SIGBUS, SIGSYS, SIGSEGV};
+
+bool is_fault(int signal) { return std::find(std::begin(kFaults), std::end(kFaults), signal) != std::end(kFaults); }
+
+}  // namespace
+
+FaultsAsFailures::FaultsAsFailures() {
+  for (const int signal : kOcctSignals) {
+    struct sigaction old {};
+    ::sigaction(signal, nullptr, &old);
+    saved_.emplace_back(signal, old);
+  }
+  OSD::SetSignal(OSD_SignalMode_Set, /*theFloatingSignal=*/false);
+  handler_stack_.resize(std::max<std::size_t>(static_cast<std::size_t>(SIGSTKSZ), 256 * 1024));
+  stack_t stack{};
+  stack.ss_sp = handler_stack_.data();
+  stack.ss_size = handler_stack_.size();
+  ::sigaltstack(&stack, &saved_stack_);
+  for (const auto& [signal, old] : saved_) {
+    if (!is_fault(signal)) {
+      ::sigaction(signal, &old, nullptr);
+      continue;
+    }
+    struct sigaction occt {};
+    ::sigaction(signal, nullptr, &occt);
+    occt.sa_flags |= SA_ONSTACK;
+    ::sigaction(signal, &occt, nullptr);
+  }
+}
+
+FaultsAsFailures::~FaultsAsFailures() {
+  sigset_t faults;
+  sigemptyset(&faults);
+  for (const auto& [signal, old] : saved_) {
+    ::sigaction(signal, &old, nullptr);
+    if (is_fault(signal)) sigaddset(&faults, signal);
+  }
+  // A fault's handler left by a jump: the signal may still be blocked in this thread.
+  ::pthread_sigmask(SIG_UNBLOCK, &faults, nullptr);
+  ::sigaltstack(&saved_stack_, nullptr);
 }
 
 void OcctSession::use_unit(LengthUnit unit) {

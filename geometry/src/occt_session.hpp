@@ -6,6 +6,8 @@
 // parameters first, so they can be set before a reader or writer is made.
 #pragma once
 
+#include <signal.h>
+
 #include <mutex>
 #include <string>
 #include <utility>
@@ -38,6 +40,30 @@ class OcctSession {
   Message_SequenceOfPrinters printers_;
   std::vector<std::pair<std::string, std::string>> saved_;
   double saved_unit_in_mm_ = 0.0;
+};
+
+/// While alive, a segmentation fault, bus error, illegal instruction or bad system call in
+/// OpenCASCADE's code (a damaged STEP file can make its translation follow a null reference)
+/// raises a Standard_Failure at the innermost OCC_CATCH_SIGNALS of the thread, instead of
+/// killing the process. OpenCASCADE's own mechanism (OSD::SetSignal), limited to the faults
+/// and to the object's lifetime: the process's handlers (interrupt, hang-up, quit, floating
+/// point, and a sanitizer's) are restored when it ends. Use it inside an OcctSession and write
+///   detail::FaultsAsFailures faults;
+///   try { OCC_CATCH_SIGNALS ... } catch (const Standard_Failure&) { ... }
+/// Objects made between OCC_CATCH_SIGNALS and the fault are abandoned, not destroyed.
+class FaultsAsFailures {
+ public:
+  FaultsAsFailures();
+  ~FaultsAsFailures();
+  FaultsAsFailures(const FaultsAsFailures&) = delete;
+  FaultsAsFailures& operator=(const FaultsAsFailures&) = delete;
+
+ private:
+  std::vector<std::pair<int, struct sigaction>> saved_;
+  // A reference cycle in a file makes the translation recurse until the stack overflows:
+  // the fault's handler runs on a stack of its own.
+  std::vector<char> handler_stack_;
+  stack_t saved_stack_{};
 };
 
 /// OpenCASCADE's name of a length unit ("M", "MM", "INCH", ...).

@@ -1,6 +1,7 @@
 #include "hotmesh/io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -64,6 +65,25 @@ void write_file_atomically(const std::filesystem::path& target, std::string_view
   AtomicFile file(target);
   file.stream().write(content.data(), static_cast<std::streamsize>(content.size()));
   file.commit();
+}
+
+void remove_stale_temporaries(const std::filesystem::path& folder, std::span<const std::string> names) {
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+    const std::string file = entry.path().filename().string();
+    for (const auto& name : names) {
+      const std::string prefix = name + ".tmp-";
+      if (file.rfind(prefix, 0) != 0) continue;
+      const std::string rest = file.substr(prefix.size());
+      const auto dash = rest.find('-');
+      if (dash == 0 || dash > 9 || dash == std::string::npos || rest.find_first_not_of("0123456789-") != std::string::npos) continue;
+      const pid_t pid = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
+      const bool alive = pid == ::getpid() || ::kill(pid, 0) == 0 || errno == EPERM;
+      if (alive) continue;
+      std::error_code ignored;
+      std::filesystem::remove(entry.path(), ignored);
+    }
+  }
 }
 
 std::string read_file(const std::filesystem::path& path) {

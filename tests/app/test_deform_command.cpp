@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <set>
 
 #include <fmt/format.h>
@@ -21,6 +23,7 @@ namespace hotmesh::app {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using test::hotmesh;
 using test::kSample;
 using test::RampCase;
@@ -216,6 +219,41 @@ TEST(DeformCommand, RestartRefusesAnotherMeshOrChangedRoles) {
   const auto bad = hotmesh("deform " + shell_quote((dir / "junk.yaml").string()));
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_THAT(bad.output, HasSubstr("not a hotmesh restart file"));
+  // Each was refused after its output folder was made: none is left behind, empty.
+  for (const char* name : {"roles-out", "other-out", "junk-out"}) EXPECT_FALSE(std::filesystem::exists(dir / name)) << name;
+}
+
+// Issue 18, item 10: an output folder that cannot be written in was found only when the
+// first checkpoint was saved, after increment 1.
+TEST(DeformCommand, OutputFolderThatCannotBeWrittenIsRefusedBeforeAnyWork) {
+  test::TempDir dir;
+  write_coarse_ramp(dir.path());
+  test::write_text(dir / "case.yaml", ramp_case("full.csv", 2));
+  std::filesystem::path closed = dir / "closed";
+  std::filesystem::create_directories(closed);
+  std::filesystem::permissions(closed, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  if (::geteuid() == 0) closed = "/sys";  // root writes in any folder its permissions close
+  const auto r = hotmesh("deform " + shell_quote((dir / "case.yaml").string()) + " -o " + shell_quote(closed.string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(closed.string() + ": cannot write in the output folder"));
+  EXPECT_THAT(r.output, Not(HasSubstr("increment 1/2")));
+  std::filesystem::permissions(dir / "closed", std::filesystem::perms::owner_all);
+}
+
+// Issue 18, item 10: a run killed before its first checkpoint rename left
+// checkpoint.hmc.tmp-<pid>-0, and no later run removed it.
+TEST(DeformCommand, ANewRunRemovesTheTemporariesOfAKilledOne) {
+  test::TempDir dir;
+  write_coarse_ramp(dir.path());
+  test::write_text(dir / "case.yaml", ramp_case("full.csv", 2));
+  std::filesystem::create_directories(dir / "case-out");
+  // The process id of a run that has ended.
+  const auto ended = test::run_command("sh -c 'echo $$'");
+  const std::string leftover = "checkpoint.hmc.tmp-" + ended.output.substr(0, ended.output.find('\n')) + "-0";
+  test::write_text(dir / "case-out" / leftover, "half a checkpoint");
+  const auto r = hotmesh("-q deform " + shell_quote((dir / "case.yaml").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "case-out" / leftover));
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -79,6 +81,20 @@ TEST(CadCli, FilesWithoutFacesOrNotCadAreUserErrors) {
   EXPECT_EQ(notes.exit_code, 2);
   EXPECT_THAT(notes.output, HasSubstr("not a STEP file"));
   EXPECT_EQ(hotmesh("cad --unit furlong " + cad("screw.step")).exit_code, 2);
+}
+
+// Issue 18, item 3: the issue's own command, which ended in a segmentation fault (exit 139).
+TEST(CadCli, StepFileWithABadReferenceIsAUserError) {
+  test::TempDir dir;
+  const std::filesystem::path step = std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "stator_well" / "stator_well.step";
+  const auto bad = dir / "bad.step";
+  ASSERT_EQ(run_command("sed \"s/^#62 = VERTEX_POINT('',#63);/#62 = VERTEX_POINT('',#9999999);/\" " +
+                        shell_quote(step.string()) + " > " + shell_quote(bad.string()))
+                .exit_code,
+            0);
+  const auto r = hotmesh("cad " + shell_quote(bad.string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(bad.string() + ": the STEP file is damaged"));
 }
 
 TEST(CurveCli, ReconstructsTheConeFromCartesianNodes) {
@@ -174,6 +190,49 @@ TEST(CurveCli, TwoDimensionalNodesWithoutCad) {
   const auto summary = nlohmann::json::parse(test::read_text(dir / "out" / "summary.json"));
   EXPECT_EQ(summary["frame"], "xy");
   EXPECT_TRUE(summary["cad"].is_null());
+}
+
+/// Runs `hotmesh curve ARGUMENTS -o DIR/out` and checks it wrote every output.
+void expect_curve_written(const test::TempDir& dir, const std::string& arguments) {
+  const auto r = hotmesh("-q curve " + arguments + " -o " + shell_quote((dir / "out").string()) + " --force");
+  ASSERT_EQ(r.exit_code, 0) << arguments << "\n" << r.output;
+  for (const char* f : {"undeformed.csv", "deformed.csv", "curves.step", "curves.igs", "plot.svg", "summary.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << arguments << ": " << f;
+  }
+  const auto summary = nlohmann::json::parse(test::read_text(dir / "out" / "summary.json"));
+  EXPECT_LT(summary["max_node_residual"].get<double>(), 1e-9) << arguments;
+}
+
+// Issue 18, item 1: an FEM node on a CAD knot to rounding (a face end, the junction of two
+// faces) ended in "critical internal error: bezier_pieces: ..." (exit 3). The sample's own
+// tables and the real CAD files showed it.
+TEST(CurveCli, NodesOnCadKnotsAndFaceEnds) {
+  test::TempDir dir;
+  const std::filesystem::path sample = std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "stator_well";
+  const std::string step = shell_quote((sample / "stator_well.step").string());
+  const std::string about_z = " --form displacement --axis 0,0,0,0,0,1";
+  for (const auto& [faces, table] : {std::pair{"40,41,42", "disc_down.csv"}, std::pair{"32,33,34", "disc_up_upper.csv"},
+                                     std::pair{"13,14,15,16,17,18,19,20,21,22,23,24,25", "fins.csv"}}) {
+    expect_curve_written(dir, "--cad " + step + " --faces " + faces + " --fem " +
+                                  shell_quote((sample / table).string()) + about_z);
+  }
+  // The CATIA bolt: head, shoulder and shank, nodes at their corners (z = 3 mm).
+  test::write_text(dir / "bolt.csv", "r,z,dr,dz\n7.5,0,0.01,0\n7.5,1.5,0.01,0\n7.5,3,0.01,0.01\n6.25,3,0,0.01\n"
+                                     "5,3,0.01,0.01\n5,20,0.01,0.02\n5,37,0.01,0.03\n");
+  expect_curve_written(dir, "--cad " + cad("bug3883_xr2-ct-214_bolt.stp") +
+                                " --unit mm --faces 2,1,4 --fem " + shell_quote((dir / "bolt.csv").string()) + about_z);
+  // The I-DEAS cylinder (a B-spline face about y), nodes at both ends.
+  test::write_text(dir / "cylinder.csv", "r,z,dr,dz\n25,-75,0.1,0\n25,0,0.2,0\n25,75,0.1,0.1\n");
+  expect_curve_written(dir, "--cad " + cad("OCC8842_cylinder_Ideas.igs") +
+                                " --unit mm --faces 1 --fem " + shell_quote((dir / "cylinder.csv").string()) +
+                                " --form displacement --axis 0,0,0,0,1,0");
+}
+
+// Issue 18, item 2: degrees 3 and 5 without CAD gave the same internal error.
+TEST(CurveCli, OddDegreesWithoutCad) {
+  test::TempDir dir;
+  const std::string ramp = shell_quote((std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "ramp2d" / "ramp.csv").string());
+  for (const char* degree : {"2", "3", "5"}) expect_curve_written(dir, "--fem " + ramp + " --degree " + degree);
 }
 
 TEST(CurveCli, RefusesBadOptionsAndFoldersHoldingInputs) {

@@ -183,5 +183,39 @@ TEST(CadFiles, MalformedEmptyAndNonCadFilesGiveClearErrors) {
               ::testing::ThrowsMessage<InputError>(HasSubstr("missing.stp: no such CAD file")));
 }
 
+// Issue 18, item 3: one bad reference in a real STEP file (the stator-well sample's) made
+// OpenCASCADE's translation follow a null pointer or recurse without end (exit 139, no
+// message), or it left a face out and renumbered the rest.
+TEST(CadFiles, DamagedReferencesAreUserErrorsNotCrashes) {
+  hotmesh::test::TempDir dir;
+  const std::filesystem::path sample = std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "stator_well" / "stator_well.step";
+  const std::string text = hotmesh::test::read_text(sample);
+  const struct {
+    const char* name;
+    std::string line;
+    std::string damaged;
+  } cases[] = {
+      {"missing", "#62 = VERTEX_POINT('',#63);", "#62 = VERTEX_POINT('',#9999999);"},
+      {"itself", "#62 = VERTEX_POINT('',#63);", "#62 = VERTEX_POINT('',#62);"},
+      {"unset", "#62 = VERTEX_POINT('',#63);", "#62 = VERTEX_POINT('',$);"},
+      {"wrong_type", "#62 = VERTEX_POINT('',#63);", "#62 = VERTEX_POINT('',#15);"},
+      {"edge_cycle", "#3048 = ORIENTED_EDGE('',*,*,#3049,.F.);", "#3048 = ORIENTED_EDGE('',*,*,#3048,.F.);"},
+      {"curve_cycle", "#2500 = SURFACE_CURVE('',#2501,", "#2500 = SURFACE_CURVE('',#2500,"},
+  };
+  for (const auto& c : cases) {
+    std::string damaged = text;
+    const auto at = damaged.find(c.line);
+    ASSERT_NE(at, std::string::npos) << c.line;
+    damaged.replace(at, c.line.size(), c.damaged);
+    const auto path = dir / (std::string(c.name) + ".step");
+    hotmesh::test::write_text(path, damaged);
+    EXPECT_THAT([&] { CadModel::read(path); },
+                ::testing::ThrowsMessage<InputError>(HasSubstr(path.string() + ": the STEP file is damaged")))
+        << c.name;
+  }
+  // OpenCASCADE is left able to read: the intact file, all its faces.
+  EXPECT_EQ(CadModel::read(sample).faces().size(), 44u);
+}
+
 }  // namespace
 }  // namespace hotmesh::geometry

@@ -3,7 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "curve_fixtures.hpp"
 #include "hotmesh/geometry/deflected_curve.hpp"
@@ -81,6 +83,51 @@ TEST(DeflectedCurve, StageBSplineIsExactForPolynomialAndRationalCurves) {
         }
       }
     }
+  }
+}
+
+/// max |stage(lambda)(t) - c_lambda(t)| over a dense sampling.
+double stage_error(const DeflectedCurve& curve, double lambda) {
+  const BSplineCurve2d stage = curve.stage(lambda);
+  double worst = 0.0;
+  for (int i = 0; i <= 400; ++i) {
+    const double t = curve.first_parameter() + (curve.last_parameter() - curve.first_parameter()) * i / 400.0;
+    worst = std::max(worst, distance(stage.point(t), curve.point(t, lambda)));
+  }
+  return worst;
+}
+
+// Issue 18, item 1: FEM nodes on a curve's ends or knots, to rounding (a face end, the joint of
+// two faces), gave knots a rounding apart that the exact stage could not split at.
+TEST(DeflectedCurve, StageIsExactWhenNodesLieOnKnotsToRounding) {
+  const BSplineCurve2d r = test::s_curve();  // knots 0.35, 0.65
+  const double eps = 4e-16;
+  for (const auto& [a, b] : {std::pair{0.0 + eps, 1.0 - eps}, std::pair{0.35 + eps, 0.65 - eps},
+                             std::pair{0.35 - eps, 0.65 + eps}, std::pair{0.1, 0.65 - eps}}) {
+    for (const int q : {1, 2, 3, 5}) {
+      const DeflectedCurve curve(r, interpolant_on(r, a, b, q, DeflectionForm::displacement),
+                                 DeflectionForm::displacement);
+      EXPECT_LT(stage_error(curve, 1.0), 1e-12) << "FEM range [" << a << ", " << b << "], q " << q;
+    }
+  }
+}
+
+// Issue 18, item 2: averaged knots of a cubic interpolant through evenly spaced nodes fall on
+// the nodes to rounding, which are the knots of the polyline through them (2D without CAD).
+TEST(DeflectedCurve, StageIsExactForOddDegreesOnThePolylineOfTheNodes) {
+  std::vector<double> t;
+  std::vector<Vec2> points;
+  std::vector<Vec2> deflections;
+  for (int j = 0; j <= 30; ++j) {
+    t.push_back(j / 30.0);
+    points.push_back({j / 30.0, 0.2 * std::sin(5.0 * j / 30.0)});
+    deflections.push_back({0.0, 0.01 * j / 30.0});
+  }
+  const BSplineCurve2d polyline = BSplineCurve2d::polyline(t, points);
+  for (const int q : {3, 5}) {
+    const DeflectedCurve curve(polyline, interpolate(t, deflections, q), DeflectionForm::displacement);
+    EXPECT_LT(stage_error(curve, 1.0), 1e-12) << "q " << q;
+    EXPECT_LT(stage_error(curve, 0.5), 1e-12) << "q " << q;
   }
 }
 

@@ -2,7 +2,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <array>
+#include <string>
 
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
@@ -52,11 +56,67 @@ TEST(ReadFile, NamesFileThatCannotBeRead) {
   }
 }
 
+/// A process id that no process has now: a child that has ended.
+pid_t ended_process() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  return child;
+}
+
+TEST(AtomicFile, StaleTemporariesOfEndedRunsAreRemovedThoseOfLiveOnesKept) {
+  test::TempDir dir;
+  const std::string dead = "checkpoint.hmc.tmp-" + std::to_string(ended_process()) + "-0";
+  const std::string live = "checkpoint.hmc.tmp-" + std::to_string(::getppid()) + "-3";
+  const std::string other = "notes.txt.tmp-" + std::to_string(ended_process()) + "-0";
+  for (const auto& name : {dead, live, other}) test::write_text(dir / name, "x");
+  const std::array<std::string, 2> names{"checkpoint.hmc", "report.json"};
+  remove_stale_temporaries(dir.path(), names);
+  EXPECT_FALSE(std::filesystem::exists(dir / dead));
+  EXPECT_TRUE(std::filesystem::exists(dir / live));
+  EXPECT_TRUE(std::filesystem::exists(dir / other));  // not one of the outputs
+}
+
 TEST(OutputFolder, CreatesMissingFolder) {
   test::TempDir dir;
   const std::array<std::filesystem::path, 1> inputs{dir / "case.yaml"};
-  prepare_output_folder(dir / "a" / "b", inputs, false);
+  const OutputFolder folder = prepare_output_folder(dir / "a" / "b", inputs, false);
   EXPECT_TRUE(std::filesystem::is_directory(dir / "a" / "b"));
+  EXPECT_EQ(folder.path(), dir / "a" / "b");
+}
+
+TEST(OutputFolder, FoldersItCreatedGoAgainIfNothingWasWritten) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir / "runs");
+  { const OutputFolder unused = prepare_output_folder(dir / "runs" / "a" / "b/", {}, false); }
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "runs"));  // was there before
+  EXPECT_FALSE(std::filesystem::exists(dir / "runs" / "a"));
+  {
+    const OutputFolder written = prepare_output_folder(dir / "runs" / "c", {}, false);
+    test::write_text(dir / "runs" / "c" / "report.json", "{}");
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "runs" / "c" / "report.json"));
+  {
+    OutputFolder kept = prepare_output_folder(dir / "runs" / "d", {}, false);
+    kept.keep();
+  }
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "runs" / "d"));
+}
+
+TEST(OutputFolder, RefusesAFolderItCannotWriteIn) {
+  // Root writes in any folder its permissions close; sysfs refuses new files to everyone.
+  test::TempDir dir;
+  std::filesystem::path closed = dir / "closed";
+  std::filesystem::create_directories(closed);
+  std::filesystem::permissions(closed, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  if (::geteuid() == 0) closed = "/sys";
+  try {
+    const OutputFolder unused = prepare_output_folder(closed, {}, false);
+    FAIL() << "accepted " << closed;
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(closed.string() + ": cannot write in the output folder"));
+  }
+  std::filesystem::permissions(dir / "closed", std::filesystem::perms::owner_all);
 }
 
 TEST(OutputFolder, RefusesFolderHoldingAnInputUnlessForced) {
@@ -67,8 +127,8 @@ TEST(OutputFolder, RefusesFolderHoldingAnInputUnlessForced) {
   const std::array<std::filesystem::path, 2> inputs{dir / "case.yaml", dir / "sub" / "mesh.msh"};
   EXPECT_THROW(prepare_output_folder(dir.path(), inputs, false), InputError);
   EXPECT_THROW(prepare_output_folder(dir / "sub" / ".", inputs, false), InputError);
-  EXPECT_NO_THROW(prepare_output_folder(dir / "out", inputs, false));
-  EXPECT_NO_THROW(prepare_output_folder(dir.path(), inputs, true));
+  EXPECT_NO_THROW(static_cast<void>(prepare_output_folder(dir / "out", inputs, false)));
+  EXPECT_NO_THROW(static_cast<void>(prepare_output_folder(dir.path(), inputs, true)));
 }
 
 TEST(OutputFolder, RefusesAFileAsFolder) {

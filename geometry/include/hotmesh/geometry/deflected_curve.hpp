@@ -74,6 +74,8 @@ class DeflectedCurve {
 
  private:
   void build_pieces();
+  /// Parameter distance below which two knots are the same knot up to rounding.
+  double sliver() const;
 
   BSplineCurve2d undeformed_;
   std::optional<BSplineCurve2d> interpolant_;

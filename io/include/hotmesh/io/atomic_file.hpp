@@ -5,6 +5,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <span>
+#include <string>
 #include <string_view>
 
 namespace hotmesh::io {
@@ -34,6 +36,10 @@ class AtomicFile {
 
 /// Writes `content` to `target` atomically.
 void write_file_atomically(const std::filesystem::path& target, std::string_view content);
+
+/// Removes the temporary files that a killed run left beside the outputs `names` in `folder`
+/// (`<name>.tmp-<pid>-<n>` of a process that no longer runs; those of a live process stay).
+void remove_stale_temporaries(const std::filesystem::path& folder, std::span<const std::string> names);
 
 /// Reads a whole file. Throws hotmesh::InputError naming the file if it cannot be read.
 std::string read_file(const std::filesystem::path& path);
