@@ -8,6 +8,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::filesystem::path file = hotmesh::fuzz::work_folder() / ("fuzz" HOTMESH_FUZZ_CAD_EXTENSION);
   hotmesh::fuzz::write_bytes(file, hotmesh::fuzz::as_text(data, size));
+  const hotmesh::fuzz::OcctLeaksIgnored occt_leaks;
   try {
     hotmesh::geometry::CadModel::read(file);
   } catch (const hotmesh::InputError& e) {

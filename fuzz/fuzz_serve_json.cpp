@@ -46,11 +46,15 @@ struct Fixture {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static Fixture fixture;
+  static Fixture fixture = [] {
+    const hotmesh::fuzz::OcctLeaksIgnored occt_leaks;  // the first CAD file fills OpenCASCADE's registries
+    return Fixture();
+  }();
   serve::GeometryService& service = fixture.service;
   try {
     const serve::Json request = serve::parse_object(hotmesh::fuzz::as_text(data, size));
     if (request.contains("path")) {
+      const hotmesh::fuzz::OcctLeaksIgnored occt_leaks;  // the file is read as a STEP or IGES file
       service.delete_model(service.load_path(request)["model"].get<std::string>());
     } else if (request.contains("points")) {
       service.project(fixture.curve, request);

@@ -22,6 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   };
   const std::string_view filename = field();
   const std::string_view unit = field();
+  const hotmesh::fuzz::OcctLeaksIgnored occt_leaks;  // the upload is read as a STEP or IGES file
   try {
     service.delete_model(service.load_upload(filename, rest, unit)["model"].get<std::string>());
   } catch (const serve::ApiError&) {
