@@ -2,26 +2,33 @@
 // boundary patch to its reference shape (its CAD faces, or the deflected shape reconstructed
 // from FEM deflections for a deformed mesh), reports per patch the maximum, the mean and the
 // worst node as text, JSON or JUnit XML, and exits with code 1 when a patch is above the
-// tolerance.
+// tolerance. The patches and their shapes come from options (--map, --deflection) or from a
+// case file (--case): a mesh deformed by `hotmesh deform` against the case's deflected walls,
+// or the case's own mesh against its undeformed walls. A check that cannot be made still
+// writes its JUnit report (a test case in error) before exiting with the error's code.
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <stdexcept>
+#include <string_view>
 
 #include "check_references.hpp"
 #include "check_report.hpp"
 #include "commands.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
+#include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/io/output_folder.hpp"
 
@@ -32,6 +39,7 @@ geometry::LengthUnit parse_unit_option(const std::string& text);  // cad_command
 namespace {
 
 struct Options {
+  std::string case_file;
   std::string cad;
   std::string mesh;
   std::vector<std::string> maps;
@@ -43,7 +51,15 @@ struct Options {
   std::string form = "curve";
   std::string format = "text";
   std::string output;
+  std::vector<std::string> given;  ///< the options above that were given on the command line
 };
+
+/// Options that say what a case file says too.
+constexpr std::array kCaseOptions{"--cad", "--map", "--deflection", "--axis", "--unit", "--degree", "--form"};
+
+bool given(const Options& o, std::string_view option) {
+  return std::find(o.given.begin(), o.given.end(), option) != o.given.end();
+}
 
 /// "PATCH=VALUE" of an option.
 std::pair<std::string, std::string> assignment(const std::string& text, const char* option, const char* example) {
@@ -113,33 +129,74 @@ double default_tolerance(const deform::Mesh& mesh) {
   return 1e-6 * geometry::distance(lo, hi);
 }
 
+/// Statistics of distances as they are added, node by node.
+class DistanceTally {
+ public:
+  explicit DistanceTally(std::string reference) { check_.reference = std::move(reference); }
+  void add(double d, std::int64_t node, const geometry::Vec3& p) {
+    ++check_.nodes;
+    sum_ += d;
+    if (d > worst_ || std::isnan(d)) {
+      worst_ = d;
+      check_.worst_node = node;
+      check_.worst_point = p;
+    }
+  }
+  DistanceCheck result(double tolerance) const {
+    DistanceCheck c = check_;
+    c.max_distance = std::max(worst_, 0.0);  // NaN stays NaN
+    c.mean_distance = c.nodes == 0 ? 0.0 : sum_ / static_cast<double>(c.nodes);
+    c.passed = c.max_distance <= tolerance;  // false for NaN too
+    return c;
+  }
+
+ private:
+  DistanceCheck check_;
+  double sum_ = 0.0;
+  double worst_ = -1.0;
+};
+
+/// The nodes of `patch` measured against its reference; each node against the nearest part.
 PatchCheck check_patch(const deform::Patch& patch, const deform::Mesh& mesh, PatchReference& reference,
                        double tolerance) {
   const auto start = std::chrono::steady_clock::now();
-  PatchCheck check;
-  check.patch = patch.name;
-  check.reference = reference.description();
-  check.nodes = patch.nodes.size();
-  double sum = 0.0;
-  check.max_distance = -1.0;
+  DistanceTally whole(reference.description);
+  std::vector<DistanceTally> parts;
+  for (const auto& part : reference.parts) parts.emplace_back(part->description());
   for (const deform::NodeId n : patch.nodes) {
     const geometry::Vec3& p = mesh.points[static_cast<std::size_t>(n)];
-    const double d = reference.distance(p);
-    sum += d;
-    if (d > check.max_distance || std::isnan(d)) {
-      check.max_distance = d;
-      check.worst_node = mesh.node_id(n);
-      check.worst_point = p;
+    std::size_t nearest = 0;
+    double d = reference.parts[0]->distance(p);
+    for (std::size_t k = 1; k < reference.parts.size(); ++k) {
+      const double dk = reference.parts[k]->distance(p);
+      if (dk < d) {
+        d = dk;
+        nearest = k;
+      }
     }
+    whole.add(d, mesh.node_id(n), p);
+    parts[nearest].add(d, mesh.node_id(n), p);
   }
-  check.max_distance = std::max(check.max_distance, 0.0);
-  check.mean_distance = patch.nodes.empty() ? 0.0 : sum / static_cast<double>(patch.nodes.size());
-  check.passed = check.max_distance <= tolerance;  // false for NaN too
+  PatchCheck check;
+  static_cast<DistanceCheck&>(check) = whole.result(tolerance);
+  check.patch = patch.name;
+  if (parts.size() > 1) {
+    for (const DistanceTally& part : parts) check.parts.push_back(part.result(tolerance));
+  }
   check.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return check;
 }
 
-int run_check(const Options& o) {
+void log_patch(const PatchCheck& p) {
+  spdlog::info("{}: {} nodes, max distance {:.3e} at node {}, mean {:.3e} ({})", p.patch, p.nodes, p.max_distance,
+               p.worst_node, p.mean_distance, p.passed ? "pass" : "FAIL");
+}
+
+/// The check the options describe (--map, --deflection, --cad, --axis, ...).
+CheckResult check_with_options(const Options& o, const std::vector<std::filesystem::path>& inputs) {
+  if (o.mesh.empty()) {
+    throw InputError("give the mesh to check: hotmesh check MESH --map PATCH=FACE_IDS ... (or --case CASE.yaml)");
+  }
   if (o.axis.size() != 0 && o.axis.size() != 6) {
     throw InputError(fmt::format("--axis needs six numbers ox,oy,oz,dx,dy,dz, got {}", o.axis.size()));
   }
@@ -158,14 +215,7 @@ int run_check(const Options& o) {
   const io::LoadedMesh loaded = io::read_mesh(o.mesh);
   const deform::Mesh& mesh = loaded.mesh;
   const std::vector<PatchCheckSpec> specs = patch_specs(o, mesh);
-  if (!o.output.empty()) {
-    std::vector<std::filesystem::path> inputs{o.mesh};
-    if (!o.cad.empty()) inputs.emplace_back(o.cad);
-    for (const PatchCheckSpec& spec : specs) {
-      if (spec.deflection) inputs.push_back(*spec.deflection);
-    }
-    io::refuse_overwriting_input(o.output, inputs);
-  }
+  if (!o.output.empty()) io::refuse_overwriting_input(o.output, inputs);
   std::optional<geometry::CadModel> cad;
   if (!o.cad.empty()) cad.emplace(geometry::CadModel::read(o.cad, {.unit = options.unit}));
 
@@ -175,23 +225,151 @@ int run_check(const Options& o) {
   result.unit = geometry::to_string(options.unit);
   result.tolerance = o.tolerance > 0.0 ? o.tolerance : default_tolerance(mesh);
   for (const PatchCheckSpec& spec : specs) {
-    std::unique_ptr<PatchReference> reference = make_patch_reference(spec, cad ? &*cad : nullptr, mesh, options);
-    result.patches.push_back(check_patch(*mesh.find_patch(spec.patch), mesh, *reference, result.tolerance));
-    const PatchCheck& p = result.patches.back();
-    spdlog::info("{}: {} nodes, max distance {:.3e} at node {}, mean {:.3e} ({})", p.patch, p.nodes, p.max_distance,
-                 p.worst_node, p.mean_distance, p.passed ? "pass" : "FAIL");
+    PatchReference reference = make_patch_reference(spec, cad ? &*cad : nullptr, mesh, options);
+    result.patches.push_back(check_patch(*mesh.find_patch(spec.patch), mesh, reference, result.tolerance));
+    log_patch(result.patches.back());
+  }
+  return result;
+}
+
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code ec;
+  const bool same = std::filesystem::equivalent(a, b, ec);
+  return !ec && same;
+}
+
+/// The check a case file describes: every patch that follows a boundary, against the walls
+/// hotmesh deform builds for the case; undeformed for the case's own mesh, deflected for any
+/// other (a mesh the case was deformed into). `inputs_known` is set once the case is read.
+CheckResult check_with_case(const Options& o, std::vector<std::filesystem::path>& inputs, bool& inputs_known) {
+  std::vector<std::string> conflicts;
+  for (const char* option : kCaseOptions) {
+    if (given(o, option)) conflicts.emplace_back(option);
+  }
+  if (!conflicts.empty()) {
+    throw InputError(fmt::format("{}: not with --case, which gives the CAD file, the faces and tables of every patch, "
+                                 "the axis, the unit, and the degree and form of each table; drop --case to check "
+                                 "other faces or tables",
+                                 fmt::join(conflicts, ", ")));
+  }
+  const io::Case c = io::read_case(o.case_file);
+  for (const auto& file : c.inputs()) inputs.push_back(file);
+  inputs_known = true;
+  const std::filesystem::path mesh_path = o.mesh.empty() ? c.mesh : std::filesystem::path(o.mesh);
+  if (!o.output.empty()) io::refuse_overwriting_input(o.output, inputs);
+
+  const bool own_mesh = o.mesh.empty() || same_file(o.mesh, c.mesh);
+  const io::LoadedMesh case_mesh = io::read_mesh(c.mesh);
+  std::optional<io::LoadedMesh> deformed;
+  if (!own_mesh) {
+    deformed.emplace(io::read_mesh(mesh_path));
+    if (deformed->mesh.points.size() != case_mesh.mesh.points.size() ||
+        deformed->mesh.dimension != case_mesh.mesh.dimension) {
+      throw InputError::in(mesh_path.string(),
+                           fmt::format("{} nodes in {}D, but the case's mesh {} has {} nodes in {}D: give a mesh the "
+                                       "case was deformed into (hotmesh deform's deformed.msh)",
+                                       deformed->mesh.points.size(), deformed->mesh.dimension, c.mesh.string(),
+                                       case_mesh.mesh.points.size(), case_mesh.mesh.dimension));
+    }
+  }
+  const deform::Mesh& mesh = deformed ? deformed->mesh : case_mesh.mesh;
+  std::vector<CasePatchReference> references =
+      case_references(c, case_mesh.mesh, own_mesh ? CaseStage::undeformed : CaseStage::deflected);
+  if (references.empty()) {
+    throw InputError::in(c.file.string(), "no patch follows a boundary (role prescribed or sliding): nothing to check");
   }
 
-  const std::string report = o.format == "json"    ? check_json(result)
-                             : o.format == "junit" ? check_junit(result)
-                                                   : check_text(result);
-  if (o.output.empty()) {
-    std::cout << report << std::flush;
-  } else {
-    io::write_file_atomically(o.output, report);
-    std::cout << check_text(result) << std::flush;
+  CheckResult result;
+  result.mesh = mesh_path.string();
+  result.case_file = o.case_file;
+  result.cad = c.cad ? c.cad->string() : std::string();
+  result.unit = geometry::to_string(c.length_unit);
+  result.tolerance = o.tolerance > 0.0 ? o.tolerance : default_tolerance(mesh);
+  for (CasePatchReference& r : references) {
+    const deform::Patch* patch = mesh.find_patch(r.patch);
+    const deform::Patch* original = case_mesh.mesh.find_patch(r.patch);
+    if (!patch || patch->nodes.size() != original->nodes.size()) {
+      throw InputError::in(mesh_path.string(),
+                           fmt::format("patch '{}' {} in the case's mesh {}: give a mesh the case was deformed into",
+                                       r.patch, patch ? "has other nodes than" : "is missing; it is", c.mesh.string()));
+    }
+    result.patches.push_back(check_patch(*patch, mesh, r.reference, result.tolerance));
+    log_patch(result.patches.back());
   }
-  return result.passed() ? 0 : 1;
+  return result;
+}
+
+bool replaces_input(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs) {
+  try {
+    io::refuse_overwriting_input(output, inputs);
+  } catch (const InputError&) {
+    return true;
+  }
+  return false;
+}
+
+/// No file at `path` yet, or an XML document (an earlier report).
+bool nothing_or_xml(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return !ec;
+  std::ifstream in(path, std::ios::binary);
+  std::string start(5, '\0');
+  in.read(start.data(), static_cast<std::streamsize>(start.size()));
+  return in && start == "<?xml";
+}
+
+/// Replaces the JUnit report with one test case in error carrying `message`: never over an
+/// input, and while the case file could not be read (its inputs unknown) only over nothing or
+/// an earlier XML report. A report that cannot be written is only logged: the error itself is
+/// what the user needs to see.
+void write_error_report(const Options& o, const std::vector<std::filesystem::path>& inputs, bool inputs_known,
+                        const char* type, const std::string& message) {
+  if (o.format != "junit" || o.output.empty() || replaces_input(o.output, inputs)) return;
+  if (!inputs_known && !nothing_or_xml(o.output)) {
+    spdlog::warn("{}: not replaced by the report of the error: it is no XML report and may be a file the case names",
+                 o.output);
+    return;
+  }
+  try {
+    io::write_file_atomically(o.output, check_junit_error(o.mesh.empty() ? o.case_file : o.mesh, type, message));
+  } catch (const std::exception& e) {
+    spdlog::warn("the report of the error could not be written: {}", e.what());
+  }
+}
+
+int run_check(const Options& o) {
+  // The files the check reads, never to be replaced by its report; a case file adds its own.
+  std::vector<std::filesystem::path> inputs;
+  for (const std::string& file : {o.mesh, o.cad, o.case_file}) {
+    if (!file.empty()) inputs.emplace_back(file);
+  }
+  for (const std::string& text : o.deflections) {  // PATCH=CSV
+    if (const auto eq = text.find('='); eq != std::string::npos && eq + 1 < text.size()) inputs.emplace_back(text.substr(eq + 1));
+  }
+  bool inputs_known = o.case_file.empty();
+  try {
+    if (!o.output.empty()) io::refuse_overwriting_input(o.output, inputs);
+    const CheckResult result = o.case_file.empty() ? check_with_options(o, inputs) : check_with_case(o, inputs, inputs_known);
+    const std::string report = o.format == "json"    ? check_json(result)
+                               : o.format == "junit" ? check_junit(result)
+                                                     : check_text(result);
+    if (o.output.empty()) {
+      std::cout << report << std::flush;
+    } else {
+      io::write_file_atomically(o.output, report);
+      std::cout << check_text(result) << std::flush;
+    }
+    return result.passed() ? 0 : 1;
+  } catch (const InputError& e) {
+    write_error_report(o, inputs, inputs_known, "input error", e.what());
+    throw;
+  } catch (const std::bad_alloc&) {
+    write_error_report(o, inputs, inputs_known, "out of memory", "out of memory");
+    throw;
+  } catch (const std::exception& e) {
+    write_error_report(o, inputs, inputs_known, "internal error", e.what());
+    throw;
+  }
 }
 
 }  // namespace
@@ -200,10 +378,15 @@ Command add_check_command(CLI::App& parent) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = parent.add_subcommand(
       "check", "Distance of mesh boundary nodes to their CAD faces or to the deflected shape; exit code 1 above --tol");
-  cmd->add_option("--cad", options->cad, "CAD file (.step, .stp, .iges, .igs) with the faces --map names")
+  cmd->add_option("mesh,--mesh", options->mesh,
+                  "Mesh (.msh) to check: undeformed, or deformed when tables are given; with --case, default: the "
+                  "case's own mesh")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--mesh", options->mesh, "Mesh (.msh): undeformed, or deformed when tables are given")
-      ->required()
+  cmd->add_option("--case", options->case_file,
+                  "Case file (YAML) giving the patches, faces, tables and axis: a mesh deformed by the case is "
+                  "compared with its deflected walls, the case's own mesh with its undeformed walls")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--cad", options->cad, "CAD file (.step, .stp, .iges, .igs) with the faces --map names")
       ->check(CLI::ExistingFile);
   cmd->add_option("--map", options->maps, "PATCH=FACE_IDS: a patch and its CAD faces, e.g. casing=1,2 (repeatable)");
   cmd->add_option("--deflection", options->deflections,
@@ -225,7 +408,12 @@ Command add_check_command(CLI::App& parent) {
       ->check(CLI::IsMember({"text", "json", "junit"}))
       ->capture_default_str();
   cmd->add_option("-o,--output", options->output, "Write the report to this file (atomically); stdout gets the text form");
-  return [options] { return run_check(*options); };
+  return [options, cmd] {
+    for (const char* option : kCaseOptions) {
+      if (cmd->count(option) > 0) options->given.emplace_back(option);
+    }
+    return run_check(*options);
+  };
 }
 
 }  // namespace hotmesh::app

@@ -5,12 +5,14 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <iterator>
 #include <utility>
 
 #include "curve_fit.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/geometry/surface_distance.hpp"
+#include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 
 namespace hotmesh::app {
@@ -18,29 +20,30 @@ namespace hotmesh::app {
 namespace {
 
 std::string axis_text(const geometry::Axis& axis) {
-  const auto& o = axis.origin();
-  const auto& d = axis.direction();
+  const geometry::Vec3 o = axis.origin() + geometry::Vec3{0, 0, 0};  // + 0: no "-0"
+  const geometry::Vec3 d = axis.direction() + geometry::Vec3{0, 0, 0};
   return fmt::format("the axis ({:.6g}, {:.6g}, {:.6g}) along ({:.6g}, {:.6g}, {:.6g})", o.x, o.y, o.z, d.x, d.y, d.z);
 }
 
-/// A boundary shape at its stage 1: the deflected shape, or the undeformed one for a shape
-/// without deflection. Distances are those of its projection: in the meridional plane through
-/// the point for surfaces of revolution (the distance to the surface), in the x-y plane for 2D
-/// curves.
-class ShapeReference final : public PatchReference {
+/// A boundary shape at one stage: 1, the deflected shape (the undeformed one for a shape
+/// without deflection), or 0, the undeformed one. Distances are those of its projection: in the
+/// meridional plane through the point for surfaces of revolution (the distance to the surface),
+/// in the x-y plane for 2D curves.
+class ShapeReference final : public ReferenceShape {
  public:
-  ShapeReference(std::unique_ptr<geometry::BoundaryShape> shape, std::string description)
-      : shape_(std::move(shape)), description_(std::move(description)) {}
-  double distance(const geometry::Vec3& p) override { return shape_->project(p, 1.0).distance; }
+  ShapeReference(std::shared_ptr<const geometry::BoundaryShape> shape, double stage, std::string description)
+      : shape_(std::move(shape)), stage_(stage), description_(std::move(description)) {}
+  double distance(const geometry::Vec3& p) override { return shape_->project(p, stage_).distance; }
   std::string description() const override { return description_; }
 
  private:
-  std::unique_ptr<geometry::BoundaryShape> shape_;
+  std::shared_ptr<const geometry::BoundaryShape> shape_;
+  double stage_ = 1.0;
   std::string description_;
 };
 
 /// CAD faces that are no surfaces of revolution: the distance to their surfaces.
-class FaceReference final : public PatchReference {
+class FaceReference final : public ReferenceShape {
  public:
   FaceReference(geometry::SurfaceDistance surfaces, std::string description)
       : surfaces_(std::move(surfaces)), description_(std::move(description)) {}
@@ -52,28 +55,57 @@ class FaceReference final : public PatchReference {
   std::string description_;
 };
 
-std::unique_ptr<geometry::BoundaryShape> shape_of(const CurveRun& run) {
-  if (run.axis) return std::make_unique<geometry::RevolvedShape>(run.fit.curve, *run.axis);
-  return std::make_unique<geometry::PlanarCurveShape>(run.fit.curve);
+PatchReference single(std::unique_ptr<ReferenceShape> shape) {
+  PatchReference reference;
+  reference.description = shape->description();
+  reference.parts.push_back(std::move(shape));
+  return reference;
 }
 
-std::unique_ptr<PatchReference> reference(const PatchCheckSpec& spec, const geometry::CadModel* cad,
-                                          const deform::Mesh& mesh, const ReferenceOptions& options) {
-  const std::string faces = fmt::format("{}", fmt::join(spec.faces, ", "));
+std::shared_ptr<const geometry::BoundaryShape> shape_of(const CurveRun& run) {
+  if (run.axis) return std::make_shared<geometry::RevolvedShape>(run.fit.curve, *run.axis);
+  return std::make_shared<geometry::PlanarCurveShape>(run.fit.curve);
+}
+
+std::string face_text(const std::vector<int>& faces) {
+  return fmt::format("{} {}", faces.size() == 1 ? "face" : "faces", fmt::join(faces, ", "));
+}
+
+/// Faces of revolution, without deflection: their meridional curve, or one part per profile
+/// when they form several.
+PatchReference revolved_faces(const PatchCheckSpec& spec, const geometry::CadModel& cad, const ReferenceOptions& options) {
+  const std::vector<geometry::MeridionalCurve> profiles = cad.meridional_profiles(spec.faces, {.axis = options.axis});
+  PatchReference reference;
+  for (const geometry::MeridionalCurve& curve : profiles) {
+    std::vector<int> faces;  // in the order given
+    std::copy_if(spec.faces.begin(), spec.faces.end(), std::back_inserter(faces), [&](int id) {
+      return std::find(curve.faces.begin(), curve.faces.end(), id) != curve.faces.end();
+    });
+    reference.parts.push_back(std::make_unique<ShapeReference>(
+        std::make_shared<geometry::RevolvedShape>(geometry::DeflectedCurve(curve.curve), curve.axis), 1.0,
+        fmt::format("CAD {}: {} meridional curve about {}", face_text(faces), faces.size() == 1 ? "its" : "their",
+                    axis_text(curve.axis))));
+  }
+  reference.description =
+      profiles.size() == 1
+          ? reference.parts.front()->description()
+          : fmt::format("CAD {}: {} separate meridional profiles about {}, each node measured against the nearest",
+                        face_text(spec.faces), profiles.size(), axis_text(profiles.front().axis));
+  return reference;
+}
+
+PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* cad, const deform::Mesh& mesh,
+                         const ReferenceOptions& options) {
+  const std::string faces = face_text(spec.faces);
   if (!spec.deflection) {
     const bool rotational = options.axis || std::any_of(spec.faces.begin(), spec.faces.end(), [&](int id) {
                               return cad->face(id).axis.has_value();
                             });
-    if (rotational) {
-      const geometry::MeridionalCurve curve = cad->meridional_curve(spec.faces, {.axis = options.axis});
-      return std::make_unique<ShapeReference>(
-          std::make_unique<geometry::RevolvedShape>(geometry::DeflectedCurve(curve.curve), curve.axis),
-          fmt::format("CAD faces {}: their meridional curve about {}", faces, axis_text(curve.axis)));
-    }
+    if (rotational) return revolved_faces(spec, *cad, options);
     std::vector<geometry::BSplineSurface> surfaces;
     for (const int id : spec.faces) surfaces.push_back(cad->face_bspline(id));
-    return std::make_unique<FaceReference>(geometry::SurfaceDistance(surfaces),
-                                           fmt::format("CAD faces {}: their surfaces", faces));
+    return single(std::make_unique<FaceReference>(geometry::SurfaceDistance(surfaces),
+                                                  fmt::format("CAD {}: their surfaces", faces)));
   }
 
   const geometry::DeflectionSamples table = io::read_deflection_csv(*spec.deflection);
@@ -86,9 +118,10 @@ std::unique_ptr<PatchReference> reference(const PatchCheckSpec& spec, const geom
     }
     const geometry::MeridionalCurve curve = cad->meridional_curve(spec.faces, {.axis = options.axis});
     const CurveRun run = fit_on_cad_curve(curve, table, options.reconstruction, options.unit, cad->path().string());
-    return std::make_unique<ShapeReference>(
-        shape_of(run), fmt::format("CAD faces {} deflected by {} (eq. 21, degree {}) about {}", faces, source,
-                                   run.fit.report.degree, axis_text(curve.axis)));
+    return single(std::make_unique<ShapeReference>(
+        shape_of(run), 1.0,
+        fmt::format("CAD {} deflected by {} (eq. 21, degree {}) about {}", faces, source, run.fit.report.degree,
+                    axis_text(curve.axis))));
   }
   if (mesh.dimension == 2 && table.frame != geometry::SampleFrame::planar) {
     throw InputError::in(source, "a 2D mesh needs a planar table (x,y,dx,dy)");
@@ -98,15 +131,43 @@ std::unique_ptr<PatchReference> reference(const PatchCheckSpec& spec, const geom
   }
   const CurveRun run = fit_without_cad(table, options.axis, options.reconstruction, options.unit, "--axis");
   const std::string where = run.axis ? " about " + axis_text(*run.axis) : std::string(" in the x-y plane");
-  return std::make_unique<ShapeReference>(
-      shape_of(run), fmt::format("the curve through the FEM nodes of {} deflected by them (eq. 21, degree {}){}", source,
-                                 run.fit.report.degree, where));
+  return single(std::make_unique<ShapeReference>(
+      shape_of(run), 1.0,
+      fmt::format("the curve through the FEM nodes of {} deflected by them (eq. 21, degree {}){}", source,
+                  run.fit.report.degree, where)));
+}
+
+/// What hotmesh deform makes of a case patch's wall, for reports; paths relative to the case.
+std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, CaseStage stage, int dimension) {
+  const auto name = [&](const std::filesystem::path& file) {
+    return file.lexically_relative(c.file.parent_path()).string();
+  };
+  const bool deflected = stage == CaseStage::deflected;
+  std::string what;
+  if (!spec.deflection) {
+    what = "its own undeformed nodes (a sliding wall without table keeps its shape)";
+  } else {
+    const io::DeflectionSpec& d = *spec.deflection;
+    const std::string fit = fmt::format("(eq. 21, {} form, degree {})",
+                                        d.form == geometry::DeflectionForm::displacement ? "displacement" : "curve",
+                                        d.degree);
+    if (d.faces.empty()) {
+      what = fmt::format("the curve through the FEM nodes of {}{}", name(d.file),
+                         deflected ? ", deflected by them " + fit : std::string());
+    } else {
+      what = fmt::format("CAD {} of {}{}", face_text(d.faces), name(*c.cad),
+                         deflected ? fmt::format(", deflected by {} {}", name(d.file), fit) : std::string());
+    }
+  }
+  const std::string where = dimension == 2 ? " in the x-y plane" : " about " + axis_text(*c.axis);
+  return fmt::format("the {} wall of the case ({}): {}{}", deflected ? "deflected" : "undeformed",
+                     deform::to_string(spec.role), what, where);
 }
 
 }  // namespace
 
-std::unique_ptr<PatchReference> make_patch_reference(const PatchCheckSpec& spec, const geometry::CadModel* cad,
-                                                     const deform::Mesh& mesh, const ReferenceOptions& options) {
+PatchReference make_patch_reference(const PatchCheckSpec& spec, const geometry::CadModel* cad,
+                                    const deform::Mesh& mesh, const ReferenceOptions& options) {
   if (!spec.faces.empty() && cad == nullptr) {
     throw InputError(fmt::format("--map {}: needs --cad, the file the faces belong to", spec.patch));
   }
@@ -118,6 +179,21 @@ std::unique_ptr<PatchReference> make_patch_reference(const PatchCheckSpec& spec,
   } catch (const InputError& e) {
     throw InputError(fmt::format("patch '{}': {}", spec.patch, e.what()));
   }
+}
+
+std::vector<CasePatchReference> case_references(const io::Case& c, const deform::Mesh& case_mesh, CaseStage stage) {
+  io::check_case_against_mesh(c, case_mesh);
+  const io::CaseSetup setup = io::set_up_case(c, case_mesh);
+  std::vector<CasePatchReference> references;
+  for (std::size_t i = 0; i < setup.motions.size(); ++i) {
+    const deform::PatchMotion& motion = setup.motions[i];
+    if (!motion.shape) continue;
+    const io::PatchSpec& spec = *c.find_patch(motion.patch);
+    references.push_back({motion.patch, single(std::make_unique<ShapeReference>(
+                                            motion.shape, stage == CaseStage::deflected ? 1.0 : 0.0,
+                                            case_wall_text(c, spec, stage, case_mesh.dimension)))});
+  }
+  return references;
 }
 
 }  // namespace hotmesh::app

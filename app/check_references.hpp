@@ -1,9 +1,12 @@
 // hotmesh app: what `hotmesh check` measures each mesh patch against. A patch mapped to CAD
 // faces is compared with the faces: with their meridional curve (eq. 20) about the axis when
 // they are surfaces of revolution (the way hotmesh deform sees them), else with the faces'
-// surfaces themselves. A patch with a deflection table is compared with the deflected shape
+// surfaces themselves; faces whose meridional curves form several separate profiles (a casing
+// on either side of a blade row) give one part per profile, and each node is measured against
+// the nearest part. A patch with a deflection table is compared with the deflected shape
 // reconstructed through the FEM nodes (section 4.2, eq. 21), on the CAD curve or, without
-// faces, on the curve the nodes define; the mesh is then the deformed one.
+// faces, on the curve the nodes define; the mesh is then the deformed one. With a case file the
+// shapes are those hotmesh deform builds for the case (io::set_up_case), undeformed or deflected.
 #pragma once
 
 #include <filesystem>
@@ -15,17 +18,24 @@
 #include "hotmesh/deform/mesh.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
+#include "hotmesh/io/case_file.hpp"
 
 namespace hotmesh::app {
 
-/// Distance of points to the reference shape of one patch.
-class PatchReference {
+/// One shape some nodes are measured against.
+class ReferenceShape {
  public:
-  virtual ~PatchReference() = default;
+  virtual ~ReferenceShape() = default;
   /// Distance of `p` (mesh coordinates) to the shape.
   virtual double distance(const geometry::Vec3& p) = 0;
-  /// What the shape is, for reports: "meridional curve of CAD faces 1, 2 about ...".
+  /// What the shape is, for reports: "CAD faces 1, 2: their meridional curve about ...".
   virtual std::string description() const = 0;
+};
+
+/// What one patch is measured against: one shape, or one per separate part.
+struct PatchReference {
+  std::string description;                             ///< the whole, for reports
+  std::vector<std::unique_ptr<ReferenceShape>> parts;  ///< at least one
 };
 
 struct PatchCheckSpec {
@@ -42,7 +52,24 @@ struct ReferenceOptions {
 
 /// The reference of one patch. `cad` is null when no CAD file was given (then the spec has no
 /// faces). Throws hotmesh::InputError naming the patch for anything that does not fit.
-std::unique_ptr<PatchReference> make_patch_reference(const PatchCheckSpec& spec, const geometry::CadModel* cad,
-                                                     const deform::Mesh& mesh, const ReferenceOptions& options);
+PatchReference make_patch_reference(const PatchCheckSpec& spec, const geometry::CadModel* cad,
+                                    const deform::Mesh& mesh, const ReferenceOptions& options);
+
+/// Which shape of a case's boundaries a mesh is compared with.
+enum class CaseStage {
+  undeformed,  ///< the case's own mesh: its walls as the CAD faces, tables or nodes give them
+  deflected,   ///< a mesh deformed by hotmesh deform: the walls the FEM deflections give
+};
+
+struct CasePatchReference {
+  std::string patch;
+  PatchReference reference;
+};
+
+/// The references of every patch of a case that follows a boundary (prescribed and sliding
+/// patches), in the order of the case file: the shapes hotmesh deform builds for the case from
+/// its own (undeformed) mesh `case_mesh`, at the stage asked for. Throws hotmesh::InputError
+/// as hotmesh deform's set-up does.
+std::vector<CasePatchReference> case_references(const io::Case& c, const deform::Mesh& case_mesh, CaseStage stage);
 
 }  // namespace hotmesh::app

@@ -13,7 +13,7 @@ namespace {
 
 std::string point_text(const geometry::Vec3& p) { return fmt::format("({:.9g}, {:.9g}, {:.9g})", p.x, p.y, p.z); }
 
-std::string verdict(const PatchCheck& p, double tolerance) {
+std::string verdict(const DistanceCheck& p, double tolerance) {
   return fmt::format("max distance {:.3e} at node {} {} {} the tolerance {:.3e}; mean {:.3e} over {} nodes",
                      p.max_distance, p.worst_node, point_text(p.worst_point), p.passed ? "within" : "ABOVE",
                      tolerance, p.mean_distance, p.nodes);
@@ -41,6 +41,26 @@ std::string xml(const std::string& text) {
   return out;
 }
 
+/// The verdicts of the parts of a patch, one line each, indented.
+std::string part_lines(const PatchCheck& p, double tolerance, const std::string& indent) {
+  std::string text;
+  for (std::size_t k = 0; k < p.parts.size(); ++k) {
+    const DistanceCheck& part = p.parts[k];
+    text += fmt::format("{}part {} {}: {}\n{}    against {}\n", indent, k + 1, part.passed ? "pass" : "FAIL",
+                        verdict(part, tolerance), indent, part.reference);
+  }
+  return text;
+}
+
+nlohmann::json distances_json(const DistanceCheck& p) {
+  return {{"reference", p.reference},
+          {"nodes", p.nodes},
+          {"max_distance", p.max_distance},
+          {"mean_distance", p.mean_distance},
+          {"worst_node", {{"id", p.worst_node}, {"point", {p.worst_point.x, p.worst_point.y, p.worst_point.z}}}},
+          {"passed", p.passed}};
+}
+
 double total_seconds(const CheckResult& result) {
   double seconds = 0.0;
   for (const PatchCheck& p : result.patches) seconds += p.seconds;
@@ -57,11 +77,13 @@ std::size_t failures(const CheckResult& result) {
 bool CheckResult::passed() const { return failures(*this) == 0; }
 
 std::string check_text(const CheckResult& result) {
-  std::string text = fmt::format("hotmesh check: {}{}, tolerance {:.3e} {}\n", result.mesh,
-                                 result.cad.empty() ? "" : " against " + result.cad, result.tolerance, result.unit);
+  std::string text = fmt::format("hotmesh check: {}{}{}, tolerance {:.3e} {}\n", result.mesh,
+                                 result.case_file.empty() ? "" : " against the case " + result.case_file,
+                                 result.cad.empty() ? "" : " and " + result.cad, result.tolerance, result.unit);
   for (const PatchCheck& p : result.patches) {
     text += fmt::format("  {} {}: {}\n      against {}\n", p.passed ? "pass" : "FAIL", p.patch, verdict(p, result.tolerance),
                         p.reference);
+    text += part_lines(p, result.tolerance, "      ");
   }
   text += fmt::format("{} of {} patches within the tolerance\n", result.patches.size() - failures(result),
                       result.patches.size());
@@ -70,18 +92,22 @@ std::string check_text(const CheckResult& result) {
 
 std::string check_json(const CheckResult& result) {
   nlohmann::json patches = nlohmann::json::array();
+  const auto optional_text = [](const std::string& text) {
+    return text.empty() ? nlohmann::json(nullptr) : nlohmann::json(text);
+  };
   for (const PatchCheck& p : result.patches) {
-    patches.push_back({{"patch", p.patch},
-                       {"reference", p.reference},
-                       {"nodes", p.nodes},
-                       {"max_distance", p.max_distance},
-                       {"mean_distance", p.mean_distance},
-                       {"worst_node", {{"id", p.worst_node}, {"point", {p.worst_point.x, p.worst_point.y, p.worst_point.z}}}},
-                       {"passed", p.passed},
-                       {"seconds", p.seconds}});
+    nlohmann::json patch = {{"patch", p.patch}};
+    patch.update(distances_json(p));
+    patch["seconds"] = p.seconds;
+    if (!p.parts.empty()) {
+      patch["parts"] = nlohmann::json::array();
+      for (const DistanceCheck& part : p.parts) patch["parts"].push_back(distances_json(part));
+    }
+    patches.push_back(std::move(patch));
   }
   const nlohmann::json json = {{"mesh", result.mesh},
-                               {"cad", result.cad.empty() ? nlohmann::json(nullptr) : nlohmann::json(result.cad)},
+                               {"case", optional_text(result.case_file)},
+                               {"cad", optional_text(result.cad)},
                                {"tolerance", result.tolerance},
                                {"unit", result.unit},
                                {"passed", result.passed()},
@@ -99,13 +125,17 @@ std::string check_junit(const CheckResult& result) {
                    xml(suite), result.patches.size(), failures(result), total_seconds(result));
   x += "    <properties>\n";
   x += fmt::format("      <property name=\"mesh\" value=\"{}\"/>\n", xml(result.mesh));
+  if (!result.case_file.empty()) {
+    x += fmt::format("      <property name=\"case\" value=\"{}\"/>\n", xml(result.case_file));
+  }
   if (!result.cad.empty()) x += fmt::format("      <property name=\"cad\" value=\"{}\"/>\n", xml(result.cad));
   x += fmt::format("      <property name=\"tolerance\" value=\"{:.6e}\"/>\n", result.tolerance);
   x += fmt::format("      <property name=\"unit\" value=\"{}\"/>\n", xml(result.unit));
   x += "    </properties>\n";
   for (const PatchCheck& p : result.patches) {
     x += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">\n", xml(classname), xml(p.patch), p.seconds);
-    const std::string details = xml(verdict(p, result.tolerance) + "; against " + p.reference);
+    const std::string details =
+        xml(verdict(p, result.tolerance) + "; against " + p.reference + "\n" + part_lines(p, result.tolerance, ""));
     if (!p.passed) {
       x += fmt::format("      <failure type=\"tolerance\" message=\"node {} is {:.3e} from the reference shape, above the "
                        "tolerance {:.3e}\">{}</failure>\n",
@@ -115,6 +145,19 @@ std::string check_junit(const CheckResult& result) {
     x += "    </testcase>\n";
   }
   x += "  </testsuite>\n</testsuites>\n";
+  return x;
+}
+
+std::string check_junit_error(const std::string& subject, const std::string& type, const std::string& message) {
+  const std::string suite = "hotmesh check " + std::filesystem::path(subject).filename().string();
+  const std::string classname = "hotmesh.check." + std::filesystem::path(subject).stem().string();
+  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  x += "<testsuites name=\"hotmesh check\" tests=\"1\" failures=\"0\" errors=\"1\" time=\"0.000\">\n";
+  x += fmt::format("  <testsuite name=\"{}\" tests=\"1\" failures=\"0\" errors=\"1\" skipped=\"0\" time=\"0.000\">\n",
+                   xml(suite));
+  x += fmt::format("    <testcase classname=\"{}\" name=\"input\" time=\"0.000\">\n", xml(classname));
+  x += fmt::format("      <error type=\"{}\" message=\"{}\">{}</error>\n", xml(type), xml(message), xml(message));
+  x += "    </testcase>\n  </testsuite>\n</testsuites>\n";
   return x;
 }
 

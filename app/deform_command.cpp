@@ -22,6 +22,7 @@
 #include "deform_outputs.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/deform/processes.hpp"
+#include "hotmesh/deform/threads.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/atomic_file.hpp"
@@ -163,6 +164,14 @@ int run_deform(const Options& options, RunState& state) {
                                                       "processes) use `linear: amg`",
                                                       deform::to_string(c.solver.linear), job.count));
   }
+  // The threads before the mesh, while memory is plentiful (deform/threads.hpp).
+  const int threads = options.threads >= 0 ? options.threads : c.solver.threads;
+  state.phase = fmt::format("starting {}", counted(threads > 0 ? threads : omp_get_max_threads(), "thread"));
+  deform::start_threads(threads);
+  // Every file the case names is checked before any work: the CAD file too, whether or not a
+  // patch takes faces from it.
+  state.phase = "reading the CAD file";
+  const std::optional<geometry::CadModel> cad = io::read_case_cad(c);
   state.phase = "reading the mesh";
   io::LoadedMesh loaded = io::read_mesh(c.mesh);
   const deform::Mesh& mesh = loaded.mesh;
@@ -176,8 +185,6 @@ int run_deform(const Options& options, RunState& state) {
   auto fingerprints = io::input_fingerprints(c);
   io::OutputFolder folder;  // removed again if the run fails before writing in it
   std::optional<io::Checkpoint> resumed = prepare_output(options, c, mesh, output, fingerprints, folder);
-  const int threads = options.threads >= 0 ? options.threads : c.solver.threads;
-  if (threads > 0) omp_set_num_threads(threads);
 
   // A restarted run continues from the state a previous run saved (section 4.3).
   std::optional<io::RestartState> previous;
@@ -192,7 +199,7 @@ int run_deform(const Options& options, RunState& state) {
   // 2. The deflected shapes, from the FEM tables (section 4.2).
   state.phase = "building the deflected shapes";
   t = Clock::now();
-  const io::CaseSetup setup = io::set_up_case(c, mesh, previous ? &*previous : nullptr);
+  const io::CaseSetup setup = io::set_up_case(c, mesh, previous ? &*previous : nullptr, cad ? &*cad : nullptr);
   for (const auto& s : setup.shapes) {
     spdlog::info("patch {}: deflected shape through {} FEM nodes (degree {})", s.patch, s.reconstruction.used_nodes,
                  s.reconstruction.degree);
@@ -232,8 +239,14 @@ int run_deform(const Options& options, RunState& state) {
     state.checkpoint_increments = k.finished_increments;
   };
   state.phase = "moving the mesh";
-  const deform::MotionResult result = deform::move_mesh(mesh, setup.motions, c.material, c.solver, observers,
-                                                        restart ? &*restart : nullptr, resumed ? &resumed->state : nullptr);
+  const deform::MotionResult result = [&] {
+    try {
+      return deform::move_mesh(mesh, setup.motions, c.material, c.solver, observers, restart ? &*restart : nullptr,
+                               resumed ? &resumed->state : nullptr);
+    } catch (const deform::FreeRigidMotion& e) {  // the roles as a whole: the case's `patches:`
+      throw InputError::at(c.file.string(), c.patches_line, fmt::format("patches: {}", e.what()));
+    }
+  }();
   const std::optional<io::CheckpointInfo> resumed_from = resumed ? std::optional(resumed->info) : std::nullopt;
   resumed.reset();  // its copy of the mesh is no longer needed
   for (const auto& note : result.notes) spdlog::warn("{}", note);

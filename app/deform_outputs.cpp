@@ -110,6 +110,13 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
                   RunOutputs& outputs, const io::CheckpointInfo* resumed) {
   using nlohmann::json;
   const deform::Mesh& mesh = loaded.mesh;
+  // Every length `key` in mesh units has a `key_relative`: divided by the diagonal of the
+  // undeformed mesh's bounding box.
+  const double scale = result.length_scale;
+  const auto put_length = [scale](json& object, const std::string& key, double length) {
+    object[key] = length;
+    object[key + "_relative"] = length / scale;
+  };
   json j;
   j["hotmesh_version"] = HOTMESH_VERSION;
   j["command"] = "deform";
@@ -122,14 +129,15 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["deflections"] = json::array();
   for (const auto& s : setup.shapes) {
     const auto& r = s.reconstruction;
-    j["deflections"].push_back({{"patch", s.patch},
-                                {"nodes", r.nodes},
-                                {"used_nodes", r.used_nodes},
-                                {"merged_duplicates", r.merged_duplicates},
-                                {"degree", r.degree},
-                                {"form", geometry::to_string(r.form)},
-                                {"max_node_distance_to_cad", r.max_node_distance_to_cad},
-                                {"max_node_residual", r.max_node_residual}});
+    json deflection{{"patch", s.patch},
+                    {"nodes", r.nodes},
+                    {"used_nodes", r.used_nodes},
+                    {"merged_duplicates", r.merged_duplicates},
+                    {"degree", r.degree},
+                    {"form", geometry::to_string(r.form)}};
+    put_length(deflection, "max_node_distance_to_cad", r.max_node_distance_to_cad);
+    put_length(deflection, "max_node_residual", r.max_node_residual);
+    j["deflections"].push_back(std::move(deflection));
   }
   j["solver"] = {{"increments", c.solver.increments},
                  {"newton_tolerance", c.solver.newton_tolerance},
@@ -145,10 +153,13 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   std::size_t newton_total = 0, pcg_total = 0;
   for (const auto& r : result.increments) {
     json pcg = json::array(), tolerances = json::array(), norms = json::array(), residuals = json::array(),
-         projections = json::array();
+         projections = json::array(), relative_projections = json::array();
     for (std::size_t i = 0; i < r.newton.size(); ++i) {
       residuals.push_back(r.newton[i].residual);
-      if (i + 1 < r.newton.size() && result.sliding_nodes > 0) projections.push_back(r.newton[i].max_projection);
+      if (i + 1 < r.newton.size() && result.sliding_nodes > 0) {
+        projections.push_back(r.newton[i].max_projection);
+        relative_projections.push_back(r.newton[i].max_projection / scale);
+      }
       if (i + 1 < r.newton.size()) {
         pcg.push_back(r.newton[i].pcg_iterations);
         tolerances.push_back(r.newton[i].linear_tolerance);
@@ -157,23 +168,26 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
       pcg_total += static_cast<std::size_t>(r.newton[i].pcg_iterations);
     }
     newton_total += r.newton.empty() ? 0 : r.newton.size() - 1;
-    j["increments"].push_back({{"increment", r.increment},
-                               {"stage", {r.lambda_begin, r.lambda_end}},
-                               {"split_depth", r.split_depth},
-                               {"accepted", r.accepted},
-                               {"converged", r.converged},
-                               {"newton_iterations", r.newton.empty() ? 0 : r.newton.size() - 1},
-                               {"pcg_iterations", pcg},
-                               {"linear_tolerances", tolerances},
-                               {"linear_norms", norms},
-                               {"residuals", residuals},
-                               {"residual_reduction", r.residual_reduction},
-                               {"min_scaled_jacobian", r.min_scaled_jacobian},
-                               {"max_projection_distance", projections},
-                               {"max_normal_slip", r.max_normal_slip},
-                               {"inverted_cells", r.inverted_cells},
-                               {"seconds", r.seconds},
-                               {"failure", r.failure}});
+    json attempt{{"increment", r.increment},
+                 {"stage", {r.lambda_begin, r.lambda_end}},
+                 {"split_depth", r.split_depth},
+                 {"accepted", r.accepted},
+                 {"converged", r.converged},
+                 {"newton_iterations", r.newton.empty() ? 0 : r.newton.size() - 1},
+                 {"pcg_iterations", pcg},
+                 {"linear_tolerances", tolerances},
+                 {"linear_norms", norms},
+                 {"residuals", residuals},
+                 {"residual_reduction", r.residual_reduction},
+                 // The quality is checked only once Newton has converged: unknown otherwise.
+                 {"min_scaled_jacobian", r.converged ? json(r.min_scaled_jacobian) : json(nullptr)},
+                 {"inverted_cells", r.converged ? json(r.inverted_cells) : json(nullptr)},
+                 {"max_projection_distance", projections},
+                 {"max_projection_distance_relative", relative_projections},
+                 {"seconds", r.seconds},
+                 {"failure", r.failure}};
+    put_length(attempt, "max_normal_slip", r.max_normal_slip);
+    j["increments"].push_back(std::move(attempt));
   }
   j["newton_iterations"] = newton_total;
   j["pcg_iterations"] = pcg_total;
@@ -181,10 +195,15 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["sliding_nodes"] = result.sliding_nodes;
   j["passive_nodes"] = result.passive_nodes;
   j["periodic_pairs"] = result.periodic_pairs;
-  j["periodic_max_mismatch"] = result.periodic_max_mismatch;
   j["peak_memory_bytes"] = peak_memory_bytes();
-  j["max_sliding_projection_distance"] = result.max_sliding_projection_distance;
-  j["max_normal_slip"] = result.max_normal_slip;
+  j["length_scale"] = scale;
+  put_length(j, "max_periodic_mismatch", result.max_periodic_mismatch);
+  put_length(j, "max_projection_distance", result.max_projection_distance);
+  put_length(j, "final_projection_distance", result.final_projection_distance);
+  put_length(j, "max_normal_slip", result.max_normal_slip);
+  // Deprecated (docs/report-json.md): written as before for one more version.
+  j["periodic_max_mismatch"] = j["max_periodic_mismatch_relative"];
+  j["max_sliding_projection_distance"] = j["final_projection_distance_relative"];
   if (c.restart) j["restarted_from"] = c.restart->string();
   if (resumed) {
     j["resumed_from"] = {{"checkpoint", (folder / io::kCheckpointName).string()},

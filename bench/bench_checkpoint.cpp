@@ -45,7 +45,6 @@ deform::MotionCheckpoint state_of(const deform::Mesh& mesh) {
   s.increments = 16;
   s.finished_increments = 8;
   s.lambda = 0.5;
-  for (int k = 9; k <= 16; ++k) s.remaining.push_back({k, (k - 1) / 16.0, k / 16.0, 0});
   s.points = mesh.points;
   std::vector<char> boundary(mesh.node_count(), 0);
   for (const auto& patch : mesh.patches) {

@@ -3,13 +3,17 @@
 
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <unordered_map>
 
 #include "hotmesh/geometry/input_error.hpp"
 #include "parallel.hpp"
 #include "passive.hpp"
+#include "rigid_modes.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {
@@ -66,11 +70,15 @@ std::vector<double> locate(const Mesh& mesh, std::span<const Vec3> points, const
                            std::span<const NodeId> nodes) {
   const double tolerance = m.tolerance > 0.0 ? m.tolerance : 1e-3 * bounding_diagonal(mesh.points, patch.nodes);
   std::vector<geometry::ShapePoint> found(nodes.size());
+  LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
 #pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    found[k] = m.shape->project(points[static_cast<std::size_t>(nodes[k])], 0.0);
+    errors.run([&] {
+      const auto k = static_cast<std::size_t>(i);
+      found[k] = m.shape->project(points[static_cast<std::size_t>(nodes[k])], 0.0);
+    });
   }
+  errors.rethrow();
   std::size_t off = 0;
   std::string examples;
   std::vector<double> parameters(nodes.size());
@@ -91,6 +99,85 @@ std::vector<double> locate(const Mesh& mesh, std::span<const Vec3> points, const
                                  patch.name, off, tolerance, to_string(m.role), examples));
   }
   return parameters;
+}
+
+/// The unit normal of a patch's undeformed surface (in 2D: of its curve, in the x-y plane) at
+/// each of `nodes`, averaged over the faces around the node; zero where they give none.
+std::vector<Vec3> surface_normals(const Mesh& mesh, const Patch& patch, std::span<const NodeId> nodes) {
+  std::unordered_map<NodeId, std::size_t> index;
+  for (std::size_t k = 0; k < nodes.size(); ++k) index[nodes[k]] = k;
+  std::vector<Vec3> normals(nodes.size());
+  const auto at = [&](NodeId n) { return mesh.points[static_cast<std::size_t>(n)]; };
+  for (std::size_t f = 0; f < patch.faces.size(); ++f) {
+    const auto face = patch.faces.nodes(f);
+    Vec3 normal;
+    if (face.size() == 2) {
+      const Vec3 t = at(face[1]) - at(face[0]);
+      normal = {-t.y, t.x, 0.0};
+    } else if (face.size() == 3) {
+      normal = cross(at(face[1]) - at(face[0]), at(face[2]) - at(face[0]));
+    } else if (face.size() == 4) {
+      normal = cross(at(face[2]) - at(face[0]), at(face[3]) - at(face[1]));
+    }
+    for (NodeId n : face) {
+      const auto it = index.find(n);
+      if (it == index.end()) continue;
+      Vec3& sum = normals[it->second];
+      sum += dot(sum, normal) < 0.0 ? -1.0 * normal : normal;  // faces need not agree on orientation
+    }
+  }
+  for (Vec3& n : normals) {
+    const double length = norm(n);
+    n = length > 0.0 ? n / length : Vec3{};
+  }
+  return normals;
+}
+
+/// A passive surface meeting a sliding wall at less than this angle continues the wall rather
+/// than crossing it: the wall's nodes on its rim are not held on it (they could not be: after
+/// a deflection normal to the wall the two need not meet at all).
+constexpr double kCrossingAngle = std::numbers::pi / 6.0;  // 30 degrees
+
+/// Throws FreeRigidMotion if the constraints of the set-up, as they stand at its start, leave
+/// a rigid-body motion free (rigid_modes.hpp). Nodes of passive surfaces that follow sliding
+/// rims hold nothing themselves: they move as their rim does.
+void refuse_free_rigid_motions(const Mesh& mesh, const BoundarySetup& setup, const std::vector<char>& follows_sliding) {
+  RigidModes modes(mesh);
+  const std::vector<Vec3>& x0 = setup.reference;
+  const NodeConstraints& c = setup.constraints;
+  for (std::size_t n = 0; n < mesh.node_count(); ++n) {
+    const auto node = static_cast<NodeId>(n);
+    if (setup.periodic.is_slave(node) || follows_sliding[n]) continue;
+    if (c.is_fixed(node)) {
+      modes.fix(x0[n]);
+    } else {
+      for (const Vec3& normal : c.normals(node)) modes.constrain(x0[n], normal);  // slip nodes
+    }
+  }
+  for (const SlidingNode& s : setup.sliding) {  // their normals are set per increment: those at the start
+    const Vec3& x = x0[static_cast<std::size_t>(s.node)];
+    if (c.is_fixed(s.node)) {
+      modes.fix(x);  // walls meeting in a point: it goes where they meet
+      continue;
+    }
+    for (int i = 0; i < s.shape_count; ++i) {
+      const auto j = static_cast<std::size_t>(i);
+      modes.constrain(x, s.shapes[j]->at(s.hints[j], 0.0, x).normal);
+    }
+    for (int k = 0; k < s.plane_count; ++k) {
+      modes.constrain(x, setup.slip_planes[static_cast<std::size_t>(s.planes[static_cast<std::size_t>(k)])].normal);
+    }
+  }
+  for (const PeriodicPair& p : setup.periodic.pairs()) {
+    modes.tie(x0[static_cast<std::size_t>(p.slave)], x0[static_cast<std::size_t>(p.master)], setup.periodic.rotation(p.rotation));
+  }
+  const std::vector<std::string> free = modes.free_motions();
+  if (free.empty()) return;
+  throw FreeRigidMotion(fmt::format(
+      "the patch roles leave the mesh free to move as a rigid body: it can {}. No fixed or prescribed node, slip "
+      "plane, sliding wall or periodic pair resists that motion, so the mesh's position is not determined; give "
+      "a patch the role fixed or prescribed, or slip or sliding on a wall that the motion would cross",
+      fmt::join(free, ", and it can ")));
 }
 
 }  // namespace
@@ -128,6 +215,7 @@ Placement place_sliding_node(SlidingNode& node, const Vec3& p, double lambda, st
 BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> patches, const MotionStart* start) {
   BoundarySetup setup{start ? start->points : mesh.points,
                       NodeConstraints(mesh.node_count(), mesh.dimension),
+                      {},
                       {},
                       {},
                       {},
@@ -267,6 +355,33 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
       if (i == 0) s.origin = parameters[k];
     }
   }
+  // A sliding node on the rim of a passive surface that crosses its wall is held on that
+  // surface too: on the plane tangent to the surface's undeformed shape at the node (for an
+  // inlet or outlet plane, the plane itself). It then slides along the line where wall and
+  // surface meet (in 2D, it sits at their intersection), and the surface follows it.
+  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
+    if (motion_of[p]->role != BoundaryRole::passive) continue;
+    std::vector<NodeId> rim_nodes;
+    for (NodeId n : mesh.patches[p].nodes) {
+      if (sliding_index[static_cast<std::size_t>(n)] >= 0) rim_nodes.push_back(n);
+    }
+    if (rim_nodes.empty()) continue;
+    const std::vector<Vec3> normals = surface_normals(mesh, mesh.patches[p], rim_nodes);
+    for (std::size_t k = 0; k < rim_nodes.size(); ++k) {
+      SlidingNode& s = setup.sliding[static_cast<std::size_t>(sliding_index[static_cast<std::size_t>(rim_nodes[k])])];
+      if (s.plane_count == static_cast<int>(s.planes.size()) || !(norm(normals[k]) > 0.0)) continue;
+      const Vec3& x = x0[static_cast<std::size_t>(s.node)];
+      bool crosses = true;
+      for (int i = 0; i < s.shape_count; ++i) {
+        const auto j = static_cast<std::size_t>(i);
+        const Vec3 wall = s.shapes[j]->at(s.hints[j], 0.0, x).normal;
+        crosses = crosses && norm(cross(wall, normals[k])) >= std::sin(kCrossingAngle) * norm(wall);
+      }
+      if (!crosses) continue;
+      s.planes[static_cast<std::size_t>(s.plane_count++)] = static_cast<int>(setup.slip_planes.size());
+      setup.slip_planes.push_back({mesh.points[static_cast<std::size_t>(s.node)], normals[k]});
+    }
+  }
   // A restarted run keeps the material parameters of the previous runs (SlidingOrigin).
   if (start) {
     for (const SlidingOrigin& o : start->sliding) {
@@ -301,20 +416,32 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
   for (std::size_t n = 0; n < mesh.node_count(); ++n) {
     if (!is_slave(static_cast<NodeId>(n)) && has_role(static_cast<NodeId>(n), BoundaryRole::fixed)) rim[n] = Vec3{};
   }
+  // A surface with a sliding node on its rim (or on the rim of a surface it follows) cannot be
+  // solved once for all: it follows its rim through the increments (follow_sliding_rims).
+  std::vector<char> follows_sliding(mesh.node_count(), 0);
+  for (const SlidingNode& s : setup.sliding) follows_sliding[static_cast<std::size_t>(s.node)] = 1;
   std::vector<char> passive_done(mesh.node_count(), 0);
+  const RimDisplacement rim_of = [&](NodeId n) { return rim[static_cast<std::size_t>(n)]; };
   for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
     if (motion_of[p]->role != BoundaryRole::passive || mesh.patches[p].nodes.empty()) continue;
     const Patch& patch = mesh.patches[p];
-    const auto moved = passive_displacements(
-        mesh, x0, patch, [&](NodeId n) { return rim[static_cast<std::size_t>(n)]; }, setup.periodic);
+    PassiveSurface surface(mesh, x0, patch, rim_of, setup.periodic);
+    const auto moved = surface.solve(rim_of);  // at the rim's targets
+    const auto rim_nodes = surface.rim_nodes();
+    const bool following = std::any_of(rim_nodes.begin(), rim_nodes.end(),
+                                       [&](NodeId n) { return follows_sliding[static_cast<std::size_t>(n)] != 0; });
+    std::vector<std::pair<std::size_t, NodeId>> solved;
     for (std::size_t k = 0; k < patch.nodes.size(); ++k) {
       const NodeId n = patch.nodes[k];
       if (!has_role(n, BoundaryRole::passive) || passive_done[static_cast<std::size_t>(n)]) continue;
       passive_done[static_cast<std::size_t>(n)] = 1;
+      follows_sliding[static_cast<std::size_t>(n)] = following ? 1 : 0;
       rim[static_cast<std::size_t>(n)] = moved[k];  // a rim of the passive surfaces still to solve
       setup.passive.push_back({n, moved[k]});
       setup.constraints.fix(n);
+      solved.emplace_back(k, n);
     }
+    if (following && !solved.empty()) setup.following.push_back({std::move(surface), std::move(solved)});
   }
 
   // Where a stronger role overrules a patch's deflection at shared nodes (a fixed wall beside a
@@ -345,11 +472,26 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
                                         mesh.patches[p].name, overruled, largest));
     }
   }
-  const bool held = std::any_of(patches.begin(), patches.end(), [&](const PatchMotion& m) {
-    return m.role == BoundaryRole::fixed || m.role == BoundaryRole::prescribed;
-  });
-  if (!held) throw InputError("no patch holds the mesh in place: give at least one patch the role fixed or prescribed");
+  refuse_free_rigid_motions(mesh, setup, follows_sliding);
   return setup;
+}
+
+void follow_sliding_rims(const BoundarySetup& setup, std::span<const Vec3> x, std::span<double> u) {
+  if (setup.following.empty()) return;
+  const auto d = static_cast<std::size_t>(setup.constraints.dimension());
+  const auto moved = [&](NodeId n) -> std::optional<Vec3> {
+    const auto i = static_cast<std::size_t>(n);
+    Vec3 p = x[i] - setup.reference[i];
+    for (std::size_t c = 0; c < d; ++c) p[c] += u[i * d + c];
+    return p;
+  };
+  for (const FollowingSurface& f : setup.following) {  // in order: one may be the rim of the next
+    const std::vector<Vec3> displacement = f.surface.solve(moved);
+    for (const auto& [k, n] : f.nodes) {
+      const auto i = static_cast<std::size_t>(n);
+      for (std::size_t c = 0; c < d; ++c) u[i * d + c] = setup.reference[i][c] + displacement[k][c] - x[i][c];
+    }
+  }
 }
 
 }  // namespace hotmesh::deform::detail

@@ -3,8 +3,11 @@
 //     fixed > prescribed > sliding > passive > slip > periodic > interior,
 // so a node is never moved twice. A sliding node keeps the shapes of all its sliding patches
 // (two or three where sliding walls meet: it then moves along their intersection, or stays
-// put where they meet in a point) and the planes of its slip patches. The slave node of a
-// periodic pair has no motion of its own: it follows its master (periodic.hpp).
+// put where they meet in a point), the planes of its slip patches and, on the rim of a passive
+// surface that crosses its wall, the plane tangent to that surface's undeformed shape there:
+// it slides along the line where wall and surface meet, and the surface, solved from its rim,
+// follows it. The slave node of a periodic pair has no motion of its own: it follows its
+// master (periodic.hpp).
 #pragma once
 
 #include <array>
@@ -14,6 +17,7 @@
 
 #include "hotmesh/deform/constraints.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
+#include "passive.hpp"
 #include "periodic.hpp"
 
 namespace hotmesh::deform::detail {
@@ -45,10 +49,19 @@ struct SlidingNode {
   double origin = 0.0;  ///< t0: its material parameter on shapes[0] (SlidingOrigin)
 };
 
-/// A node of a passive surface: moves by `displacement` times the stage.
+/// A node of a passive surface: moves by `displacement` times the stage (unless its surface
+/// follows a sliding rim: then `displacement` is its place at the rim's targets).
 struct PassiveNode {
   NodeId node = 0;
   Vec3 displacement;
+};
+
+/// A passive surface with sliding nodes on its rim (directly or through passive surfaces
+/// solved before it): where its rim will end is not known beforehand, so it is solved again
+/// from the rim's positions every time the rim moves (follow_sliding_rims).
+struct FollowingSurface {
+  PassiveSurface surface;
+  std::vector<std::pair<std::size_t, NodeId>> nodes;  ///< the nodes it moves: index in the patch, node
 };
 
 struct BoundarySetup {
@@ -58,6 +71,9 @@ struct BoundarySetup {
   std::vector<PrescribedNode> prescribed;
   std::vector<SlidingNode> sliding;
   std::vector<PassiveNode> passive;
+  std::vector<FollowingSurface> following;  ///< in the order they are solved
+  /// Those of slip patches, then the planes tangent to passive surfaces that hold the sliding
+  /// nodes of their rims.
   std::vector<SlipPlane> slip_planes;
   PeriodicCoupling periodic;
   std::vector<NodeRoleCode> roles;
@@ -66,6 +82,11 @@ struct BoundarySetup {
 
 /// Throws hotmesh::InputError for set-ups the solver cannot take.
 BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> patches, const MotionStart* start);
+
+/// Moves the nodes of the passive surfaces that follow sliding rims to the spring solution
+/// for their rims as they stand at x + u (u the displacements of the increment from x; the
+/// surfaces' displacements are measured from setup.reference).
+void follow_sliding_rims(const BoundarySetup& setup, std::span<const Vec3> x, std::span<double> u);
 
 /// Position of a prescribed node at stage lambda.
 Vec3 prescribed_position(const PrescribedNode& p, const Vec3& original, double lambda);

@@ -328,8 +328,10 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
     } else {
       for (const auto& colour : order.colours) {
         const auto count = static_cast<std::ptrdiff_t>(colour.size());
+        LoopExceptions errors;  // add() throws on a broken invariant
 #pragma omp parallel for schedule(static) if (count >= kParallelCells)
-        for (std::ptrdiff_t k = 0; k < count; ++k) add(colour[static_cast<std::size_t>(k)], false);
+        for (std::ptrdiff_t k = 0; k < count; ++k) errors.run([&] { add(colour[static_cast<std::size_t>(k)], false); });
+        errors.rethrow();
       }
       for (const CellId cell : order.with_slaves) add(cell, false);
     }

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <optional>
 
 #include <fmt/format.h>
@@ -68,30 +69,39 @@ class Motion {
     result_.periodic_pairs = setup_.periodic.pairs().size();
     for (const auto& s : setup_.sliding) result_.sliding_origins.push_back({s.node, s.origin});
     result_.points = setup_.reference;
-    const int n = std::max(solver_.increments, 1);
-    // The steps to do, in order; a step that fails is replaced by its two halves (up to
-    // max_increment_splits deep), so a split increment's pieces come before the next one.
-    std::deque<MotionStep> work;
+    const int n = increments();
+    // The steps to do, in order: the pieces of a split increment first (a step that fails is
+    // replaced by its two halves, up to max_increment_splits deep), then the whole increments
+    // from `next` to N, made as they come (nothing is held per increment of the run).
+    std::deque<MotionStep> pieces;
+    int next = 1;
     if (resume) {
-      work.assign(resume->remaining.begin(), resume->remaining.end());
       restore(*resume);
-    } else {
-      for (int k = 1; k <= n; ++k) work.push_back({k, double(k - 1) / n, double(k) / n, 0});
+      pieces.assign(resume->split_pieces.begin(), resume->split_pieces.end());
+      next = resume->finished_increments + (pieces.empty() ? 1 : 2);
     }
-    while (!work.empty()) {
-      const MotionStep step = work.front();
-      work.pop_front();
-      if (!advance(step, work)) break;
+    while (!pieces.empty() || next <= n) {
+      MotionStep step;
+      if (!pieces.empty()) {
+        step = pieces.front();
+        pieces.pop_front();
+      } else {
+        step = {next, double(next - 1) / n, double(next) / n, 0};
+        ++next;
+      }
+      if (!advance(step, pieces)) break;
       if (!result_.increments.back().accepted) continue;
-      if (work.empty() || work.front().increment != step.increment) finished_increments_ = step.increment;
-      if (observers_.checkpoint) observers_.checkpoint(checkpoint(work, seconds_since(start)));
+      if (pieces.empty()) finished_increments_ = step.increment;
+      if (observers_.checkpoint) observers_.checkpoint(checkpoint(pieces, seconds_since(start)));
     }
     result_.success = result_.failed_points.empty();
     if (result_.success) result_.lambda_reached = 1.0;
+    measure_accepted_steps();
     const auto q = Clock::now();
     result_.quality = scaled_jacobians(mesh_.cells, result_.points);
     result_.summary = summarize_quality(result_.quality);
-    result_.periodic_max_mismatch = setup_.periodic.mismatch(result_.points) / size_;
+    result_.length_scale = size_;
+    result_.max_periodic_mismatch = setup_.periodic.mismatch(result_.points);
     result_.timings.quality += seconds_since(q);
     result_.timings.total = seconds_since(start) + setup_seconds_ + earlier_seconds_;
     return std::move(result_);
@@ -103,9 +113,26 @@ class Motion {
   }
 
  private:
-  /// Moves the mesh by one step; on failure puts its two halves at the front of `work`
+  int increments() const { return std::max(solver_.increments, 1); }
+
+  /// The run's maxima over every Newton step of its accepted attempts, from their records (so
+  /// a resumed run, which holds the interrupted run's records, finds the same).
+  void measure_accepted_steps() {
+    for (const IncrementRecord& r : result_.increments) {
+      if (!r.accepted) continue;
+      result_.max_normal_slip = std::max(result_.max_normal_slip, r.max_normal_slip);
+      for (const NewtonStep& step : r.newton) {
+        result_.max_projection_distance = std::max(result_.max_projection_distance, step.max_projection);
+      }
+      // The last step's: the last entry of `newton` holds the final residual, not a step.
+      const std::size_t steps = r.newton.size();
+      result_.final_projection_distance = steps >= 2 ? r.newton[steps - 2].max_projection : 0.0;
+    }
+  }
+
+  /// Moves the mesh by one step; on failure puts its two halves at the front of `pieces`
   /// (while splits are left) or ends the run (returns false).
-  bool advance(const MotionStep& step, std::deque<MotionStep>& work) {
+  bool advance(const MotionStep& step, std::deque<MotionStep>& pieces) {
     const double a = step.lambda_begin, b = step.lambda_end;
     const int increment = step.increment, depth = step.split_depth;
     IncrementRecord record;
@@ -121,15 +148,15 @@ class Motion {
     }
     if (depth < solver_.max_increment_splits) {
       const double mid = 0.5 * (a + b);
-      work.push_front({increment, mid, b, depth + 1});
-      work.push_front({increment, a, mid, depth + 1});
+      pieces.push_front({increment, mid, b, depth + 1});
+      pieces.push_front({increment, a, mid, depth + 1});
       return true;
     }
     result_.failed_points = std::move(moved);
     result_.failed_quality = scaled_jacobians(mesh_.cells, result_.failed_points);
     const auto worst = summarize_quality(result_.failed_quality);
     result_.message = fmt::format("increment {} of {} failed (stage {:.6g} to {:.6g}{}): {}", increment,
-                                  std::max(solver_.increments, 1), a, b,
+                                  increments(), a, b,
                                   depth > 0 ? fmt::format(", after splitting it {} times", depth) : "", record.failure);
     if (record.inverted_cells == 0) {  // name the cell that suffered most in the failed attempt
       result_.message += fmt::format("; worst cell {} (scaled Jacobian {:.3g})", mesh_.cell_id(worst.worst_cell),
@@ -138,19 +165,17 @@ class Motion {
     return false;
   }
 
-  /// The state to resume from after an accepted step, `work` the steps left.
-  MotionCheckpoint checkpoint(const std::deque<MotionStep>& work, double seconds) const {
+  /// The state to resume from after an accepted step, `pieces` those of a split increment left.
+  MotionCheckpoint checkpoint(const std::deque<MotionStep>& pieces, double seconds) const {
     MotionCheckpoint c;
-    c.increments = std::max(solver_.increments, 1);
+    c.increments = increments();
     c.finished_increments = finished_increments_;
     c.lambda = result_.lambda_reached;
-    c.remaining.assign(work.begin(), work.end());
+    c.split_pieces.assign(pieces.begin(), pieces.end());
     c.points = result_.points;
     c.sliding.reserve(setup_.sliding.size());
     for (const detail::SlidingNode& s : setup_.sliding) c.sliding.push_back({s.node, s.target, s.hints});
     c.records = result_.increments;
-    c.max_normal_slip = result_.max_normal_slip;
-    c.max_sliding_projection_distance = result_.max_sliding_projection_distance;
     c.timings = result_.timings;
     c.timings.total = seconds + setup_seconds_ + earlier_seconds_;
     return c;
@@ -161,7 +186,7 @@ class Motion {
     const auto refuse = [](const std::string& what) {
       throw InputError("the checkpoint does not fit this run: " + what);
     };
-    if (c.increments != std::max(solver_.increments, 1)) {
+    if (c.increments != increments()) {
       refuse(fmt::format("it was written for {} increments, this run has {}", c.increments, solver_.increments));
     }
     if (c.points.size() != mesh_.node_count()) {
@@ -176,21 +201,27 @@ class Motion {
       s.target = c.sliding[i].target;
       s.hints = c.sliding[i].hints;
     }
-    for (const MotionStep& step : c.remaining) {
+    if (c.finished_increments < 0 || c.finished_increments > c.increments) refuse("its increments done are damaged");
+    for (const MotionStep& step : c.split_pieces) {
       if (!(step.lambda_begin >= 0.0 && step.lambda_begin < step.lambda_end && step.lambda_end <= 1.0) ||
-          step.increment < 1 || step.increment > c.increments || step.split_depth < 0) {
+          step.increment != c.finished_increments + 1 || step.split_depth < 1) {
         refuse("its steps left are damaged");
       }
     }
     result_.points = c.points;
     result_.lambda_reached = c.lambda;
     result_.increments = c.records;
-    result_.max_normal_slip = c.max_normal_slip;
-    result_.max_sliding_projection_distance = c.max_sliding_projection_distance;
     finished_increments_ = c.finished_increments;
     result_.timings = c.timings;  // the interrupted run's, this run's added as they come
     result_.timings.setup += setup_seconds_;
     earlier_seconds_ = c.timings.total;
+  }
+
+  /// The residual ||D^-1 R|| (a length) that rounding alone leaves in a mesh of this size at
+  /// rest: an increment with nothing to move (zero deflection on a curved sliding wall) starts
+  /// there, and no relative reduction of it can be asked for.
+  double round_off_residual(std::size_t dofs) const {
+    return 64.0 * std::numeric_limits<double>::epsilon() * size_ * std::sqrt(static_cast<double>(dofs));
   }
 
   /// One increment: Newton-Raphson from the current mesh to stage b. Returns the new points.
@@ -241,7 +272,7 @@ class Motion {
                                      residual / r0);
         break;
       }
-      if (residual <= solver_.newton_tolerance * r0 || r0 == 0.0) {
+      if (residual <= solver_.newton_tolerance * r0 || residual <= round_off_residual(dofs)) {
         record.converged = true;
         break;
       }
@@ -290,9 +321,6 @@ class Motion {
       } else {
         record.accepted = true;
         sliding_.end_increment(u);
-        result_.max_normal_slip = std::max(result_.max_normal_slip, record.max_normal_slip);
-        const auto steps = record.newton.size();
-        result_.max_sliding_projection_distance = steps >= 2 ? record.newton[steps - 2].max_projection / size_ : 0.0;
       }
     }
     record.seconds = seconds_since(start);
@@ -302,7 +330,7 @@ class Motion {
   void report_step(const MotionStep& step, const IncrementRecord& record, int it, double seconds) const {
     const NewtonStep& done = record.newton[static_cast<std::size_t>(it - 1)];
     observers_.newton({.step = step,
-                       .increments = std::max(solver_.increments, 1),
+                       .increments = increments(),
                        .iteration = it,
                        .residual_reduction = record.residual_reduction,
                        .pcg_iterations = done.pcg_iterations,

@@ -2,9 +2,12 @@
 // and joining a thread team costs more than the work. It costs far more on a loaded machine,
 // where OpenMP threads that spin while they wait steal the time slices of the others: a
 // small case on a busy machine then runs tens of times slower in parallel than serially.
+// And: how an exception leaves an OpenMP loop.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
+#include <exception>
 
 namespace hotmesh::deform::detail {
 
@@ -14,5 +17,45 @@ inline constexpr std::ptrdiff_t kParallelCells = 256;        ///< cells of an el
 inline constexpr std::ptrdiff_t kParallelProjections = 256;  ///< nodes projected on boundaries
 /// Multiply-adds of a product with stored element matrices (cells x dofs^2).
 inline constexpr std::ptrdiff_t kParallelProduct = 1 << 18;
+
+/// Carries an exception out of an OpenMP loop. One that escapes a parallel region (even one
+/// that runs on a single thread) calls std::terminate: a std::bad_alloc would end hotmesh with
+/// SIGABRT instead of its out-of-memory exit code. A loop whose body may throw (it calls code
+/// behind an interface, such as a boundary shape's projection) runs each body through run()
+/// and calls rethrow() after the loop:
+///
+///     LoopExceptions errors;
+///     #pragma omp parallel for
+///     for (std::ptrdiff_t i = 0; i < n; ++i) errors.run([&] { ... });
+///     errors.rethrow();
+///
+/// Once a body has thrown, the bodies not yet started are skipped; the first exception caught
+/// is rethrown. Loops that cannot throw (arithmetic on arrays) do without.
+class LoopExceptions {
+ public:
+  template <class Body>
+  void run(Body&& body) noexcept {
+    if (failed_.load(std::memory_order_relaxed)) return;
+    try {
+      body();
+    } catch (...) {
+      keep(std::current_exception());
+    }
+  }
+
+  void rethrow() const {
+    if (first_) std::rethrow_exception(first_);
+  }
+
+ private:
+  void keep(std::exception_ptr e) noexcept {
+#pragma omp critical(hotmesh_loop_exceptions)
+    if (!first_) first_ = std::move(e);
+    failed_.store(true, std::memory_order_relaxed);
+  }
+
+  std::atomic<bool> failed_{false};
+  std::exception_ptr first_;
+};
 
 }  // namespace hotmesh::deform::detail

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <map>
 #include <unordered_map>
 
@@ -13,80 +15,109 @@
 
 namespace hotmesh::deform::detail {
 
-std::vector<Vec3> passive_displacements(const Mesh& mesh, std::span<const Vec3> points, const Patch& patch,
-                                        const RimDisplacement& rim, const PeriodicCoupling& periodic) {
-  const std::size_t d = static_cast<std::size_t>(mesh.dimension);
+struct PassiveSurface::Factorisation {
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+};
+
+namespace {
+
+double entry(const Rotation* r, std::size_t a, std::size_t b) { return r ? r->entry(a, b) : (a == b ? 1.0 : 0.0); }
+
+Vec3 known_value(const RimDisplacement& rim, NodeId n) {
+  const std::optional<Vec3> value = rim(n);
+  assert(value && "a passive surface's rim lost a node it knew at set-up");
+  return value.value_or(Vec3{});
+}
+
+}  // namespace
+
+std::pair<std::int64_t, const Rotation*> PassiveSurface::owner(std::size_t i) const {
+  if (unknown_[i] >= 0) return {unknown_[i], nullptr};
+  if (master_of_[i] >= 0) return {unknown_[static_cast<std::size_t>(master_of_[i])], &rotations_[rotation_of_[i]]};
+  return {-1, nullptr};
+}
+
+PassiveSurface::PassiveSurface(const Mesh& mesh, std::span<const Vec3> points, const Patch& patch,
+                               const RimDisplacement& rim, const PeriodicCoupling& periodic)
+    : name_(patch.name), dim_(static_cast<std::size_t>(mesh.dimension)), nodes_(patch.nodes) {
+  const std::size_t d = dim_;
   // Local numbering of the surface's nodes, and what is known about each.
   std::unordered_map<NodeId, std::size_t> local;
-  for (std::size_t i = 0; i < patch.nodes.size(); ++i) local[patch.nodes[i]] = i;
-  const std::size_t n = patch.nodes.size();
-  std::vector<std::optional<Vec3>> known(n);
-  for (std::size_t i = 0; i < n; ++i) known[i] = rim(patch.nodes[i]);
+  for (std::size_t i = 0; i < nodes_.size(); ++i) local[nodes_[i]] = i;
+  const std::size_t n = nodes_.size();
+  known_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (rim(nodes_[i])) {
+      known_[i] = kFromRim;
+      rim_nodes_.push_back(nodes_[i]);
+    }
+  }
 
   // Periodic slaves in the surface follow their master: through the master's unknown if the
   // master is in the surface and unknown, else known from the master's rim displacement.
-  std::vector<std::int64_t> master_of(n, -1);
-  std::vector<std::size_t> rotation_of(n, 0);
+  master_of_.assign(n, -1);
+  rotation_of_.assign(n, 0);
+  // The rotations it needs, copied: the set-up that owns the PeriodicCoupling may move.
+  std::vector<std::int64_t> local_rotation;
+  const auto rotation = [&](std::size_t r) {
+    if (local_rotation.size() <= r) local_rotation.resize(r + 1, -1);
+    if (local_rotation[r] < 0) {
+      local_rotation[r] = static_cast<std::int64_t>(rotations_.size());
+      rotations_.push_back(periodic.rotation(r));
+    }
+    return static_cast<std::size_t>(local_rotation[r]);
+  };
   for (const PeriodicPair& p : periodic.pairs()) {
     const auto s = local.find(p.slave), m = local.find(p.master);
-    if (s == local.end() || known[s->second]) continue;
-    const std::optional<Vec3> km = m != local.end() ? known[m->second] : rim(p.master);
-    if (km) {  // a master on the rim, in the surface or not
-      known[s->second] = periodic.rotation(p.rotation).vector(*km);
+    if (s == local.end() || known_[s->second]) continue;
+    const bool master_known = m != local.end() ? known_[m->second] != 0 : rim(p.master).has_value();
+    if (master_known) {  // a master on the rim, in the surface or not
+      known_[s->second] = kTied;
+      ties_.push_back({s->second, p.master, m != local.end() ? static_cast<std::int64_t>(m->second) : -1, rotation(p.rotation)});
+      if (m == local.end()) rim_nodes_.push_back(p.master);
     } else if (m != local.end()) {
-      master_of[s->second] = static_cast<std::int64_t>(m->second);
-      rotation_of[s->second] = p.rotation;
+      master_of_[s->second] = static_cast<std::int64_t>(m->second);
+      rotation_of_[s->second] = rotation(p.rotation);
     }
   }
   // Unknowns: nodes neither known nor slaves of a surface node.
-  std::vector<std::int64_t> unknown(n, -1);
-  std::size_t unknowns = 0;
+  unknown_.assign(n, -1);
   for (std::size_t i = 0; i < n; ++i) {
-    if (!known[i] && master_of[i] < 0) unknown[i] = static_cast<std::int64_t>(unknowns++);
+    if (!known_[i] && master_of_[i] < 0) unknown_[i] = static_cast<std::int64_t>(unknowns_++);
   }
-  std::vector<Vec3> result(n);
-  for (std::size_t i = 0; i < n; ++i) result[i] = known[i].value_or(Vec3{});
-  if (unknowns == 0) return result;
-
-  // The displacement of node i as unknowns: u_i = T_i U, T_i = I (own), R (slave), 0 (known).
-  auto owner = [&](std::size_t i) -> std::pair<std::int64_t, const Rotation*> {
-    if (unknown[i] >= 0) return {unknown[i], nullptr};
-    if (master_of[i] >= 0) return {unknown[static_cast<std::size_t>(master_of[i])], &periodic.rotation(rotation_of[i])};
-    return {-1, nullptr};
-  };
-  const auto entry = [](const Rotation* r, std::size_t a, std::size_t b) { return r ? r->entry(a, b) : (a == b ? 1.0 : 0.0); };
 
   // Springs along face edges (each edge once), stiffness 1 / length.
-  std::map<std::pair<NodeId, NodeId>, double> springs;
+  std::map<std::pair<NodeId, NodeId>, double> edges;
   for (std::size_t f = 0; f < patch.faces.size(); ++f) {
-    const auto nodes = patch.faces.nodes(f);
-    const std::size_t count = nodes.size() == 2 ? 1 : nodes.size();
+    const auto face = patch.faces.nodes(f);
+    const std::size_t count = face.size() == 2 ? 1 : face.size();
     for (std::size_t e = 0; e < count; ++e) {
-      NodeId a = nodes[e], b = nodes[(e + 1) % nodes.size()];
+      NodeId a = face[e], b = face[(e + 1) % face.size()];
       if (a > b) std::swap(a, b);
-      springs[{a, b}] = 1.0 / std::max(distance(points[static_cast<std::size_t>(a)], points[static_cast<std::size_t>(b)]), 1e-300);
+      edges[{a, b}] = 1.0 / std::max(distance(points[static_cast<std::size_t>(a)], points[static_cast<std::size_t>(b)]), 1e-300);
     }
   }
+  springs_.reserve(edges.size());
+  for (const auto& [edge, k] : edges) springs_.push_back({local[edge.first], local[edge.second], k});
+  if (unknowns_ == 0) return;
+
   // Every part of the surface must be reached from its rim along springs (or periodic ties).
   {
     std::vector<std::vector<std::size_t>> next(n);
-    for (const auto& [edge, k] : springs) {
-      next[local[edge.first]].push_back(local[edge.second]);
-      next[local[edge.second]].push_back(local[edge.first]);
+    for (const Spring& s : springs_) {
+      next[s.a].push_back(s.b);
+      next[s.b].push_back(s.a);
     }
     for (std::size_t i = 0; i < n; ++i) {
-      if (master_of[i] >= 0) {
-        next[i].push_back(static_cast<std::size_t>(master_of[i]));
-        next[static_cast<std::size_t>(master_of[i])].push_back(i);
+      if (master_of_[i] >= 0) {
+        next[i].push_back(static_cast<std::size_t>(master_of_[i]));
+        next[static_cast<std::size_t>(master_of_[i])].push_back(i);
       }
     }
-    std::vector<char> reached(n, 0);
+    std::vector<char> reached(known_);
     std::vector<std::size_t> queue;
     for (std::size_t i = 0; i < n; ++i) {
-      if (known[i]) {
-        reached[i] = 1;
-        queue.push_back(i);
-      }
+      if (known_[i]) queue.push_back(i);
     }
     for (std::size_t q = 0; q < queue.size(); ++q) {
       for (std::size_t j : next[queue[q]]) {
@@ -100,17 +131,14 @@ std::vector<Vec3> passive_displacements(const Mesh& mesh, std::span<const Vec3> 
     if (stray != reached.end()) {
       throw InputError(fmt::format("passive patch '{}': part of it (node {} and its neighbours) touches no fixed, "
                                    "prescribed or sliding wall, so nothing drives its motion; give it another role",
-                                   patch.name, mesh.node_id(patch.nodes[static_cast<std::size_t>(stray - reached.begin())])));
+                                   name_, mesh.node_id(nodes_[static_cast<std::size_t>(stray - reached.begin())])));
     }
   }
 
-  // Energy sum k |u_a - u_b|^2 / 2 with u = T U + u_known: (T_a - T_b)^T k (T_a - T_b) U = -(T_a - T_b)^T k (uk_a - uk_b).
+  // Energy sum k |u_a - u_b|^2 / 2 with u = T U + u_known: the matrix sum (T_a - T_b)^T k (T_a - T_b).
   std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(unknowns * d));
-  for (const auto& [edge, k] : springs) {
-    const std::size_t ia = local[edge.first], ib = local[edge.second];
-    const std::array<std::size_t, 2> ends{ia, ib};
-    const Vec3 known_gap = result[ia] - result[ib];  // known parts (zero for unknown nodes)
+  for (const Spring& s : springs_) {
+    const std::array<std::size_t, 2> ends{s.a, s.b};
     for (std::size_t x = 0; x < 2; ++x) {
       const auto [ux, rx] = owner(ends[x]);
       if (ux < 0) continue;
@@ -125,26 +153,58 @@ std::vector<Vec3> passive_displacements(const Mesh& mesh, std::span<const Vec3> 
             for (std::size_t c = 0; c < d; ++c) v += entry(rx, c, i) * entry(ry, c, j);
             if (v != 0.0) {
               triplets.emplace_back(static_cast<Eigen::Index>(static_cast<std::size_t>(ux) * d + i),
-                                    static_cast<Eigen::Index>(static_cast<std::size_t>(uy) * d + j), k * sx * sy * v);
+                                    static_cast<Eigen::Index>(static_cast<std::size_t>(uy) * d + j), s.stiffness * sx * sy * v);
             }
           }
         }
       }
+    }
+  }
+  Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(unknowns_ * d), static_cast<Eigen::Index>(unknowns_ * d));
+  a.setFromTriplets(triplets.begin(), triplets.end());
+  auto factors = std::make_shared<Factorisation>();
+  factors->ldlt.compute(a);
+  if (factors->ldlt.info() != Eigen::Success) {
+    throw InputError(fmt::format("passive patch '{}': part of it touches no fixed, prescribed or sliding wall, so "
+                                 "nothing drives its motion; give it another role",
+                                 name_));
+  }
+  factors_ = std::move(factors);
+}
+
+std::vector<Vec3> PassiveSurface::solve(const RimDisplacement& rim) const {
+  const std::size_t d = dim_, n = nodes_.size();
+  std::vector<Vec3> result(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (known_[i] == kFromRim) result[i] = known_value(rim, nodes_[i]);
+  }
+  for (const Tie& t : ties_) {
+    const Vec3 master = t.local_master >= 0 ? result[static_cast<std::size_t>(t.local_master)] : known_value(rim, t.master);
+    result[t.slave] = rotations_[t.rotation].vector(master);
+  }
+  if (unknowns_ == 0) return result;
+
+  // The right-hand side -(T_a - T_b)^T k (uk_a - uk_b) from the known parts (zero for unknown nodes).
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(unknowns_ * d));
+  for (const Spring& s : springs_) {
+    const Vec3 known_gap = result[s.a] - result[s.b];
+    const std::array<std::size_t, 2> ends{s.a, s.b};
+    for (std::size_t x = 0; x < 2; ++x) {
+      const auto [ux, rx] = owner(ends[x]);
+      if (ux < 0) continue;
+      const double sx = x == 0 ? 1.0 : -1.0;
       for (std::size_t i = 0; i < d; ++i) {
         double v = 0.0;
         for (std::size_t c = 0; c < d; ++c) v += entry(rx, c, i) * known_gap[c];
-        rhs[static_cast<Eigen::Index>(static_cast<std::size_t>(ux) * d + i)] -= k * sx * v;
+        rhs[static_cast<Eigen::Index>(static_cast<std::size_t>(ux) * d + i)] -= s.stiffness * sx * v;
       }
     }
   }
-  Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(unknowns * d), static_cast<Eigen::Index>(unknowns * d));
-  a.setFromTriplets(triplets.begin(), triplets.end());
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
-  const Eigen::VectorXd u = solver.info() == Eigen::Success ? Eigen::VectorXd(solver.solve(rhs)) : Eigen::VectorXd();
-  if (solver.info() != Eigen::Success || !u.allFinite()) {
+  const Eigen::VectorXd u = factors_->ldlt.solve(rhs);
+  if (!u.allFinite()) {
     throw InputError(fmt::format("passive patch '{}': part of it touches no fixed, prescribed or sliding wall, so "
                                  "nothing drives its motion; give it another role",
-                                 patch.name));
+                                 name_));
   }
   for (std::size_t i = 0; i < n; ++i) {
     const auto [ui, r] = owner(i);

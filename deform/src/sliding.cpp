@@ -34,17 +34,22 @@ void SlidingNodes::begin_increment(double a, double b, std::span<const Vec3> x, 
   }
   const Share mine = my_share(nodes.size());
   const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
+  LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
 #pragma omp parallel for schedule(dynamic, 64) if (count >= kParallelProjections)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
-    const auto k = mine.begin + static_cast<std::size_t>(i);
-    SlidingNode& s = nodes[k];
-    const Vec3& start = x[static_cast<std::size_t>(s.node)];
-    const Placement p = place_sliding_node(s, start + forcing_[k], b, setup_.slip_planes);
-    set_displacement(u, s.node, p.point - start);
-    setup_.constraints.set_normals(s.node, {p.normals.data(), static_cast<std::size_t>(p.normal_count)});
-    record(k, p.point - start, p);
+    errors.run([&] {
+      const auto k = mine.begin + static_cast<std::size_t>(i);
+      SlidingNode& s = nodes[k];
+      const Vec3& start = x[static_cast<std::size_t>(s.node)];
+      const Placement p = place_sliding_node(s, start + forcing_[k], b, setup_.slip_planes);
+      set_displacement(u, s.node, p.point - start);
+      setup_.constraints.set_normals(s.node, {p.normals.data(), static_cast<std::size_t>(p.normal_count)});
+      record(k, p.point - start, p);
+    });
   }
+  errors.rethrow();
   share_placements(u);
+  follow_sliding_rims(setup_, x, u);
 }
 
 double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double> u) {
@@ -52,19 +57,24 @@ double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double
   double largest = 0.0;
   const Share mine = my_share(nodes.size());
   const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
+  LoopExceptions errors;
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : largest) if (count >= kParallelProjections)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
-    const auto k = mine.begin + static_cast<std::size_t>(i);
-    SlidingNode& s = nodes[k];
-    const Vec3& start = x[static_cast<std::size_t>(s.node)];
-    const Vec3 moved = start + displacement(u, s.node);
-    const Placement p = place_sliding_node(s, moved, b, setup_.slip_planes);
-    largest = std::max(largest, distance(p.point, moved));
-    set_displacement(u, s.node, p.point - start);
-    setup_.constraints.set_normals(s.node, {p.normals.data(), static_cast<std::size_t>(p.normal_count)});
-    record(k, p.point - start, p);
+    errors.run([&] {  // `largest` here is this thread's copy of the reduction
+      const auto k = mine.begin + static_cast<std::size_t>(i);
+      SlidingNode& s = nodes[k];
+      const Vec3& start = x[static_cast<std::size_t>(s.node)];
+      const Vec3 moved = start + displacement(u, s.node);
+      const Placement p = place_sliding_node(s, moved, b, setup_.slip_planes);
+      largest = std::max(largest, distance(p.point, moved));
+      set_displacement(u, s.node, p.point - start);
+      setup_.constraints.set_normals(s.node, {p.normals.data(), static_cast<std::size_t>(p.normal_count)});
+      record(k, p.point - start, p);
+    });
   }
+  errors.rethrow();
   share_placements(u);
+  follow_sliding_rims(setup_, x, u);
   return max_over_processes(largest);
 }
 
@@ -81,15 +91,19 @@ void SlidingNodes::end_increment(std::span<const double> u) {
   auto& nodes = setup_.sliding;
   const Share mine = my_share(nodes.size());
   const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
+  LoopExceptions errors;
 #pragma omp parallel for schedule(dynamic, 64) if (count >= kParallelProjections)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
-    const auto k = mine.begin + static_cast<std::size_t>(i);
-    SlidingNode& s = nodes[k];
-    // Section 4.3: the slide vector a = dx2 - dx1 moves the target, which is projected on the
-    // boundary of the complete deformation.
-    const Vec3 a = displacement(u, s.node) - forcing_[k];
-    s.target = place_sliding_node(s, s.target + a, 1.0, setup_.slip_planes).point;
+    errors.run([&] {
+      const auto k = mine.begin + static_cast<std::size_t>(i);
+      SlidingNode& s = nodes[k];
+      // Section 4.3: the slide vector a = dx2 - dx1 moves the target, which is projected on
+      // the boundary of the complete deformation.
+      const Vec3 a = displacement(u, s.node) - forcing_[k];
+      s.target = place_sliding_node(s, s.target + a, 1.0, setup_.slip_planes).point;
+    });
   }
+  errors.rethrow();
   share_targets();
 }
 

@@ -6,6 +6,8 @@
 //    boundary c_b and constrained along the normals there;
 //  - after every Newton step: the nodes, moved tangentially by the projected PCG (eqs.
 //    16-19), are projected back onto c_b (Fig. 4) and their normals updated;
+//  - after each of these placements, passive surfaces with sliding nodes on their rim are
+//    solved again from the rim as it stands (section 6.1);
 //  - end (increment accepted): the slide vector a = dx2 - dx1 moves the target, which is
 //    projected onto the fully deflected boundary (section 4.3).
 #pragma once
@@ -25,11 +27,13 @@ class SlidingNodes {
   std::size_t size() const { return setup_.sliding.size(); }
 
   /// Writes the forcing displacements of the increment into u (dofs of the sliding nodes),
-  /// with the nodes placed on c_b, and sets their constraint normals.
+  /// with the nodes placed on c_b, and sets their constraint normals; the passive surfaces
+  /// their rims carry follow.
   void begin_increment(double a, double b, std::span<const Vec3> x, std::span<double> u);
 
-  /// Projects the sliding nodes at x + u onto c_b, writes the new u and normals; returns the
-  /// largest distance a node was moved by the projection.
+  /// Projects the sliding nodes at x + u onto c_b, writes the new u and normals (and moves the
+  /// passive surfaces their rims carry); returns the largest distance a node was moved by the
+  /// projection.
   double project(double b, std::span<const Vec3> x, std::span<double> u);
 
   /// The largest |p . n| of a Newton step p over the sliding nodes, n their current normals:

@@ -98,12 +98,56 @@ void check_structure(const Mesh& mesh) {
   bad_faces.raise_if_any();
 }
 
+/// The mesh's size (largest extent along an axis) and distance from the origin must lie
+/// where double precision can compute its motion (kSmallestMeshSize, kLargestCoordinate,
+/// kSmallestRelativeSize); outside, the duplicate-node and stiffness checks would report
+/// nonsense ("closer than inf", "not positive definite").
+void check_coordinate_range(const Mesh& mesh) {
+  if (mesh.node_count() < 2) return;
+  Vec3 lo = mesh.points.front();
+  Vec3 hi = lo;
+  for (const Vec3& p : mesh.points) {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a]);
+    }
+  }
+  double size = 0.0;
+  double reach = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    size = std::max(size, hi[a] - lo[a]);  // no square: finite for any finite coordinates
+    reach = std::max({reach, std::abs(lo[a]), std::abs(hi[a])});
+  }
+  const std::string unit_hint = "the mesh's coordinates are taken in the case's length_unit: is the mesh in "
+                                "another unit, or were its coordinates written wrongly?";
+  if (reach > kLargestCoordinate) {
+    throw InputError(fmt::format("the mesh reaches {:.3g} from the origin: hotmesh moves meshes whose coordinates "
+                                 "stay within {:.0e} (double precision cannot hold the stiffness of larger ones); {}",
+                                 reach, kLargestCoordinate, unit_hint));
+  }
+  if (size == 0.0) {
+    throw InputError(fmt::format("all {} nodes of the mesh are at the same point {}", mesh.node_count(),
+                                 point_text(mesh.points.front())));
+  }
+  if (size < kSmallestMeshSize) {
+    throw InputError(fmt::format("the mesh is {:.3g} across: hotmesh moves meshes at least {:.0e} across (double "
+                                 "precision cannot hold the stiffness of smaller ones); {}",
+                                 size, kSmallestMeshSize, unit_hint));
+  }
+  if (size < kSmallestRelativeSize * reach) {
+    throw InputError(fmt::format("the mesh is {:.3g} across but lies {:.3g} from the origin: its coordinates keep "
+                                 "fewer than 6 digits of its size; move it nearer the origin",
+                                 size, reach));
+  }
+}
+
 void check_coordinates(const Mesh& mesh) {
   Problems non_finite("nodes have non-finite coordinates");
   for (std::size_t n = 0; n < mesh.node_count(); ++n) {
     if (!geometry::is_finite(mesh.points[n])) non_finite.add(node_text(mesh, static_cast<NodeId>(n)));
   }
   non_finite.raise_if_any();
+  check_coordinate_range(mesh);
   if (mesh.dimension != 2) return;
   const double z0 = mesh.points.front().z;
   const double tolerance = 1e-9 * std::max(bounding_diagonal(mesh.points), 1e-300);
@@ -143,11 +187,7 @@ void check_unused_nodes(const Mesh& mesh) {
 void check_duplicate_nodes(const Mesh& mesh, double relative_tolerance) {
   const double diagonal = bounding_diagonal(mesh.points);
   if (mesh.node_count() < 2) return;
-  const double tolerance = relative_tolerance * diagonal;
-  if (tolerance <= 0.0) {
-    throw InputError(fmt::format("all {} nodes of the mesh are at the same point {}", mesh.node_count(),
-                                 point_text(mesh.points.front())));
-  }
+  const double tolerance = relative_tolerance * diagonal;  // > 0: check_coordinate_range
   const double q = 2.0 * tolerance;
   using Key = std::array<std::int64_t, 3>;
   struct KeyHash {

@@ -64,7 +64,8 @@ Format format_of(const std::filesystem::path& path) {
 /// Checks what OpenCASCADE's parsers report badly: missing, unreadable, empty, not STEP.
 void check_file(const std::filesystem::path& path, Format format) {
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) throw InputError::in(path.string(), "no such CAD file");
+  if (!std::filesystem::exists(path, error)) throw InputError::in(path.string(), "no such CAD file");
+  require_input_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError::in(path.string(), "cannot open the CAD file");
   std::string head(256, '\0');

@@ -19,6 +19,8 @@
 #include <gp_Pln.hxx>
 
 #include <algorithm>
+#include <optional>
+#include <span>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -222,12 +224,22 @@ double rotational_deviation(const std::vector<Vec3>& points, const Axis& axis, c
 
 }  // namespace
 
-MeridionalCurve CadModel::meridional_curve(std::span<const int> face_ids, const MeridionalOptions& options) const {
-  const std::string source = impl_->path.string();
+namespace {
+
+/// The meridional pieces of some faces, about the axis they turn about, with the tolerance.
+struct MeridionalPieces {
+  std::vector<ProfilePiece> pieces;
+  Axis axis;
+  double tolerance = 0.0;
+};
+
+MeridionalPieces meridional_pieces(const CadModel& model, const std::vector<TopoDS_Face>& faces,
+                                   std::span<const int> face_ids, const MeridionalOptions& options) {
+  const std::string source = model.path().string();
   if (face_ids.empty()) throw InputError::in(source, "no faces given for the meridional curve");
   Box3 box{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
   for (std::size_t i = 0; i < face_ids.size(); ++i) {
-    const FaceInfo& info = face(face_ids[i]);
+    const FaceInfo& info = model.face(face_ids[i]);
     if (std::count(face_ids.begin(), face_ids.end(), face_ids[i]) > 1) {
       throw InputError::in(source, "face " + std::to_string(face_ids[i]) + " is given twice");
     }
@@ -244,7 +256,7 @@ MeridionalCurve CadModel::meridional_curve(std::span<const int> face_ids, const 
   int axis_face = 0;
   if (!axis) {
     for (const int id : face_ids) {
-      const FaceInfo& info = face(id);
+      const FaceInfo& info = model.face(id);
       if (!info.axis) continue;
       if (!axis) {
         axis = info.axis;
@@ -261,8 +273,8 @@ MeridionalCurve CadModel::meridional_curve(std::span<const int> face_ids, const 
   std::vector<ProfilePiece> pieces;
   try {
     for (const int id : face_ids) {
-      const FaceInfo& info = face(id);
-      const TopoDS_Face& f = impl_->faces[static_cast<std::size_t>(id - 1)];
+      const FaceInfo& info = model.face(id);
+      const TopoDS_Face& f = faces[static_cast<std::size_t>(id - 1)];
       BSplineCurve2d exact = BSplineCurve2d::polyline(std::vector<double>{0, 1}, std::vector<Vec2>{{0, 0}, {1, 0}});
       if (info.axis_source == AxisSource::analytic && same_axis(*axis, *info.axis, tolerance, size) &&
           iso_profile(f, *axis, tolerance, exact)) {
@@ -290,8 +302,26 @@ MeridionalCurve CadModel::meridional_curve(std::span<const int> face_ids, const 
   } catch (const Standard_Failure& e) {
     throw InputError::in(source, std::string("OpenCASCADE failed on the meridional curve: ") + e.GetMessageString());
   }
-  detail::Profile profile = detail::join_profile(std::move(pieces), tolerance, source);
-  return {std::move(profile.curve), *axis, std::move(profile.faces), std::move(profile.face_breaks), tolerance};
+  return {std::move(pieces), *axis, tolerance};
+}
+
+}  // namespace
+
+MeridionalCurve CadModel::meridional_curve(std::span<const int> face_ids, const MeridionalOptions& options) const {
+  MeridionalPieces m = meridional_pieces(*this, impl_->faces, face_ids, options);
+  detail::Profile profile = detail::join_profile(std::move(m.pieces), m.tolerance, impl_->path.string());
+  return {std::move(profile.curve), m.axis, std::move(profile.faces), std::move(profile.face_breaks), m.tolerance};
+}
+
+std::vector<MeridionalCurve> CadModel::meridional_profiles(std::span<const int> face_ids,
+                                                           const MeridionalOptions& options) const {
+  MeridionalPieces m = meridional_pieces(*this, impl_->faces, face_ids, options);
+  std::vector<MeridionalCurve> curves;
+  for (detail::Profile& profile : detail::join_profiles(std::move(m.pieces), m.tolerance, impl_->path.string())) {
+    curves.push_back({std::move(profile.curve), m.axis, std::move(profile.faces), std::move(profile.face_breaks),
+                      m.tolerance});
+  }
+  return curves;
 }
 
 }  // namespace hotmesh::geometry

@@ -64,9 +64,12 @@ bool runs_backwards(const Vec2& start, const Vec2& end, double tolerance) {
   return end.x < start.x;
 }
 
-Profile join_profile(std::vector<ProfilePiece> pieces, double tolerance, const std::string& source) {
+namespace {
+
+/// The pieces less those that repeat (part of) another one, longest first.
+std::vector<ProfilePiece> distinct_pieces(std::vector<ProfilePiece> pieces, double tolerance,
+                                          const std::string& source) {
   if (pieces.empty()) throw InputError::in(source, "the faces have no meridional curve");
-  // 1. Drop pieces that repeat (part of) another one, longest first.
   std::stable_sort(pieces.begin(), pieces.end(), [](const ProfilePiece& a, const ProfilePiece& b) {
     return length_of(a.curve) > length_of(b.curve);
   });
@@ -80,6 +83,18 @@ Profile join_profile(std::vector<ProfilePiece> pieces, double tolerance, const s
     kept.emplace_back(DeflectedCurve(piece.curve));
     distinct.push_back(std::move(piece));
   }
+  return distinct;
+}
+
+bool ends_meet(const BSplineCurve2d& a, const BSplineCurve2d& b, double tolerance) {
+  for (const Vec2& p : {start_of(a), end_of(a)}) {
+    if (distance(p, start_of(b)) <= tolerance || distance(p, end_of(b)) <= tolerance) return true;
+  }
+  return false;
+}
+
+/// Distinct pieces ordered end to end into one profile (steps 2 to 4 of join_profile).
+Profile chain_profile(const std::vector<ProfilePiece>& distinct, double tolerance, const std::string& source) {
   // 2. Chain them, starting from an end that no other piece touches (any, if closed).
   const auto touches = [&](const Vec2& p, std::size_t self) {
     for (std::size_t k = 0; k < distinct.size(); ++k) {
@@ -184,6 +199,57 @@ Profile join_profile(std::vector<ProfilePiece> pieces, double tolerance, const s
   if (!rational) weights.clear();
   profile.curve = BSplineCurve2d(degree, std::move(knots), std::move(poles), std::move(weights));
   return profile;
+}
+
+}  // namespace
+
+Profile join_profile(std::vector<ProfilePiece> pieces, double tolerance, const std::string& source) {
+  return chain_profile(distinct_pieces(std::move(pieces), tolerance, source), tolerance, source);
+}
+
+std::vector<Profile> join_profiles(std::vector<ProfilePiece> pieces, double tolerance, const std::string& source) {
+  std::vector<int> face_order;  // faces in the order given
+  for (const auto& piece : pieces) {
+    if (std::find(face_order.begin(), face_order.end(), piece.face) == face_order.end()) face_order.push_back(piece.face);
+  }
+  const std::vector<ProfilePiece> distinct = distinct_pieces(std::move(pieces), tolerance, source);
+  // Connected groups: pieces whose ends meet, directly or through others (union-find).
+  std::vector<std::size_t> group(distinct.size());
+  for (std::size_t k = 0; k < group.size(); ++k) group[k] = k;
+  const auto root = [&](std::size_t k) {
+    while (group[k] != k) k = group[k] = group[group[k]];
+    return k;
+  };
+  for (std::size_t i = 0; i < distinct.size(); ++i) {
+    for (std::size_t j = i + 1; j < distinct.size(); ++j) {
+      if (ends_meet(distinct[i].curve, distinct[j].curve, tolerance)) group[root(j)] = root(i);
+    }
+  }
+  std::vector<std::vector<ProfilePiece>> groups;
+  std::vector<std::size_t> group_root;
+  for (std::size_t k = 0; k < distinct.size(); ++k) {
+    const std::size_t r = root(k);
+    const auto it = std::find(group_root.begin(), group_root.end(), r);
+    if (it == group_root.end()) {
+      group_root.push_back(r);
+      groups.push_back({distinct[k]});
+    } else {
+      groups[static_cast<std::size_t>(it - group_root.begin())].push_back(distinct[k]);
+    }
+  }
+  const auto first_face = [&](const std::vector<ProfilePiece>& g) {
+    std::size_t first = face_order.size();
+    for (const auto& piece : g) {
+      first = std::min(first, static_cast<std::size_t>(std::find(face_order.begin(), face_order.end(), piece.face) -
+                                                       face_order.begin()));
+    }
+    return first;
+  };
+  std::stable_sort(groups.begin(), groups.end(),
+                   [&](const auto& a, const auto& b) { return first_face(a) < first_face(b); });
+  std::vector<Profile> profiles;
+  for (const auto& g : groups) profiles.push_back(chain_profile(g, tolerance, source));
+  return profiles;
 }
 
 }  // namespace hotmesh::geometry::detail

@@ -3,7 +3,8 @@
 // one (the halves of a revolved face, faces split by a slot) are dropped; the rest are ordered
 // end to end and oriented, each given a parameter interval proportional to its length, raised
 // to a common degree, and concatenated into one B-spline with parameter [0, 1], C0 where the
-// pieces meet.
+// pieces meet. Pieces that form several separate profiles (a casing interrupted by a blade
+// row) can also be joined into one profile per connected group.
 #pragma once
 
 #include <string>
@@ -27,6 +28,11 @@ struct Profile {
 /// Throws hotmesh::InputError (naming `source` and the faces) if the pieces do not form one
 /// chain with ends within `tolerance`.
 Profile join_profile(std::vector<ProfilePiece> pieces, double tolerance, const std::string& source);
+
+/// One profile per connected group of pieces (pieces whose ends meet within `tolerance`,
+/// directly or through others), in the order of each group's first face among `pieces`.
+/// Throws hotmesh::InputError if a group does not form one chain (it branches).
+std::vector<Profile> join_profiles(std::vector<ProfilePiece> pieces, double tolerance, const std::string& source);
 
 /// Orientation rule of profiles: z grows from start to end; at equal z, r grows.
 bool runs_backwards(const Vec2& start, const Vec2& end, double tolerance);

@@ -87,8 +87,7 @@ void remove_stale_temporaries(const std::filesystem::path& folder, std::span<con
 }
 
 std::string read_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError::in(path.string(), "is a directory, not a file");
+  require_input_file(path);
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw InputError::in(path.string(), std::string("cannot open: ") + std::strerror(errno));
   const std::streamoff size = in.tellg();

@@ -136,11 +136,10 @@ class CaseParser {
     if (!text) return std::nullopt;
     const fs::path path = resolve(*text);
     std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status)) {
+    if (!fs::exists(path, ec)) {
       reader_.error(e, cat("file not found: ", path.string(), " (relative paths start from the case file's folder)"));
-    } else if (fs::is_directory(status)) {
-      reader_.error(e, cat(path.string(), " is a folder, expected a file"));
+    } else if (const std::string problem = input_file_problem(path); !problem.empty()) {
+      reader_.error(e, cat(path.string(), " ", problem));
     } else {
       return path;
     }
@@ -200,20 +199,34 @@ class CaseParser {
     const auto integer = [&](std::string_view key, int& field, int low) {
       if (const Entry* x = m.find(key)) field = reader_.integer_in(*x, low).value_or(field);
     };
+    // Relative tolerances: below about 1e-14 double precision cannot reach them, and the
+    // solvers would iterate on rounding until their limit.
     const auto fraction = [&](std::string_view key, double& field) {
-      const auto open_unit = [](double v) { return v > 0.0 && v < 1.0; };
+      const auto reachable = [](double v) { return v >= 1e-14 && v < 1.0; };
       if (const Entry* x = m.find(key)) {
-        field = reader_.number_where(*x, open_unit, "between 0 and 1 (exclusive)").value_or(field);
+        field = reader_.number_where(*x, reachable, "at least 1e-14 (what double precision reaches) and below 1")
+                    .value_or(field);
       }
     };
     deform::SolverOptions& s = c_.solver;
-    integer("increments", s.increments, 1);
+    if (const Entry* x = m.find("increments")) {
+      const auto n = x->value.IsScalar() && !quoted(x->value) ? detail::parse<std::int64_t>(x->value.Scalar()) : std::nullopt;
+      if (n && *n > kMaxIncrements) {
+        reader_.error(*x, cat("must be at most ", std::to_string(kMaxIncrements), ", got ", x->value.Scalar(),
+                              ": the paper's cases take 16, and an increment too large for the mesh is halved by "
+                              "the solver itself (max_increment_splits), so tens of increments are enough"));
+      } else {
+        s.increments = reader_.integer_in(*x, 1).value_or(s.increments);
+      }
+    }
     fraction("newton_tolerance", s.newton_tolerance);
     integer("max_newton_iterations", s.max_newton_iterations, 1);
     fraction("pcg_tolerance", s.pcg_tolerance);
     integer("max_pcg_iterations", s.max_pcg_iterations, 1);
     integer("threads", s.threads, 0);
-    integer("max_increment_splits", s.max_increment_splits, 0);
+    if (const Entry* x = m.find("max_increment_splits")) {
+      s.max_increment_splits = reader_.integer_in(*x, 0, kMaxIncrementSplits).value_or(s.max_increment_splits);
+    }
     if (const Entry* x = m.find("linear")) {
       if (const auto k = reader_.choice(*x, kLinearNames)) s.linear = static_cast<deform::LinearSolverKind>(*k);
     }

@@ -75,7 +75,8 @@ std::vector<geometry::Vec2> outline(const DeflectedCurve& curve) {
 /// deflected through the tables, rebased on a previous run's curves for a restart.
 class CurveBuilder {
  public:
-  CurveBuilder(const Case& c, const deform::Mesh& mesh) : c_(c), mesh_(mesh) {}
+  CurveBuilder(const Case& c, const deform::Mesh& mesh, const geometry::CadModel* cad)
+      : c_(c), mesh_(mesh), given_cad_(cad) {}
 
   /// The patch's curve as the case describes it (cold undeformed r, deflection D).
   Curve curve(const PatchSpec& spec, const std::optional<DeflectionSpec>& deflection) {
@@ -138,8 +139,9 @@ class CurveBuilder {
 
   geometry::BSplineCurve2d cad_curve(const DeflectionSpec& d) {
     if (mesh_.dimension == 2) throw InputError("CAD faces describe surfaces of revolution: 3D cases only");
-    if (!cad_) cad_ = geometry::CadModel::read(*c_.cad, {.unit = c_.length_unit});
-    return cad_->meridional_curve(d.faces, {.axis = axis()}).curve;
+    if (!given_cad_ && !cad_) cad_ = read_case_cad(c_);
+    const geometry::CadModel& cad = given_cad_ ? *given_cad_ : *cad_;
+    return cad.meridional_curve(d.faces, {.axis = axis()}).curve;
   }
 
   /// A sliding patch without table slides over its own undeformed shape: the polyline through
@@ -169,7 +171,8 @@ class CurveBuilder {
 
   const Case& c_;
   const deform::Mesh& mesh_;
-  std::optional<geometry::CadModel> cad_;
+  const geometry::CadModel* given_cad_;
+  std::optional<geometry::CadModel> cad_;  // read when first needed, if not given
 };
 
 const RestartPatch& previous_patch(const RestartState& previous, const PatchSpec& spec, const Case& c) {
@@ -191,9 +194,15 @@ const RestartPatch& previous_patch(const RestartState& previous, const PatchSpec
 
 }  // namespace
 
-CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh, const RestartState* previous) {
+std::optional<geometry::CadModel> read_case_cad(const Case& c) {
+  if (!c.cad) return std::nullopt;
+  return geometry::CadModel::read(*c.cad, {.unit = c.length_unit});
+}
+
+CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh, const RestartState* previous,
+                      const geometry::CadModel* cad) {
   CaseSetup setup;
-  CurveBuilder builder(c, mesh);
+  CurveBuilder builder(c, mesh, cad);
   for (const PatchSpec& spec : c.patches) {
     deform::PatchMotion motion{spec.name, spec.role, nullptr, 0.0};
     if (spec.role == PatchRole::periodic && spec.angle_deg != 0.0) {  // the side that declares the pair
@@ -204,14 +213,13 @@ CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh, const RestartStat
     const bool follows = spec.role == PatchRole::prescribed || spec.role == PatchRole::sliding;
     const RestartPatch* before = previous ? &previous_patch(*previous, spec, c) : nullptr;
     if (follows) {
-      const std::string source = spec.deflection ? spec.deflection->file.string() : "patch " + spec.name;
       try {
         Curve curve = before && before->deflection ? builder.rebased(spec, *before->deflection, spec.deflection)
                                                    : builder.curve(spec, spec.deflection);
         if (spec.deflection) setup.shapes.push_back({spec.name, curve.report, outline(curve.curve)});
         motion.shape = builder.shape(std::move(curve.curve));
-      } catch (const InputError& e) {
-        throw InputError(fmt::format("{}: patch '{}': {}", source, spec.name, e.what()));
+      } catch (const InputError& e) {  // the message names the file at fault, if one is
+        throw InputError::at(c.file.string(), spec.line, fmt::format("patches.{}: {}", spec.name, e.what()));
       }
     }
     setup.motions.push_back(std::move(motion));

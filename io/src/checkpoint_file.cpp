@@ -22,7 +22,10 @@ namespace hotmesh::io {
 namespace {
 
 constexpr std::string_view kMagic = "HOTMESH-CHECKPOINT\n";
-constexpr int kVersion = 1;
+/// Version 2 holds the pieces of a split increment left (`split_pieces`) where version 1 held
+/// every step left (`remaining`, 31 bytes per increment of the run); both are read.
+constexpr int kVersion = 2;
+constexpr int kOldestVersion = 1;
 constexpr std::string_view kKind = "checkpoint file";
 
 using nlohmann::json;
@@ -147,10 +150,11 @@ json parse_header(detail::BinaryReader& in, const std::filesystem::path& path) {
   try {
     header = json::parse(text);
     const int version = header.at("format_version").get<int>();
-    if (version != kVersion) {
-      throw InputError::in(path.string(), fmt::format("checkpoint format {} is not the one this hotmesh reads ({}): "
+    if (version < kOldestVersion || version > kVersion) {
+      throw InputError::in(path.string(), fmt::format("checkpoint format {} is not one this hotmesh reads ({} to {}): "
                                                       "resume with the hotmesh that wrote it ({}), or start again",
-                                                      version, kVersion, header.value("hotmesh_version", "?")));
+                                                      version, kOldestVersion, kVersion,
+                                                      header.value("hotmesh_version", "?")));
     }
   } catch (const InputError&) {
     throw;
@@ -162,6 +166,7 @@ json parse_header(detail::BinaryReader& in, const std::filesystem::path& path) {
 
 /// The beginning of a file: its magic line, header length and header.
 std::string read_header_bytes(const std::filesystem::path& path) {
+  require_input_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError::in(path.string(), std::string("cannot open: ") + std::strerror(errno));
   std::string bytes(kMagic.size() + sizeof(std::uint64_t), '\0');
@@ -208,6 +213,7 @@ std::vector<InputFingerprint> input_fingerprints(const Case& c) {
   std::vector<InputFingerprint> result;
   std::vector<char> buffer(1 << 20);
   for (const auto& file : c.inputs()) {
+    require_input_file(file);
     std::ifstream in(file, std::ios::binary);
     if (!in) throw InputError::in(file.string(), std::string("cannot open: ") + std::strerror(errno));
     InputFingerprint f{file, 0, detail::kFnvOffset};
@@ -240,14 +246,12 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin&
               {"increments", s.increments},
               {"finished_increments", s.finished_increments},
               {"lambda", s.lambda},
-              {"remaining", json::array()},
+              {"split_pieces", json::array()},
               {"records", json::array()},
-              {"max_normal_slip", number(s.max_normal_slip)},
-              {"max_sliding_projection_distance", number(s.max_sliding_projection_distance)},
               {"timings", timings_json(s.timings)}};
   for (const auto& f : origin.inputs) header["inputs"].push_back({{"file", f.file.string()}, {"bytes", f.bytes}, {"hash", f.hash}});
-  for (const auto& step : s.remaining) {
-    header["remaining"].push_back({step.increment, step.lambda_begin, step.lambda_end, step.split_depth});
+  for (const auto& step : s.split_pieces) {
+    header["split_pieces"].push_back({step.increment, step.lambda_begin, step.lambda_end, step.split_depth});
   }
   for (const auto& r : s.records) header["records"].push_back(record_json(r));
 
@@ -301,12 +305,16 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const deform::Mesh
     s.increments = k.info.increments;
     s.finished_increments = k.info.finished_increments;
     s.lambda = k.info.lambda;
-    for (const json& step : header.at("remaining")) {
-      s.remaining.push_back({step.at(0).get<int>(), step.at(1).get<double>(), step.at(2).get<double>(), step.at(3).get<int>()});
+    // Version 1 listed the whole increments left too: they follow from finished_increments.
+    // (Its run maxima, max_normal_slip and max_sliding_projection_distance, follow from the
+    // records.)
+    const bool listed_all = header.at("format_version").get<int>() == 1;
+    for (const json& step : header.at(listed_all ? "remaining" : "split_pieces")) {
+      const deform::MotionStep piece{step.at(0).get<int>(), step.at(1).get<double>(), step.at(2).get<double>(),
+                                     step.at(3).get<int>()};
+      if (!listed_all || piece.split_depth > 0) s.split_pieces.push_back(piece);
     }
     for (const json& r : header.at("records")) s.records.push_back(record_from_json(r));
-    s.max_normal_slip = number_from(header.at("max_normal_slip"));
-    s.max_sliding_projection_distance = number_from(header.at("max_sliding_projection_distance"));
     s.timings = timings_from_json(header.at("timings"));
   } catch (const std::exception& e) {
     throw InputError::in(path.string(), std::string("the checkpoint file's header is damaged: ") + e.what());

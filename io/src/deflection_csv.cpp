@@ -4,6 +4,8 @@
 // depend on the locale. The first problem found throws an InputError "<source>:<line>: ...".
 #include "hotmesh/io/deflection_csv.hpp"
 
+#include "hotmesh/deform/validate.hpp"
+
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -225,6 +227,10 @@ class TableReader {
       const auto value = parse_double(field);
       if (!value) fail(line, cat("'", field, "' in column '", name, "' is not a number"));
       if (!std::isfinite(*value)) fail(line, cat("'", field, "' in column '", name, "' is not a finite number"));
+      if (std::abs(*value) > deform::kLargestCoordinate) {
+        fail(line, cat("'", field, "' in column '", name, "' is beyond 1e30, the largest coordinate hotmesh moves "
+                       "meshes at; is the table in another unit?"));
+      }
       if (column == Column::r && *value < 0.0) {
         fail(line, cat("negative radius ", field, " in column 'r'; r is a distance from the axis, r >= 0"));
       }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -295,6 +296,7 @@ void Figure::save(const std::filesystem::path& path) const {
   cairo_surface_finish(surface);
   const cairo_status_t status = cairo_surface_status(surface);
   cairo_surface_destroy(surface);
+  if (status == CAIRO_STATUS_NO_MEMORY) throw std::bad_alloc();  // the commands' out-of-memory exit, not bad input
   if (status != CAIRO_STATUS_SUCCESS) {
     throw InputError::in(path.string(), std::string("cannot render the picture: ") + cairo_status_to_string(status));
   }

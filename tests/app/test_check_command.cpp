@@ -1,13 +1,16 @@
 // Tests of `hotmesh check`: a consistent mesh passes and a perturbed one fails naming the node
 // that was moved, for the real ramp2d sample (a mesh deformed by hotmesh deform, checked against
-// the deflection table) and for a revolved 3D mesh built here on a cylinder and a plane written
-// to STEP (undeformed against the CAD faces, deformed against the deflected cylinder); the
-// JSON and JUnit reports; user errors.
+// the deflection table), for a revolved 3D mesh built here on a cylinder and a plane written
+// to STEP (undeformed against the CAD faces, deformed against the deflected cylinder) and for
+// the stator-well sample's casing, whose two faces lie on either side of the blade row; checks
+// driven by a case file (--case: the ramp2d sliding case deformed, the stator-well case's own
+// mesh); the JSON and JUnit reports, also of a check that cannot be made; user errors.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <numbers>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -45,6 +48,20 @@ deform::NodeId nearest_node(const deform::Mesh& mesh, const std::string& patch, 
   return *std::min_element(nodes.begin(), nodes.end(), [&](deform::NodeId a, deform::NodeId b) {
     return distance(mesh.points[static_cast<std::size_t>(a)], point) < distance(mesh.points[static_cast<std::size_t>(b)], point);
   });
+}
+
+const std::filesystem::path kSamples = std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples";
+
+/// A report file parsed by a real XML parser, as CI systems do: "<tests> <failures> <errors>",
+/// then per test case its name and "pass", "failure" or "error", then every message.
+test::CommandResult parse_junit(const std::filesystem::path& report) {
+  return run_command(
+      "python3 -c \"import sys, xml.etree.ElementTree as E; s = E.parse(sys.argv[1]).getroot(); "
+      "print(s.get('tests'), s.get('failures'), s.get('errors'), "
+      "[(c.get('name'), 'failure' if c.find('failure') is not None else 'error' if c.find('error') is not None "
+      "else 'pass') for c in s.iter('testcase')], "
+      "[m.get('message') for m in list(s.iter('failure')) + list(s.iter('error'))])\" " +
+      q(report));
 }
 
 /// The JSON report of a check, with its exit code.
@@ -202,14 +219,9 @@ TEST(CheckCommand, JunitReportFileIsWellFormedXmlWithATestCasePerPatch) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.output, HasSubstr("FAIL bottom"));  // stdout: the text form
   EXPECT_THAT(r.output, HasSubstr("pass inner"));
-  // Parsed by a real XML parser, as CI systems do.
-  const auto parsed = run_command(
-      "python3 -c \"import sys, xml.etree.ElementTree as E; s = E.parse(sys.argv[1]).getroot(); "
-      "print(s.get('tests'), s.get('failures'), [(c.get('name'), c.find('failure') is not None) for c in s.iter('testcase')], "
-      "[f.get('message') for f in s.iter('failure')])\" " +
-      q(dir / "report.xml"));
+  const auto parsed = parse_junit(dir / "report.xml");
   ASSERT_EQ(parsed.exit_code, 0) << parsed.output;
-  EXPECT_THAT(parsed.output, HasSubstr("2 1 [('inner', False), ('bottom', True)]"));
+  EXPECT_THAT(parsed.output, HasSubstr("2 1 0 [('inner', 'pass'), ('bottom', 'failure')]"));
   EXPECT_THAT(parsed.output, HasSubstr("node " + std::to_string(mesh.node_id(moved)) + " is 1.000e-03 from"));
   // The report never replaces an input.
   EXPECT_EQ(hotmesh("-q check --cad " + q(dir / "sector.step") + " --map inner=1 --mesh " + q(dir / "sector.msh") +
@@ -229,6 +241,7 @@ TEST(CheckCommand, UserErrorsNameWhatIsWrong) {
     EXPECT_THAT(r.output, HasSubstr(text));
   };
   expect(hotmesh("check" + mesh), "nothing to check");
+  expect(hotmesh("check" + cad + " --map inner=1"), "give the mesh to check");
   expect(hotmesh("check" + mesh + cad + " --map wall=1"), "the mesh has no patch 'wall' (its patches: inner, outer");
   expect(hotmesh("check" + mesh + " --map inner=1"), "--map inner: needs --cad");
   expect(hotmesh("check" + mesh + cad + " --map inner"), "expected PATCH=FACE_IDS");
@@ -238,6 +251,190 @@ TEST(CheckCommand, UserErrorsNameWhatIsWrong) {
   expect(hotmesh("check" + mesh + cad + " --map inner=1 --axis 0,0,1"), "--axis needs six numbers");
   expect(hotmesh("check" + mesh + " --deflection inner=" + q(dir / "missing.csv")), "missing.csv");
   EXPECT_EQ(hotmesh("check" + mesh + cad + " --map inner=1 --format yaml").exit_code, 2);
+}
+
+// The README's command on the stator-well sample: the casing is two cylinders r = 0.45, face 3
+// in front of the blade row (z 0 to 0.034) and face 4 behind it (z 0.066 to 0.1), whose
+// meridional curves do not meet. It once stopped with "do not form one connected profile".
+TEST(CheckCommand, StatorWellCasingOnEitherSideOfTheBladeIsCheckedPerProfile) {
+  test::TempDir dir;
+  const std::filesystem::path sample = kSamples / "stator_well";
+  const std::string readme = "check --cad " + q(sample / "stator_well.step") + " " + q(sample / "stator_well.msh") +
+                             " --map casing=3,4 --map disc_base=39 --format junit -o " + q(dir / "check.xml");
+  const auto r = hotmesh("-q " + readme);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("2 of 2 patches within the tolerance"));
+  const auto parsed = parse_junit(dir / "check.xml");
+  ASSERT_EQ(parsed.exit_code, 0) << parsed.output;
+  EXPECT_THAT(parsed.output, HasSubstr("2 0 0 [('casing', 'pass'), ('disc_base', 'pass')]"));
+
+  const std::string casing = "--cad " + q(sample / "stator_well.step") + " --map casing=3,4 --mesh ";
+  const auto [pass_code, pass] = check_json(casing + q(sample / "stator_well.msh"));
+  ASSERT_EQ(pass_code, 0) << pass.dump(2);
+  const Json& patch = pass["patches"][0];
+  EXPECT_EQ(patch["nodes"], 264);
+  EXPECT_LT(patch["max_distance"].get<double>(), 1e-12);
+  EXPECT_THAT(patch["reference"].get<std::string>(), HasSubstr("CAD faces 3, 4: 2 separate meridional profiles"));
+  ASSERT_EQ(patch["parts"].size(), 2u);
+  EXPECT_THAT(patch["parts"][0]["reference"].get<std::string>(), HasSubstr("CAD face 3: its meridional curve"));
+  EXPECT_THAT(patch["parts"][1]["reference"].get<std::string>(), HasSubstr("CAD face 4: its meridional curve"));
+  EXPECT_EQ(patch["parts"][0]["nodes"].get<int>() + patch["parts"][1]["nodes"].get<int>(), 264);
+  EXPECT_GT(patch["parts"][0]["nodes"].get<int>(), 100);
+  EXPECT_GT(patch["parts"][1]["nodes"].get<int>(), 100);
+
+  // A node of the rear casing 0.1 mm outwards: that part fails and names it, the other passes.
+  deform::Mesh mesh = io::read_gmsh(sample / "stator_well.msh");
+  const deform::NodeId moved = nearest_node(mesh, "casing", {0.45, 0.0, 0.08});
+  auto& p = mesh.points[static_cast<std::size_t>(moved)];
+  p = p * ((0.45 + 1e-4) / std::hypot(p.x, p.y));
+  p.z = 0.08 + (p.z - 0.08);  // unchanged: only r moves
+  io::write_gmsh(dir / "perturbed.msh", mesh);
+  const auto [fail_code, fail] = check_json(casing + q(dir / "perturbed.msh"));
+  EXPECT_EQ(fail_code, 1);
+  const Json& failed = fail["patches"][0];
+  EXPECT_EQ(failed["passed"], false);
+  EXPECT_EQ(failed["worst_node"]["id"], mesh.node_id(moved));
+  EXPECT_NEAR(failed["max_distance"].get<double>(), 1e-4, 1e-9);
+  EXPECT_EQ(failed["parts"][0]["passed"], true);
+  EXPECT_EQ(failed["parts"][1]["passed"], false);
+  EXPECT_EQ(failed["parts"][1]["worst_node"]["id"], mesh.node_id(moved));
+}
+
+// `--format junit -o FILE` once wrote nothing when the check could not be made, leaving CI an
+// earlier (passing) report. Now the report holds one test case in error with the message.
+TEST(CheckCommand, JunitReportOfACheckThatCannotBeMadeIsATestCaseInError) {
+  test::TempDir dir;
+  const std::filesystem::path sample = kSamples / "stator_well";
+  const std::string check = "-q check --cad " + q(sample / "stator_well.step") + " --mesh " +
+                            q(sample / "stator_well.msh") + " --format junit ";
+  ASSERT_EQ(hotmesh(check + "--map casing=3,4 -o " + q(dir / "check.xml")).exit_code, 0);
+  const auto r = hotmesh(check + "--map casing=3,99 -o " + q(dir / "check.xml"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("patch 'casing': "));
+  EXPECT_THAT(r.output, HasSubstr("no face 99"));
+  const auto parsed = parse_junit(dir / "check.xml");
+  ASSERT_EQ(parsed.exit_code, 0) << parsed.output;
+  EXPECT_THAT(parsed.output, HasSubstr("1 0 1 [('input', 'error')]"));
+  EXPECT_THAT(parsed.output, HasSubstr("no face 99: the faces are 1 to 44"));
+  EXPECT_THAT(test::read_text(dir / "check.xml"), HasSubstr("<error type=\"input error\""));
+
+  // Never over an input, even to report an error.
+  const std::filesystem::path table = dir / "disc_base.csv";
+  std::filesystem::copy_file(sample / "disc_base.csv", table);
+  const std::string before = test::read_text(table);
+  EXPECT_EQ(hotmesh(check + "--map casing=99 --deflection disc_base=" + q(table) + " -o " + q(table)).exit_code, 2);
+  EXPECT_EQ(test::read_text(table), before);
+
+  // A case file that cannot be read: its inputs are unknown, so the report replaces only an
+  // earlier XML report or nothing.
+  test::write_text(dir / "broken.yaml", "mesh: " + (sample / "stator_well.msh").string() + "\npatches: {casing: {rol: fixed}}\n");
+  const auto broken = hotmesh("-q check --case " + q(dir / "broken.yaml") + " --format junit -o " + q(dir / "check.xml"));
+  EXPECT_EQ(broken.exit_code, 2);
+  EXPECT_THAT(test::read_text(dir / "check.xml"), HasSubstr("patches.casing.rol: unknown key"));
+  test::write_text(dir / "notes.txt", "not a report\n");
+  EXPECT_EQ(hotmesh("-q check --case " + q(dir / "broken.yaml") + " --format junit -o " + q(dir / "notes.txt")).exit_code, 2);
+  EXPECT_EQ(test::read_text(dir / "notes.txt"), "not a report\n");
+}
+
+/// The node of `patch` nearest to `point` that is on no other patch of `mesh`.
+deform::NodeId nearest_own_node(const deform::Mesh& mesh, const std::string& patch, const geometry::Vec3& point) {
+  std::vector<deform::NodeId> own;
+  for (const deform::NodeId n : mesh.find_patch(patch)->nodes) {
+    const bool shared = std::any_of(mesh.patches.begin(), mesh.patches.end(), [&](const deform::Patch& other) {
+      return other.name != patch && std::binary_search(other.nodes.begin(), other.nodes.end(), n);
+    });
+    if (!shared) own.push_back(n);
+  }
+  return *std::min_element(own.begin(), own.end(), [&](deform::NodeId a, deform::NodeId b) {
+    return distance(mesh.points[static_cast<std::size_t>(a)], point) < distance(mesh.points[static_cast<std::size_t>(b)], point);
+  });
+}
+
+// The coupled-loop workflow on the ramp2d sliding sample: `hotmesh deform case.yaml -o out`,
+// then `hotmesh check out/deformed.msh --case case.yaml`, the case giving every patch's wall.
+TEST(CheckCommand, CaseFileGivesTheWallsADeformedMeshIsCheckedAgainst) {
+  test::TempDir dir;
+  const std::filesystem::path case_file = kSamples / "ramp2d/ramp2d-sliding.yaml";
+  const auto deformed = hotmesh("-q deform " + q(case_file) + " -o " + q(dir / "out"));
+  ASSERT_EQ(deformed.exit_code, 0) << deformed.output;
+
+  const auto [hot_code, hot] = check_json(q(dir / "out/deformed.msh") + " --case " + q(case_file));
+  ASSERT_EQ(hot_code, 0) << hot.dump(2);
+  EXPECT_EQ(hot["case"], case_file.string());
+  ASSERT_EQ(hot["patches"].size(), 2u);  // the sliding patches, in the order of the case file
+  EXPECT_EQ(hot["patches"][0]["patch"], "top");
+  EXPECT_EQ(hot["patches"][1]["patch"], "bottom");
+  for (const Json& patch : hot["patches"]) {
+    EXPECT_EQ(patch["nodes"], 58);
+    EXPECT_LT(patch["max_distance"].get<double>(), 1e-12) << patch["patch"];
+    EXPECT_THAT(patch["reference"].get<std::string>(), HasSubstr("the deflected wall of the case (sliding)"));
+  }
+  EXPECT_THAT(hot["patches"][1]["reference"].get<std::string>(),
+              HasSubstr("the curve through the FEM nodes of ramp.csv, deflected by them (eq. 21, curve form, degree 1)"));
+
+  // A node of the flat part of the deflected wall 10 um up (the cells there are thin: the
+  // sliding nodes gathered on the ramp): found.
+  deform::Mesh mesh = io::read_gmsh(dir / "out/deformed.msh");
+  const deform::NodeId moved = nearest_own_node(mesh, "bottom", {0.3, 0.0, 0.0});
+  mesh.points[static_cast<std::size_t>(moved)].y += 1e-5;
+  io::write_gmsh(dir / "perturbed.msh", mesh);
+  const auto [fail_code, fail] = check_json(q(dir / "perturbed.msh") + " --case " + q(case_file));
+  ASSERT_EQ(fail_code, 1) << fail.dump(2);
+  EXPECT_EQ(fail["patches"][0]["passed"], true);
+  EXPECT_EQ(fail["patches"][1]["worst_node"]["id"], mesh.node_id(moved));
+  EXPECT_NEAR(fail["patches"][1]["max_distance"].get<double>(), 1e-5, 1e-12);
+
+  // Without a mesh, the case's own mesh against its undeformed walls.
+  const auto [cold_code, cold] = check_json("--case " + q(case_file));
+  ASSERT_EQ(cold_code, 0) << cold.dump(2);
+  EXPECT_EQ(cold["mesh"], (kSamples / "ramp2d/ramp2d.msh").string());
+  EXPECT_THAT(cold["patches"][1]["reference"].get<std::string>(),
+              HasSubstr("the undeformed wall of the case (sliding): the curve through the FEM nodes of ramp.csv in the"));
+  // Any other mesh is taken as deformed: a copy of the undeformed one is as far from the
+  // deflected ramp as the ramp's height.
+  std::filesystem::copy_file(kSamples / "ramp2d/ramp2d.msh", dir / "copy.msh");
+  const auto [copy_code, copy] = check_json(q(dir / "copy.msh") + " --case " + q(case_file));
+  EXPECT_EQ(copy_code, 1);
+  EXPECT_GT(copy["patches"][1]["max_distance"].get<double>(), 0.1);
+}
+
+// The stator-well sample's case on its own mesh: the ten walls that follow the FEM tables,
+// prescribed and sliding, lie on their CAD faces (taken with the case's axis and unit).
+TEST(CheckCommand, CaseFileOfTheStatorWellSampleChecksItsTenWallsOnTheCad) {
+  const auto [code, report] = check_json("--case " + q(kSamples / "stator_well/case_small.yaml"));
+  ASSERT_EQ(code, 0) << report.dump(2);
+  EXPECT_EQ(report["cad"], (kSamples / "stator_well/stator_well.step").string());
+  std::vector<std::string> patches;
+  for (const Json& patch : report["patches"]) {
+    patches.push_back(patch["patch"]);
+    EXPECT_LT(patch["max_distance"].get<double>(), 1e-12) << patch["patch"];
+    EXPECT_THAT(patch["reference"].get<std::string>(), HasSubstr("the undeformed wall of the case"));
+    EXPECT_THAT(patch["reference"].get<std::string>(), HasSubstr("of stator_well.step about the axis (0, 0, 0) along (0, 0, 1)"));
+  }
+  EXPECT_EQ(patches, (std::vector<std::string>{"stator_front", "fins", "stator_rear", "rim_up", "disc_up_upper", "joint",
+                                               "disc_up_lower", "disc_base", "disc_down", "rim_down"}));
+  EXPECT_THAT(report["patches"][8]["reference"].get<std::string>(),
+              HasSubstr("the undeformed wall of the case (sliding): CAD faces 40, 41, 42 of stator_well.step"));
+}
+
+TEST(CheckCommand, CaseFileRefusesTheOptionsItGivesAndMeshesOfOtherCases) {
+  test::TempDir dir;
+  const std::string ramp = " --case " + q(kSamples / "ramp2d/ramp2d-sliding.yaml");
+  auto expect = [](const test::CommandResult& r, const std::string& text) {
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_THAT(r.output, HasSubstr(text));
+  };
+  expect(hotmesh("check" + ramp + " --map bottom=1 --unit mm"), "--map, --unit: not with --case, which gives");
+  expect(hotmesh("check" + ramp + " --deflection bottom=" + q(kSamples / "ramp2d/ramp.csv")), "--deflection: not with --case");
+  expect(hotmesh("check " + q(kSamples / "shear2d/shear2d.msh") + ramp), "give a mesh the case was deformed into");
+  // A case whose patches follow no boundary has nothing to check.
+  test::write_text(dir / "fixed.yaml", fmt::format("mesh: {}\npatches:\n  left: {{role: fixed}}\n  right: {{role: slip}}\n"
+                                                   "  top: {{role: fixed}}\n  bottom: {{role: fixed}}\n",
+                                                   (kSamples / "ramp2d/ramp2d.msh").string()));
+  expect(hotmesh("check --case " + q(dir / "fixed.yaml")), "no patch follows a boundary (role prescribed or sliding)");
+  // The case's own errors, with its file and line.
+  test::write_text(dir / "typo.yaml", "mesh: ramp2d.msh\n");
+  expect(hotmesh("check --case " + q(dir / "typo.yaml")), "typo.yaml:1: mesh:");
 }
 
 }  // namespace

@@ -6,8 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <fmt/format.h>
@@ -143,6 +146,75 @@ TEST(DeformCommand, BadCaseIsAUserErrorAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
 }
 
+// Issue 18, item 7: a FIFO as the case, mesh, table or CAD file blocked hotmesh forever.
+TEST(DeformCommand, NamedPipesAsInputsAreRefusedWithoutWaiting) {
+  const std::string yaml =
+      "mesh: ramp2d.msh\npatches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: sliding}\n"
+      "  bottom: {role: sliding, deflection: {file: ramp.csv}}\n";
+  for (const char* name : {"case.yaml", "ramp2d.msh", "ramp.csv"}) {
+    RampCase ramp(yaml);
+    std::filesystem::remove(ramp.dir / name);
+    ASSERT_EQ(::mkfifo((ramp.dir / name).c_str(), 0600), 0);
+    // `timeout` ends the test, not hotmesh's bug, if a read blocks again.
+    const auto r = test::run_command("timeout 60 " + std::string(HOTMESH_EXE) + " deform " + ramp.case_file());
+    EXPECT_EQ(r.exit_code, 2) << name << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("is a named pipe (FIFO), not a regular file")) << name;
+  }
+  RampCase ramp(yaml + "cad: part.step\n");
+  ASSERT_EQ(::mkfifo((ramp.dir / "part.step").c_str(), 0600), 0);
+  const auto r = test::run_command("timeout 60 " + std::string(HOTMESH_EXE) + " deform " + ramp.case_file());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("case.yaml:7: cad: " + (ramp.dir / "part.step").string() + " is a named pipe"));
+}
+
+// Issue 18, item 9: a damaged `cad:` file that no patch uses was accepted, one that a patch
+// used was blamed on the patch's table; a NUL byte cut the message short and a 2 MB value was
+// echoed whole.
+TEST(DeformCommand, EveryNamedFileIsCheckedAndMessagesStayReadable) {
+  const std::string yaml =
+      "mesh: ramp2d.msh\npatches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: sliding}\n"
+      "  bottom: {role: sliding, deflection: {file: ramp.csv}}\n";
+  RampCase ramp(yaml + "cad: part.step\n");
+  const std::string step = test::read_text(std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "stator_well" /
+                                           "stator_well.step");
+  test::write_text(ramp.dir / "part.step", step.substr(0, step.size() / 3));  // truncated
+  const auto truncated = hotmesh("deform " + ramp.case_file());
+  EXPECT_EQ(truncated.exit_code, 2) << truncated.output;
+  EXPECT_THAT(truncated.output, HasSubstr((ramp.dir / "part.step").string() + ": cannot be read as STEP"));
+  EXPECT_THAT(truncated.output, Not(HasSubstr("ramp.csv")));
+  EXPECT_THAT(truncated.output, Not(HasSubstr("mesh ")));  // refused before the mesh is read
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
+
+  test::write_text(ramp.dir / "case.yaml", yaml);
+  constexpr char kNul[] = "x,y,d\0x,dy\n0,0,0,0\n";
+  test::write_text(ramp.dir / "ramp.csv", std::string(kNul, sizeof kNul - 1));
+  const auto nul = hotmesh("deform " + ramp.case_file());
+  EXPECT_EQ(nul.exit_code, 2);
+  EXPECT_THAT(nul.output, HasSubstr("ramp.csv:1: unknown column 'd\\x00x'; expected x,y,dx,dy"));
+
+  test::write_text(ramp.dir / "case.yaml", "mesh: " + std::string(2'000'000, 'm') + ".msh\npatches: {left: {role: fixed}}\n");
+  const auto wide = hotmesh("deform " + ramp.case_file());
+  EXPECT_EQ(wide.exit_code, 2);
+  EXPECT_THAT(wide.output, HasSubstr("more bytes)"));
+  EXPECT_LT(wide.output.size(), 20'000u);
+}
+
+TEST(DeformCommand, HugeIncrementCountIsRefusedAtOnce) {
+  // Issue 18: `increments: 1000000000` took more than 13 GB before increment 1. Refused as the
+  // case is read, in a process limited to 1 GB of address space (not under AddressSanitizer,
+  // which reserves terabytes).
+  RampCase ramp(
+      "mesh: ramp2d.msh\nsolver: {increments: 1000000000}\n"
+      "patches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: fixed}\n"
+      "  bottom: {role: prescribed, deflection: {file: ramp.csv}}\n");
+  const std::string limit = test::under_sanitizers() ? "" : "ulimit -v 1000000 && ";
+  const auto r = test::run_command(limit + HOTMESH_EXE + " deform " + ramp.case_file());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("case.yaml:2: solver.increments: must be at most 10000, got 1000000000: the "
+                                  "paper's cases take 16"));
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
+}
+
 TEST(DeformCommand, RefusesOutputFolderHoldingInputsUnlessForced) {
   RampCase ramp(
       "mesh: ramp2d.msh\nsolver: {increments: 2}\n"
@@ -189,6 +261,77 @@ TEST(DeformCommand, RestartFromSavedStateMatchesAStraightRun) {
   EXPECT_THAT(report["restarted_from"].get<std::string>(), HasSubstr("first-out/restart.hmr"));
   EXPECT_GT(report["sliding_nodes"].get<int>(), 0);
   EXPECT_LT(report["max_normal_slip"].get<double>(), 1e-12);
+}
+
+/// The largest number of `values` (a JSON array), 0 if empty.
+double largest_of(const nlohmann::json& values) {
+  double largest = 0.0;
+  for (const auto& v : values) largest = std::max(largest, v.get<double>());
+  return largest;
+}
+
+TEST(DeformCommand, ReportGivesEveryLengthAbsoluteAndRelativeAndRealMaxima) {
+  // Issue 18: max_sliding_projection_distance was the last Newton step's, and relative, while
+  // increments[].max_projection_distance was absolute; periodic_max_mismatch was relative,
+  // max_normal_slip absolute; a rejected attempt's unchecked quality read 0. The coarse
+  // sliding ramp in one increment of at most 6 Newton steps: attempts that do not converge are
+  // rejected and split, their pieces accepted.
+  test::TempDir dir;
+  write_coarse_ramp(dir.path());
+  std::string yaml = ramp_case("full.csv", 1);
+  yaml.replace(yaml.find("newton_tolerance: 1.0e-6"), 24, "newton_tolerance: 1.0e-4, max_newton_iterations: 6");
+  test::write_text(dir / "case.yaml", yaml);
+  const auto r = hotmesh("-q deform " + shell_quote((dir / "case.yaml").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto report = read_json(dir / "case-out" / "report.json");
+  const double scale = report["length_scale"].get<double>();
+  EXPECT_DOUBLE_EQ(scale, std::sqrt(5.0));  // the diagonal of the undeformed channel, 2 x 1
+  const auto expect_relative = [scale](const nlohmann::json& object, const std::string& key) {
+    ASSERT_TRUE(object.contains(key) && object.contains(key + "_relative")) << key;
+    EXPECT_EQ(object[key + "_relative"].get<double>(), object[key].get<double>() / scale) << key;
+  };
+  for (const char* key : {"max_projection_distance", "final_projection_distance", "max_normal_slip", "max_periodic_mismatch"}) {
+    expect_relative(report, key);
+  }
+  ASSERT_EQ(report["deflections"].size(), 1u);
+  expect_relative(report["deflections"][0], "max_node_distance_to_cad");
+  expect_relative(report["deflections"][0], "max_node_residual");
+
+  double largest = 0.0, last = 0.0, slip = 0.0, rejected_largest = 0.0;
+  std::size_t rejected = 0;
+  for (const auto& attempt : report["increments"]) {
+    expect_relative(attempt, "max_normal_slip");
+    const auto& steps = attempt["max_projection_distance"];
+    ASSERT_EQ(steps.size(), attempt["newton_iterations"].get<std::size_t>());
+    ASSERT_EQ(attempt["max_projection_distance_relative"].size(), steps.size());
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      EXPECT_EQ(attempt["max_projection_distance_relative"][i].get<double>(), steps[i].get<double>() / scale);
+    }
+    if (!attempt["converged"].get<bool>()) {  // quality never checked: unknown, not 0
+      ++rejected;
+      EXPECT_TRUE(attempt["min_scaled_jacobian"].is_null()) << attempt["stage"];
+      EXPECT_TRUE(attempt["inverted_cells"].is_null()) << attempt["stage"];
+      rejected_largest = std::max(rejected_largest, largest_of(steps));
+      continue;
+    }
+    EXPECT_GT(attempt["min_scaled_jacobian"].get<double>(), 0.0);
+    EXPECT_EQ(attempt["inverted_cells"], 0);
+    largest = std::max(largest, largest_of(steps));
+    last = steps.back().get<double>();
+    slip = std::max(slip, attempt["max_normal_slip"].get<double>());
+  }
+  ASSERT_GT(rejected, 0u) << "the test needs attempts that do not converge";
+  // The maxima run over every Newton step of the accepted attempts, the rejected ones left out.
+  EXPECT_EQ(report["max_projection_distance"].get<double>(), largest);
+  EXPECT_GT(largest, last);  // not the last step's
+  EXPECT_GT(rejected_largest, largest);  // the rejected attempts' moves were undone
+  EXPECT_EQ(report["final_projection_distance"].get<double>(), last);
+  EXPECT_EQ(report["max_normal_slip"].get<double>(), slip);
+  EXPECT_EQ(report["max_periodic_mismatch"], 0.0);  // no periodic pairs
+  // The deprecated keys keep their old meaning for one version (docs/report-json.md).
+  EXPECT_EQ(report["max_sliding_projection_distance"], report["final_projection_distance_relative"]);
+  EXPECT_EQ(report["periodic_max_mismatch"], report["max_periodic_mismatch_relative"]);
+  EXPECT_GT(report["min_scaled_jacobian"].get<double>(), 0.0);  // of the final mesh
 }
 
 TEST(DeformCommand, RestartRefusesAnotherMeshOrChangedRoles) {

@@ -73,6 +73,41 @@ TEST(DeformResume, RunStoppedAfterAnIncrementResumesToTheSameOutputs) {
   EXPECT_EQ(report["checkpoints"]["written"], 4);  // increments 3 to 6
 }
 
+TEST(DeformResume, CheckpointOfFormatOneResumesToTheSameOutputs) {
+  // A checkpoint as hotmesh wrote it before issue 18 (format 1: every step left listed, the
+  // run's maxima in the header) still resumes, to the very outputs of the uninterrupted run.
+  SlidingRamp ramp;
+  ASSERT_EQ(hotmesh("-q " + ramp.deform("straight")).exit_code, 0);
+  ASSERT_EQ(hotmesh(ramp.deform("out", "--stop-after-increment 2")).exit_code, kKilled);
+  test::rewrite_as_checkpoint_format_1(ramp.dir / "out" / io::kCheckpointName);
+  ASSERT_THAT(test::read_text(ramp.dir / "out" / io::kCheckpointName), HasSubstr("\"remaining\":[[3,0.3333"));
+  const auto resumed = hotmesh(ramp.deform("out", "--resume"));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_THAT(resumed.output, HasSubstr("2 of 6 increments done"));
+  expect_same_outputs(ramp.dir / "straight", ramp.dir / "out");
+}
+
+TEST(DeformResume, CheckpointAfterTheFirstIncrementDoesNotGrowWithTheIncrementCount) {
+  // Issue 18: the checkpoint listed every increment left (31 bytes each), rewritten after each.
+  SlidingRamp ramp;
+  test::write_text(ramp.dir / "many.yaml", test::ramp_case("full.csv", 10000));
+  ASSERT_EQ(hotmesh(ramp.deform("few", "--stop-after-increment 1")).exit_code, kKilled);
+  const std::string many = shell_quote((ramp.dir / "many.yaml").string());
+  ASSERT_EQ(hotmesh("deform " + many + " -o " + shell_quote((ramp.dir / "many").string()) + " --stop-after-increment 1").exit_code,
+            kKilled);
+  // Both hold the same state but for N and the first increment's record (its Newton steps):
+  // without that record, the same size to a few digits, where 9994 more increments listed
+  // took 300 kB.
+  const auto bytes_but_record = [&](const char* folder) {
+    const auto path = ramp.dir / folder / io::kCheckpointName;
+    const auto parts = test::checkpoint_parts(path);
+    EXPECT_EQ(parts.header["records"].size(), 1u);
+    EXPECT_TRUE(parts.header["split_pieces"].empty());
+    return static_cast<double>(std::filesystem::file_size(path) - parts.header["records"].dump().size());
+  };
+  EXPECT_NEAR(bytes_but_record("many"), bytes_but_record("few"), 100.0);
+}
+
 TEST(DeformResume, AmgRunStoppedAfterAnIncrementResumesToTheSameOutputs) {
   // The resumed process builds its first matrix and multigrid hierarchy anew; the uninterrupted
   // one reuses its matrix and had built hierarchies before. Both must give the same bits: the
@@ -229,6 +264,29 @@ TEST(DeformResume, OutOfMemoryExitsWithCodeFourAndKeepsTheCheckpoint) {
   const auto resumed = hotmesh("-q " + ramp.deform("out", "--resume"));
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   expect_same_outputs(ramp.dir / "straight", ramp.dir / "out");
+}
+
+TEST(DeformResume, TooLittleMemoryForTheThreadsExitsWithCodeFour) {
+  // Issue 18: out of memory around the OpenMP loops ended the run with "libgomp: Thread
+  // creation failed" and exit code 1 (which means the motion failed) once the first loop
+  // large enough to run in parallel started its threads. The ramp sample (2280 cells) in one
+  // increment on 64 threads, whose stacks of 8 MB do not fit in 400 MB of address space: the
+  // run stops before any work, as out of memory. (Not under AddressSanitizer, which reserves
+  // terabytes of address space.)
+  if (test::under_sanitizers()) GTEST_SKIP() << "ulimit -v does not work under AddressSanitizer";
+  std::string yaml = test::read_text(test::kSample / "ramp2d.yaml");
+  yaml.replace(yaml.find("increments: 16"), 14, "increments: 1");
+  const test::RampCase ramp(yaml);
+  const std::string limited = "ulimit -s 8192 && ulimit -v 400000 && env -u OMP_STACKSIZE -u GOMP_STACKSIZE " +
+                              std::string(HOTMESH_EXE) + " deform " + ramp.case_file();
+  const auto r = test::run_command(limited + " --threads 64");
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("out of memory while starting 64 threads"));
+  EXPECT_THAT(r.output, Not(HasSubstr("libgomp")));
+  EXPECT_FALSE(std::filesystem::exists(ramp.dir / "case-out"));
+  // With the threads it can hold, the same run goes through.
+  const auto fits = test::run_command(limited + " --threads 2");
+  EXPECT_EQ(fits.exit_code, 0) << fits.output;
 }
 
 TEST(DeformCommand, ProgressLinePerNewtonStepOnRequest) {

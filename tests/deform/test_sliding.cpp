@@ -5,8 +5,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <new>
 
 #include "hotmesh/deform/constraints.hpp"
 #include "hotmesh/deform/material.hpp"
@@ -32,6 +34,24 @@ std::shared_ptr<test::TestCurveShape> ramp_wall(Ramp ramp) {
       std::vector<Vec3>{{0, 0, 0}, {Ramp::a, 0, 0}, {Ramp::b, 0, 0}, {2, 0, 0}},
       [ramp](const Vec3& p, double lambda) { return p + Vec3{0.0, lambda * ramp.lift(p.x), 0.0}; });
 }
+
+/// A wall whose projections run out of memory after `calls` of them, as one that allocated
+/// would under a memory limit.
+class ExhaustedWall final : public geometry::BoundaryShape {
+ public:
+  ExhaustedWall(std::shared_ptr<const geometry::BoundaryShape> wall, int calls) : wall_(std::move(wall)), calls_(calls) {}
+  geometry::ShapePoint project(const Vec3& p, double lambda, double hint) const override {
+    if (calls_.fetch_sub(1) <= 0) throw std::bad_alloc();
+    return wall_->project(p, lambda, hint);
+  }
+  geometry::ShapePoint at(double t, double lambda, const Vec3& reference) const override {
+    return wall_->at(t, lambda, reference);
+  }
+
+ private:
+  std::shared_ptr<const geometry::BoundaryShape> wall_;
+  mutable std::atomic<int> calls_;
+};
 
 std::shared_ptr<test::TestCurveShape> still_wall(double y) {
   return std::make_shared<test::TestCurveShape>(std::vector<Vec3>{{0, y, 0}, {2, y, 0}},
@@ -88,7 +108,9 @@ TEST(Sliding, RampNodesEndOnTheDeflectedWallAndSlideTangentially) {
   const double size = std::sqrt(5.0);
   EXPECT_LT(off / size, 1e-9);
   for (NodeId n : mesh.find_patch("top")->nodes) EXPECT_NEAR(r.points[static_cast<std::size_t>(n)].y, 1.0, 1e-9 * size);
-  EXPECT_LT(r.max_sliding_projection_distance, 1e-3);
+  EXPECT_LT(r.final_projection_distance / r.length_scale, 1e-3);
+  EXPECT_LE(r.final_projection_distance, r.max_projection_distance);
+  EXPECT_DOUBLE_EQ(r.length_scale, size);
   EXPECT_LT(r.max_normal_slip, 1e-12 * size);  // every Newton step kept u_s . n = 0 (eq. 19)
   // The corner on the slip wall ends where the deflected wall meets x = 2.
   const Vec3 corner = r.points[21];
@@ -105,6 +127,19 @@ TEST(Sliding, GathersMoreNodesOnTheRampWithoutLosingQuality) {
   ASSERT_TRUE(sliding.success) << sliding.message;
   EXPECT_GT(nodes_on_ramp(mesh, sliding), nodes_on_ramp(mesh, fixed));
   EXPECT_GE(sliding.summary.min_scaled_jacobian, fixed.summary.min_scaled_jacobian);
+}
+
+TEST(Sliding, OutOfMemoryInAProjectionLeavesTheRunAsBadAlloc) {
+  // Issue 18: an exception thrown inside an OpenMP loop ends the process (std::terminate,
+  // SIGABRT) instead of reaching the command, which exits with code 4 on std::bad_alloc. The
+  // projections run in such loops: at set-up (locating the nodes), at the start of an
+  // increment, after each Newton step and at the end of an increment.
+  const Mesh mesh = ramp_mesh(0, true);
+  for (const int calls : {0, 25, 60, 400, 2000}) {
+    auto motions = ramp_motions(true, {});
+    motions[2].shape = std::make_shared<ExhaustedWall>(motions[2].shape, calls);
+    EXPECT_THROW(move_mesh(mesh, motions, {}, {}), std::bad_alloc) << "after " << calls << " projections";
+  }
 }
 
 TEST(Sliding, ProjectedPcgKeepsEveryIterateTangential) {
@@ -218,7 +253,8 @@ TEST(Sliding, ResumingFromAnyCheckpointMakesTheSameMoves) {
     EXPECT_TRUE(same(resumed.points, straight.points)) << "resumed after increment " << c.finished_increments;
     EXPECT_EQ(resumed.increments.size(), straight.increments.size());
     EXPECT_EQ(resumed.max_normal_slip, straight.max_normal_slip);
-    EXPECT_EQ(resumed.max_sliding_projection_distance, straight.max_sliding_projection_distance);
+    EXPECT_EQ(resumed.max_projection_distance, straight.max_projection_distance);
+    EXPECT_EQ(resumed.final_projection_distance, straight.final_projection_distance);
   }
 
   // The sliding nodes' targets are part of the state: resuming with those of an earlier

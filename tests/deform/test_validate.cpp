@@ -146,6 +146,30 @@ TEST(ValidateMesh, RejectsNonFiniteCoordinates) {
   EXPECT_THAT(validation_error(mesh), HasSubstr("node 4 at (1, nan, 0)"));
 }
 
+/// The unit cube scaled by `scale` and moved by `shift` along x.
+Mesh scaled_cube(double scale, double shift = 0.0) {
+  Mesh mesh = unit_cube(2);
+  for (Vec3& p : mesh.points) p = scale * p + Vec3{shift, 0.0, 0.0};
+  return mesh;
+}
+
+// Issue 18, item 8: coordinates near 1e155 were reported as "190 pairs of nodes are
+// duplicates (closer than inf)", near 1e-300 as "all nodes at the same point", and a scale of
+// 1e100 later as a stiffness that is not positive definite.
+TEST(ValidateMesh, NamesCoordinatesOutsideTheRangeItMovesMeshesAt) {
+  EXPECT_THAT(validation_error(scaled_cube(1e155)), HasSubstr("the mesh reaches 1e+155 from the origin"));
+  EXPECT_THAT(validation_error(scaled_cube(1e100)), HasSubstr("coordinates stay within 1e+30"));
+  EXPECT_THAT(validation_error(scaled_cube(1e-300)), HasSubstr("the mesh is 1e-300 across"));
+  EXPECT_THAT(validation_error(scaled_cube(1e-3, 1e10)),
+              HasSubstr("the mesh is 0.001 across but lies 1e+10 from the origin"));
+  Mesh point = unit_cube(1);
+  for (Vec3& p : point.points) p = {1, 2, 3};
+  EXPECT_THAT(validation_error(point), HasSubstr("all 8 nodes of the mesh are at the same point (1, 2, 3)"));
+  // Micrometres to kilometres, in metres, and a part far from the engine axis.
+  for (const double scale : {1e-6, 1.0, 1e3, 1e25}) EXPECT_EQ(validation_error(scaled_cube(scale)), "no error") << scale;
+  EXPECT_EQ(validation_error(scaled_cube(1e-3, 1e4)), "no error");
+}
+
 TEST(ValidateMesh, RejectsTwoDimensionalMeshOffItsPlane) {
   Mesh mesh = unit_square(2, 2);
   mesh.points[4].z = 0.1;

@@ -1,10 +1,14 @@
 // Tests of CAD import on real files from other CAD systems (tests/data/cad/README.md): face
 // counts, surface kinds, names, axes (analytic and fitted to B-spline faces, up to sign),
-// units, and meridional curves of revolved, analytic, planar and B-spline faces.
+// units, and meridional curves of revolved, analytic, planar and B-spline faces (and of the
+// stator-well sample's casing, two separate profiles).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <vector>
 
 #include "cad_test_helpers.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -212,6 +216,42 @@ TEST(CadRealFiles, MeridionalCurveErrorsNameTheFaces) {
   const std::vector<int> both{1, 2};
   EXPECT_THAT([&] { spheres.meridional_curve(both); },
               ::testing::ThrowsMessage<InputError>(HasSubstr("faces 1 and 2 turn about different axes")));
+}
+
+TEST(CadRealFiles, StatorWellCasingOnEitherSideOfTheBladeIsTwoSeparateProfiles) {
+  // The casing of samples/stator_well: face 3 in front of the blade row (z 0 to 0.034), face 4
+  // behind it (z 0.066 to 0.1), both on the cylinder r = 0.45 about the z axis.
+  const CadModel model = CadModel::read(std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples/stator_well/stator_well.step");
+  const std::vector<int> casing{4, 3};
+  EXPECT_THAT([&] { model.meridional_curve(casing); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("do not form one connected profile")));
+  const std::vector<MeridionalCurve> profiles = model.meridional_profiles(casing);
+  ASSERT_EQ(profiles.size(), 2u);
+  EXPECT_EQ(profiles[0].faces, std::vector<int>{4});  // in the order given
+  EXPECT_EQ(profiles[1].faces, std::vector<int>{3});
+  const auto z_of = [](const MeridionalCurve& m, double t) {
+    return m.axis.to_cartesian({m.curve.point(t).x, 0.0, m.curve.point(t).y}).z;
+  };
+  for (const auto& [profile, z0, z1] : {std::tuple{&profiles[0], 0.066, 0.1}, std::tuple{&profiles[1], 0.0, 0.034}}) {
+    EXPECT_TRUE(is_axis(profile->axis, {0, 0, 0}, {0, 0, 1}, 1e-12));
+    EXPECT_NEAR(profile->curve.point(0.5).x, 0.45, 1e-12);
+    EXPECT_NEAR(std::min(z_of(*profile, 0.0), z_of(*profile, 1.0)), z0, 1e-12);
+    EXPECT_NEAR(std::max(z_of(*profile, 0.0), z_of(*profile, 1.0)), z1, 1e-12);
+    EXPECT_DOUBLE_EQ(profile->tolerance, profiles[0].tolerance);  // the tolerance of the whole set
+  }
+  // Faces that form one profile give it alone, as meridional_curve does.
+  const std::vector<int> disc_down{40, 41, 42};
+  const std::vector<MeridionalCurve> one = model.meridional_profiles(disc_down);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].faces, model.meridional_curve(disc_down).faces);
+  // With the blade's leading face (5, the plane z = 0.034), which meets the front casing at
+  // its corner: faces 3 and 5 form one profile, face 4 another.
+  const std::vector<int> three{3, 4, 5};
+  const std::vector<MeridionalCurve> groups = model.meridional_profiles(three);
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_EQ(groups[0].faces.size(), 2u);
+  EXPECT_THAT(groups[0].faces, ::testing::UnorderedElementsAre(3, 5));
+  EXPECT_EQ(groups[1].faces, std::vector<int>{4});
 }
 
 TEST(CadRealFiles, DrawingWithoutSurfacesIsRejected) {

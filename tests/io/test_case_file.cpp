@@ -403,15 +403,44 @@ TEST_F(CaseFile, RejectsValuesOutOfRange) {
       "axis: {origin: [0, .nan, 0], direction: [0, 0, 0]}\n"));  // 14
   ASSERT_THAT(lines, SizeIs(10));
   EXPECT_EQ(lines[0], at(5) + "solver.increments: must be an integer >= 1, got 0");
-  EXPECT_EQ(lines[1], at(6) + "solver.newton_tolerance: must be between 0 and 1 (exclusive), got 1");
+  EXPECT_EQ(lines[1], at(6) + "solver.newton_tolerance: must be at least 1e-14 (what double precision reaches) and below 1, got 1");
   EXPECT_EQ(lines[2], at(7) + "solver.max_newton_iterations: expected a whole number, got '3.5'");
-  EXPECT_EQ(lines[3], at(8) + "solver.pcg_tolerance: must be between 0 and 1 (exclusive), got -1e-3");
+  EXPECT_EQ(lines[3], at(8) + "solver.pcg_tolerance: must be at least 1e-14 (what double precision reaches) and below 1, got -1e-3");
   EXPECT_EQ(lines[4], at(9) + "solver.max_pcg_iterations: must be an integer >= 1, got 0");
   EXPECT_EQ(lines[5], at(10) + "solver.threads: must be an integer >= 0, got -1");
   EXPECT_EQ(lines[6], at(12) + "material.alpha_s: must be > 0, got 0");
   EXPECT_EQ(lines[7], at(13) + "material.alpha_v: must be >= 0, got -0.1");
   EXPECT_EQ(lines[8], at(14) + "axis.origin[1]: must be a finite number, got .nan");
   EXPECT_THAT(lines[9], StartsWith(at(14) + "axis.direction: must not be [0, 0, 0]"));
+}
+
+// Issue 18, item 8: `pcg_tolerance: 1e-300` ran on and was reported as a stiffness that is
+// not positive definite.
+TEST_F(CaseFile, RejectsTolerancesBeyondDoublePrecision) {
+  const auto lines = lines_of(error_with("solver: {pcg_tolerance: 1e-300, newton_tolerance: 1e-15}\n"));
+  ASSERT_THAT(lines, SizeIs(2));
+  EXPECT_EQ(lines[0], at(4) + "solver.newton_tolerance: must be at least 1e-14 (what double precision reaches) and "
+                              "below 1, got 1e-15");
+  EXPECT_THAT(lines[1], HasSubstr("solver.pcg_tolerance: must be at least 1e-14"));
+  EXPECT_EQ(parse(std::string(kBase) + "solver: {pcg_tolerance: 1e-14}\n").solver.pcg_tolerance, 1e-14);
+}
+
+TEST_F(CaseFile, RefusesIncrementCountsBeyondTheBoundSayingWhatToDo) {
+  // Issue 18: `increments: 1000000000` took more than 13 GB before increment 1.
+  const auto lines = lines_of(error_with(
+      "solver:\n"                          // 4
+      "  increments: 1000000000\n"         // 5
+      "  max_increment_splits: 1000\n"));  // 6
+  ASSERT_THAT(lines, SizeIs(2));
+  EXPECT_THAT(lines[0], StartsWith(at(5) + "solver.increments: must be at most 10000, got 1000000000: "));
+  EXPECT_THAT(lines[0], HasSubstr("the paper's cases take 16"));
+  EXPECT_THAT(lines[0], HasSubstr("max_increment_splits"));
+  EXPECT_EQ(lines[1], at(6) + "solver.max_increment_splits: must be an integer from 0 to 20, got 1000");
+  EXPECT_THAT(error_with("solver: {increments: 10001}\n"), HasSubstr("must be at most 10000, got 10001"));
+  EXPECT_THAT(error_with("solver: {increments: 99999999999}\n"), HasSubstr("must be at most 10000"));
+  const Case c = parse(std::string(kBase) + "solver: {increments: 10000, max_increment_splits: 20}\n");
+  EXPECT_EQ(c.solver.increments, kMaxIncrements);
+  EXPECT_EQ(c.solver.max_increment_splits, kMaxIncrementSplits);
 }
 
 TEST_F(CaseFile, RejectsDeflectionOptionsOutOfRange) {

@@ -10,6 +10,7 @@
 
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
+#include "output_folders.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::io {
@@ -39,7 +40,7 @@ deform::MotionCheckpoint some_state(const deform::Mesh& mesh) {
   s.increments = 8;
   s.finished_increments = 2;
   s.lambda = 0.3125;
-  s.remaining = {{3, 0.3125, 0.375, 1}, {4, 0.375, 0.5, 0}};
+  s.split_pieces = {{3, 0.3125, 0.34375, 2}, {3, 0.34375, 0.375, 2}};
   s.points = mesh.points;
   for (auto& p : s.points) p = (1.0 + 1e-13) * p + deform::Vec3{0.1, -0.2, 0.0};
   s.sliding = {{3, {0.5, 1.0 / 3.0, 0.0}, {0.25, geometry::kNoHint, 0.0}}, {7, {1.0, 2.0, 3.0}, {1.0, 2.0, 3.0}}};
@@ -61,8 +62,6 @@ deform::MotionCheckpoint some_state(const deform::Mesh& mesh) {
   accepted.max_normal_slip = 3e-18;
   accepted.seconds = 0.123;
   s.records = {accepted, rejected};
-  s.max_normal_slip = 3e-18;
-  s.max_sliding_projection_distance = 1e-9;
   s.timings = {0.1, 0.2, 0.25, 0.3, 0.4, 0.5, 1.6};
   return s;
 }
@@ -86,10 +85,10 @@ TEST(CheckpointFile, RoundTripKeepsEveryFieldBitForBit) {
   EXPECT_EQ(s.increments, 8);
   EXPECT_EQ(s.finished_increments, 2);
   EXPECT_TRUE(same_bits(s.lambda, expected.lambda));
-  ASSERT_EQ(s.remaining.size(), 2u);
-  EXPECT_EQ(s.remaining[0].increment, 3);
-  EXPECT_EQ(s.remaining[0].split_depth, 1);
-  EXPECT_TRUE(same_bits(s.remaining[1].lambda_end, 0.5));
+  ASSERT_EQ(s.split_pieces.size(), 2u);
+  EXPECT_EQ(s.split_pieces[0].increment, 3);
+  EXPECT_EQ(s.split_pieces[0].split_depth, 2);
+  EXPECT_TRUE(same_bits(s.split_pieces[1].lambda_begin, 0.34375));
   ASSERT_EQ(s.points.size(), expected.points.size());
   EXPECT_EQ(std::memcmp(s.points.data(), expected.points.data(), s.points.size() * sizeof(deform::Vec3)), 0);
   ASSERT_EQ(s.sliding.size(), 2u);
@@ -114,13 +113,45 @@ TEST(CheckpointFile, RoundTripKeepsEveryFieldBitForBit) {
   EXPECT_TRUE(std::isinf(r.newton[1].residual));
   EXPECT_FALSE(r.newton[1].pcg_converged);
   EXPECT_EQ(r.failure, expected.records[1].failure);
-  EXPECT_TRUE(same_bits(s.max_sliding_projection_distance, 1e-9));
   EXPECT_TRUE(same_bits(s.timings.total, 1.6));
   EXPECT_TRUE(same_bits(s.timings.preconditioner, 0.25));
 
   const CheckpointInfo info = read_checkpoint_info(dir / "checkpoint.hmc");
   EXPECT_EQ(info.finished_increments, 2);
   EXPECT_EQ(info.increments, 8);
+}
+
+TEST(CheckpointFile, SizeDoesNotGrowWithTheIncrementsLeft) {
+  // Issue 18: the checkpoint listed every increment left (31 bytes each) and was rewritten
+  // after each one. After increment 2 of 8 or of 8000, the state is the same but for N.
+  test::TempDir dir;
+  const Case c = case_in(dir);
+  const deform::Mesh mesh = test::unit_square(3, 2);
+  const CheckpointOrigin origin = checkpoint_origin(c, mesh, input_fingerprints(c));
+  deform::MotionCheckpoint s = some_state(mesh);
+  write_checkpoint(dir / "few.hmc", origin, s);
+  s.increments = 8000;
+  write_checkpoint(dir / "many.hmc", origin, s);
+  EXPECT_EQ(std::filesystem::file_size(dir / "many.hmc"), std::filesystem::file_size(dir / "few.hmc") + 3);
+}
+
+TEST(CheckpointFile, ReadsFormatOneListingEveryStepLeft) {
+  test::TempDir dir;
+  const Case c = case_in(dir);
+  const deform::Mesh mesh = test::unit_square(3, 2);
+  const auto inputs = input_fingerprints(c);
+  write_checkpoint(dir / "checkpoint.hmc", checkpoint_origin(c, mesh, inputs), some_state(mesh));
+  test::rewrite_as_checkpoint_format_1(dir / "checkpoint.hmc");
+  ASSERT_THAT(test::read_text(dir / "checkpoint.hmc"), HasSubstr("\"remaining\":[[3,0.3125,0.34375,2],[3,0.34375,0.375,2],"
+                                                                  "[4,0.375,0.5,0],"));
+  const Checkpoint k = read_checkpoint(dir / "checkpoint.hmc", mesh, inputs);
+  const deform::MotionCheckpoint expected = some_state(mesh);
+  ASSERT_EQ(k.state.split_pieces.size(), 2u);  // the whole increments 4 to 8 follow from finished_increments
+  EXPECT_TRUE(same_bits(k.state.split_pieces[1].lambda_end, 0.375));
+  EXPECT_EQ(k.state.records.size(), 2u);
+  EXPECT_EQ(k.state.finished_increments, 2);
+  EXPECT_EQ(std::memcmp(k.state.points.data(), expected.points.data(), k.state.points.size() * sizeof(deform::Vec3)), 0);
+  EXPECT_EQ(read_checkpoint_info(dir / "checkpoint.hmc").finished_increments, 2);
 }
 
 TEST(CheckpointFile, ChangedInputIsRefusedNamingTheFile) {
@@ -190,8 +221,8 @@ TEST(CheckpointFile, DamagedOrForeignFilesAreRefused) {
   refused(good.substr(0, 30), "cut short");
   refused("hello", "not a hotmesh checkpoint file");
   std::string version = good;
-  version.replace(version.find("\"format_version\":1"), 18, "\"format_version\":7");
-  refused(version, "checkpoint format 7 is not the one this hotmesh reads (1)");
+  version.replace(version.find("\"format_version\":2"), 18, "\"format_version\":7");
+  refused(version, "checkpoint format 7 is not one this hotmesh reads (1 to 2)");
   EXPECT_THROW(read_checkpoint_info(dir / "bad.hmc"), InputError);
 }
 

@@ -148,6 +148,13 @@ TEST(DeflectionCsv, RejectsNanAndInfinity) {
   EXPECT_EQ(csv_error("x,y,dx,dy\n0,1e999,0,0\n"), "table.csv:2: '1e999' in column 'y' is not a finite number");
 }
 
+// Issue 18, item 8: values double precision cannot move a mesh with are named as such.
+TEST(DeflectionCsv, RejectsValuesBeyondTheSupportedRange) {
+  EXPECT_EQ(csv_error("x,y,dx,dy\n0,0,0,0\n1e155,0,0,0\n"),
+            "table.csv:3: '1e155' in column 'x' is beyond 1e30, the largest coordinate hotmesh moves meshes at; is "
+            "the table in another unit?");
+}
+
 TEST(DeflectionCsv, RejectsNegativeRadius) {
   EXPECT_EQ(csv_error("r,z,dr,dz\n0,0,0,0\n-0.5,1,0,0\n"),
             "table.csv:3: negative radius -0.5 in column 'r'; r is a distance from the axis, r >= 0");

@@ -4,10 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cairo.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <new>
+#include <string>
 
 #include "hotmesh/deform/quality.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -70,6 +76,45 @@ TEST(Figure, SvgIsAnSvgDocumentWithTheTitle) {
 TEST(Figure, RejectsUnknownPictureFormat) {
   test::TempDir dir;
   EXPECT_THROW(Figure().save(dir / "f.jpg"), InputError);
+}
+
+/// The size of this process's address space (VmSize), in bytes.
+std::uint64_t address_space_bytes() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("VmSize:", 0) == 0) return std::stoull(line.substr(7)) * 1024;
+  }
+  return 0;
+}
+
+TEST(Figure, OutOfMemoryForThePictureIsOutOfMemoryNotBadInput) {
+  // Issue 18: `hotmesh deform` under a memory limit ended with "deformed.png: cannot render the
+  // picture: out of memory" and exit code 2, which blames the input. In a child process with
+  // 32 MB of address space to spare, a picture of 4000 x 4000 pixels (64 MB) cannot be drawn.
+  if (test::under_sanitizers()) GTEST_SKIP() << "AddressSanitizer ends the process when malloc fails";
+  test::TempDir dir;
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const rlimit limit{address_space_bytes() + (32u << 20), RLIM_INFINITY};
+    ::setrlimit(RLIMIT_AS, &limit);
+    int code = 1;
+    try {
+      Figure({.width = 4000, .height = 4000}).save(dir / "big.png");
+      code = 0;
+    } catch (const std::bad_alloc&) {
+      code = 4;
+    } catch (const InputError&) {
+      code = 2;
+    } catch (...) {
+    }
+    ::_exit(code);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 4) << "0: drawn, 2: InputError, 1: another exception";
+  EXPECT_FALSE(std::filesystem::exists(dir / "big.png"));
 }
 
 TEST(Colormap, RunsFromBlueToRedAndClamps) {

@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -52,8 +53,18 @@ TEST(ReadFile, NamesFileThatCannotBeRead) {
     read_file("/nonexistent/mesh.msh");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("/nonexistent/mesh.msh: cannot open"));
+    EXPECT_THAT(e.what(), HasSubstr("/nonexistent/mesh.msh: no such file"));
   }
+}
+
+// Issue 18, item 7: a FIFO as an input blocked hotmesh forever (open() waits for a writer).
+TEST(ReadFile, RefusesNamedPipesAndFoldersWithoutWaiting) {
+  test::TempDir dir;
+  ASSERT_EQ(::mkfifo((dir / "mesh.msh").c_str(), 0600), 0);
+  EXPECT_THAT([&] { read_file(dir / "mesh.msh"); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("mesh.msh: is a named pipe (FIFO), not a regular file")));
+  EXPECT_THAT([&] { read_file(dir.path()); }, ::testing::ThrowsMessage<InputError>(HasSubstr("is a folder")));
+  EXPECT_THAT([&] { read_file("/dev/zero"); }, ::testing::ThrowsMessage<InputError>(HasSubstr("/dev/zero: is a device")));
 }
 
 /// A process id that no process has now: a child that has ended.

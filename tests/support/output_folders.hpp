@@ -5,7 +5,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +18,48 @@
 namespace hotmesh::test {
 
 inline nlohmann::json read_json(const std::filesystem::path& p) { return nlohmann::json::parse(read_text(p)); }
+
+/// A checkpoint file's parts: its JSON header, and the bytes after it.
+struct CheckpointParts {
+  nlohmann::json header;
+  std::string arrays;
+};
+
+inline CheckpointParts checkpoint_parts(const std::filesystem::path& path) {
+  const std::string bytes = read_text(path);
+  const std::string magic = "HOTMESH-CHECKPOINT\n";
+  EXPECT_EQ(bytes.compare(0, magic.size(), magic), 0) << path;
+  std::uint64_t length = 0;
+  std::memcpy(&length, bytes.data() + magic.size(), sizeof length);
+  const std::size_t header_at = magic.size() + sizeof length;
+  return {nlohmann::json::parse(bytes.substr(header_at, static_cast<std::size_t>(length))),
+          bytes.substr(header_at + static_cast<std::size_t>(length))};
+}
+
+/// Rewrites a checkpoint (format 2) in place as hotmesh wrote it in format 1, before issue 18:
+/// `remaining` listed every step left, the pieces of a split increment and then each whole
+/// increment to N, and the header carried the run's maxima (since derived from the records).
+inline void rewrite_as_checkpoint_format_1(const std::filesystem::path& path) {
+  auto [header, arrays] = checkpoint_parts(path);
+  ASSERT_EQ(header["format_version"], 2);
+  const int n = header["increments"], done = header["finished_increments"];
+  nlohmann::json remaining = header["split_pieces"];
+  for (int k = done + (remaining.empty() ? 1 : 2); k <= n; ++k) {
+    remaining.push_back({k, double(k - 1) / n, double(k) / n, 0});
+  }
+  header.erase("split_pieces");
+  header["remaining"] = remaining;
+  header["format_version"] = 1;
+  header["max_normal_slip"] = 0.0;
+  header["max_sliding_projection_distance"] = 0.0;
+  const std::string text = header.dump();
+  const std::uint64_t length = text.size();
+  std::string out = "HOTMESH-CHECKPOINT\n";
+  out.append(reinterpret_cast<const char*>(&length), sizeof length);
+  out += text;
+  out += arrays;
+  write_text(path, out);
+}
 
 /// Two output folders of runs that must end alike (a resumed run and the uninterrupted one):
 /// the meshes and the restart file byte for byte, every increment's iterations and residuals in
@@ -29,13 +74,19 @@ inline void expect_same_outputs(const std::filesystem::path& a, const std::files
   ASSERT_EQ(ra["increments"].size(), rb["increments"].size());
   for (std::size_t i = 0; i < ra["increments"].size(); ++i) {
     for (const char* key : {"increment", "stage", "split_depth", "accepted", "newton_iterations", "pcg_iterations",
-                            "linear_tolerances", "linear_norms", "residuals", "min_scaled_jacobian",
-                            "max_projection_distance"}) {
+                            "linear_tolerances", "linear_norms", "residuals", "min_scaled_jacobian", "inverted_cells",
+                            "max_projection_distance", "max_projection_distance_relative", "max_normal_slip",
+                            "max_normal_slip_relative"}) {
       EXPECT_EQ(ra["increments"][i][key], rb["increments"][i][key]) << "increment record " << i << ", " << key;
     }
   }
-  for (const char* key : {"newton_iterations", "pcg_iterations", "min_scaled_jacobian", "max_normal_slip",
-                          "max_sliding_projection_distance", "sliding_nodes"}) {
+  for (const char* key : {"newton_iterations", "pcg_iterations", "min_scaled_jacobian", "sliding_nodes", "length_scale",
+                          "max_normal_slip", "max_normal_slip_relative", "max_projection_distance",
+                          "max_projection_distance_relative", "final_projection_distance",
+                          "final_projection_distance_relative", "max_periodic_mismatch",
+                          "max_periodic_mismatch_relative", "max_sliding_projection_distance",
+                          "periodic_max_mismatch"}) {
+    ASSERT_TRUE(ra.contains(key)) << key;
     EXPECT_EQ(ra[key], rb[key]) << key;
   }
   EXPECT_FALSE(std::filesystem::exists(b / io::kCheckpointName)) << "the checkpoint outlived the run";

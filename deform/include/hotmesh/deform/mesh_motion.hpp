@@ -30,6 +30,7 @@
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/boundary_shape.hpp"
+#include "hotmesh/geometry/input_error.hpp"
 
 namespace hotmesh::deform {
 
@@ -133,13 +134,20 @@ struct MotionResult {
   std::size_t sliding_nodes = 0;
   std::size_t passive_nodes = 0;
   std::size_t periodic_pairs = 0;
-  /// Largest distance between a master node turned by the sector angle and its slave, at
-  /// the end, relative to the diagonal of the mesh's bounding box.
-  double periodic_max_mismatch = 0.0;
-  /// Largest projection distance of a sliding node in the last Newton step of the last
-  /// accepted increment, relative to the diagonal of the mesh's bounding box.
-  double max_sliding_projection_distance = 0.0;
-  double max_normal_slip = 0.0;        ///< largest |u_s . n| (per Newton step) over accepted increments
+  /// The diagonal of the undeformed mesh's bounding box: the length the relative forms of the
+  /// lengths below are taken of (report.json's `_relative` keys).
+  double length_scale = 1.0;
+  // Lengths, in mesh units. The maxima run over every Newton step of the accepted attempts: a
+  // rejected attempt's moves were undone, so they say nothing about the mesh that was kept.
+  /// Largest distance between a master node turned by the sector angle and its slave, at the end.
+  double max_periodic_mismatch = 0.0;
+  /// Largest distance a sliding node was moved back onto its wall after a Newton step.
+  double max_projection_distance = 0.0;
+  /// The same after the last Newton step of the last accepted attempt: how settled the final
+  /// mesh is.
+  double final_projection_distance = 0.0;
+  /// Largest |p . n| of a Newton step p at a sliding node with normal n (eq. 19).
+  double max_normal_slip = 0.0;
   std::vector<SlidingOrigin> sliding_origins;  ///< for restarting from this result
   std::vector<std::string> notes;      ///< things worth a warning (set-up conflicts, ...)
   MotionTimings timings;
@@ -167,16 +175,17 @@ struct SlidingState {
 /// exactly the moves the uninterrupted run would make (resume after a crash or a kill).
 /// Prescribed and passive motions are not in it: they follow from the set-up, which a resumed
 /// run repeats.
+/// Its size does not depend on N: the steps left are the pieces of a split increment still to
+/// do (at most max_increment_splits + 1, all of increment finished_increments + 1), then the
+/// whole increments after it, which need no record.
 struct MotionCheckpoint {
   int increments = 0;                ///< N of the run
   int finished_increments = 0;       ///< increments 1..k done (all their pieces accepted)
   double lambda = 0.0;               ///< stage of `points`
-  std::vector<MotionStep> remaining;  ///< steps still to do, in order (pieces of a split increment first)
+  std::vector<MotionStep> split_pieces;  ///< pieces of increment finished_increments + 1 left, in order
   std::vector<Vec3> points;          ///< the mesh at stage `lambda`
   std::vector<SlidingState> sliding;  ///< in the order of the set-up
   std::vector<IncrementRecord> records;  ///< every attempt so far, as MotionResult::increments
-  double max_normal_slip = 0.0;
-  double max_sliding_projection_distance = 0.0;
   MotionTimings timings;             ///< spent so far
 };
 
@@ -206,11 +215,20 @@ struct MotionObservers {
   CheckpointObserver checkpoint;  ///< after every accepted attempt, with the state to resume from
 };
 
+/// The patch roles leave the mesh free to move as a rigid body: no fixed or prescribed node,
+/// slip or sliding normal, or periodic pair resists some translation or rotation, so the
+/// mesh's position is not determined. what() names the free motions; a caller with a case file
+/// may place the error at its `patches:`.
+class FreeRigidMotion : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 /// Moves `mesh` (validated) as its patches prescribe. Every mesh patch needs an entry in
 /// `patches`. Throws hotmesh::InputError for a set-up the solver cannot take (unknown patch,
 /// missing shape, patch nodes off their shape, a slip patch that is not planar, cells other
-/// than quad4/hex8, nothing held in place); a failure of the motion itself is reported in
-/// the result.
+/// than quad4/hex8) and FreeRigidMotion for roles that leave a rigid-body motion free; a
+/// failure of the motion itself is reported in the result.
 /// With `start`, the run continues from a previous one (see MotionStart): the patch shapes
 /// must then start (stage 0) where the previous run ended.
 /// With `resume`, the run picks up an interrupted run of the same set-up (same mesh, patches,

@@ -24,6 +24,15 @@ struct ValidationReport {
   std::vector<std::string> notes;        ///< things worth a warning, not an error
 };
 
+/// The sizes hotmesh moves meshes at, in the mesh's length unit: from this size across ...
+inline constexpr double kSmallestMeshSize = 1e-30;
+/// ... to this distance from the origin. The stiffness scales as 1/size^2 and the solvers take
+/// squares of it, which overflow or underflow double precision long before 1e+-154.
+inline constexpr double kLargestCoordinate = 1e30;
+/// A mesh whose size is below this fraction of its distance from the origin keeps too few
+/// digits of its cells in its coordinates.
+inline constexpr double kSmallestRelativeSize = 1e-10;
+
 struct ValidationOptions {
   /// Two nodes closer than this fraction of the bounding-box diagonal are duplicates.
   double duplicate_tolerance = 1e-10;

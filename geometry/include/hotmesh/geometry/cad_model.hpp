@@ -110,6 +110,14 @@ class CadModel {
   /// rotational about the axis, or the curves do not form one connected profile.
   MeridionalCurve meridional_curve(std::span<const int> face_ids, const MeridionalOptions& options = {}) const;
 
+  /// The meridional curves of faces that may form several separate profiles (a casing on
+  /// either side of a blade row): one curve per connected group of faces, each as
+  /// meridional_curve gives it, all about the same axis and with the tolerance of the whole
+  /// set, in the order of each group's first face in `face_ids`. One curve when the faces form
+  /// one profile. Throws as meridional_curve does, except for separate profiles.
+  std::vector<MeridionalCurve> meridional_profiles(std::span<const int> face_ids,
+                                                   const MeridionalOptions& options = {}) const;
+
  private:
   struct Impl;
   explicit CadModel(std::unique_ptr<Impl> impl);

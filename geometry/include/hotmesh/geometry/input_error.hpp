@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -13,7 +14,14 @@ namespace hotmesh {
 
 class InputError : public std::runtime_error {
  public:
-  explicit InputError(const std::string& text) : std::runtime_error(text) {}
+  /// The text as a terminal or a log can show it: control characters, NUL bytes and bytes
+  /// that are not UTF-8 written as \xNN; lines cut at kMaxLine characters and the text at
+  /// kMaxLines lines (a user's value may be megabytes of binary).
+  explicit InputError(const std::string& text) : std::runtime_error(printable(text)) {}
+
+  static constexpr std::size_t kMaxLine = 1000;
+  static constexpr std::size_t kMaxLines = 200;
+  static std::string printable(std::string_view text);
 
   /// "file:line: message" (line is 1-based; 0 omits it).
   static InputError at(std::string_view file, std::size_t line, std::string_view message) {
@@ -31,5 +39,13 @@ class InputError : public std::runtime_error {
     return at(file, 0, message);
   }
 };
+
+/// What keeps `path` from being read as an input file, or an empty string if nothing does:
+/// "no such file", "is a folder, ...", "is a named pipe (FIFO), ..." (reading a FIFO, socket
+/// or device would block or never end).
+std::string input_file_problem(const std::filesystem::path& path);
+
+/// Throws InputError naming `path` if input_file_problem() finds something.
+void require_input_file(const std::filesystem::path& path);
 
 }  // namespace hotmesh

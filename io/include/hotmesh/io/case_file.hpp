@@ -24,6 +24,14 @@ namespace hotmesh::io {
 /// The role of a patch (fixed, prescribed, slip, sliding, passive, periodic): the solver's.
 using PatchRole = deform::BoundaryRole;
 
+/// Bounds of solver.increments and solver.max_increment_splits (docs/case-file.md, solver):
+/// far beyond any real need (the paper takes 16 increments), low enough that a mistyped value
+/// is refused at once instead of running for days. Each increment is a whole Newton cycle and
+/// leaves a record in report.json and in every later checkpoint; a piece of 1/2^20 of an
+/// increment is a millionth of it.
+inline constexpr int kMaxIncrements = 10'000;
+inline constexpr int kMaxIncrementSplits = 20;
+
 struct DeflectionSpec {
   std::filesystem::path file;           ///< resolved against the case file's folder
   int degree = 1;                       ///< B-spline degree q of the reconstruction, 1..5

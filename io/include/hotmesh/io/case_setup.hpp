@@ -10,11 +10,13 @@
 // in the parameter of the undeformed curve.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "hotmesh/deform/mesh.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/restart_file.hpp"
@@ -35,9 +37,15 @@ struct CaseSetup {
   std::vector<ShapeReport> shapes;           ///< one per patch with a deflection table
 };
 
-/// Throws hotmesh::InputError (naming the patch and the table) when a table cannot describe
-/// its patch: wrong frame for the mesh, FEM nodes off the CAD curve, too few nodes, patch
-/// roles that differ from the run being restarted, ...
-CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh, const RestartState* previous = nullptr);
+/// The case's CAD file read and checked (every face translated, in the case's length unit),
+/// or nothing if the case names none. Throws hotmesh::InputError naming the file.
+std::optional<geometry::CadModel> read_case_cad(const Case& c);
+
+/// Throws hotmesh::InputError (naming the case file's line of the patch, and the table or CAD
+/// file at fault) when a table cannot describe its patch: wrong frame for the mesh, FEM nodes
+/// off the CAD curve, too few nodes, patch roles that differ from the run being restarted, ...
+/// `cad` is the case's CAD model if already read (read_case_cad); else it is read if needed.
+CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh, const RestartState* previous = nullptr,
+                      const geometry::CadModel* cad = nullptr);
 
 }  // namespace hotmesh::io

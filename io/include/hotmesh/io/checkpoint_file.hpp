@@ -3,12 +3,12 @@
 // a run that was killed (out of memory, a batch system's time limit, a crash) continues from
 // it with `hotmesh deform CASE --resume` and ends with the outputs the uninterrupted run would
 // have written. The file holds the solver's state (deform::MotionCheckpoint: positions, the
-// sliding nodes' targets and projection hints, the steps left, the records so far) and what
-// the run was made from: a fingerprint of the mesh and a hash of every input file, so that a
-// resume with a changed case is refused.
+// sliding nodes' targets and projection hints, the pieces of a split increment left, the
+// records of the attempts so far) and what the run was made from: a fingerprint of the mesh
+// and a hash of every input file, so that a resume with a changed case is refused.
 //
 // Layout, like restart.hmr: a magic line, a little-endian u64 length and a JSON header
-// (versions, inputs, counts, steps, records), then arrays (u64 count, then elements): node
+// (versions, inputs, counts, pieces left, records), then arrays (u64 count, then elements): node
 // positions, sliding node ids, their targets and hints, and a hash of these arrays.
 #pragma once
 
