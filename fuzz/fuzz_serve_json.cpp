@@ -5,9 +5,9 @@
 //   "points" -> POST /api/curves/{id}/project (on a curve made at start-up)
 //   "csv"    -> POST /api/curves (create_curve; "model": "m1" is the stator-well sample)
 //   else     -> POST /api/models/m1/meridional
-// A request may fail only with ApiError (4xx) or hotmesh::InputError (422); anything else
-// would be the server's 500. What a request makes is deleted again, so every input meets the
-// same service.
+// A request may fail only with ApiError (4xx) or hotmesh::InputError (422), anything else
+// would be the server's 500, and leaves no file behind in the service's upload folder. What a
+// request makes is deleted again, so every input meets the same service.
 #include "fuzz_support.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
@@ -21,7 +21,9 @@ namespace serve = hotmesh::app::serve;
 using hotmesh::fuzz::source_file;
 
 struct Fixture {
-  Fixture() : root(make_root()), service(root, serve::ServiceLimits{}) {
+  Fixture()
+      : temporary(hotmesh::fuzz::use_private_temporary_folder()), root(make_root()),
+        service(root, serve::ServiceLimits{}) {
     model = service.load_path({{"path", "stator_well.step"}})["model"].get<std::string>();
     const std::string csv = hotmesh::io::read_file(source_file("samples/ramp2d/ramp.csv"));
     curve = service.create_curve({{"csv", csv}})["curve"].get<std::string>();
@@ -37,6 +39,7 @@ struct Fixture {
     return folder;
   }
 
+  fs::path temporary;  ///< where the service keeps its uploads (and files read below the root)
   fs::path root;
   serve::GeometryService service;
   std::string model;
@@ -66,5 +69,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const serve::ApiError&) {
   } catch (const hotmesh::InputError&) {
   }
+  hotmesh::fuzz::require_no_files_left(fixture.temporary);
   return 0;
 }

@@ -2,8 +2,8 @@
 // the form's fields on: GeometryService::load_upload with the file's name, its content and
 // the unit field. The input holds the three as the multipart parser hands them over:
 //   <file name> '\n' <unit> '\n' <content>
-// A request may fail only with ApiError (4xx) or hotmesh::InputError (422). The model an
-// upload makes is deleted again.
+// A request may fail only with ApiError (4xx) or hotmesh::InputError (422), and leaves no
+// file behind in the service's upload folder. The model an upload makes is deleted again.
 #include "fuzz_support.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "serve/api_error.hpp"
@@ -12,6 +12,7 @@
 namespace serve = hotmesh::app::serve;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const std::filesystem::path temporary = hotmesh::fuzz::use_private_temporary_folder();
   static serve::GeometryService service(std::nullopt, serve::ServiceLimits{});
   std::string_view rest = hotmesh::fuzz::as_text(data, size);
   const auto field = [&rest] {
@@ -28,5 +29,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const serve::ApiError&) {
   } catch (const hotmesh::InputError&) {
   }
+  hotmesh::fuzz::require_no_files_left(temporary);
   return 0;
 }

@@ -53,6 +53,21 @@ std::filesystem::path source_file(std::string_view relative) {
   return std::filesystem::path(HOTMESH_SOURCE_DIR) / relative;
 }
 
+std::filesystem::path use_private_temporary_folder() {
+  const std::filesystem::path folder = work_folder() / "tmp";
+  std::filesystem::create_directories(folder);
+  ::setenv("TMPDIR", folder.c_str(), 1);
+  return folder;
+}
+
+void require_no_files_left(const std::filesystem::path& folder) {
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
+    if (!entry.is_regular_file()) continue;
+    std::fprintf(stderr, "fuzz: the request left %s behind\n", entry.path().c_str());
+    std::abort();
+  }
+}
+
 void require_named(std::string_view message, std::string_view source) {
   if (message.find(source) != std::string_view::npos) return;
   std::fprintf(stderr, "fuzz: the input was refused with a message that does not name '%.*s':\n%.*s\n",

@@ -31,6 +31,14 @@ void write_bytes(const std::filesystem::path& file, std::string_view content);
 /// A file of the source tree, named from its top (samples/ramp2d/ramp2d.msh).
 std::filesystem::path source_file(std::string_view relative);
 
+/// Points the process's temporary folder (TMPDIR), where the service makes its private
+/// folder for uploads, at an empty folder of this process, and returns it.
+std::filesystem::path use_private_temporary_folder();
+
+/// Aborts if a regular file is left anywhere below `folder`: the service removes every upload
+/// once read, and whenever a request fails.
+void require_no_files_left(const std::filesystem::path& folder);
+
 /// While alive, what this thread allocates is not reported as a leak. For OpenCASCADE's STEP
 /// and IGES readers, which keep process-wide registries made on first use and, by design,
 /// abandon the objects of a translation that faulted (OCC_CATCH_SIGNALS) or a parse that

@@ -125,6 +125,7 @@ main() {
     [[ " step iges serve_upload " == *" $t "* ]] && occt=1
     ((occt)) && options+=(-fork=1 -ignore_timeouts=1)
     hangs_before=$(find "$out/findings/$t" -name 'timeout-*' | wc -l)
+    rm -rf "$out/work"  # the targets' files; a process that crashed or was stopped leaves its own
     echo "== hotmesh: fuzz_$t for $seconds s (log: $log)"
     status=0
     "$out/fuzz_$t" "${options[@]}" "$out/corpus/$t" "$seeds/$t" >"$log" 2>&1 || status=$?
