@@ -13,8 +13,8 @@
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]     (targets: all of them by default)
 set -euo pipefail
 
-# The whole script is one function, read before it runs: editing this file while a long run
-# goes on does not change the run.
+# The whole script is one function, read before it runs, and the line that calls it also
+# exits: editing this file while a long run goes on does not change the run.
 main() {
   cd "$(dirname "$0")/.."
 
@@ -159,4 +159,4 @@ main() {
   fi
 }
 
-main "$@"
+main "$@"; exit
