@@ -14,12 +14,16 @@
 #include <exception>
 #include <iterator>
 #include <new>
+#include <optional>
+#include <semaphore>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "hotmesh/geometry/input_error.hpp"
 #include "serve/api_error.hpp"
+#include "serve/host_policy.hpp"
+#include "serve/http_connection.hpp"
 #include "serve/web_assets.hpp"
 
 namespace hotmesh::app::serve {
@@ -63,12 +67,27 @@ void send_error(Response& res, int status, const std::string& message) {
   send_json(res, status, {{"status", status}, {"error", status_reason(status)}, {"message", message}});
 }
 
-/// Runs a handler, turning what it throws into a JSON error: ApiError as it says,
-/// hotmesh::InputError (a user problem the kernel found) as 422, anything else as 500.
+using Workers = std::counting_semaphore<>;
+
+/// A worker held for as long as the object lives.
+class WorkerSlot {
+ public:
+  explicit WorkerSlot(Workers& workers) : workers_(workers) { workers_.acquire(); }
+  WorkerSlot(const WorkerSlot&) = delete;
+  WorkerSlot& operator=(const WorkerSlot&) = delete;
+  ~WorkerSlot() { workers_.release(); }
+
+ private:
+  Workers& workers_;
+};
+
+/// Runs a handler on one of the `workers`, turning what it throws into a JSON error: ApiError
+/// as it says, hotmesh::InputError (a user problem the kernel found) as 422, anything else as 500.
 template <class Handler>
-httplib::Server::Handler guarded(Handler handler) {
-  return [handler](const Request& req, Response& res) {
+httplib::Server::Handler guarded(Workers& workers, Handler handler) {
+  return [&workers, handler](const Request& req, Response& res) {
     try {
+      const WorkerSlot slot(workers);
       handler(req, res);
     } catch (const ApiError& e) {
       send_error(res, e.status(), e.what());
@@ -87,13 +106,27 @@ httplib::Server::Handler guarded(Handler handler) {
   };
 }
 
-/// The body of a JSON route. Form bodies are refused: curl -d without a Content-Type header
-/// sends one.
-Json json_body(const Request& req) {
-  const std::string type = req.get_header_value("Content-Type");
-  if (type.starts_with("multipart/form-data") || type.starts_with("application/x-www-form-urlencoded")) {
-    throw ApiError::unsupported_type(fmt::format("the body is {}: send JSON (Content-Type: application/json)",
-                                                 type.substr(0, type.find(';'))));
+/// The media type of the body, in lower case, without parameters ("application/json").
+std::string media_type(const Request& req) {
+  std::string type = req.get_header_value("Content-Type");
+  type = type.substr(0, type.find(';'));
+  const auto first = type.find_first_not_of(" \t"), last = type.find_last_not_of(" \t");
+  type = first == std::string::npos ? std::string() : type.substr(first, last - first + 1);
+  std::transform(type.begin(), type.end(), type.begin(), [](unsigned char c) { return std::tolower(c); });
+  return type;
+}
+
+/// The body of a JSON route: only with Content-Type application/json. A page elsewhere can
+/// post text/plain or a form to the service without the browser asking it first; JSON it can
+/// post only after a CORS check, which the service never grants. `also` names another type the
+/// route takes.
+Json json_body(const Request& req, std::string_view also = {}) {
+  const std::string type = media_type(req);
+  if (type != "application/json") {
+    throw ApiError::unsupported_type(fmt::format("{}: send JSON (Content-Type: application/json){}",
+                                                 type.empty() ? "the body has no Content-Type"
+                                                              : fmt::format("the body is {}", type.substr(0, 100)),
+                                                 also));
   }
   return parse_object(req.body);
 }
@@ -123,10 +156,26 @@ bool route_matches(std::string_view pattern, std::string_view path) {
   return pattern.empty() && path.empty();
 }
 
+/// cpp-httplib's server with connections served by serve_connection: the request head is read
+/// under whole-head bounds before the library parses it.
+class BoundedServer : public httplib::Server {
+ public:
+  ConnectionLimits limits;
+
+ private:
+  bool process_and_close_socket(socket_t sock) override {
+    serve_connection(
+        sock, limits, [this] { return svr_sock_ == INVALID_SOCKET; },
+        [this](httplib::Stream& stream, bool last, bool& close) { return process_request(stream, last, close, nullptr); });
+    return true;
+  }
+};
+
 }  // namespace
 
 struct HttpServer::Impl {
-  Impl(GeometryService& s, HttpOptions o) : service(s), options(std::move(o)) {}
+  Impl(GeometryService& s, HttpOptions o)
+      : service(s), options(std::move(o)), workers(static_cast<std::ptrdiff_t>(std::max<std::size_t>(options.threads, 1))) {}
 
   void add(const std::string& method, const std::string& pattern, httplib::Server::Handler handler) {
     auto known = std::find_if(routes.begin(), routes.end(), [&](const auto& r) { return r.first == pattern; });
@@ -135,19 +184,23 @@ struct HttpServer::Impl {
       known = std::prev(routes.end());
     }
     known->second.push_back(method);
-    if (method == "GET") server.Get(pattern, guarded(std::move(handler)));
-    if (method == "POST") server.Post(pattern, guarded(std::move(handler)));
-    if (method == "DELETE") server.Delete(pattern, guarded(std::move(handler)));
+    if (method == "GET") server.Get(pattern, guarded(workers, std::move(handler)));
+    if (method == "POST") server.Post(pattern, guarded(workers, std::move(handler)));
+    if (method == "DELETE") server.Delete(pattern, guarded(workers, std::move(handler)));
   }
 
   void add_routes();
   void add_page();
   /// Completes responses that the library or no route produced (404, 405, 413, ...).
   httplib::Server::HandlerResponse complete_error(const Request& req, Response& res) const;
+  /// Refuses, before its body is read, a request from a page that is not the service's.
+  httplib::Server::HandlerResponse refuse_foreign(const Request& req, Response& res) const;
 
   GeometryService& service;
   HttpOptions options;
-  httplib::Server server;
+  Workers workers;
+  std::optional<HostPolicy> hosts;  ///< made once the port is known
+  BoundedServer server;
   std::vector<std::pair<std::string, std::vector<std::string>>> routes;  ///< pattern, methods
 };
 
@@ -157,13 +210,13 @@ void HttpServer::Impl::add_routes() {
   add("GET", "/api/files", [&s](const Request&, Response& res) { send_json(res, 200, s.files()); });
   add("GET", "/api/models", [&s](const Request&, Response& res) { send_json(res, 200, s.models()); });
   add("POST", "/api/models", [&s](const Request& req, Response& res) {
-    if (req.is_multipart_form_data()) {
+    if (media_type(req) == "multipart/form-data") {
       if (!req.has_file("file")) throw ApiError::bad_request("file: required (the CAD file, as form field 'file')");
       const httplib::MultipartFormData file = req.get_file_value("file");
       const std::string unit = req.has_file("unit") ? req.get_file_value("unit").content : std::string("m");
       send_json(res, 201, s.load_upload(file.filename, file.content, unit));
     } else {
-      send_json(res, 201, s.load_path(json_body(req)));
+      send_json(res, 201, s.load_path(json_body(req, ", or a CAD file as multipart/form-data")));
     }
   });
   add("GET", R"(/api/models/([A-Za-z0-9]+))", [&s](const Request& req, Response& res) {
@@ -239,17 +292,36 @@ httplib::Server::HandlerResponse HttpServer::Impl::complete_error(const Request&
   return httplib::Server::HandlerResponse::Handled;
 }
 
+httplib::Server::HandlerResponse HttpServer::Impl::refuse_foreign(const Request& req, Response& res) const {
+  auto header = [&req](const char* name) {
+    return req.has_header(name) ? std::optional<std::string>(req.get_header_value(name)) : std::nullopt;
+  };
+  try {
+    hosts->check(header("Host"), header("Origin"));
+    return httplib::Server::HandlerResponse::Unhandled;
+  } catch (const ApiError& e) {
+    spdlog::warn("{} {}: refused: {}", req.method, req.path, e.what());
+    send_error(res, e.status(), e.what());
+    res.set_header("Connection", "close");
+    close_connection_after_answer();  // the body, if any, was not read
+    return httplib::Server::HandlerResponse::Handled;
+  }
+}
+
 HttpServer::HttpServer(GeometryService& service, HttpOptions options)
     : impl_(std::make_unique<Impl>(service, std::move(options))) {
   Impl& i = *impl_;
-  const std::size_t threads = std::max<std::size_t>(i.options.threads, 1);
-  i.server.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  const std::size_t connections = std::max<std::size_t>(i.options.connections, 1);
+  i.server.new_task_queue = [connections] { return new httplib::ThreadPool(connections); };
+  i.server.limits.head_timeout = i.options.head_timeout;
   i.server.set_payload_max_length(service.limits().max_body_bytes);
   i.server.set_tcp_nodelay(true);  // small JSON answers on kept-alive connections: no Nagle delay
-  i.server.set_keep_alive_max_count(100);
-  i.server.set_keep_alive_timeout(5);
-  i.server.set_read_timeout(10);
-  i.server.set_write_timeout(10);
+  // What the answers' Keep-Alive header announces: serve_connection keeps to it.
+  i.server.set_keep_alive_max_count(i.server.limits.max_requests);
+  i.server.set_keep_alive_timeout(std::chrono::duration_cast<std::chrono::seconds>(i.server.limits.idle_timeout).count());
+  const auto io_seconds = std::chrono::duration_cast<std::chrono::seconds>(i.server.limits.io_timeout).count();
+  i.server.set_read_timeout(io_seconds);  // the sockets' own timeouts, behind serve_connection's
+  i.server.set_write_timeout(io_seconds);
   // SO_REUSEADDR only: the library's default SO_REUSEPORT would let another process bind the
   // same port and take a share of the connections.
   i.server.set_socket_options([](int sock) {
@@ -259,6 +331,7 @@ HttpServer::HttpServer(GeometryService& service, HttpOptions options)
   i.server.set_default_headers({{"X-Content-Type-Options", "nosniff"}, {"Cache-Control", "no-store"}});
   i.add_routes();
   i.add_page();
+  i.server.set_pre_routing_handler([&i](const Request& req, Response& res) { return i.refuse_foreign(req, res); });
   i.server.set_error_handler(httplib::Server::HandlerWithResponse(
       [&i](const Request& req, Response& res) { return i.complete_error(req, res); }));
   i.server.set_exception_handler([](const Request& req, Response& res, std::exception_ptr) {
@@ -278,13 +351,20 @@ HttpServer::~HttpServer() = default;
 
 int HttpServer::bind() {
   const HttpOptions& o = impl_->options;
+  [[maybe_unused]] const HostPolicy names_checked(o.bind, 80, o.allowed_hosts);  // a bad --allow-host: before listening
   const int port = o.port == 0 ? impl_->server.bind_to_any_port(o.bind) : (impl_->server.bind_to_port(o.bind, o.port) ? o.port : -1);
   if (port < 0) {
     throw InputError(fmt::format("cannot listen on {} port {}: the address is not one of this machine's or the port "
                                  "is in use",
                                  o.bind, o.port));
   }
+  impl_->hosts.emplace(o.bind, port, o.allowed_hosts);
   return port;
+}
+
+std::vector<std::string> HttpServer::hosts() const {
+  if (!impl_->hosts) return {};
+  return {impl_->hosts->hosts().begin(), impl_->hosts->hosts().end()};
 }
 
 bool HttpServer::run() { return impl_->server.listen_after_bind(); }

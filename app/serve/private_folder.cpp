@@ -35,10 +35,11 @@ PrivateFolder::~PrivateFolder() {
   std::filesystem::remove_all(path_, ignored);
 }
 
-std::filesystem::path PrivateFolder::write(std::string_view extension, std::string_view content) {
+PrivateFile PrivateFolder::write(std::string_view extension, std::string_view content) {
   const std::filesystem::path file = path_ / fmt::format("upload-{}{}", ++count_, extension);
   const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, S_IRUSR | S_IWUSR);
   if (fd < 0) throw ApiError(507, fmt::format("cannot store the upload: {}", std::strerror(errno)));
+  PrivateFile stored(file);
   std::size_t done = 0;
   while (done < content.size()) {
     const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
@@ -48,12 +49,8 @@ std::filesystem::path PrivateFolder::write(std::string_view extension, std::stri
   }
   const bool written = done == content.size();
   const bool closed = ::close(fd) == 0;
-  if (!written || !closed) {
-    std::error_code ignored;
-    std::filesystem::remove(file, ignored);
-    throw ApiError(507, "cannot store the upload: the disk is full or not writable");
-  }
-  return file;
+  if (!written || !closed) throw ApiError(507, "cannot store the upload: the disk is full or not writable");
+  return stored;
 }
 
 }  // namespace hotmesh::app::serve

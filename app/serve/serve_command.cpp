@@ -7,12 +7,18 @@
 #include <pthread.h>
 #include <signal.h>
 
+#include <fmt/ranges.h>
+
 #include <atomic>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <iostream>
 #include <memory>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "commands.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -28,6 +34,9 @@ struct Options {
   std::string bind = "127.0.0.1";
   std::string root;
   std::size_t threads = 8;
+  std::size_t max_connections = 64;
+  double header_timeout = 10;
+  std::vector<std::string> allowed_hosts;
   std::size_t max_body_mib = 64;
   std::size_t max_nodes = 100'000;
 };
@@ -80,12 +89,15 @@ int run_serve(const Options& o) {
   limits.max_body_bytes = o.max_body_mib << 20;
   limits.max_nodes = o.max_nodes;
   limits.max_points = std::max(limits.max_points, o.max_nodes);
+  limits.cad_check.hotmesh = std::filesystem::read_symlink("/proc/self/exe");  // this program
   SignalStop signals;  // before any thread starts, so that all of them inherit the mask
   serve::GeometryService service(o.root.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.root), limits);
-  serve::HttpServer server(service, {o.bind, o.port, o.threads});
+  const auto header_timeout = std::chrono::milliseconds(std::lround(o.header_timeout * 1000));
+  serve::HttpServer server(service, {o.bind, o.port, o.threads, o.max_connections, header_timeout, o.allowed_hosts});
   const int port = server.bind();
   const std::string host = o.bind.find(':') != std::string::npos ? "[" + o.bind + "]" : o.bind;
   std::cout << "hotmesh serve: listening on http://" << host << ":" << port << "/" << std::endl;
+  spdlog::info("answering requests for Host {}", fmt::join(server.hosts(), ", "));
   if (o.root.empty()) {
     spdlog::info("no --root: CAD files can be uploaded, none is read from disk");
   } else {
@@ -118,8 +130,19 @@ Command add_serve_command(CLI::App& parent) {
   cmd->add_option("--root", options->root,
                   "Folder whose CAD files may be loaded by path (nothing outside it is read); none: uploads only")
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("--threads", options->threads, "Worker threads (connections served at once)")
+  cmd->add_option("--allow-host", options->allowed_hosts,
+                  "Another name the service is reached by (NAME or NAME:PORT; repeatable): requests for other "
+                  "Host names are refused");
+  cmd->add_option("--threads", options->threads, "Requests worked on at once")
       ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  cmd->add_option("--max-connections", options->max_connections,
+                  "Connections served at once (a slow client holds one, never a worker)")
+      ->check(CLI::Range(1, 512))
+      ->capture_default_str();
+  cmd->add_option("--header-timeout", options->header_timeout,
+                  "Seconds a request line and its headers may take to arrive (else 408)")
+      ->check(CLI::Range(0.1, 300.0))
       ->capture_default_str();
   cmd->add_option("--max-body", options->max_body_mib, "Largest request body, upload or CAD file, in MiB")
       ->check(CLI::Range(1, 4096))

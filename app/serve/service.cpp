@@ -89,20 +89,18 @@ Json GeometryService::files() const {
 
 namespace {
 
-/// Reads a CAD file that the service stored in its private folder; messages name `name`, the
-/// client's name for it, not the private copy.
-std::shared_ptr<StoredModel> read_model(GeometryService::State& state, const std::filesystem::path& file,
-                                        std::string name, std::string source, geometry::LengthUnit unit) {
+/// Reads a CAD file that the service stored in its private folder, and removes the copy (the
+/// model holds the shape); messages name `name`, the client's name for it, not the copy.
+std::shared_ptr<StoredModel> read_model(GeometryService::State& state, PrivateFile copy, std::string name,
+                                        std::string source, geometry::LengthUnit unit) {
+  const PrivateFile file = std::move(copy);
   std::optional<geometry::CadModel> cad;
   try {
-    cad.emplace(geometry::CadModel::read(file, {.unit = unit}));
+    check_cad_in_child(state.limits.cad_check, file.path(), unit);
+    cad.emplace(geometry::CadModel::read(file.path(), {.unit = unit}));
   } catch (const InputError& e) {
-    std::error_code ignored;
-    std::filesystem::remove(file, ignored);
-    throw ApiError::unprocessable(replaced(e.what(), file.string(), name));
+    throw ApiError::unprocessable(replaced(e.what(), file.path().string(), name));
   }
-  std::error_code ignored;
-  std::filesystem::remove(file, ignored);  // the model holds the shape; the copy is not needed again
   auto model = std::shared_ptr<StoredModel>(
       new StoredModel{state.models.next_id(), std::move(name), std::move(source), std::move(*cad), {}, {}});
   model->faces = faces_json(model->cad);
@@ -128,8 +126,7 @@ Json GeometryService::load_path(const Json& request) {
   }
   const std::string content = state_->root->read(path, state_->limits.max_body_bytes);  // confined first
   require_cad_extension(path, "path");
-  const std::filesystem::path copy = state_->uploads.write(lower_extension(path), content);
-  return model_answer(*read_model(*state_, copy, path, "root", unit));
+  return model_answer(*read_model(*state_, state_->uploads.write(lower_extension(path), content), path, "root", unit));
 }
 
 Json GeometryService::load_upload(std::string_view filename, std::string_view content, std::string_view unit_text) {
@@ -137,9 +134,9 @@ Json GeometryService::load_upload(std::string_view filename, std::string_view co
   if (filename.empty()) throw ApiError::bad_request("file: the upload has no file name (its extension gives the format)");
   require_cad_extension(filename, "file");
   if (content.empty()) throw ApiError::bad_request(fmt::format("file: '{}' is empty", filename));
-  const std::filesystem::path copy = state_->uploads.write(lower_extension(filename), content);
+  PrivateFile copy = state_->uploads.write(lower_extension(filename), content);
   const std::string name = std::filesystem::path(std::string(filename)).filename().string();
-  return model_answer(*read_model(*state_, copy, name, "upload", unit));
+  return model_answer(*read_model(*state_, std::move(copy), name, "upload", unit));
 }
 
 Json GeometryService::models() const {

@@ -16,6 +16,7 @@
 #include <string>
 #include <string_view>
 
+#include "serve/cad_check.hpp"
 #include "serve/json_fields.hpp"
 
 namespace hotmesh::app::serve {
@@ -29,6 +30,7 @@ struct ServiceLimits {
   std::size_t max_models = 16;             ///< CAD models kept; loading more drops the least recently used
   std::size_t max_curves = 64;             ///< curves kept; likewise
   std::size_t max_curve_bytes = 256u << 20;  ///< memory of the curves kept (about); likewise
+  CadCheck cad_check;                      ///< each CAD file read by a child first (cad_check.hpp)
 };
 
 /// A file to send: content and how to label it.

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "cad_model_impl.hpp"
@@ -243,13 +244,17 @@ CadModel CadModel::read(const std::filesystem::path& path, const CadReadOptions&
     // A damaged file (a reference to a missing or wrong entity) can make the translation
     // follow a null pointer: a bad input, not a crash.
     const detail::FaultsAsFailures faults;
-    OCC_CATCH_SIGNALS
-    if (format == Format::step) {
-      STEPControl_Reader reader;
-      transfer(reader, path, "STEP", impl->shape, impl->faces, names);
-    } else {
-      IGESControl_Reader reader;
-      transfer(reader, path, "IGES", impl->shape, impl->faces, names);
+    // The reader lives outside the jump's scope: after a fault it is destroyed as the failure
+    // unwinds, with the file's model it holds (only what the faulting calls held is lost).
+    std::optional<STEPControl_Reader> step;
+    std::optional<IGESControl_Reader> iges;
+    {
+      OCC_CATCH_SIGNALS
+      if (format == Format::step) {
+        transfer(step.emplace(), path, "STEP", impl->shape, impl->faces, names);
+      } else {
+        transfer(iges.emplace(), path, "IGES", impl->shape, impl->faces, names);
+      }
     }
     for (std::size_t i = 0; i < impl->faces.size(); ++i) {
       const TopoDS_Face& face = impl->faces[i];

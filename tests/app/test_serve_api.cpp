@@ -13,6 +13,7 @@
 
 #include "cone_nodes.hpp"
 #include "run_command.hpp"
+#include "serve_client.hpp"
 #include "serve_process.hpp"
 #include "test_support.hpp"
 
@@ -21,52 +22,12 @@ namespace {
 
 using ::testing::HasSubstr;
 using ::testing::Not;
-using Json = nlohmann::json;
-
-/// A response: status and JSON body (null if the body is not JSON).
-struct Reply {
-  int status = 0;
-  Json body;
-  std::string text;
-  httplib::Headers headers;
-};
-
-class Api {
- public:
-  explicit Api(int port) : client_("127.0.0.1", port) { client_.set_read_timeout(60); }
-
-  Reply get(const std::string& path) { return reply(client_.Get(path.c_str())); }
-  Reply del(const std::string& path) { return reply(client_.Delete(path.c_str())); }
-  Reply post(const std::string& path, const Json& body) { return post_text(path, body.dump(), "application/json"); }
-  Reply post_text(const std::string& path, const std::string& body, const std::string& type) {
-    return reply(client_.Post(path.c_str(), body, type.c_str()));
-  }
-  Reply upload(const std::string& filename, const std::string& content, const std::string& unit = "mm") {
-    httplib::MultipartFormDataItems items{{"file", content, filename, "application/octet-stream"}, {"unit", unit, "", ""}};
-    return reply(client_.Post("/api/models", items));
-  }
-  httplib::Client& client() { return client_; }
-
- private:
-  static Reply reply(const httplib::Result& result) {
-    if (!result) throw std::runtime_error("no response: " + httplib::to_string(result.error()));
-    Reply r{result->status, Json(), result->body, result->headers};
-    if (result->get_header_value("Content-Type").starts_with("application/json")) r.body = Json::parse(result->body);
-    return r;
-  }
-  httplib::Client client_;
-};
+using test::Api;
+using test::expect_error;
+using test::Json;
+using test::Reply;
 
 std::string cone_file() { return test::read_text(test::data_path("cad/OCC8842_cone_CATIA.igs")); }
-
-/// An error reply has the status, the reason and a message holding `text`.
-void expect_error(const Reply& r, int status, const std::string& text) {
-  EXPECT_EQ(r.status, status) << r.text;
-  ASSERT_TRUE(r.body.is_object()) << r.text;
-  EXPECT_EQ(r.body["status"], status);
-  EXPECT_TRUE(r.body["error"].is_string());
-  EXPECT_THAT(r.body["message"].get<std::string>(), HasSubstr(text));
-}
 
 class ServeApi : public ::testing::Test {
  protected:

@@ -3,8 +3,11 @@
 // table of FEM nodes with deflections through the page, and checks that the curves, nodes and
 // arrows are drawn where the API says, that the numbers shown are the API's, that the tooltip,
 // the amplification slider, zoom, pan and the downloads work, that an API error is shown, and
-// that a meridional curve and a 2D table without CAD (the ramp2d sample) are drawn too.
-// Keeps a screenshot. Exit code 0 when every check passed.
+// that a meridional curve and a 2D table without CAD (the ramp2d sample) are drawn too, that a
+// new curve takes the old one's tooltip away, and that the stator-well sample works as a user
+// meets it: its 44 faces scroll inside the sidebar, the axis field is prefilled from the ticked
+// faces, so that the sample's own (r, z) table fits them. Keeps two screenshots. Exit code 0
+// when every check passed.
 //   node serve_page.test.mjs --hotmesh build/app/hotmesh --data tests/data --samples samples --out build/tests/browser
 import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
@@ -33,6 +36,7 @@ const chromiumPath = process.env.HOTMESH_CHROMIUM || '/usr/bin/chromium';
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'hotmesh-browser-'));
 fs.mkdirSync(args.out, { recursive: true });
 const screenshot = path.join(args.out, 'serve-page.png');
+const statorScreenshot = path.join(args.out, 'serve-page-stator-well.png');
 let checks = 0;
 const check = (condition, what) => {
   assert.ok(condition, what);
@@ -153,7 +157,7 @@ async function run() {
     const model = await api(url, 'POST', '/api/models', form);
     const expected = await api(url, 'POST', '/api/curves', {
       model: model.model, faces: [1, 2], csv: fs.readFileSync(tablePath, 'utf8'), csv_name: 'cone-nodes.csv',
-      degree: 1, form: 'curve', drop_far_nodes: false,
+      degree: 1, form: 'curve', drop_far_nodes: false, axis: { origin: [0, 0, 0], direction: [0, 0, 1] },
     });
     const shown = await page.$$eval('#summary dd', (dds) => dds.map((dd) => ({
       key: dd.dataset.key, text: dd.textContent, value: dd.dataset.value })));
@@ -206,7 +210,18 @@ async function run() {
     check(tip.residual === formatNumber(node.residual), 'tooltip residual');
     check(tip['δ'] === `(${formatNumber(node.deflection[0])}, ${formatNumber(node.deflection[1])})`, 'tooltip deflection');
     check(await page.$eval('#nodes tr.highlight', (r) => r.dataset.index) === '10', 'the hovered node is marked in the table');
+    check(await page.inputValue('#axis') === '0,0,0,0,0,1',
+      `the axis field holds the faces' axis, written through the origin: ${await page.inputValue('#axis')}`);
     await page.screenshot({ path: screenshot, fullPage: true });
+
+    // A new curve takes the old one's tooltip with it, though the pointer has not moved: the
+    // meridional curve (no nodes), then the reconstruction again (clicked without the mouse).
+    await page.$eval('#show-meridional', (button) => button.click());
+    await page.waitForFunction(() => !document.getElementById('deformed-curve'));
+    check(await page.isHidden('#tooltip'), 'the previous curve\'s tooltip is gone with it');
+    check((await page.$$('#nodes tr.highlight')).length === 0, 'no table row stays marked');
+    await page.$eval('#reconstruct', (button) => button.click());
+    await page.waitForSelector('#deformed-curve');
 
     // The amplification slider: at 10^0 the curve is drawn at its true deflection.
     await page.$eval('#amplification', (slider) => {
@@ -241,8 +256,8 @@ async function run() {
       }
       return result;
     });
-    check(downloads['download-csv'].status === 200 && downloads['download-csv'].text.startsWith('t,r,z\n0,60.5,-150.2'),
-      'CSV download: the deformed curve from the base rim moved by (0.5, -0.2)');
+    check(downloads['download-csv'].status === 200 && downloads['download-csv'].text.startsWith('t,r,z\n0,60.5,-70.2'),
+      'CSV download: the deformed curve from the base rim (z = -70 on the axis through the origin) moved by (0.5, -0.2)');
     check(downloads['download-step'].text.startsWith('ISO-10303-21;') && downloads['download-step'].text.includes("'deformed'"),
       'STEP download holds the deformed curve');
     check(downloads['download-iges'].type.startsWith('model/iges') && downloads['download-iges'].text.length > 1000, 'IGES download');
@@ -274,6 +289,71 @@ async function run() {
     check((await page.$eval('#summary dd[data-key="max_node_distance_to_cad"]', (dd) => dd.textContent)) === '0',
       'without CAD the nodes are on their own curve');
     check(await page.isHidden('#error'), 'the earlier error is gone');
+    check(await page.inputValue('#axis') === '', 'without CAD the faces\' axis is not offered');
+
+    // The stator-well sample: 44 faces, scrolling inside their box in the sidebar.
+    await page.uncheck('#no-cad');
+    await page.setInputFiles('#cad-file', path.join(args.samples, 'stator_well', 'stator_well.step'));
+    await page.selectOption('#unit', 'm');
+    await page.click('#load-cad');
+    await page.waitForFunction(() => document.querySelectorAll('#faces tbody tr').length === 44);
+    const layout = await page.evaluate(() => {
+      const rect = (id) => document.getElementById(id).getBoundingClientRect();
+      const box = document.getElementById('faces-box');
+      const aside = document.getElementById('controls');
+      return {
+        box: rect('faces-box'), table: rect('faces'), aside: rect('controls'),
+        scrolls: box.scrollHeight > box.clientHeight + 100, asideOverflow: aside.scrollWidth - aside.clientWidth,
+        reconstructBottom: rect('reconstruct').bottom + window.scrollY,
+      };
+    });
+    check(layout.scrolls && layout.box.height < 400, `the 44 faces scroll inside a box ${layout.box.height} px high`);
+    check(layout.asideOverflow <= 0 && layout.table.right <= layout.box.right + 0.5 && layout.box.right <= layout.aside.right,
+      `the face table stays inside the sidebar: table right ${layout.table.right}, box ${layout.box.right}, ` +
+      `sidebar ${layout.aside.right}, overflow ${layout.asideOverflow} px`);
+    check(layout.reconstructBottom < 1000, `step 2 stays on the first screen: Reconstruct at ${layout.reconstructBottom} px`);
+
+    // Faces 40-42 (disc_down): a cylinder through (0, 0, 0.083) along (0, 0, -1) and two
+    // surfaces of revolution about (0, 0, 0) along (0, 0, 1): one line, the engine axis.
+    for (const id of [40, 41, 42]) await page.check(`#faces input[value="${id}"]`);
+    check(await page.inputValue('#axis') === '0,0,0,0,0,1', `the axis is prefilled: ${await page.inputValue('#axis')}`);
+    check((await page.textContent('#axis-note')).includes('faces 40, 41, 42'), 'the note names the faces it comes from');
+
+    // The sample's own (r, z) table about that axis (issue 18: the page had no axis field).
+    const statorTable = path.join(args.samples, 'stator_well', 'disc_down.csv');
+    await page.setInputFiles('#csv-file', statorTable);
+    await page.selectOption('#form', 'displacement');
+    const previous = await page.getAttribute('#download-step', 'href');
+    await page.click('#reconstruct');
+    await page.waitForFunction((old) => document.getElementById('download-step').getAttribute('href') !== old ||
+      !document.getElementById('error').hidden, previous);
+    check(await page.isHidden('#error'), `the (r, z) table is accepted: ${await page.textContent('#error')}`);
+    const statorRows = fs.readFileSync(statorTable, 'utf8').split('\n').filter((line) => /^[0-9]/.test(line)).length;
+    check((await page.$$('#node-markers circle')).length === statorRows, `the ${statorRows} nodes of disc_down.csv are drawn`);
+    const statorDistance = JSON.parse(await page.$eval('#summary dd[data-key="max_node_distance_to_cad"]', (dd) => dd.dataset.value));
+    check(statorDistance < 1e-9, `the nodes lie on the faces about that axis: ${statorDistance} m`);
+    await page.screenshot({ path: statorScreenshot, fullPage: true });
+
+    // Fit view holds all that is drawn: the curve and the arrows as amplified (here 100 times).
+    await page.$eval('#amplification', (slider) => {
+      slider.value = '2';
+      slider.dispatchEvent(new Event('input', { bubbles: true }));
+    });
+    await page.click('#fit-view');
+    const [vx, vy, vw, vh] = (await page.getAttribute('#plot', 'viewBox')).split(' ').map(Number);
+    const inView = ([x, svgY]) => x >= vx && x <= vx + vw && svgY >= vy && svgY <= vy + vh;
+    const drawnCurve = pathPoints(await page.getAttribute('#deformed-curve', 'd')).map(([x, y]) => [x, -y]);
+    const arrowTips = await page.$$eval('#arrows line', (ls) => ls.map((l) => [Number(l.getAttribute('x2')), Number(l.getAttribute('y2'))]));
+    check(drawnCurve.every(inView) && arrowTips.every(inView), 'the fitted view holds the curve and arrows amplified 100 times');
+
+    // A malformed axis is the page's own error; an emptied field is filled from the faces again.
+    await page.fill('#axis', '0,0,1');
+    await page.click('#reconstruct');
+    await page.waitForSelector('#error:not([hidden])');
+    check((await page.textContent('#error')).includes('axis: expected x,y,z,dx,dy,dz'), 'a malformed axis is named');
+    await page.fill('#axis', '');
+    await page.uncheck('#faces input[value="40"]');
+    check(await page.inputValue('#axis') === '0,0,0,0,0,1', 'an emptied axis field is prefilled again');
     check(!problems.some((p) => p.startsWith('page error')), `no script errors on the page: ${problems.join('; ')}`);
   } finally {
     await context.close();
@@ -289,7 +369,7 @@ const timeout = setTimeout(() => {
 }, 240000);
 try {
   await run();
-  console.log(`browser test: ${checks} checks passed; screenshot: ${screenshot}`);
+  console.log(`browser test: ${checks} checks passed; screenshots: ${screenshot}, ${statorScreenshot}`);
   clearTimeout(timeout);
 } catch (error) {
   console.error(`browser test: FAILED after ${checks} checks: ${error.message}`);

@@ -162,7 +162,7 @@ TEST(PassiveSliding, InletOnASlidingDiscFaceStaysPlanarAndMeetsTheDeflectedFace)
   ASSERT_TRUE(r.success) << r.message;
   EXPECT_EQ(r.summary.inverted_cells, 0u);
   EXPECT_GT(r.summary.min_scaled_jacobian, 0.3);
-  EXPECT_LT(r.periodic_max_mismatch, 1e-12);
+  EXPECT_LT(r.max_periodic_mismatch, 1e-12);
 
   // Where the deflected face crosses z = 1: its material point z' with z' (1 + rise) = 1.
   const double crossing_z = 1.0 / 1.1, crossing_r = 1.0 + 4.0 * 0.15 * crossing_z * (1.0 - crossing_z);

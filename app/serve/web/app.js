@@ -1,8 +1,9 @@
 // hotmesh serve: the inspection page. Loads a CAD file (root folder or upload), lets the user
-// pick faces and a deflection table, asks the service for the reconstructed curve (POST
-// /api/curves) and draws in SVG the CAD curve, the FEM nodes, their deflections (amplified by a
-// slider) and the reconstructed curve, with zoom, pan, a tooltip per node, the fit residual per
-// node and download links. Plain JavaScript, no library: users are often offline.
+// pick faces, an axis (prefilled with the faces' own) and a deflection table, asks the service
+// for the reconstructed curve (POST /api/curves) and draws in SVG the CAD curve, the FEM nodes,
+// their deflections (amplified by a slider) and the reconstructed curve, with zoom, pan, a
+// tooltip per node, the fit residual per node and download links. Plain JavaScript, no
+// library: users are often offline.
 'use strict';
 
 const SVG = 'http://www.w3.org/2000/svg';
@@ -110,7 +111,13 @@ function showFaces(model) {
     box.value = face.id;
     box.className = 'face';
     box.setAttribute('aria-label', `face ${face.id}`);
-    const axis = face.axis ? `${face.axis.source}: along (${face.axis.direction.map(formatNumber).join(', ')})` : '–';
+    box.addEventListener('change', updateAxis);
+    const axis = document.createElement('span');
+    axis.textContent = face.axis ? `(${face.axis.direction.map(formatNumber).join(', ')})` : '–';
+    if (face.axis) {
+      axis.title = `${face.axis.source} axis through (${face.axis.origin.map(formatNumber).join(', ')})` +
+        ` along (${face.axis.direction.map(formatNumber).join(', ')})`;
+    }
     const cells = [box, String(face.id), face.name || '–', face.kind, axis];
     for (const content of cells) {
       const cell = document.createElement('td');
@@ -119,19 +126,90 @@ function showFaces(model) {
     }
     body.append(row);
   }
-  $('faces').hidden = false;
+  $('faces-box').hidden = false;
   $('show-meridional').disabled = false;
+  updateAxis();
 }
 
 function selectedFaces() {
   return [...document.querySelectorAll('#faces input.face:checked')].map((box) => Number(box.value));
 }
 
+// ---- the axis -----------------------------------------------------------------------------
+
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+
+/// The same line written one way whatever the face says: the direction a unit vector whose
+/// largest component is positive, the origin the point of the line nearest (0, 0, 0). So an
+/// (r, z) table about the engine axis fits faces whose own axis points the other way or starts
+/// elsewhere (a cylinder through (0, 0, 0.083) along (0, 0, -1) gives 0,0,0,0,0,1).
+function canonicalAxis(axis, size) {
+  const length = Math.hypot(...axis.direction);
+  let d = axis.direction.map((x) => x / length);
+  const largest = d.reduce((k, x, i) => (Math.abs(x) > Math.abs(d[k]) + 1e-12 ? i : k), 0);
+  if (d[largest] < 0) d = d.map((x) => -x);
+  const along = dot(axis.origin, d);
+  const clean = (x, scale) => (Math.abs(x) < 1e-12 * scale ? 0 : Number(x.toPrecision(12)));
+  return { origin: axis.origin.map((x, i) => clean(x - along * d[i], size)), direction: d.map((x) => clean(x, 1)) };
+}
+
+/// The model's size (the diagonal of its faces' bounds), the scale of axis comparisons.
+function modelSize(model) {
+  let size = 0;
+  for (const face of model.faces) {
+    if (face.bounds) size = Math.max(size, Math.hypot(...face.bounds.max.map((x, i) => x - face.bounds.min[i])));
+  }
+  return size > 0 ? size : 1;
+}
+
+/// The axis the ticked faces turn about, or why there is none.
+function facesAxis() {
+  const size = modelSize(state.model);
+  const ticked = selectedFaces();
+  const withAxis = state.model.faces.filter((f) => ticked.includes(f.id) && f.axis);
+  if (ticked.length === 0) return { note: '' };
+  if (withAxis.length === 0) return { note: 'the ticked faces have no axis of their own: type one for (r, z) tables' };
+  const first = canonicalAxis(withAxis[0].axis, size);
+  for (const face of withAxis.slice(1)) {
+    const axis = canonicalAxis(face.axis, size);
+    const apart = Math.hypot(...axis.origin.map((x, i) => x - first.origin[i]));
+    if (Math.hypot(...cross(axis.direction, first.direction)) > 1e-6 || apart > 1e-6 * size) {
+      return { note: `faces ${withAxis[0].id} and ${face.id} turn about different axes` };
+    }
+  }
+  return { axis: first, note: `the axis of faces ${withAxis.map((f) => f.id).join(', ')}` };
+}
+
+/// Fills the axis field from the ticked faces, unless the user typed an axis of their own.
+/// With "no CAD" the faces do not count: the field is the user's.
+function updateAxis() {
+  const field = $('axis');
+  if (field.dataset.typed === 'true') return;
+  const found = state.model && !$('no-cad').checked ? facesAxis() : { note: '' };
+  field.value = found.axis ? [...found.axis.origin, ...found.axis.direction].map(String).join(',') : '';
+  $('axis-note').textContent = found.note;
+}
+
+/// The axis field as the API's {origin, direction}; undefined when empty.
+function axisRequest() {
+  const text = $('axis').value.trim();
+  if (text === '') return undefined;
+  const numbers = text.split(/[\s,;]+/).map(Number);
+  if (numbers.length !== 6 || !numbers.every(Number.isFinite) || numbers.slice(3).every((x) => x === 0)) {
+    throw new Error(`axis: expected x,y,z,dx,dy,dz (a point and a non-zero direction, six numbers), got "${text}"`);
+  }
+  return { origin: numbers.slice(0, 3), direction: numbers.slice(3) };
+}
+
 async function showMeridional() {
   if (!state.model) throw new Error('load a CAD file first');
   const faces = selectedFaces();
   if (faces.length === 0) throw new Error('tick the faces of the boundary');
-  setCurve(await api('POST', `/api/models/${state.model.model}/meridional`, { faces }));
+  const request = { faces };
+  const axis = axisRequest();
+  if (axis) request.axis = axis;
+  setCurve(await api('POST', `/api/models/${state.model.model}/meridional`, request));
 }
 
 async function reconstruct() {
@@ -146,6 +224,8 @@ async function reconstruct() {
   };
   const tolerance = $('tolerance').value;
   if (tolerance !== '') request.tolerance = Number(tolerance);
+  const axis = axisRequest();
+  if (axis) request.axis = axis;
   if (state.model && !$('no-cad').checked) {
     request.model = state.model.model;
     request.faces = selectedFaces();
@@ -204,12 +284,25 @@ function showDownloads(curve) {
 /// Plot coordinates of a curve-plane pair: meridional (r, z) shows z across and r up.
 function toPlot(curve, p) { return curve.frame === 'rz' ? [p[1], p[0]] : [p[0], p[1]]; }
 
+/// The reconstructed curve with its deflection amplified `a` times, r(t) + a (c(t) - r(t)).
+function amplifiedCurve(curve, a) {
+  return curve.deformed.samples.map((s, i) => {
+    const u = curve.undeformed.samples[i];
+    return toPlot(curve, [u[1] + a * (s[1] - u[1]), u[2] + a * (s[2] - u[2])]);
+  });
+}
+
+/// Where a node's deflection arrow ends, Q + a δ.
+function arrowTip(curve, node, a) {
+  return toPlot(curve, [node.point[0] + a * node.deflection[0], node.point[1] + a * node.deflection[1]]);
+}
+
+/// Everything drawn at the current amplification.
 function plotPoints(curve) {
+  const a = state.amplification;
   const points = curve.undeformed.samples.map((s) => toPlot(curve, [s[1], s[2]]));
-  if (curve.deformed) {
-    for (const s of curve.deformed.samples) points.push(toPlot(curve, [s[1], s[2]]));
-  }
-  for (const node of curve.nodes) points.push(toPlot(curve, node.point));
+  if (curve.deformed) points.push(...amplifiedCurve(curve, a));
+  for (const node of curve.nodes) points.push(toPlot(curve, node.point), arrowTip(curve, node, a));
   return points;
 }
 
@@ -253,6 +346,7 @@ function pixelSize() {
 function draw() {
   const curve = state.curve;
   const view = state.view;
+  hideTooltip();  // its node marker is about to be replaced (new curve, zoom, pan, amplification)
   const svg = $('plot');
   svg.setAttribute('viewBox', `${view.x} ${-(view.y + view.h)} ${view.w} ${view.h}`);
   drawGrid();
@@ -264,17 +358,13 @@ function draw() {
   const undeformed = curve.undeformed.samples.map((s) => toPlot(curve, [s[1], s[2]]));
   element('path', { d: pathData(undeformed), class: 'cad-curve', id: 'cad-curve' }, world);
   if (curve.deformed) {
-    const amplified = curve.deformed.samples.map((s, i) => {
-      const u = curve.undeformed.samples[i];
-      return toPlot(curve, [u[1] + a * (s[1] - u[1]), u[2] + a * (s[2] - u[2])]);
-    });
-    element('path', { d: pathData(amplified), class: 'deformed-curve', id: 'deformed-curve' }, world);
+    element('path', { d: pathData(amplifiedCurve(curve, a)), class: 'deformed-curve', id: 'deformed-curve' }, world);
   }
   const arrows = element('g', { id: 'arrows' }, world);
   const nodes = element('g', { id: 'node-markers' }, world);
   for (const node of curve.nodes) {
     const [x, y] = toPlot(curve, node.point);
-    const [tx, ty] = toPlot(curve, [node.point[0] + a * node.deflection[0], node.point[1] + a * node.deflection[1]]);
+    const [tx, ty] = arrowTip(curve, node, a);
     if (Math.hypot(tx - x, ty - y) > 0) {
       element('line', { x1: x, y1: -y, x2: tx, y2: -ty, class: 'arrow', 'marker-end': 'url(#arrow-head)' }, arrows);
     }
@@ -455,6 +545,12 @@ function start() {
   $('load-cad').addEventListener('click', (e) => busy(e.target, loadCad));
   $('show-meridional').addEventListener('click', (e) => busy(e.target, showMeridional));
   $('reconstruct').addEventListener('click', (e) => busy(e.target, reconstruct));
+  $('no-cad').addEventListener('change', updateAxis);
+  $('axis').addEventListener('input', (event) => {
+    const typed = event.target.value.trim() !== '';
+    event.target.dataset.typed = String(typed);
+    $('axis-note').textContent = typed ? 'your own axis' : '';
+  });
   $('amplification').addEventListener('input', (event) => {
     setAmplification(Math.pow(10, Number(event.target.value)));
     if (state.view) draw();
