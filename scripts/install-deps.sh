@@ -27,6 +27,9 @@ packages=(
   libgtest-dev libgmock-dev gmsh python3 python3-vtk9 python3-numpy
   # the browser test of hotmesh serve's page: Debian's Chromium, driven by playwright-core
   chromium
+  # the fuzz targets (scripts/fuzz.sh): clang 14 with libFuzzer and the sanitizers'
+  # runtimes (libclang-rt), and its OpenMP runtime
+  clang libclang-rt-14-dev libomp-14-dev
 )
 # Node.js and npm for the browser test, unless a node is there already (a NodeSource node
 # ships its own npm and conflicts with Debian's npm package).

@@ -3,16 +3,20 @@
 #   1. installs missing Debian packages (scripts/install-deps.sh),
 #   2. builds Release with warnings as errors in build/ and runs every test with ctest,
 #   3. builds with AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/ and runs the
-#      tests again.
-# Exits non-zero on any failure. Usage: scripts/test.sh [--no-sanitizers]
+#      tests again,
+#   4. builds the fuzz targets with clang in build-fuzz/ and runs each for 30 s
+#      (scripts/fuzz.sh, docs/fuzzing.md).
+# Exits non-zero on any failure. Usage: scripts/test.sh [--no-sanitizers] [--no-fuzz]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 sanitizers=1
+fuzz=1
 for arg in "$@"; do
   case "$arg" in
     --no-sanitizers) sanitizers=0 ;;
-    *) echo "usage: scripts/test.sh [--no-sanitizers]" >&2; exit 2 ;;
+    --no-fuzz) fuzz=0 ;;
+    *) echo "usage: scripts/test.sh [--no-sanitizers] [--no-fuzz]" >&2; exit 2 ;;
   esac
 done
 
@@ -36,5 +40,8 @@ if ((sanitizers)); then
   LSAN_OPTIONS=suppressions="$(pwd)/tests/lsan.supp":fast_unwind_on_malloc=0:print_suppressions=0 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan -j "$jobs" --output-on-failure --timeout 1800 -LE no_sanitizer
+fi
+if ((fuzz)); then
+  scripts/fuzz.sh 30
 fi
 echo "== hotmesh: all tests passed"

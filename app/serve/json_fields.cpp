@@ -34,9 +34,19 @@ const Json* find(const Json& object, const char* key) {
 }  // namespace
 
 Json parse_object(std::string_view body) {
+  // Writing a value (dump(), as messages and answers do) recurses once per level: a body of
+  // "[[[[...": a few hundred kilobytes nested 100 000 deep overflowed the stack of the
+  // thread serving it. The API's bodies nest 3 levels ({"axis": {"origin": [...]}}).
+  const auto shallow = [](int depth, Json::parse_event_t event, const Json&) {
+    const bool opens = event == Json::parse_event_t::object_start || event == Json::parse_event_t::array_start;
+    if (opens && depth >= kMaxJsonDepth) {
+      throw ApiError::bad_request(fmt::format("the body nests objects and arrays deeper than {} levels", kMaxJsonDepth));
+    }
+    return true;
+  };
   Json value;
   try {
-    value = Json::parse(body.begin(), body.end());
+    value = Json::parse(body.begin(), body.end(), shallow);
   } catch (const Json::exception& e) {
     // e.what() reads "[json.exception.parse_error.101] parse error at line 1, column 5: ..." (or
     // out_of_range.406 for a number too large for a double)
@@ -130,7 +140,7 @@ std::vector<int> face_list_field(const Json& object, const char* key, std::size_
 geometry::Vec3 vec3_value(const Json& value, const std::string& what) {
   if (!value.is_array() || value.size() != 3 ||
       !std::all_of(value.begin(), value.end(), [](const Json& x) { return x.is_number(); })) {
-    throw ApiError::bad_request(fmt::format("{}: expected three numbers [x, y, z], got {}", what, value.dump()));
+    throw ApiError::bad_request(fmt::format("{}: expected three numbers [x, y, z], got {}", what, shown(value)));
   }
   const geometry::Vec3 v{value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
   if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {

@@ -17,7 +17,11 @@ namespace hotmesh::app::serve {
 
 using Json = nlohmann::json;
 
-/// The body as a JSON object. ApiError 400 if it is not valid JSON or not an object.
+/// How deep objects and arrays may nest in a request body.
+inline constexpr int kMaxJsonDepth = 32;
+
+/// The body as a JSON object. ApiError 400 if it is not valid JSON, not an object, or nests
+/// deeper than kMaxJsonDepth.
 Json parse_object(std::string_view body);
 
 /// ApiError 400 naming the first key of `object` that is not in `known`.

@@ -1,6 +1,7 @@
 // hotmesh io: checkpoint files (checkpoint.hmc), to resume an interrupted run.
 #include "hotmesh/io/checkpoint_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -174,7 +175,13 @@ std::string read_header_bytes(const std::filesystem::path& path) {
   if (bytes.size() == kMagic.size() + sizeof(std::uint64_t) && bytes.compare(0, kMagic.size(), kMagic) == 0) {
     std::uint64_t length = 0;
     std::memcpy(&length, bytes.data() + kMagic.size(), sizeof length);
-    std::string header(static_cast<std::size_t>(std::min<std::uint64_t>(length, 1ull << 30)), '\0');
+    // No more than the file holds: a damaged length must not make us reserve gigabytes.
+    const std::streamoff at = in.tellg();
+    in.seekg(0, std::ios::end);
+    const std::streamoff end = in.tellg();
+    in.seekg(at);
+    const auto available = static_cast<std::uint64_t>(std::max<std::streamoff>(end - at, 0));
+    std::string header(static_cast<std::size_t>(std::min(length, available)), '\0');
     in.read(header.data(), static_cast<std::streamsize>(header.size()));
     header.resize(static_cast<std::size_t>(in.gcount()));
     bytes += header;

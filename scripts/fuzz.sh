@@ -1,0 +1,162 @@
+#!/usr/bin/env bash
+# hotmesh: fuzz every reader of user input (docs/fuzzing.md).
+#   1. builds the libFuzzer targets (fuzz/: clang, ASan + UBSan) and hotmesh in build-fuzz/,
+#   2. gathers each target's seeds in build-fuzz/fuzz/seeds/<target>/: the samples, the test
+#      data, fuzz/corpus/<target>/, and a restart and a checkpoint file of a short run of the
+#      ramp2d sample,
+#   3. runs each target for SECONDS (default 60), one after the other, growing its corpus in
+#      build-fuzz/fuzz/corpus/<target>/ (kept between runs), and prints the executions each
+#      reached.
+# Exits non-zero if a target crashed; the input that crashed it is kept in
+# build-fuzz/fuzz/findings/<target>/ (crash-*, leak-*, timeout-*, oom-*), and
+# `build-fuzz/fuzz/fuzz_<target> <that file>` runs it again.
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]     (targets: all of them by default)
+set -euo pipefail
+
+# The whole script is one function, read before it runs, and the line that calls it also
+# exits: editing this file while a long run goes on does not change the run.
+main() {
+  cd "$(dirname "$0")/.."
+
+  all_targets=(gmsh deflection_csv case_yaml restart checkpoint serve_json serve_upload step iges)
+  seconds=60
+  targets=()
+  for arg in "$@"; do
+    if [[ "$arg" =~ ^[0-9]+$ ]]; then
+      seconds=$arg
+    elif [[ " ${all_targets[*]} " == *" $arg "* ]]; then
+      targets+=("$arg")
+    else
+      echo "usage: scripts/fuzz.sh [SECONDS] [TARGET...]   targets: ${all_targets[*]}" >&2
+      exit 2
+    fi
+  done
+  ((${#targets[@]})) || targets=("${all_targets[@]}")
+
+  build=build-fuzz
+  out=$build/fuzz
+  jobs=$(nproc)
+  if ! command -v clang++ >/dev/null || ! command -v gmsh >/dev/null; then
+    echo "hotmesh: the fuzz targets need clang++ and gmsh: run scripts/install-deps.sh" >&2
+    exit 1
+  fi
+
+  echo "== hotmesh: fuzz targets (clang, libFuzzer, ASan + UBSan) in $build/"
+  cmake -S . -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
+        -DCMAKE_CXX_FLAGS_DEBUG="-g -O2" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=ON -DHOTMESH_WERROR=ON \
+        -DHOTMESH_FUZZ=ON -DHOTMESH_TESTS=OFF >/dev/null
+  cmake --build "$build" -j "$jobs" --target fuzzers hotmesh
+
+  # Sanitizer settings of every run: third-party caches that are never freed are not leaks
+  # (tests/lsan.supp); a finding stops the target.
+  export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1
+  export LSAN_OPTIONS=suppressions=$(pwd)/tests/lsan.supp:print_suppressions=0
+  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
+
+  # A restart file and a checkpoint of the ramp2d sample, made again whenever hotmesh or the
+  # sample changed. The checkpoint, of the sample's own case killed after its first increment,
+  # names the case's files and their hashes (so it belongs to this checkout, as fuzz_checkpoint
+  # checks); the restart file comes from a whole run of two increments on the sample's mesh and
+  # patches, with a small bump for the bottom wall to slide over (the sample's ramp takes a
+  # minute under the sanitizers).
+  state_runs=$out/state-runs
+  ramp2d=$(pwd)/samples/ramp2d
+  newest_input=$(ls -t "$build/app/hotmesh" "$ramp2d"/ramp2d-sliding.yaml "$ramp2d"/ramp2d.msh "$ramp2d"/ramp.csv |
+                 head -1)
+  if [[ ! -f $state_runs/checkpoint/checkpoint.hmc || $newest_input -nt $state_runs/checkpoint/checkpoint.hmc ]]; then
+    echo "== hotmesh: short runs of samples/ramp2d for the restart and checkpoint seeds"
+    rm -rf "$state_runs"
+    mkdir -p "$state_runs"
+    printf 'x,y,dx,dy\n0,0,0,0\n1,0,0,0.001\n2,0,0,0\n' > "$state_runs/bump.csv"
+    sed -e "s|^mesh: .*|mesh: $ramp2d/ramp2d.msh|" -e "s|file: ramp.csv|file: bump.csv|" \
+        -e "s|increments: 16|increments: 2|" \
+        -e '/^pictures:/,$d' "$ramp2d/ramp2d-sliding.yaml" > "$state_runs/bump.yaml"
+    ASAN_OPTIONS=detect_leaks=0 "$build/app/hotmesh" -q deform "$state_runs/bump.yaml" -o "$state_runs/restart"
+    { ASAN_OPTIONS=detect_leaks=0 "$build/app/hotmesh" -q deform "$ramp2d/ramp2d-sliding.yaml" \
+        -o "$state_runs/checkpoint" --stop-after-increment 1 || true; } 2>/dev/null  # killed after increment 1
+    [[ -f $state_runs/checkpoint/checkpoint.hmc ]] || { echo "hotmesh: no checkpoint.hmc was written" >&2; exit 1; }
+  fi
+
+  # Seeds: files below 1 MB (larger ones make each execution slow without reaching more code).
+  small() { find "$@" -maxdepth 1 -type f -size -1024k 2>/dev/null | sort; }
+  # CAD files of the tests and the shared real-world ones, each name once.
+  cad_files() { small tests/data/cad ../shared/data/cad-real | grep -iE "\\.($1)\$" | awk -F/ '!seen[$NF]++'; }
+  seeds=$out/seeds
+  rm -rf "$seeds"
+  for t in "${all_targets[@]}"; do
+    mkdir -p "$seeds/$t"
+    [[ -d fuzz/corpus/$t ]] && cp fuzz/corpus/"$t"/* "$seeds/$t/"
+  done
+  cp $(small samples/* | grep '\.msh$') "$seeds/gmsh/"
+  for geo in tests/data/gmsh/*.geo; do  # the four flavours gmsh writes: 2.2 and 4.1, ASCII and binary
+    name=$(basename "$geo" .geo)
+    dimension=3; [[ $name == quad_* ]] && dimension=2
+    for format in msh22 msh41; do
+      gmsh -$dimension -nt 1 "$geo" -format $format -o "$seeds/gmsh/$name-$format.msh" >/dev/null
+      gmsh -$dimension -nt 1 "$geo" -format $format -bin -o "$seeds/gmsh/$name-$format-bin.msh" >/dev/null
+    done
+  done
+  cp $(small samples/* | grep '\.csv$') "$seeds/deflection_csv/"
+  cp $(small samples/* | grep '\.yaml$') "$seeds/case_yaml/"
+  cp "$state_runs/restart/restart.hmr" "$seeds/restart/"
+  cp "$state_runs/checkpoint/checkpoint.hmc" "$seeds/checkpoint/"
+  cp $(cad_files "step|stp") "$seeds/step/"
+  cp $(cad_files "iges|igs") "$seeds/iges/"
+  for file in $(cad_files "step|stp|iges|igs"); do
+    { printf '%s\nmm\n' "$(basename "$file")"; cat "$file"; } > "$seeds/serve_upload/$(basename "$file")"
+  done
+
+  # The runs, one target at a time. Limits: an input that runs a minute is a hang, one
+  # allocation above 512 MB (from inputs under 1 MB) a finding, as is a process above 4 GB.
+  # The targets that read STEP and IGES files run in a child process that libFuzzer replaces
+  # now and then (-fork=1), where a hang is kept in findings/ and counted but does not stop
+  # the run: OpenCASCADE's STEP reader can spin, after earlier damaged files in the same
+  # process, on a file it reads in a tenth of a second alone (docs/fuzzing.md).
+  failed=()
+  summary=()
+  for t in "${targets[@]}"; do
+    mkdir -p "$out/corpus/$t" "$out/findings/$t" "$out/logs"
+    log=$out/logs/$t.log
+    options=(-max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 -malloc_limit_mb=512 -print_final_stats=1
+             -artifact_prefix="$out/findings/$t/")
+    [[ -f fuzz/dict/$t.dict ]] && options+=(-dict="fuzz/dict/$t.dict")
+    occt=0
+    [[ " step iges serve_upload " == *" $t "* ]] && occt=1
+    ((occt)) && options+=(-fork=1 -ignore_timeouts=1)
+    hangs_before=$(find "$out/findings/$t" -name 'timeout-*' | wc -l)
+    rm -rf "$out/work"  # the targets' files; a process that crashed or was stopped leaves its own
+    echo "== hotmesh: fuzz_$t for $seconds s (log: $log)"
+    status=0
+    "$out/fuzz_$t" "${options[@]}" "$out/corpus/$t" "$seeds/$t" >"$log" 2>&1 || status=$?
+    coverage=$(grep -oE 'cov: [0-9]+' "$log" | tail -1 || true)
+    hangs=""
+    if ((occt)); then  # the parent prints "#<executions>: cov: ..." lines, and exits 70 after a hang
+      runs=$(grep -oE '^#[0-9]+:' "$log" | tail -1 | tr -d '#:' || true)
+      ((status == 70)) && status=0
+      found=$(($(find "$out/findings/$t" -name 'timeout-*' | wc -l) - hangs_before))
+      ((found > 0)) && hangs="  ($found hang(s) inside OpenCASCADE kept in $out/findings/$t/)"
+    else
+      runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+    fi
+    if ((status == 0)); then
+      summary+=("$(printf '%-16s %10s executions  %s%s' "$t" "${runs:-?}" "$coverage" "$hangs")")
+    else
+      artifact=$(sed -n 's/.*Test unit written to //p' "$log" | tail -1)
+      summary+=("$(printf '%-16s FAILED (exit %d) after %s executions: %s' "$t" "$status" "${runs:-?}" \
+                           "${artifact:-see $log}")")
+      failed+=("$t")
+      tail -n 60 "$log"
+    fi
+  done
+
+  echo "== hotmesh: fuzzing, $seconds s per target"
+  printf '%s\n' "${summary[@]}"
+  if ((${#failed[@]})); then
+    echo "hotmesh: ${#failed[@]} fuzz target(s) crashed: ${failed[*]}; inputs in $out/findings/, run one again with" \
+         "$out/fuzz_<target> <file>" >&2
+    exit 1
+  fi
+}
+
+main "$@"; exit
