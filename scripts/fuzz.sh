@@ -4,13 +4,15 @@
 #   2. gathers each target's seeds in build-fuzz/fuzz/seeds/<target>/: the samples, the test
 #      data, fuzz/corpus/<target>/, and a restart and a checkpoint file of a short run of the
 #      ramp2d sample,
-#   3. runs each target for SECONDS (default 60), one after the other, growing its corpus in
-#      build-fuzz/fuzz/corpus/<target>/ (kept between runs), and prints the executions each
-#      reached.
+#   3. runs each target for SECONDS (default 60), one after the other (-j N: N at a time),
+#      growing its corpus in build-fuzz/fuzz/corpus/<target>/ (kept between runs), and prints
+#      the executions each reached.
 # Exits non-zero if a target crashed; the input that crashed it is kept in
 # build-fuzz/fuzz/findings/<target>/ (crash-*, leak-*, timeout-*, oom-*), and
 # `build-fuzz/fuzz/fuzz_<target> <that file>` runs it again.
-# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]     (targets: all of them by default)
+# Usage: scripts/fuzz.sh [-j N] [--hotmesh EXE] [SECONDS] [TARGET...]   (all targets by default)
+#   --hotmesh EXE  makes the restart and checkpoint seeds with this hotmesh (a Release build is
+#                  much faster than the sanitizer build that is made otherwise)
 set -euo pipefail
 
 # The whole script is one function, read before it runs, and the line that calls it also
@@ -20,16 +22,25 @@ main() {
 
   all_targets=(gmsh deflection_csv case_yaml restart checkpoint serve_json serve_upload step iges)
   seconds=60
+  parallel=1
+  seed_hotmesh=""
   targets=()
-  for arg in "$@"; do
-    if [[ "$arg" =~ ^[0-9]+$ ]]; then
-      seconds=$arg
-    elif [[ " ${all_targets[*]} " == *" $arg "* ]]; then
-      targets+=("$arg")
-    else
-      echo "usage: scripts/fuzz.sh [SECONDS] [TARGET...]   targets: ${all_targets[*]}" >&2
-      exit 2
-    fi
+  usage="usage: scripts/fuzz.sh [-j N] [--hotmesh EXE] [SECONDS] [TARGET...]   targets: ${all_targets[*]}"
+  while (($#)); do
+    case "$1" in
+      -j) [[ ${2:-} =~ ^[1-9][0-9]*$ ]] || { echo "$usage" >&2; exit 2; }; parallel=$2; shift ;;
+      --hotmesh) [[ -x ${2:-} ]] || { echo "fuzz.sh: --hotmesh needs an executable, got '${2:-}'" >&2; exit 2; }
+                 seed_hotmesh=$(realpath "$2"); shift ;;
+      *) if [[ "$1" =~ ^[0-9]+$ ]]; then
+           seconds=$1
+         elif [[ " ${all_targets[*]} " == *" $1 "* ]]; then
+           targets+=("$1")
+         else
+           echo "$usage" >&2
+           exit 2
+         fi ;;
+    esac
+    shift
   done
   ((${#targets[@]})) || targets=("${all_targets[@]}")
 
@@ -45,7 +56,13 @@ main() {
   cmake -S . -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
         -DCMAKE_CXX_FLAGS_DEBUG="-g -O2" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=ON -DHOTMESH_WERROR=ON \
         -DHOTMESH_FUZZ=ON -DHOTMESH_TESTS=OFF >/dev/null
-  cmake --build "$build" -j "$jobs" --target fuzzers hotmesh
+  if [[ -n $seed_hotmesh ]]; then
+    cmake --build "$build" -j "$jobs" --target fuzzers
+    hotmesh=$seed_hotmesh
+  else
+    cmake --build "$build" -j "$jobs" --target fuzzers hotmesh
+    hotmesh=$(pwd)/$build/app/hotmesh
+  fi
 
   # Sanitizer settings of every run: third-party caches that are never freed are not leaks
   # (tests/lsan.supp); a finding stops the target.
@@ -62,7 +79,7 @@ main() {
   # minute under the sanitizers).
   state_runs=$out/state-runs
   ramp2d=$(pwd)/samples/ramp2d
-  newest_input=$(ls -t "$build/app/hotmesh" "$ramp2d"/ramp2d-sliding.yaml "$ramp2d"/ramp2d.msh "$ramp2d"/ramp.csv |
+  newest_input=$(ls -t "$hotmesh" "$ramp2d"/ramp2d-sliding.yaml "$ramp2d"/ramp2d.msh "$ramp2d"/ramp.csv |
                  head -1)
   if [[ ! -f $state_runs/checkpoint/checkpoint.hmc || $newest_input -nt $state_runs/checkpoint/checkpoint.hmc ]]; then
     echo "== hotmesh: short runs of samples/ramp2d for the restart and checkpoint seeds"
@@ -72,8 +89,8 @@ main() {
     sed -e "s|^mesh: .*|mesh: $ramp2d/ramp2d.msh|" -e "s|file: ramp.csv|file: bump.csv|" \
         -e "s|increments: 16|increments: 2|" \
         -e '/^pictures:/,$d' "$ramp2d/ramp2d-sliding.yaml" > "$state_runs/bump.yaml"
-    ASAN_OPTIONS=detect_leaks=0 "$build/app/hotmesh" -q deform "$state_runs/bump.yaml" -o "$state_runs/restart"
-    { ASAN_OPTIONS=detect_leaks=0 "$build/app/hotmesh" -q deform "$ramp2d/ramp2d-sliding.yaml" \
+    ASAN_OPTIONS=detect_leaks=0 "$hotmesh" -q deform "$state_runs/bump.yaml" -o "$state_runs/restart"
+    { ASAN_OPTIONS=detect_leaks=0 "$hotmesh" -q deform "$ramp2d/ramp2d-sliding.yaml" \
         -o "$state_runs/checkpoint" --stop-after-increment 1 || true; } 2>/dev/null  # killed after increment 1
     [[ -f $state_runs/checkpoint/checkpoint.hmc ]] || { echo "hotmesh: no checkpoint.hmc was written" >&2; exit 1; }
   fi
@@ -107,30 +124,30 @@ main() {
     { printf '%s\nmm\n' "$(basename "$file")"; cat "$file"; } > "$seeds/serve_upload/$(basename "$file")"
   done
 
-  # The runs, one target at a time. Limits: an input that runs a minute is a hang, one
+  # The runs, `parallel` targets at a time. Limits: an input that runs a minute is a hang, one
   # allocation above 512 MB (from inputs under 1 MB) a finding, as is a process above 4 GB.
   # The targets that read STEP and IGES files run in a child process that libFuzzer replaces
   # now and then (-fork=1), where a hang is kept in findings/ and counted but does not stop
   # the run: OpenCASCADE's STEP reader can spin, after earlier damaged files in the same
   # process, on a file it reads in a tenth of a second alone (docs/fuzzing.md).
-  failed=()
-  summary=()
-  for t in "${targets[@]}"; do
-    mkdir -p "$out/corpus/$t" "$out/findings/$t" "$out/logs"
-    log=$out/logs/$t.log
-    options=(-max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 -malloc_limit_mb=512 -print_final_stats=1
-             -artifact_prefix="$out/findings/$t/")
+  # Each run writes its line of the summary to logs/<target>.summary, and logs/<target>.failed
+  # if the target crashed.
+  run_target() {
+    local t=$1
+    local log=$out/logs/$t.log
+    local options=(-max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 -malloc_limit_mb=512
+                   -print_final_stats=1 -artifact_prefix="$out/findings/$t/")
     [[ -f fuzz/dict/$t.dict ]] && options+=(-dict="fuzz/dict/$t.dict")
-    occt=0
+    local occt=0
     [[ " step iges serve_upload " == *" $t "* ]] && occt=1
     ((occt)) && options+=(-fork=1 -ignore_timeouts=1)
+    local hangs_before
     hangs_before=$(find "$out/findings/$t" -name 'timeout-*' | wc -l)
-    rm -rf "$out/work"  # the targets' files; a process that crashed or was stopped leaves its own
     echo "== hotmesh: fuzz_$t for $seconds s (log: $log)"
-    status=0
+    local status=0
     "$out/fuzz_$t" "${options[@]}" "$out/corpus/$t" "$seeds/$t" >"$log" 2>&1 || status=$?
+    local coverage hangs="" runs found artifact
     coverage=$(grep -oE 'cov: [0-9]+' "$log" | tail -1 || true)
-    hangs=""
     if ((occt)); then  # the parent prints "#<executions>: cov: ..." lines, and exits 70 after a hang
       runs=$(grep -oE '^#[0-9]+:' "$log" | tail -1 | tr -d '#:' || true)
       ((status == 70)) && status=0
@@ -140,13 +157,38 @@ main() {
       runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
     fi
     if ((status == 0)); then
-      summary+=("$(printf '%-16s %10s executions  %s%s' "$t" "${runs:-?}" "$coverage" "$hangs")")
+      printf '%-16s %10s executions  %s%s\n' "$t" "${runs:-?}" "$coverage" "$hangs" > "$out/logs/$t.summary"
     else
       artifact=$(sed -n 's/.*Test unit written to //p' "$log" | tail -1)
-      summary+=("$(printf '%-16s FAILED (exit %d) after %s executions: %s' "$t" "$status" "${runs:-?}" \
-                           "${artifact:-see $log}")")
+      printf '%-16s FAILED (exit %d) after %s executions: %s\n' "$t" "$status" "${runs:-?}" \
+             "${artifact:-see $log}" > "$out/logs/$t.summary"
+      tail -n 60 "$log" > "$out/logs/$t.failed"
+    fi
+  }
+
+  mkdir -p "$out/logs"
+  rm -rf "$out/work"  # the targets' files; a process that crashed or was stopped leaves its own
+  for t in "${targets[@]}"; do
+    mkdir -p "$out/corpus/$t" "$out/findings/$t"
+    rm -f "$out/logs/$t.summary" "$out/logs/$t.failed"
+  done
+  running=0
+  for t in "${targets[@]}"; do
+    if ((running == parallel)); then
+      wait -n || true
+      running=$((running - 1))
+    fi
+    run_target "$t" &
+    running=$((running + 1))
+  done
+  wait || true
+  failed=()
+  summary=()
+  for t in "${targets[@]}"; do
+    summary+=("$(cat "$out/logs/$t.summary" 2>/dev/null || echo "$t: no result (see $out/logs/$t.log)")")
+    if [[ -f $out/logs/$t.failed || ! -f $out/logs/$t.summary ]]; then
       failed+=("$t")
-      tail -n 60 "$log"
+      cat "$out/logs/$t.failed" 2>/dev/null || true
     fi
   done
 

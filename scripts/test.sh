@@ -4,8 +4,8 @@
 #   2. builds Release with warnings as errors in build/ and runs every test with ctest,
 #   3. builds with AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/ and runs the
 #      tests again,
-#   4. builds the fuzz targets with clang in build-fuzz/ and runs each for 30 s
-#      (scripts/fuzz.sh, docs/fuzzing.md).
+#   4. builds the fuzz targets with clang in build-fuzz/ and runs each for 30 s, as many at
+#      a time as there are cores (scripts/fuzz.sh, docs/fuzzing.md).
 # Exits non-zero on any failure. Usage: scripts/test.sh [--no-sanitizers] [--no-fuzz]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -42,6 +42,7 @@ if ((sanitizers)); then
     ctest --test-dir build-asan -j "$jobs" --output-on-failure --timeout 1800 -LE no_sanitizer
 fi
 if ((fuzz)); then
-  scripts/fuzz.sh 30
+  # Two targets at a time on two cores; the seeds' short runs with the Release hotmesh.
+  scripts/fuzz.sh -j "$jobs" --hotmesh build/app/hotmesh 30
 fi
 echo "== hotmesh: all tests passed"
