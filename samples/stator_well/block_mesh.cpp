@@ -4,6 +4,7 @@
 #include "boundary_loop.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -181,7 +182,7 @@ void BlockMesher::build_classes() {
     Class& c = classes_[k];
     c.length /= members[k];
     const auto h = [&](double x) {
-      double d = INFINITY;
+      double d = std::numeric_limits<double>::infinity();
       if (clustered[k][0]) d = std::min(d, x);
       if (clustered[k][1]) d = std::min(d, c.length - x);
       return std::min(field_.spacing, field_.wall_spacing + (field_.growth - 1.0) * d);

@@ -8,6 +8,7 @@
 // For polylines the distance is reached at a vertex of one of them, so vertices suffice.
 // 2D meshes.
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -34,7 +35,7 @@ double segment_distance(P p, P a, P b) {
 }
 
 double polyline_distance(P p, const std::vector<P>& line) {
-  double best = INFINITY;
+  double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i + 1 < line.size(); ++i) best = std::min(best, segment_distance(p, line[i], line[i + 1]));
   return best;
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "curve_fixtures.hpp"
@@ -78,7 +79,7 @@ TEST(BSplineCurve2d, RejectsInvalidDefinitions) {
   EXPECT_THROW(make(1, {0, 0, 1, 0.5}, {{0, 0}, {1, 0}}), std::invalid_argument);       // decreasing
   EXPECT_THROW(make(1, {0, 0, 1, 1}, {{0, 0}, {1, 0}}, {1, -1}), std::invalid_argument);  // weight
   EXPECT_THROW(make(1, {0, 0, 0.5, 0.5, 1, 1}, {{0, 0}, {1, 0}, {2, 0}, {3, 0}}), std::invalid_argument);
-  EXPECT_THROW(make(1, {0, 0, 1, 1}, {{0, 0}, {NAN, 0}}), std::invalid_argument);
+  EXPECT_THROW(make(1, {0, 0, 1, 1}, {{0, 0}, {std::numeric_limits<double>::quiet_NaN(), 0}}), std::invalid_argument);
   EXPECT_NO_THROW(make(2, {0, 0, 0, 0.5, 0.5, 1, 1, 1}, {{0, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}));
 }
 

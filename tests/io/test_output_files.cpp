@@ -136,8 +136,8 @@ TEST(OutputFolder, RefusesFolderHoldingAnInputUnlessForced) {
   std::filesystem::create_directories(dir / "sub");
   test::write_text(dir / "sub" / "mesh.msh", "");
   const std::array<std::filesystem::path, 2> inputs{dir / "case.yaml", dir / "sub" / "mesh.msh"};
-  EXPECT_THROW(prepare_output_folder(dir.path(), inputs, false), InputError);
-  EXPECT_THROW(prepare_output_folder(dir / "sub" / ".", inputs, false), InputError);
+  EXPECT_THROW(static_cast<void>(prepare_output_folder(dir.path(), inputs, false)), InputError);
+  EXPECT_THROW(static_cast<void>(prepare_output_folder(dir / "sub" / ".", inputs, false)), InputError);
   EXPECT_NO_THROW(static_cast<void>(prepare_output_folder(dir / "out", inputs, false)));
   EXPECT_NO_THROW(static_cast<void>(prepare_output_folder(dir.path(), inputs, true)));
 }
@@ -145,7 +145,7 @@ TEST(OutputFolder, RefusesFolderHoldingAnInputUnlessForced) {
 TEST(OutputFolder, RefusesAFileAsFolder) {
   test::TempDir dir;
   test::write_text(dir / "file", "");
-  EXPECT_THROW(prepare_output_folder(dir / "file", {}, true), InputError);
+  EXPECT_THROW(static_cast<void>(prepare_output_folder(dir / "file", {}, true)), InputError);
 }
 
 TEST(OutputFolder, NeverReplacesAnInputEvenThroughAnotherSpelling) {
