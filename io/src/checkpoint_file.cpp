@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "binary_file.hpp"
+#include "header_integers.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/restart_file.hpp"
@@ -68,13 +69,13 @@ json record_json(const deform::IncrementRecord& r) {
 
 deform::IncrementRecord record_from_json(const json& j) {
   deform::IncrementRecord r;
-  r.increment = j.at("increment").get<int>();
+  r.increment = detail::integer_value<int>(j.at("increment"));
   r.lambda_begin = j.at("stage").at(0).get<double>();
   r.lambda_end = j.at("stage").at(1).get<double>();
-  r.split_depth = j.at("split_depth").get<int>();
+  r.split_depth = detail::integer_value<int>(j.at("split_depth"));
   for (const json& s : j.at("newton")) {
     r.newton.push_back({.residual = number_from(s.at(0)),
-                        .pcg_iterations = s.at(1).get<int>(),
+                        .pcg_iterations = detail::integer_value<int>(s.at(1)),
                         .pcg_converged = s.at(2).get<bool>(),
                         .pcg_reduction = number_from(s.at(3)),
                         .linear_tolerance = number_from(s.at(4)),
@@ -86,8 +87,8 @@ deform::IncrementRecord record_from_json(const json& j) {
   r.accepted = j.at("accepted").get<bool>();
   r.residual_reduction = number_from(j.at("residual_reduction"));
   r.min_scaled_jacobian = number_from(j.at("min_scaled_jacobian"));
-  r.inverted_cells = j.at("inverted_cells").get<std::size_t>();
-  r.worst_cell = j.at("worst_cell").get<deform::CellId>();
+  r.inverted_cells = detail::integer_value<std::size_t>(j.at("inverted_cells"));
+  r.worst_cell = detail::integer_value<deform::CellId>(j.at("worst_cell"));
   r.max_normal_slip = number_from(j.at("max_normal_slip"));
   r.seconds = j.at("seconds").get<double>();
   r.failure = j.at("failure").get<std::string>();
@@ -136,8 +137,8 @@ CheckpointInfo info_from_json(const json& header) {
   info.case_file = header.at("case").get<std::string>();
   info.hotmesh_version = header.at("hotmesh_version").get<std::string>();
   info.written_at = header.at("written_at").get<std::string>();
-  info.increments = header.at("increments").get<int>();
-  info.finished_increments = header.at("finished_increments").get<int>();
+  info.increments = detail::integer_value<int>(header.at("increments"));
+  info.finished_increments = detail::integer_value<int>(header.at("finished_increments"));
   info.lambda = header.at("lambda").get<double>();
   return info;
 }
@@ -149,7 +150,7 @@ json parse_header(detail::BinaryReader& in, const std::filesystem::path& path) {
   json header;
   try {
     header = json::parse(text);
-    const int version = header.at("format_version").get<int>();
+    const int version = detail::integer_value<int>(header.at("format_version"));
     if (version < kOldestVersion || version > kVersion) {
       throw InputError::in(path.string(), fmt::format("checkpoint format {} is not one this hotmesh reads ({} to {}): "
                                                       "resume with the hotmesh that wrote it ({}), or start again",
@@ -295,12 +296,13 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const deform::Mesh
   try {
     k.info = info_from_json(header);
     k.origin.case_file = k.info.case_file;
-    k.origin.mesh_fingerprint = header.at("mesh_fingerprint").get<std::uint64_t>();
+    k.origin.mesh_fingerprint = detail::integer_value<std::uint64_t>(header.at("mesh_fingerprint"));
     for (const json& f : header.at("inputs")) {
-      k.origin.inputs.push_back({f.at("file").get<std::string>(), f.at("bytes").get<std::uint64_t>(), f.at("hash").get<std::uint64_t>()});
+      k.origin.inputs.push_back({f.at("file").get<std::string>(), detail::integer_value<std::uint64_t>(f.at("bytes")),
+                                 detail::integer_value<std::uint64_t>(f.at("hash"))});
     }
-    nodes = header.at("nodes").get<std::uint64_t>();
-    sliding = header.at("sliding_nodes").get<std::uint64_t>();
+    nodes = detail::integer_value<std::uint64_t>(header.at("nodes"));
+    sliding = detail::integer_value<std::uint64_t>(header.at("sliding_nodes"));
     deform::MotionCheckpoint& s = k.state;
     s.increments = k.info.increments;
     s.finished_increments = k.info.finished_increments;
@@ -308,10 +310,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const deform::Mesh
     // Version 1 listed the whole increments left too: they follow from finished_increments.
     // (Its run maxima, max_normal_slip and max_sliding_projection_distance, follow from the
     // records.)
-    const bool listed_all = header.at("format_version").get<int>() == 1;
+    const bool listed_all = detail::integer_value<int>(header.at("format_version")) == 1;
     for (const json& step : header.at(listed_all ? "remaining" : "split_pieces")) {
-      const deform::MotionStep piece{step.at(0).get<int>(), step.at(1).get<double>(), step.at(2).get<double>(),
-                                     step.at(3).get<int>()};
+      const deform::MotionStep piece{detail::integer_value<int>(step.at(0)), step.at(1).get<double>(),
+                                     step.at(2).get<double>(), detail::integer_value<int>(step.at(3))};
       if (!listed_all || piece.split_depth > 0) s.split_pieces.push_back(piece);
     }
     for (const json& r : header.at("records")) s.records.push_back(record_from_json(r));

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "binary_file.hpp"
+#include "header_integers.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 
@@ -37,13 +38,24 @@ json samples_json(const DeflectionSpec& d) {
 }
 
 DeflectionSpec samples_from_json(const json& j) {
+  using detail::integer_value;
   DeflectionSpec d;
   d.file = j.at("file").get<std::string>();
-  d.degree = j.at("degree").get<int>();
-  d.form = j.at("form").get<std::string>() == "displacement" ? geometry::DeflectionForm::displacement
-                                                             : geometry::DeflectionForm::curve;
-  d.faces = j.at("faces").get<std::vector<int>>();
-  d.samples.frame = static_cast<geometry::SampleFrame>(j.at("frame").get<int>());
+  d.degree = integer_value<int>(j.at("degree"));
+  if (d.degree < 1 || d.degree > 5) throw std::out_of_range("degree " + std::to_string(d.degree) + " is not 1 to 5");
+  const auto form = j.at("form").get<std::string>();
+  if (form != geometry::to_string(geometry::DeflectionForm::curve) &&
+      form != geometry::to_string(geometry::DeflectionForm::displacement)) {
+    throw std::domain_error("unknown form '" + form + "'");
+  }
+  d.form = form == geometry::to_string(geometry::DeflectionForm::displacement) ? geometry::DeflectionForm::displacement
+                                                                              : geometry::DeflectionForm::curve;
+  d.faces = detail::integer_values<int>(j.at("faces"));
+  const int frame = integer_value<int>(j.at("frame"));
+  if (frame < 0 || frame > static_cast<int>(geometry::SampleFrame::meridional)) {
+    throw std::out_of_range("unknown frame " + std::to_string(frame));
+  }
+  d.samples.frame = static_cast<geometry::SampleFrame>(frame);
   d.samples.source = j.at("source").get<std::string>();
   const auto points = j.at("points").get<std::vector<double>>();
   const auto deflections = j.at("deflections").get<std::vector<double>>();
@@ -52,7 +64,7 @@ DeflectionSpec samples_from_json(const json& j) {
     d.samples.points.push_back({points[i], points[i + 1], points[i + 2]});
     d.samples.deflections.push_back({deflections[i], deflections[i + 1], deflections[i + 2]});
   }
-  d.samples.ids = j.at("ids").get<std::vector<std::int64_t>>();
+  d.samples.ids = detail::integer_values<std::int64_t>(j.at("ids"));
   return d;
 }
 
@@ -113,21 +125,27 @@ RestartState read_restart(const std::filesystem::path& path, const deform::Mesh&
   std::uint64_t nodes = 0, sliding = 0;
   try {
     const json header = json::parse(text);
-    if (header.at("format_version").get<int>() != kVersion) {
-      throw InputError::in(path.string(), "restart file format " + std::to_string(header.at("format_version").get<int>()) +
+    using detail::integer_value;
+    const int version = integer_value<int>(header.at("format_version"));
+    if (version != kVersion) {
+      throw InputError::in(path.string(), "restart file format " + std::to_string(version) +
                                               " is not the one this hotmesh reads (" + std::to_string(kVersion) + ")");
     }
-    s.mesh_fingerprint = header.at("mesh_fingerprint").get<std::uint64_t>();
+    s.mesh_fingerprint = integer_value<std::uint64_t>(header.at("mesh_fingerprint"));
     s.case_file = header.at("case").get<std::string>();
-    nodes = header.at("nodes").get<std::uint64_t>();
-    sliding = header.at("sliding_nodes").get<std::uint64_t>();
+    nodes = integer_value<std::uint64_t>(header.at("nodes"));
+    sliding = integer_value<std::uint64_t>(header.at("sliding_nodes"));
     for (const json& p : header.at("patches")) {
       RestartPatch patch;
       patch.name = p.at("name").get<std::string>();
       const std::string role = p.at("role").get<std::string>();
+      bool known = false;
       for (int r = 0; r <= static_cast<int>(deform::BoundaryRole::periodic); ++r) {
-        if (deform::to_string(static_cast<deform::BoundaryRole>(r)) == role) patch.role = static_cast<deform::BoundaryRole>(r);
+        if (deform::to_string(static_cast<deform::BoundaryRole>(r)) != role) continue;
+        patch.role = static_cast<deform::BoundaryRole>(r);
+        known = true;
       }
+      if (!known) throw std::domain_error("patch '" + patch.name + "' has an unknown role '" + role + "'");
       if (p.contains("deflection")) patch.deflection = samples_from_json(p.at("deflection"));
       s.patches.push_back(std::move(patch));
     }
