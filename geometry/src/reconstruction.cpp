@@ -3,6 +3,7 @@
 // B-spline: c(t_j) = Q_j + delta_j (form curve) or d(t_j) = delta_j (form displacement).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -102,6 +103,23 @@ std::vector<PlacedNode> merge_duplicates(std::vector<PlacedNode> nodes, const Cu
   return result;
 }
 
+/// Eq. (21) cannot be solved to double precision: nodes bunched so closely, for the curve's
+/// length, that the degree-q basis cannot tell them apart (one node far from the others makes
+/// the rest such a bunch). Names the closest pair.
+[[noreturn]] void refuse_bunched_nodes(const std::vector<PlacedNode>& nodes, const CurveSamples& samples,
+                                       double range, int degree, const std::string& why) {
+  std::size_t closest = 0;
+  for (std::size_t j = 1; j + 1 < nodes.size(); ++j) {
+    if (nodes[j + 1].t - nodes[j].t < nodes[closest + 1].t - nodes[closest].t) closest = j;
+  }
+  throw InputError::in(samples.source,
+                       "the FEM nodes cannot be interpolated by a curve of degree " + std::to_string(degree) + " (" +
+                           why + "): " + samples.label(nodes[closest].index) + " and " +
+                           samples.label(nodes[closest + 1].index) + " are " +
+                           format((nodes[closest + 1].t - nodes[closest].t) / range) +
+                           " of the curve's length apart; look for a node far from the others, or use degree 1");
+}
+
 /// Eq. (21) on nodes sorted by t: the interpolant, the deflected curve and the report.
 Reconstruction interpolate_nodes(const BSplineCurve2d& undeformed, std::vector<PlacedNode> nodes,
                                  const CurveSamples& samples, const ReconstructionOptions& options,
@@ -121,7 +139,13 @@ Reconstruction interpolate_nodes(const BSplineCurve2d& undeformed, std::vector<P
     values[j] = options.form == DeflectionForm::curve ? nodes[j].point + nodes[j].deflection : nodes[j].deflection;
     report.max_node_distance_to_cad = std::max(report.max_node_distance_to_cad, nodes[j].distance);
   }
-  BSplineCurve2d interpolant = interpolate(parameters, values, options.degree);
+  std::optional<BSplineCurve2d> solved;
+  try {
+    solved = interpolate(parameters, values, options.degree);
+  } catch (const std::invalid_argument& e) {
+    refuse_bunched_nodes(nodes, samples, range, options.degree, e.what());
+  }
+  BSplineCurve2d interpolant = std::move(*solved);
   for (std::size_t j = 0; j < nodes.size(); ++j) {
     report.max_node_residual = std::max(report.max_node_residual, distance(interpolant.point(parameters[j]), values[j]));
   }

@@ -264,6 +264,15 @@ TEST_F(ServeApi, ReconstructsA2DTableWithoutCad) {
   EXPECT_EQ(r.body["summary"]["max_node_distance_to_cad"], 0.0);
 }
 
+// A body the fuzz target of the service made from the ramp's table (docs/fuzzing.md): one node
+// moved 2e10 away bunches the others within 4e-9 of the curve's length, and the degree-3
+// interpolation was singular: a 500 ("critical internal error") before it was a user error.
+TEST_F(ServeApi, NodesTooBunchedToInterpolateAreAUserError) {
+  const Reply r = api_->post("/api/curves", Json::parse(test::read_text(test::data_path("fuzz/serve-json-bunched-nodes.json"))));
+  expect_error(r, 422, "ramp.csv: the FEM nodes cannot be interpolated by a curve of degree 3");
+  EXPECT_THAT(r.text, HasSubstr("of the curve's length apart; look for a node far from the others"));
+}
+
 TEST_F(ServeApi, KeepsTheCurvesUsedMostRecently) {
   const Json table = {{"csv", "x,y,dx,dy\n0,0,0,0\n1,0,0,0.1\n"}, {"samples", 2}};
   std::vector<std::string> ids;
