@@ -43,9 +43,18 @@ class Problems {
     if (examples_.size() < kExamples) examples_.push_back(std::move(example));
     ++count_;
   }
+  /// Counts one more instance; `example` is called only while examples are still wanted.
+  template <class Example>
+  void add_lazily(Example&& example) {
+    if (examples_.size() < kExamples) examples_.push_back(example());
+    ++count_;
+  }
+  std::size_t count() const { return count_; }
+  /// The count stops here: the message says "N or more".
+  void stop_counting() { stopped_ = true; }
   void raise_if_any(std::string_view advice = {}) const {
     if (count_ == 0) return;
-    std::string text = fmt::format("{} {}:", count_, what_);
+    std::string text = fmt::format("{}{} {}:", count_, stopped_ ? " or more" : "", what_);
     for (const auto& e : examples_) text += "\n  " + e;
     if (count_ > examples_.size()) text += fmt::format("\n  ... and {} more", count_ - examples_.size());
     if (!advice.empty()) text += fmt::format("\n{}", advice);
@@ -56,6 +65,7 @@ class Problems {
   std::string what_;
   std::vector<std::string> examples_;
   std::size_t count_ = 0;
+  bool stopped_ = false;
 };
 
 bool node_in_range(const Mesh& mesh, NodeId n) {
@@ -181,6 +191,11 @@ void check_unused_nodes(const Mesh& mesh) {
   unused.raise_if_any("Remove them (in Gmsh: Mesh.SaveAll = 0, or Coherence Mesh) and load the mesh again.");
 }
 
+/// Duplicate pairs counted before the check stops: nodes crowded into a few grid cells (one
+/// node far from the others makes the tolerance as large as the mesh) have pairs, and
+/// comparisons, by the square of their number.
+constexpr std::size_t kCountedDuplicatePairs = 100'000;
+
 /// Duplicates are found with a hash grid of cell size q = 2 * tolerance: a node within the
 /// tolerance of node p lies, along each axis, in p's grid cell or in the neighbour on the
 /// side of p's nearer cell wall, so 2^d cells are searched per node.
@@ -222,6 +237,10 @@ void check_duplicate_nodes(const Mesh& mesh, double relative_tolerance) {
   }
   Problems duplicates(fmt::format("pairs of nodes are duplicates (closer than {:.3g})", tolerance));
   for (std::size_t n = 0; n < mesh.node_count(); ++n) {
+    if (duplicates.count() >= kCountedDuplicatePairs) {
+      duplicates.stop_counting();
+      break;
+    }
     Key key{};
     std::array<int, 3> side{};
     key_of(mesh.points[n], key, side);
@@ -235,7 +254,9 @@ void check_duplicate_nodes(const Mesh& mesh, double relative_tolerance) {
       for (NodeId m = it->second; m >= 0; m = next[static_cast<std::size_t>(m)]) {
         if (static_cast<std::size_t>(m) <= n) continue;  // report each pair once
         if (distance(mesh.points[n], mesh.points[static_cast<std::size_t>(m)]) <= tolerance) {
-          duplicates.add(fmt::format("{} and node {}", node_text(mesh, static_cast<NodeId>(n)), mesh.node_id(m)));
+          duplicates.add_lazily([&] {
+            return fmt::format("{} and node {}", node_text(mesh, static_cast<NodeId>(n)), mesh.node_id(m));
+          });
         }
       }
     }
