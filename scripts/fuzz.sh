@@ -128,8 +128,9 @@ main() {
   # allocation above 512 MB (from inputs under 1 MB) a finding, as is a process above 4 GB.
   # The targets that read STEP and IGES files run in a child process that libFuzzer replaces
   # now and then (-fork=1), where a hang is kept in findings/ and counted but does not stop
-  # the run: OpenCASCADE's STEP reader can spin, after earlier damaged files in the same
-  # process, on a file it reads in a tenth of a second alone (docs/fuzzing.md).
+  # the run: OpenCASCADE's readers are not hotmesh's to fix, and its STEP reader did spin on
+  # damaged files (those hotmesh now refuses first, docs/fuzzing.md); a count above zero in the
+  # summary is a finding to look at.
   # Each run writes its line of the summary to logs/<target>.summary, and logs/<target>.failed
   # if the target crashed.
   run_target() {

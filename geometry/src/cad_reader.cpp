@@ -35,6 +35,7 @@
 #include "hotmesh/geometry/input_error.hpp"
 #include "occt_convert.hpp"
 #include "occt_session.hpp"
+#include "step_entity_numbers.hpp"
 
 namespace hotmesh::geometry {
 
@@ -234,6 +235,7 @@ const FaceInfo& CadModel::face(int id) const {
 CadModel CadModel::read(const std::filesystem::path& path, const CadReadOptions& options) {
   const Format format = format_of(path);
   check_file(path, format);
+  if (format == Format::step) detail::refuse_repeated_entity_numbers(path);
   auto impl = std::make_unique<Impl>();
   impl->path = path;
   impl->unit = options.unit;
