@@ -83,6 +83,7 @@ class BinaryReader {
 
   void read(void* out, std::size_t size) {
     if (size > bytes_.size() - at_) cut_short();
+    if (size == 0) return;  // an empty array's out may be null, which memcpy may not take
     std::memcpy(out, bytes_.data() + at_, size);
     at_ += size;
   }
