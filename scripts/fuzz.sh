@@ -168,7 +168,13 @@ main() {
   }
 
   mkdir -p "$out/logs"
-  rm -rf "$out/work"  # the targets' files; a process that crashed or was stopped leaves its own
+  # The targets' files, a folder per process: a process that crashed or was stopped leaves its
+  # own. Only those of processes that ended go, so a second fuzz.sh on the same build (other
+  # targets) does not pull the files from under the first one's targets.
+  for folder in "$out"/work/*/; do
+    [[ -d $folder ]] || continue
+    kill -0 "$(basename "$folder")" 2>/dev/null || rm -rf "$folder"
+  done
   for t in "${targets[@]}"; do
     mkdir -p "$out/corpus/$t" "$out/findings/$t"
     rm -f "$out/logs/$t.summary" "$out/logs/$t.failed"
