@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <unordered_map>
 
 #include "hotmesh/geometry/input_error.hpp"
@@ -212,268 +213,345 @@ Placement place_sliding_node(SlidingNode& node, const Vec3& p, double lambda, st
   return out;
 }
 
-BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> patches, const MotionStart* start) {
-  BoundarySetup setup{start ? start->points : mesh.points,
-                      NodeConstraints(mesh.node_count(), mesh.dimension),
-                      {},
-                      {},
-                      {},
-                      {},
-                      {},
-                      PeriodicCoupling(static_cast<std::size_t>(mesh.dimension)),
-                      std::vector<NodeRoleCode>(mesh.node_count(), 0),
-                      {}};
-  if (setup.reference.size() != mesh.node_count()) {
-    throw InputError(fmt::format("the state to restart from has {} nodes, the mesh {}", setup.reference.size(),
-                                 mesh.node_count()));
-  }
-  const std::vector<Vec3>& x0 = setup.reference;
+namespace {
 
-  std::vector<const PatchMotion*> motion_of(mesh.patches.size(), nullptr);
-  const auto patch_index = [&](const std::string& name) {
-    const auto it = std::find_if(mesh.patches.begin(), mesh.patches.end(), [&](const Patch& p) { return p.name == name; });
-    if (it == mesh.patches.end()) throw InputError(fmt::format("the mesh has no patch '{}'", name));
-    return static_cast<std::size_t>(it - mesh.patches.begin());
-  };
-  for (const PatchMotion& m : patches) {
-    motion_of[patch_index(m.patch)] = &m;
-    if ((m.role == BoundaryRole::prescribed || m.role == BoundaryRole::sliding) && !m.shape) {
-      throw InputError(fmt::format("patch '{}' is {} but has no shape to follow", m.patch, to_string(m.role)));
-    }
-  }
-  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-    if (!motion_of[p]) throw InputError(fmt::format("mesh patch '{}' has no role", mesh.patches[p].name));
-  }
-
-  // Periodic pairs: slaves follow their masters and take no role of their own.
-  const double mesh_size = bounding_diagonal(mesh.points);
-  for (const PatchMotion& m : patches) {
-    if (m.role != BoundaryRole::periodic || m.partner.empty()) continue;
-    const std::size_t partner = patch_index(m.partner);
-    if (motion_of[partner]->role != BoundaryRole::periodic) {
-      throw InputError(fmt::format("periodic patch '{}' has partner '{}', which is not periodic", m.patch, m.partner));
-    }
-    setup.periodic.add(mesh, mesh.patches[patch_index(m.patch)], mesh.patches[partner], m.axis, m.angle, 1e-8 * mesh_size);
-  }
-  for (const PatchMotion& m : patches) {
-    if (m.role != BoundaryRole::periodic || !m.partner.empty()) continue;
-    const bool declared = std::any_of(patches.begin(), patches.end(), [&](const PatchMotion& o) { return o.partner == m.patch; });
-    if (!declared) throw InputError(fmt::format("periodic patch '{}' has no partner", m.patch));
-  }
-  const auto is_slave = [&](NodeId n) { return setup.periodic.is_slave(n); };
-
-  // The strongest role of each node, and the patch that gives it.
-  std::vector<int> owner(mesh.node_count(), -1);
-  auto role_priority = [&](NodeId n) {
-    const int o = owner[static_cast<std::size_t>(n)];
-    return o < 0 ? 0 : priority(motion_of[static_cast<std::size_t>(o)]->role);
-  };
-  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-    for (NodeId n : mesh.patches[p].nodes) {
-      if (priority(motion_of[p]->role) > role_priority(n)) owner[static_cast<std::size_t>(n)] = static_cast<int>(p);
-    }
-  }
-  for (std::size_t n = 0; n < mesh.node_count(); ++n) {
-    if (is_slave(static_cast<NodeId>(n))) {
-      setup.roles[n] = static_cast<NodeRoleCode>(1 + static_cast<int>(BoundaryRole::periodic));
-      setup.constraints.fix(static_cast<NodeId>(n));  // not an unknown: it follows its master
-    } else if (owner[n] >= 0) {
-      setup.roles[n] = static_cast<NodeRoleCode>(1 + static_cast<int>(motion_of[static_cast<std::size_t>(owner[n])]->role));
-    }
-  }
-  const auto has_role = [&](NodeId n, BoundaryRole role) { return !is_slave(n) && role_priority(n) == priority(role); };
-
-  // Slip planes: constrain slip nodes now; sliding nodes collect them below.
-  std::vector<int> plane_of(mesh.patches.size(), -1);
-  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-    if (motion_of[p]->role != BoundaryRole::slip || mesh.patches[p].nodes.empty()) continue;
-    plane_of[p] = static_cast<int>(setup.slip_planes.size());
-    setup.slip_planes.push_back(slip_plane(mesh, mesh.patches[p]));
-    for (NodeId n : mesh.patches[p].nodes) {
-      if (has_role(n, BoundaryRole::slip)) setup.constraints.constrain(n, setup.slip_planes.back().normal);
+/// set_up_boundaries, phase by phase. Each phase reads what the ones before it decided.
+class BoundaryBuilder {
+ public:
+  BoundaryBuilder(const Mesh& mesh, std::span<const PatchMotion> patches, const MotionStart* start)
+      : mesh_(mesh),
+        patches_(patches),
+        start_(start),
+        setup_{start ? start->points : mesh.points,
+               NodeConstraints(mesh.node_count(), mesh.dimension),
+               {},
+               {},
+               {},
+               {},
+               {},
+               PeriodicCoupling(static_cast<std::size_t>(mesh.dimension)),
+               std::vector<NodeRoleCode>(mesh.node_count(), 0),
+               {}},
+        x0_(setup_.reference),
+        motion_of_(mesh.patches.size(), nullptr),
+        owner_(mesh.node_count(), -1),
+        plane_of_(mesh.patches.size(), -1),
+        sliding_index_(mesh.node_count(), -1),
+        rim_(mesh.node_count()),
+        follows_sliding_(mesh.node_count(), 0) {
+    if (setup_.reference.size() != mesh.node_count()) {
+      throw InputError(fmt::format("the state to restart from has {} nodes, the mesh {}", setup_.reference.size(),
+                                   mesh.node_count()));
     }
   }
 
-  // Fixed and prescribed nodes.
-  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-    const Patch& patch = mesh.patches[p];
-    const PatchMotion& m = *motion_of[p];
-    if (patch.nodes.empty()) continue;
-    if (m.role == BoundaryRole::fixed) {
-      for (NodeId n : patch.nodes) {
-        if (!is_slave(n)) setup.constraints.fix(n);
+  /// Each mesh patch's motion; every patch has one, and those that move have a shape.
+  void assign_motions() {
+    for (const PatchMotion& m : patches_) {
+      motion_of_[patch_index(m.patch)] = &m;
+      if ((m.role == BoundaryRole::prescribed || m.role == BoundaryRole::sliding) && !m.shape) {
+        throw InputError(fmt::format("patch '{}' is {} but has no shape to follow", m.patch, to_string(m.role)));
       }
-    } else if (m.role == BoundaryRole::prescribed) {
-      std::vector<NodeId> nodes;
-      for (NodeId n : patch.nodes) {
-        if (owner[static_cast<std::size_t>(n)] == static_cast<int>(p) && !is_slave(n)) nodes.push_back(n);
+    }
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      if (!motion_of_[p]) throw InputError(fmt::format("mesh patch '{}' has no role", mesh_.patches[p].name));
+    }
+  }
+
+  /// Periodic pairs: slaves follow their masters and take no role of their own.
+  void couple_periodic_pairs() {
+    const double mesh_size = bounding_diagonal(mesh_.points);
+    for (const PatchMotion& m : patches_) {
+      if (m.role != BoundaryRole::periodic || m.partner.empty()) continue;
+      const std::size_t partner = patch_index(m.partner);
+      if (motion_of_[partner]->role != BoundaryRole::periodic) {
+        throw InputError(fmt::format("periodic patch '{}' has partner '{}', which is not periodic", m.patch, m.partner));
       }
-      const auto parameters = locate(mesh, x0, patch, m, nodes);
-      for (std::size_t k = 0; k < nodes.size(); ++k) {
-        setup.prescribed.push_back({nodes[k], parameters[k], m.shape.get()});
-        setup.constraints.fix(nodes[k]);
+      setup_.periodic.add(mesh_, mesh_.patches[patch_index(m.patch)], mesh_.patches[partner], m.axis, m.angle,
+                          1e-8 * mesh_size);
+    }
+    for (const PatchMotion& m : patches_) {
+      if (m.role != BoundaryRole::periodic || !m.partner.empty()) continue;
+      const bool declared =
+          std::any_of(patches_.begin(), patches_.end(), [&](const PatchMotion& o) { return o.partner == m.patch; });
+      if (!declared) throw InputError(fmt::format("periodic patch '{}' has no partner", m.patch));
+    }
+  }
+
+  /// The strongest role of each node, and the patch that gives it.
+  void assign_node_roles() {
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      for (NodeId n : mesh_.patches[p].nodes) {
+        if (priority(motion_of_[p]->role) > role_priority(n)) owner_[static_cast<std::size_t>(n)] = static_cast<int>(p);
+      }
+    }
+    for (std::size_t n = 0; n < mesh_.node_count(); ++n) {
+      if (is_slave(static_cast<NodeId>(n))) {
+        setup_.roles[n] = static_cast<NodeRoleCode>(1 + static_cast<int>(BoundaryRole::periodic));
+        setup_.constraints.fix(static_cast<NodeId>(n));  // not an unknown: it follows its master
+      } else if (owner_[n] >= 0) {
+        setup_.roles[n] =
+            static_cast<NodeRoleCode>(1 + static_cast<int>(motion_of_[static_cast<std::size_t>(owner_[n])]->role));
       }
     }
   }
 
-  // Sliding nodes: every sliding shape and slip plane they lie on.
-  std::vector<int> sliding_index(mesh.node_count(), -1);
-  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-    const PatchMotion& m = *motion_of[p];
-    if (m.role != BoundaryRole::sliding && m.role != BoundaryRole::slip) continue;
-    for (NodeId n : mesh.patches[p].nodes) {
-      if (!has_role(n, BoundaryRole::sliding)) continue;
-      auto& index = sliding_index[static_cast<std::size_t>(n)];
-      if (index < 0) {
-        index = static_cast<int>(setup.sliding.size());
-        setup.sliding.push_back({});
-        setup.sliding.back().node = n;
+  /// Slip planes: constrain slip nodes now; sliding nodes collect them below.
+  void constrain_slip_nodes() {
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      if (motion_of_[p]->role != BoundaryRole::slip || mesh_.patches[p].nodes.empty()) continue;
+      plane_of_[p] = static_cast<int>(setup_.slip_planes.size());
+      setup_.slip_planes.push_back(slip_plane(mesh_, mesh_.patches[p]));
+      for (NodeId n : mesh_.patches[p].nodes) {
+        if (has_role(n, BoundaryRole::slip)) setup_.constraints.constrain(n, setup_.slip_planes.back().normal);
       }
-      SlidingNode& s = setup.sliding[static_cast<std::size_t>(index)];
-      if (m.role == BoundaryRole::sliding) {
-        if (s.shape_count == SlidingNode::kMaxShapes) {
-          throw InputError(fmt::format("node {} lies on more than {} sliding patches", mesh.node_id(n), SlidingNode::kMaxShapes));
+    }
+  }
+
+  /// Fixed and prescribed nodes.
+  void constrain_fixed_and_prescribed_nodes() {
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      const Patch& patch = mesh_.patches[p];
+      const PatchMotion& m = *motion_of_[p];
+      if (patch.nodes.empty()) continue;
+      if (m.role == BoundaryRole::fixed) {
+        for (NodeId n : patch.nodes) {
+          if (!is_slave(n)) setup_.constraints.fix(n);
         }
-        s.shapes[static_cast<std::size_t>(s.shape_count++)] = m.shape.get();
-      } else if (s.plane_count < 2) {
-        s.planes[static_cast<std::size_t>(s.plane_count++)] = plane_of[p];
+      } else if (m.role == BoundaryRole::prescribed) {
+        std::vector<NodeId> nodes;
+        for (NodeId n : patch.nodes) {
+          if (owner_[static_cast<std::size_t>(n)] == static_cast<int>(p) && !is_slave(n)) nodes.push_back(n);
+        }
+        const auto parameters = locate(mesh_, x0_, patch, m, nodes);
+        for (std::size_t k = 0; k < nodes.size(); ++k) {
+          setup_.prescribed.push_back({nodes[k], parameters[k], m.shape.get()});
+          setup_.constraints.fix(nodes[k]);
+        }
       }
     }
-  }
-  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-    const PatchMotion& m = *motion_of[p];
-    if (m.role != BoundaryRole::sliding || mesh.patches[p].nodes.empty()) continue;
-    std::vector<NodeId> nodes;
-    for (NodeId n : mesh.patches[p].nodes) {
-      if (has_role(n, BoundaryRole::sliding)) nodes.push_back(n);
-    }
-    const auto parameters = locate(mesh, x0, mesh.patches[p], m, nodes);
-    for (std::size_t k = 0; k < nodes.size(); ++k) {
-      SlidingNode& s = setup.sliding[static_cast<std::size_t>(sliding_index[static_cast<std::size_t>(nodes[k])])];
-      const auto i = static_cast<std::size_t>(std::find(s.shapes.begin(), s.shapes.end(), m.shape.get()) - s.shapes.begin());
-      s.hints[i] = parameters[k];
-      if (i == 0) s.origin = parameters[k];
-    }
-  }
-  // A sliding node on the rim of a passive surface that crosses its wall is held on that
-  // surface too: on the plane tangent to the surface's undeformed shape at the node (for an
-  // inlet or outlet plane, the plane itself). It then slides along the line where wall and
-  // surface meet (in 2D, it sits at their intersection), and the surface follows it.
-  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-    if (motion_of[p]->role != BoundaryRole::passive) continue;
-    std::vector<NodeId> rim_nodes;
-    for (NodeId n : mesh.patches[p].nodes) {
-      if (sliding_index[static_cast<std::size_t>(n)] >= 0) rim_nodes.push_back(n);
-    }
-    if (rim_nodes.empty()) continue;
-    const std::vector<Vec3> normals = surface_normals(mesh, mesh.patches[p], rim_nodes);
-    for (std::size_t k = 0; k < rim_nodes.size(); ++k) {
-      SlidingNode& s = setup.sliding[static_cast<std::size_t>(sliding_index[static_cast<std::size_t>(rim_nodes[k])])];
-      if (s.plane_count == static_cast<int>(s.planes.size()) || !(norm(normals[k]) > 0.0)) continue;
-      const Vec3& x = x0[static_cast<std::size_t>(s.node)];
-      bool crosses = true;
-      for (int i = 0; i < s.shape_count; ++i) {
-        const auto j = static_cast<std::size_t>(i);
-        const Vec3 wall = s.shapes[j]->at(s.hints[j], 0.0, x).normal;
-        crosses = crosses && norm(cross(wall, normals[k])) >= std::sin(kCrossingAngle) * norm(wall);
-      }
-      if (!crosses) continue;
-      s.planes[static_cast<std::size_t>(s.plane_count++)] = static_cast<int>(setup.slip_planes.size());
-      setup.slip_planes.push_back({mesh.points[static_cast<std::size_t>(s.node)], normals[k]});
-    }
-  }
-  // A restarted run keeps the material parameters of the previous runs (SlidingOrigin).
-  if (start) {
-    for (const SlidingOrigin& o : start->sliding) {
-      if (o.node < 0 || static_cast<std::size_t>(o.node) >= mesh.node_count()) continue;
-      const int index = sliding_index[static_cast<std::size_t>(o.node)];
-      if (index >= 0) setup.sliding[static_cast<std::size_t>(index)].origin = o.parameter;
-    }
-  }
-  // x_F: where the material point moves, plus (restart) the slide already made (section 4.3).
-  for (SlidingNode& s : setup.sliding) {
-    if (s.shape_count == 0) continue;
-    const Vec3& x = x0[static_cast<std::size_t>(s.node)];
-    s.target = x + (s.shapes[0]->at(s.origin, 1.0, x).point - s.shapes[0]->at(s.origin, 0.0, x).point);
-    if (start) s.target = place_sliding_node(s, s.target, 1.0, setup.slip_planes).point;
-  }
-  for (SlidingNode& s : setup.sliding) {
-    if (s.shape_count + s.plane_count >= mesh.dimension) {
-      setup.constraints.fix(s.node);  // walls meeting in a point: it moves only as they do
-    } else {
-      setup.constraints.track(s.node);
-    }
-    if (s.shape_count + s.plane_count > 1 && !start) s.target = place_sliding_node(s, s.target, 1.0, setup.slip_planes).point;
   }
 
-  // Passive surfaces (section 6.1): their rim moves with the walls around them; a spring
-  // analogy on each surface gives the rest. Then they are prescribed.
-  std::vector<std::optional<Vec3>> rim(mesh.node_count());
-  for (const PrescribedNode& p : setup.prescribed) {
-    rim[static_cast<std::size_t>(p.node)] = prescribed_position(p, x0[static_cast<std::size_t>(p.node)], 1.0) - x0[static_cast<std::size_t>(p.node)];
-  }
-  for (const SlidingNode& s : setup.sliding) rim[static_cast<std::size_t>(s.node)] = s.target - x0[static_cast<std::size_t>(s.node)];
-  for (std::size_t n = 0; n < mesh.node_count(); ++n) {
-    if (!is_slave(static_cast<NodeId>(n)) && has_role(static_cast<NodeId>(n), BoundaryRole::fixed)) rim[n] = Vec3{};
-  }
-  // A surface with a sliding node on its rim (or on the rim of a surface it follows) cannot be
-  // solved once for all: it follows its rim through the increments (follow_sliding_rims).
-  std::vector<char> follows_sliding(mesh.node_count(), 0);
-  for (const SlidingNode& s : setup.sliding) follows_sliding[static_cast<std::size_t>(s.node)] = 1;
-  std::vector<char> passive_done(mesh.node_count(), 0);
-  const RimDisplacement rim_of = [&](NodeId n) { return rim[static_cast<std::size_t>(n)]; };
-  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-    if (motion_of[p]->role != BoundaryRole::passive || mesh.patches[p].nodes.empty()) continue;
-    const Patch& patch = mesh.patches[p];
-    PassiveSurface surface(mesh, x0, patch, rim_of, setup.periodic);
-    const auto moved = surface.solve(rim_of);  // at the rim's targets
-    const auto rim_nodes = surface.rim_nodes();
-    const bool following = std::any_of(rim_nodes.begin(), rim_nodes.end(),
-                                       [&](NodeId n) { return follows_sliding[static_cast<std::size_t>(n)] != 0; });
-    std::vector<std::pair<std::size_t, NodeId>> solved;
-    for (std::size_t k = 0; k < patch.nodes.size(); ++k) {
-      const NodeId n = patch.nodes[k];
-      if (!has_role(n, BoundaryRole::passive) || passive_done[static_cast<std::size_t>(n)]) continue;
-      passive_done[static_cast<std::size_t>(n)] = 1;
-      follows_sliding[static_cast<std::size_t>(n)] = following ? 1 : 0;
-      rim[static_cast<std::size_t>(n)] = moved[k];  // a rim of the passive surfaces still to solve
-      setup.passive.push_back({n, moved[k]});
-      setup.constraints.fix(n);
-      solved.emplace_back(k, n);
-    }
-    if (following && !solved.empty()) setup.following.push_back({std::move(surface), std::move(solved)});
-  }
-
-  // Where a stronger role overrules a patch's deflection at shared nodes (a fixed wall beside a
-  // moving one), say so if the two disagree about where the node goes.
-  const auto final_position = [&](const PatchMotion& m, NodeId n) {
-    const Vec3& x = x0[static_cast<std::size_t>(n)];
-    if (m.role == BoundaryRole::fixed || !m.shape) return x;
-    return prescribed_position({n, m.shape->project(x, 0.0).parameter, m.shape.get()}, x, 1.0);
-  };
-  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-    const PatchMotion& m = *motion_of[p];
-    if (m.role != BoundaryRole::prescribed && m.role != BoundaryRole::sliding) continue;
-    std::size_t overruled = 0;
-    double largest = 0.0;
-    const double tolerance = 1e-6 * bounding_diagonal(mesh.points, mesh.patches[p].nodes);
-    for (NodeId n : mesh.patches[p].nodes) {
-      if (is_slave(n) || role_priority(n) <= priority(m.role)) continue;
-      const PatchMotion& winner = *motion_of[static_cast<std::size_t>(owner[static_cast<std::size_t>(n)])];
-      const double gap = distance(final_position(m, n), final_position(winner, n));
-      if (gap > tolerance) {
-        ++overruled;
-        largest = std::max(largest, gap);
+  /// Sliding nodes: every sliding shape and slip plane they lie on, and where on each shape.
+  void collect_sliding_nodes() {
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      const PatchMotion& m = *motion_of_[p];
+      if (m.role != BoundaryRole::sliding && m.role != BoundaryRole::slip) continue;
+      for (NodeId n : mesh_.patches[p].nodes) {
+        if (!has_role(n, BoundaryRole::sliding)) continue;
+        auto& index = sliding_index_[static_cast<std::size_t>(n)];
+        if (index < 0) {
+          index = static_cast<int>(setup_.sliding.size());
+          setup_.sliding.push_back({});
+          setup_.sliding.back().node = n;
+        }
+        SlidingNode& s = setup_.sliding[static_cast<std::size_t>(index)];
+        if (m.role == BoundaryRole::sliding) {
+          if (s.shape_count == SlidingNode::kMaxShapes) {
+            throw InputError(
+                fmt::format("node {} lies on more than {} sliding patches", mesh_.node_id(n), SlidingNode::kMaxShapes));
+          }
+          s.shapes[static_cast<std::size_t>(s.shape_count++)] = m.shape.get();
+        } else if (s.plane_count < 2) {
+          s.planes[static_cast<std::size_t>(s.plane_count++)] = plane_of_[p];
+        }
       }
     }
-    if (overruled > 0) {
-      setup.notes.push_back(fmt::format("patch '{}': {} nodes shared with fixed or prescribed patches follow those, "
-                                        "{:.3g} away at most from where this patch's deflection would take them",
-                                        mesh.patches[p].name, overruled, largest));
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      const PatchMotion& m = *motion_of_[p];
+      if (m.role != BoundaryRole::sliding || mesh_.patches[p].nodes.empty()) continue;
+      std::vector<NodeId> nodes;
+      for (NodeId n : mesh_.patches[p].nodes) {
+        if (has_role(n, BoundaryRole::sliding)) nodes.push_back(n);
+      }
+      const auto parameters = locate(mesh_, x0_, mesh_.patches[p], m, nodes);
+      for (std::size_t k = 0; k < nodes.size(); ++k) {
+        SlidingNode& s = setup_.sliding[static_cast<std::size_t>(sliding_index_[static_cast<std::size_t>(nodes[k])])];
+        const auto i =
+            static_cast<std::size_t>(std::find(s.shapes.begin(), s.shapes.end(), m.shape.get()) - s.shapes.begin());
+        s.hints[i] = parameters[k];
+        if (i == 0) s.origin = parameters[k];
+      }
     }
   }
-  refuse_free_rigid_motions(mesh, setup, follows_sliding);
-  return setup;
+
+  /// A sliding node on the rim of a passive surface that crosses its wall is held on that
+  /// surface too: on the plane tangent to the surface's undeformed shape at the node (for an
+  /// inlet or outlet plane, the plane itself). It then slides along the line where wall and
+  /// surface meet (in 2D, it sits at their intersection), and the surface follows it.
+  void hold_sliding_rims_on_passive_surfaces() {
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      if (motion_of_[p]->role != BoundaryRole::passive) continue;
+      std::vector<NodeId> rim_nodes;
+      for (NodeId n : mesh_.patches[p].nodes) {
+        if (sliding_index_[static_cast<std::size_t>(n)] >= 0) rim_nodes.push_back(n);
+      }
+      if (rim_nodes.empty()) continue;
+      const std::vector<Vec3> normals = surface_normals(mesh_, mesh_.patches[p], rim_nodes);
+      for (std::size_t k = 0; k < rim_nodes.size(); ++k) {
+        SlidingNode& s = setup_.sliding[static_cast<std::size_t>(sliding_index_[static_cast<std::size_t>(rim_nodes[k])])];
+        if (s.plane_count == static_cast<int>(s.planes.size()) || !(norm(normals[k]) > 0.0)) continue;
+        const Vec3& x = x0_[static_cast<std::size_t>(s.node)];
+        bool crosses = true;
+        for (int i = 0; i < s.shape_count; ++i) {
+          const auto j = static_cast<std::size_t>(i);
+          const Vec3 wall = s.shapes[j]->at(s.hints[j], 0.0, x).normal;
+          crosses = crosses && norm(cross(wall, normals[k])) >= std::sin(kCrossingAngle) * norm(wall);
+        }
+        if (!crosses) continue;
+        s.planes[static_cast<std::size_t>(s.plane_count++)] = static_cast<int>(setup_.slip_planes.size());
+        setup_.slip_planes.push_back({mesh_.points[static_cast<std::size_t>(s.node)], normals[k]});
+      }
+    }
+  }
+
+  /// x_F: where each sliding node's material point moves, plus (restart) the slide already
+  /// made (section 4.3); a restarted run keeps the material parameters of the previous runs
+  /// (SlidingOrigin). Nodes where walls meet in a point are fixed, the others tracked.
+  void set_sliding_targets() {
+    if (start_) {
+      for (const SlidingOrigin& o : start_->sliding) {
+        if (o.node < 0 || static_cast<std::size_t>(o.node) >= mesh_.node_count()) continue;
+        const int index = sliding_index_[static_cast<std::size_t>(o.node)];
+        if (index >= 0) setup_.sliding[static_cast<std::size_t>(index)].origin = o.parameter;
+      }
+    }
+    for (SlidingNode& s : setup_.sliding) {
+      if (s.shape_count == 0) continue;
+      const Vec3& x = x0_[static_cast<std::size_t>(s.node)];
+      s.target = x + (s.shapes[0]->at(s.origin, 1.0, x).point - s.shapes[0]->at(s.origin, 0.0, x).point);
+      if (start_) s.target = place_sliding_node(s, s.target, 1.0, setup_.slip_planes).point;
+    }
+    for (SlidingNode& s : setup_.sliding) {
+      if (s.shape_count + s.plane_count >= mesh_.dimension) {
+        setup_.constraints.fix(s.node);  // walls meeting in a point: it moves only as they do
+      } else {
+        setup_.constraints.track(s.node);
+      }
+      if (s.shape_count + s.plane_count > 1 && !start_) {
+        s.target = place_sliding_node(s, s.target, 1.0, setup_.slip_planes).point;
+      }
+    }
+  }
+
+  /// Passive surfaces (section 6.1): their rim moves with the walls around them; a spring
+  /// analogy on each surface gives the rest. Then they are prescribed.
+  void solve_passive_surfaces() {
+    for (const PrescribedNode& p : setup_.prescribed) {
+      const Vec3& x = x0_[static_cast<std::size_t>(p.node)];
+      rim_[static_cast<std::size_t>(p.node)] = prescribed_position(p, x, 1.0) - x;
+    }
+    for (const SlidingNode& s : setup_.sliding) rim_[static_cast<std::size_t>(s.node)] = s.target - x0_[static_cast<std::size_t>(s.node)];
+    for (std::size_t n = 0; n < mesh_.node_count(); ++n) {
+      if (!is_slave(static_cast<NodeId>(n)) && has_role(static_cast<NodeId>(n), BoundaryRole::fixed)) rim_[n] = Vec3{};
+    }
+    // A surface with a sliding node on its rim (or on the rim of a surface it follows) cannot
+    // be solved once for all: it follows its rim through the increments (follow_sliding_rims).
+    for (const SlidingNode& s : setup_.sliding) follows_sliding_[static_cast<std::size_t>(s.node)] = 1;
+    std::vector<char> passive_done(mesh_.node_count(), 0);
+    const RimDisplacement rim_of = [&](NodeId n) { return rim_[static_cast<std::size_t>(n)]; };
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      if (motion_of_[p]->role != BoundaryRole::passive || mesh_.patches[p].nodes.empty()) continue;
+      const Patch& patch = mesh_.patches[p];
+      PassiveSurface surface(mesh_, x0_, patch, rim_of, setup_.periodic);
+      const auto moved = surface.solve(rim_of);  // at the rim's targets
+      const auto rim_nodes = surface.rim_nodes();
+      const bool following = std::any_of(rim_nodes.begin(), rim_nodes.end(),
+                                         [&](NodeId n) { return follows_sliding_[static_cast<std::size_t>(n)] != 0; });
+      std::vector<std::pair<std::size_t, NodeId>> solved;
+      for (std::size_t k = 0; k < patch.nodes.size(); ++k) {
+        const NodeId n = patch.nodes[k];
+        if (!has_role(n, BoundaryRole::passive) || passive_done[static_cast<std::size_t>(n)]) continue;
+        passive_done[static_cast<std::size_t>(n)] = 1;
+        follows_sliding_[static_cast<std::size_t>(n)] = following ? 1 : 0;
+        rim_[static_cast<std::size_t>(n)] = moved[k];  // a rim of the passive surfaces still to solve
+        setup_.passive.push_back({n, moved[k]});
+        setup_.constraints.fix(n);
+        solved.emplace_back(k, n);
+      }
+      if (following && !solved.empty()) setup_.following.push_back({std::move(surface), std::move(solved)});
+    }
+  }
+
+  /// Where a stronger role overrules a patch's deflection at shared nodes (a fixed wall beside
+  /// a moving one), say so if the two disagree about where the node goes.
+  void note_overruled_deflections() {
+    const auto final_position = [&](const PatchMotion& m, NodeId n) {
+      const Vec3& x = x0_[static_cast<std::size_t>(n)];
+      if (m.role == BoundaryRole::fixed || !m.shape) return x;
+      return prescribed_position({n, m.shape->project(x, 0.0).parameter, m.shape.get()}, x, 1.0);
+    };
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      const PatchMotion& m = *motion_of_[p];
+      if (m.role != BoundaryRole::prescribed && m.role != BoundaryRole::sliding) continue;
+      std::size_t overruled = 0;
+      double largest = 0.0;
+      const double tolerance = 1e-6 * bounding_diagonal(mesh_.points, mesh_.patches[p].nodes);
+      for (NodeId n : mesh_.patches[p].nodes) {
+        if (is_slave(n) || role_priority(n) <= priority(m.role)) continue;
+        const PatchMotion& winner = *motion_of_[static_cast<std::size_t>(owner_[static_cast<std::size_t>(n)])];
+        const double gap = distance(final_position(m, n), final_position(winner, n));
+        if (gap > tolerance) {
+          ++overruled;
+          largest = std::max(largest, gap);
+        }
+      }
+      if (overruled > 0) {
+        setup_.notes.push_back(fmt::format("patch '{}': {} nodes shared with fixed or prescribed patches follow those, "
+                                           "{:.3g} away at most from where this patch's deflection would take them",
+                                           mesh_.patches[p].name, overruled, largest));
+      }
+    }
+  }
+
+  /// The set-up, once every rigid-body motion is held (refuse_free_rigid_motions).
+  BoundarySetup finish() {
+    refuse_free_rigid_motions(mesh_, setup_, follows_sliding_);
+    return std::move(setup_);
+  }
+
+ private:
+  std::size_t patch_index(const std::string& name) const {
+    const auto it =
+        std::find_if(mesh_.patches.begin(), mesh_.patches.end(), [&](const Patch& p) { return p.name == name; });
+    if (it == mesh_.patches.end()) throw InputError(fmt::format("the mesh has no patch '{}'", name));
+    return static_cast<std::size_t>(it - mesh_.patches.begin());
+  }
+  bool is_slave(NodeId n) const { return setup_.periodic.is_slave(n); }
+  int role_priority(NodeId n) const {
+    const int o = owner_[static_cast<std::size_t>(n)];
+    return o < 0 ? 0 : priority(motion_of_[static_cast<std::size_t>(o)]->role);
+  }
+  bool has_role(NodeId n, BoundaryRole role) const { return !is_slave(n) && role_priority(n) == priority(role); }
+
+  const Mesh& mesh_;
+  std::span<const PatchMotion> patches_;
+  const MotionStart* start_;
+  BoundarySetup setup_;
+  const std::vector<Vec3>& x0_;                  ///< setup_.reference
+  std::vector<const PatchMotion*> motion_of_;    ///< per mesh patch
+  std::vector<int> owner_;                       ///< per node: the patch of its strongest role, or -1
+  std::vector<int> plane_of_;                    ///< per mesh patch: its slip plane, or -1
+  std::vector<int> sliding_index_;               ///< per node: its index in setup_.sliding, or -1
+  std::vector<std::optional<Vec3>> rim_;         ///< per node: its displacement where known
+  std::vector<char> follows_sliding_;            ///< per node: moves with a sliding node
+};
+
+}  // namespace
+
+BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> patches, const MotionStart* start) {
+  BoundaryBuilder builder(mesh, patches, start);
+  builder.assign_motions();
+  builder.couple_periodic_pairs();
+  builder.assign_node_roles();
+  builder.constrain_slip_nodes();
+  builder.constrain_fixed_and_prescribed_nodes();
+  builder.collect_sliding_nodes();
+  builder.hold_sliding_rims_on_passive_surfaces();
+  builder.set_sliding_targets();
+  builder.solve_passive_surfaces();
+  builder.note_overruled_deflections();
+  return builder.finish();
 }
 
 void follow_sliding_rims(const BoundarySetup& setup, std::span<const Vec3> x, std::span<double> u) {
