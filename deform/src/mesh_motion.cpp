@@ -224,18 +224,11 @@ class Motion {
     return 64.0 * std::numeric_limits<double>::epsilon() * size_ * std::sqrt(static_cast<double>(dofs));
   }
 
-  /// One increment: Newton-Raphson from the current mesh to stage b. Returns the new points.
-  std::vector<Vec3> attempt(const MotionStep& piece, IncrementRecord& record) {
-    const auto start = Clock::now();
-    const double a = piece.lambda_begin, b = piece.lambda_end;
-    record.lambda_begin = a;
-    record.lambda_end = b;
+  /// Initial u of an increment from stage a to b: the boundary's move to stage b on prescribed
+  /// nodes, the forcing displacement u0s on sliding nodes (eqs. 13, 22), zero elsewhere.
+  std::vector<double> initial_displacements(double a, double b) {
     const std::vector<Vec3>& x = result_.points;
-    const std::size_t dofs = stiffness_.size();
-
-    // Initial u: the boundary's move to stage b on prescribed nodes, the forcing
-    // displacement u0s on sliding nodes (eqs. 13, 22), zero elsewhere.
-    std::vector<double> u(dofs, 0.0);
+    std::vector<double> u(stiffness_.size(), 0.0);
     for (const auto& p : setup_.prescribed) {
       const auto i = static_cast<std::size_t>(p.node);
       const Vec3 target = detail::prescribed_position(p, setup_.reference[i], b);
@@ -246,10 +239,42 @@ class Motion {
       const Vec3 target = setup_.reference[i] + b * p.displacement;
       for (std::size_t c = 0; c < dim_; ++c) u[i * dim_ + c] = target[c] - x[i][c];
     }
-    auto t = Clock::now();
+    const auto t = Clock::now();
     sliding_.begin_increment(a, b, x, u);
     result_.timings.projection += seconds_since(t);
     setup_.periodic.expand(u);  // slaves follow their masters
+    return u;
+  }
+
+  /// A converged increment is accepted if no cell of the moved mesh `trial` is inverted.
+  void accept_if_valid(const std::vector<Vec3>& trial, std::span<const double> u, IncrementRecord& record) {
+    const auto t = Clock::now();
+    const auto quality = scaled_jacobians(mesh_.cells, trial);
+    const auto summary = summarize_quality(quality);
+    result_.timings.quality += seconds_since(t);
+    record.min_scaled_jacobian = summary.min_scaled_jacobian;
+    record.inverted_cells = summary.inverted_cells;
+    record.worst_cell = summary.worst_cell;
+    if (summary.inverted_cells > 0) {
+      record.failure = fmt::format("{} cells inverted, the worst cell {} (scaled Jacobian {:.3g})",
+                                   summary.inverted_cells, mesh_.cell_id(summary.worst_cell),
+                                   summary.min_scaled_jacobian);
+    } else {
+      record.accepted = true;
+      sliding_.end_increment(u);
+    }
+  }
+
+  /// One increment: Newton-Raphson from the current mesh to stage b. Returns the new points.
+  std::vector<Vec3> attempt(const MotionStep& piece, IncrementRecord& record) {
+    const auto start = Clock::now();
+    const double a = piece.lambda_begin, b = piece.lambda_end;
+    record.lambda_begin = a;
+    record.lambda_end = b;
+    const std::vector<Vec3>& x = result_.points;
+    const std::size_t dofs = stiffness_.size();
+
+    std::vector<double> u = initial_displacements(a, b);
 
     std::vector<Vec3> trial(x.size());
     std::vector<double> r(dofs), rhs(dofs), p(dofs), node_stiffness(dofs / dim_);
@@ -301,28 +326,12 @@ class Motion {
       record.max_normal_slip = std::max(record.max_normal_slip, sliding_.normal_component(p));
       axpy(1.0, p, u);
       // Every sliding node back onto the partial boundary c_b, with its new normal (4.2).
-      t = Clock::now();
+      const auto t = Clock::now();
       step.max_projection = sliding_.project(b, x, u);
       result_.timings.projection += seconds_since(t);
       setup_.periodic.expand(u);
     }
-    if (record.converged) {
-      t = Clock::now();
-      const auto quality = scaled_jacobians(mesh_.cells, trial);
-      const auto summary = summarize_quality(quality);
-      result_.timings.quality += seconds_since(t);
-      record.min_scaled_jacobian = summary.min_scaled_jacobian;
-      record.inverted_cells = summary.inverted_cells;
-      record.worst_cell = summary.worst_cell;
-      if (summary.inverted_cells > 0) {
-        record.failure = fmt::format("{} cells inverted, the worst cell {} (scaled Jacobian {:.3g})",
-                                     summary.inverted_cells, mesh_.cell_id(summary.worst_cell),
-                                     summary.min_scaled_jacobian);
-      } else {
-        record.accepted = true;
-        sliding_.end_increment(u);
-      }
-    }
+    if (record.converged) accept_if_valid(trial, u, record);
     record.seconds = seconds_since(start);
     return trial;
   }

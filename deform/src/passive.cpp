@@ -40,10 +40,17 @@ std::pair<std::int64_t, const Rotation*> PassiveSurface::owner(std::size_t i) co
 PassiveSurface::PassiveSurface(const Mesh& mesh, std::span<const Vec3> points, const Patch& patch,
                                const RimDisplacement& rim, const PeriodicCoupling& periodic)
     : name_(patch.name), dim_(static_cast<std::size_t>(mesh.dimension)), nodes_(patch.nodes) {
-  const std::size_t d = dim_;
-  // Local numbering of the surface's nodes, and what is known about each.
-  std::unordered_map<NodeId, std::size_t> local;
+  LocalIndex local;
   for (std::size_t i = 0; i < nodes_.size(); ++i) local[nodes_[i]] = i;
+  classify_nodes(rim, periodic, local);
+  build_springs(patch, points, local);
+  if (unknowns_ == 0) return;
+  require_every_node_driven(mesh);
+  factorise();
+}
+
+void PassiveSurface::classify_nodes(const RimDisplacement& rim, const PeriodicCoupling& periodic,
+                                    const LocalIndex& local) {
   const std::size_t n = nodes_.size();
   known_.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -85,8 +92,10 @@ PassiveSurface::PassiveSurface(const Mesh& mesh, std::span<const Vec3> points, c
   for (std::size_t i = 0; i < n; ++i) {
     if (!known_[i] && master_of_[i] < 0) unknown_[i] = static_cast<std::int64_t>(unknowns_++);
   }
+}
 
-  // Springs along face edges (each edge once), stiffness 1 / length.
+/// Springs along face edges (each edge once), stiffness 1 / length.
+void PassiveSurface::build_springs(const Patch& patch, std::span<const Vec3> points, const LocalIndex& local) {
   std::map<std::pair<NodeId, NodeId>, double> edges;
   for (std::size_t f = 0; f < patch.faces.size(); ++f) {
     const auto face = patch.faces.nodes(f);
@@ -98,44 +107,47 @@ PassiveSurface::PassiveSurface(const Mesh& mesh, std::span<const Vec3> points, c
     }
   }
   springs_.reserve(edges.size());
-  for (const auto& [edge, k] : edges) springs_.push_back({local[edge.first], local[edge.second], k});
-  if (unknowns_ == 0) return;
+  for (const auto& [edge, k] : edges) springs_.push_back({local.at(edge.first), local.at(edge.second), k});
+}
 
-  // Every part of the surface must be reached from its rim along springs (or periodic ties).
-  {
-    std::vector<std::vector<std::size_t>> next(n);
-    for (const Spring& s : springs_) {
-      next[s.a].push_back(s.b);
-      next[s.b].push_back(s.a);
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (master_of_[i] >= 0) {
-        next[i].push_back(static_cast<std::size_t>(master_of_[i]));
-        next[static_cast<std::size_t>(master_of_[i])].push_back(i);
-      }
-    }
-    std::vector<char> reached(known_);
-    std::vector<std::size_t> queue;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (known_[i]) queue.push_back(i);
-    }
-    for (std::size_t q = 0; q < queue.size(); ++q) {
-      for (std::size_t j : next[queue[q]]) {
-        if (!reached[j]) {
-          reached[j] = 1;
-          queue.push_back(j);
-        }
-      }
-    }
-    const auto stray = std::find(reached.begin(), reached.end(), 0);
-    if (stray != reached.end()) {
-      throw InputError(fmt::format("passive patch '{}': part of it (node {} and its neighbours) touches no fixed, "
-                                   "prescribed or sliding wall, so nothing drives its motion; give it another role",
-                                   name_, mesh.node_id(nodes_[static_cast<std::size_t>(stray - reached.begin())])));
+/// Every part of the surface must be reached from its rim along springs (or periodic ties).
+void PassiveSurface::require_every_node_driven(const Mesh& mesh) const {
+  const std::size_t n = nodes_.size();
+  std::vector<std::vector<std::size_t>> next(n);
+  for (const Spring& s : springs_) {
+    next[s.a].push_back(s.b);
+    next[s.b].push_back(s.a);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (master_of_[i] >= 0) {
+      next[i].push_back(static_cast<std::size_t>(master_of_[i]));
+      next[static_cast<std::size_t>(master_of_[i])].push_back(i);
     }
   }
+  std::vector<char> reached(known_);
+  std::vector<std::size_t> queue;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (known_[i]) queue.push_back(i);
+  }
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    for (std::size_t j : next[queue[q]]) {
+      if (!reached[j]) {
+        reached[j] = 1;
+        queue.push_back(j);
+      }
+    }
+  }
+  const auto stray = std::find(reached.begin(), reached.end(), 0);
+  if (stray != reached.end()) {
+    throw InputError(fmt::format("passive patch '{}': part of it (node {} and its neighbours) touches no fixed, "
+                                 "prescribed or sliding wall, so nothing drives its motion; give it another role",
+                                 name_, mesh.node_id(nodes_[static_cast<std::size_t>(stray - reached.begin())])));
+  }
+}
 
-  // Energy sum k |u_a - u_b|^2 / 2 with u = T U + u_known: the matrix sum (T_a - T_b)^T k (T_a - T_b).
+/// Energy sum k |u_a - u_b|^2 / 2 with u = T U + u_known: the matrix sum (T_a - T_b)^T k (T_a - T_b).
+void PassiveSurface::factorise() {
+  const std::size_t d = dim_;
   std::vector<Eigen::Triplet<double>> triplets;
   for (const Spring& s : springs_) {
     const std::array<std::size_t, 2> ends{s.a, s.b};

@@ -15,6 +15,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "hotmesh/deform/mesh.hpp"
@@ -53,6 +54,16 @@ class PassiveSurface {
     std::int64_t local_master = -1;  ///< its local index if it is a node of the surface
     std::size_t rotation = 0;  ///< index into rotations_
   };
+  /// Node index -> local index (position in nodes_).
+  using LocalIndex = std::unordered_map<NodeId, std::size_t>;
+
+  /// The phases of the set-up: which nodes are known (rim, tied periodic slaves) and which
+  /// are unknowns; the springs; the check that the rim reaches every node; the factors.
+  void classify_nodes(const RimDisplacement& rim, const PeriodicCoupling& periodic, const LocalIndex& local);
+  void build_springs(const Patch& patch, std::span<const Vec3> points, const LocalIndex& local);
+  void require_every_node_driven(const Mesh& mesh) const;
+  void factorise();
+
   /// u_i = T_i U (the unknown of node i, or of its master turned by R), or -1 for known nodes.
   std::pair<std::int64_t, const Rotation*> owner(std::size_t i) const;
 

@@ -93,9 +93,10 @@ bool ends_meet(const BSplineCurve2d& a, const BSplineCurve2d& b, double toleranc
   return false;
 }
 
-/// Distinct pieces ordered end to end into one profile (steps 2 to 4 of join_profile).
-Profile chain_profile(const std::vector<ProfilePiece>& distinct, double tolerance, const std::string& source) {
-  // 2. Chain them, starting from an end that no other piece touches (any, if closed).
+/// 2. The pieces chained end to end, starting from an end that no other piece touches (any,
+/// if closed); each piece reversed where it runs the other way.
+std::vector<ProfilePiece> chain_pieces(const std::vector<ProfilePiece>& distinct, double tolerance,
+                                       const std::string& source) {
   const auto touches = [&](const Vec2& p, std::size_t self) {
     for (std::size_t k = 0; k < distinct.size(); ++k) {
       if (k == self) continue;
@@ -145,7 +146,12 @@ Profile chain_profile(const std::vector<ProfilePiece>& distinct, double toleranc
     used[best] = 1;
     chain.push_back({reverse ? distinct[best].curve.reversed() : distinct[best].curve, distinct[best].face});
   }
-  // 3. Orientation, then parameters proportional to length on [0, 1] and a common degree.
+  return chain;
+}
+
+/// 3. The chain oriented (runs_backwards), and the parameters of its joints, proportional to
+/// length on [0, 1].
+std::vector<double> orient_and_measure(std::vector<ProfilePiece>& chain, double tolerance, const std::string& source) {
   if (runs_backwards(start_of(chain.front().curve), end_of(chain.back().curve), tolerance)) {
     std::reverse(chain.begin(), chain.end());
     for (auto& piece : chain) piece.curve = piece.curve.reversed();
@@ -159,14 +165,20 @@ Profile chain_profile(const std::vector<ProfilePiece>& distinct, double toleranc
   if (!(total > 0.0)) throw InputError::in(source, "the meridional curve of faces " + face_list(chain) + " has no length");
   for (double& b : breaks) b /= total;
   breaks.back() = 1.0;
+  return breaks;
+}
+
+/// 4. Concatenation at a common degree: shared end poles averaged, weights of each piece
+/// scaled (which leaves a rational curve unchanged) to match at the joints, knot multiplicity
+/// = degree there.
+Profile concatenate(const std::vector<ProfilePiece>& chain, const std::vector<double>& breaks,
+                    const std::string& source) {
   int degree = 1;
   bool rational = false;
   for (const auto& piece : chain) {
     degree = std::max(degree, piece.curve.degree());
     rational = rational || piece.curve.is_rational();
   }
-  // 4. Concatenation: shared end poles averaged, weights of each piece scaled (which leaves
-  //    a rational curve unchanged) to match at the joints, knot multiplicity = degree there.
   const auto p = static_cast<std::size_t>(degree);
   std::vector<double> knots;
   std::vector<Vec2> poles;
@@ -199,6 +211,13 @@ Profile chain_profile(const std::vector<ProfilePiece>& distinct, double toleranc
   if (!rational) weights.clear();
   profile.curve = BSplineCurve2d(degree, std::move(knots), std::move(poles), std::move(weights));
   return profile;
+}
+
+/// Distinct pieces ordered end to end into one profile (steps 2 to 4 of join_profile).
+Profile chain_profile(const std::vector<ProfilePiece>& distinct, double tolerance, const std::string& source) {
+  std::vector<ProfilePiece> chain = chain_pieces(distinct, tolerance, source);
+  const std::vector<double> breaks = orient_and_measure(chain, tolerance, source);
+  return concatenate(chain, breaks, source);
 }
 
 }  // namespace
