@@ -17,6 +17,7 @@
 #include <map>
 #include <ostream>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -217,56 +218,64 @@ void write_block(Out& out, const Mesh& mesh, int dimension, int entity, const El
   }
 }
 
-}  // namespace
+/// Cell entities: one per set of groups, numbered in order of first appearance, each with the
+/// bounding box of its cells.
+struct CellEntities {
+  std::vector<int> of_set;             ///< per set of groups: its entity tag, 0 if no cell has it
+  std::vector<std::uint32_t> sets;     ///< per entity (tag - 1): its set of groups
+  std::vector<Box> boxes;              ///< per entity
+};
 
-void write_gmsh(std::ostream& stream, const Mesh& mesh, const GmshWriteOptions& options) {
-  check_mesh(mesh);
-  const int d = mesh.dimension;
-  const std::vector<int> patch_tags = physical_tags(mesh.patches);
-  const std::vector<int> group_tags = physical_tags(mesh.cell_groups);
-  const CellSets sets = cell_sets(mesh);
-
-  // Cell entities: one per set of groups, numbered in order of first appearance.
-  std::vector<int> entity_of_set(sets.sets.size(), 0);
-  std::vector<std::uint32_t> entity_sets;
+CellEntities cell_entities(const Mesh& mesh, const CellSets& sets) {
+  CellEntities e;
+  e.of_set.assign(sets.sets.size(), 0);
   for (std::uint32_t set : sets.of_cell) {
-    if (entity_of_set[set] == 0) {
-      entity_sets.push_back(set);
-      entity_of_set[set] = static_cast<int>(entity_sets.size());
+    if (e.of_set[set] == 0) {
+      e.sets.push_back(set);
+      e.of_set[set] = static_cast<int>(e.sets.size());
     }
   }
-  if (entity_sets.empty()) entity_sets.push_back(0);  // the nodes need an entity to sit on
-  std::vector<Box> cell_boxes(entity_sets.size());
+  if (e.sets.empty()) e.sets.push_back(0);  // the nodes need an entity to sit on
+  e.boxes.resize(e.sets.size());
   for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
-    Box& box = cell_boxes[static_cast<std::size_t>(entity_of_set[sets.of_cell[c]] - 1)];
+    Box& box = e.boxes[static_cast<std::size_t>(e.of_set[sets.of_cell[c]] - 1)];
     for (deform::NodeId n : mesh.cells.nodes(c)) box.add(mesh.points[static_cast<std::size_t>(n)]);
   }
+  return e;
+}
 
-  Out out(stream, options.binary);
-  out.text(options.binary ? "$MeshFormat\n4.1 1 8\n" : "$MeshFormat\n4.1 0 8\n");
-  if (options.binary) {
+void write_format(Out& out, bool binary) {
+  out.text(binary ? "$MeshFormat\n4.1 1 8\n" : "$MeshFormat\n4.1 0 8\n");
+  if (binary) {
     out.int32(1);
     out.text("\n");
   }
   out.text("$EndMeshFormat\n");
+}
 
-  if (!mesh.patches.empty() || !mesh.cell_groups.empty()) {
-    out.text("$PhysicalNames\n" + std::to_string(mesh.patches.size() + mesh.cell_groups.size()) + "\n");
-    for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-      out.text(std::to_string(d - 1) + " " + std::to_string(patch_tags[p]) + " \"" + mesh.patches[p].name + "\"\n");
-    }
-    for (std::size_t g = 0; g < mesh.cell_groups.size(); ++g) {
-      out.text(std::to_string(d) + " " + std::to_string(group_tags[g]) + " \"" + mesh.cell_groups[g].name + "\"\n");
-    }
-    out.text("$EndPhysicalNames\n");
+void write_physical_names(Out& out, const Mesh& mesh, std::span<const int> patch_tags, std::span<const int> group_tags) {
+  if (mesh.patches.empty() && mesh.cell_groups.empty()) return;
+  const int d = mesh.dimension;
+  out.text("$PhysicalNames\n" + std::to_string(mesh.patches.size() + mesh.cell_groups.size()) + "\n");
+  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
+    out.text(std::to_string(d - 1) + " " + std::to_string(patch_tags[p]) + " \"" + mesh.patches[p].name + "\"\n");
   }
+  for (std::size_t g = 0; g < mesh.cell_groups.size(); ++g) {
+    out.text(std::to_string(d) + " " + std::to_string(group_tags[g]) + " \"" + mesh.cell_groups[g].name + "\"\n");
+  }
+  out.text("$EndPhysicalNames\n");
+}
 
+/// $Entities: one per patch (its physical tag), then the cell entities.
+void write_entities(Out& out, const Mesh& mesh, std::span<const int> patch_tags, std::span<const int> group_tags,
+                    const CellSets& sets, const CellEntities& entities) {
+  const int d = mesh.dimension;
   out.begin_section("Entities");
   const std::size_t patch_entities = mesh.patches.size();
   out.size(0);  // points
   out.size(d == 3 ? 0 : patch_entities);
-  out.size(d == 3 ? patch_entities : entity_sets.size());
-  out.size(d == 3 ? entity_sets.size() : 0);
+  out.size(d == 3 ? patch_entities : entities.sets.size());
+  out.size(d == 3 ? entities.sets.size() : 0);
   out.end_record();
   for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
     Box box;
@@ -274,13 +283,16 @@ void write_gmsh(std::ostream& stream, const Mesh& mesh, const GmshWriteOptions& 
     const int tag[] = {patch_tags[p]};
     write_entity(out, static_cast<int>(p) + 1, box, tag);
   }
-  for (std::size_t e = 0; e < entity_sets.size(); ++e) {
+  for (std::size_t e = 0; e < entities.sets.size(); ++e) {
     std::vector<int> physical;
-    for (std::size_t g : sets.sets[entity_sets[e]]) physical.push_back(group_tags[g]);
-    write_entity(out, static_cast<int>(e) + 1, cell_boxes[e], physical);
+    for (std::size_t g : sets.sets[entities.sets[e]]) physical.push_back(group_tags[g]);
+    write_entity(out, static_cast<int>(e) + 1, entities.boxes[e], physical);
   }
   out.end_section("Entities");
+}
 
+/// $Nodes: one block, on the first cell entity.
+void write_nodes(Out& out, const Mesh& mesh) {
   const std::size_t n = mesh.points.size();
   std::int64_t min_node = 0, max_node = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -295,7 +307,7 @@ void write_gmsh(std::ostream& stream, const Mesh& mesh, const GmshWriteOptions& 
   out.size(static_cast<std::uint64_t>(max_node));
   out.end_record();
   if (n > 0) {
-    out.int32(d);
+    out.int32(mesh.dimension);
     out.int32(1);
     out.int32(0);  // no parametric coordinates
     out.size(n);
@@ -312,8 +324,12 @@ void write_gmsh(std::ostream& stream, const Mesh& mesh, const GmshWriteOptions& 
     }
   }
   out.end_section("Nodes");
+}
 
-  // Blocks: runs of consecutive cells with one entity and type, then faces by patch and type.
+/// $Elements: blocks of runs of consecutive cells with one entity and type, then the faces by
+/// patch and type, numbered after the cells.
+void write_elements(Out& out, const Mesh& mesh, const CellSets& sets, const CellEntities& entities) {
+  const int d = mesh.dimension;
   struct Run {
     std::size_t begin, end;
   };
@@ -350,7 +366,7 @@ void write_gmsh(std::ostream& stream, const Mesh& mesh, const GmshWriteOptions& 
   out.size(static_cast<std::uint64_t>(faces > 0 ? first_face + static_cast<std::int64_t>(faces) - 1 : max_cell));
   out.end_record();
   for (const Run& run : cell_runs) {
-    const int entity = entity_of_set[sets.of_cell[run.begin]];
+    const int entity = entities.of_set[sets.of_cell[run.begin]];
     const std::vector<std::int64_t>* ids = mesh.cell_ids.empty() ? nullptr : &mesh.cell_ids;
     write_block(out, mesh, d, entity, mesh.cells, run.begin, run.end, ids, static_cast<std::int64_t>(run.begin) + 1);
   }
@@ -363,6 +379,22 @@ void write_gmsh(std::ostream& stream, const Mesh& mesh, const GmshWriteOptions& 
     }
   }
   out.end_section("Elements");
+}
+
+}  // namespace
+
+void write_gmsh(std::ostream& stream, const Mesh& mesh, const GmshWriteOptions& options) {
+  check_mesh(mesh);
+  const std::vector<int> patch_tags = physical_tags(mesh.patches);
+  const std::vector<int> group_tags = physical_tags(mesh.cell_groups);
+  const CellSets sets = cell_sets(mesh);
+  const CellEntities entities = cell_entities(mesh, sets);
+  Out out(stream, options.binary);
+  write_format(out, options.binary);
+  write_physical_names(out, mesh, patch_tags, group_tags);
+  write_entities(out, mesh, patch_tags, group_tags, sets, entities);
+  write_nodes(out, mesh);
+  write_elements(out, mesh, sets, entities);
   out.flush();
 }
 
