@@ -196,27 +196,73 @@ struct Renderer {
   }
 };
 
+/// The world window that shows every point drawn, with a margin of 3 %.
+std::array<double, 4> fitted_view(const std::vector<Figure::Command>& commands) {
+  double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 4> view = {inf, -inf, inf, -inf};
+  for (const auto& c : commands) {
+    for (const auto& p : c.points) {
+      view = {std::min(view[0], p.x), std::max(view[1], p.x), std::min(view[2], p.y), std::max(view[3], p.y)};
+    }
+  }
+  if (!(view[0] <= view[1])) view = {0, 1, 0, 1};
+  const double margin = 0.03 * std::max({view[1] - view[0], view[3] - view[2], 1e-300});
+  return {view[0] - margin, view[1] + margin, view[2] - margin, view[3] + margin};
+}
+
+/// The legend in the top-right corner of the plot area (its right edge at `right`, top at
+/// `top`), on a white box.
+void draw_legend(cairo_t* cr, const std::vector<Figure::LegendEntry>& legend, double right, double top) {
+  if (legend.empty()) return;
+  const double row = 20, box_w = 260, x = right - box_w - 10, y = top + 10;
+  cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+  cairo_rectangle(cr, x, y, box_w, row * static_cast<double>(legend.size()) + 10);
+  cairo_fill(cr);
+  cairo_set_font_size(cr, 13);
+  for (std::size_t i = 0; i < legend.size(); ++i) {
+    const auto& e = legend[i];
+    const double cy = y + 15 + row * static_cast<double>(i);
+    set_color(cr, e.stroke.color);
+    if (e.as_marker) {
+      cairo_arc(cr, x + 22, cy, 4, 0, 2 * std::numbers::pi);
+      cairo_fill(cr);
+    } else {
+      cairo_set_line_width(cr, e.stroke.width);
+      cairo_move_to(cr, x + 8, cy);
+      cairo_line_to(cr, x + 36, cy);
+      cairo_stroke(cr);
+    }
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_move_to(cr, x + 44, cy + 4);
+    cairo_show_text(cr, e.label.c_str());
+  }
+}
+
+/// The colour bar along the bottom edge, ending 30 pixels left of `right`.
+void draw_color_bar(cairo_t* cr, const Figure::ColorBar& bar, double right, double height) {
+  const double bx = right - 230, by = height - 22.0, bw = 200, bh = 12;
+  for (int i = 0; i < 100; ++i) {
+    set_color(cr, colormap((i + 0.5) / 100.0));
+    cairo_rectangle(cr, bx + bw * i / 100.0, by, bw / 100.0 + 0.5, bh);
+    cairo_fill(cr);
+  }
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_font_size(cr, 12);
+  const std::string text = fmt::format("{}  {:.3g}", bar.label, bar.lo);
+  cairo_move_to(cr, bx - 7.0 * static_cast<double>(text.size()) - 4, by + 10);
+  cairo_show_text(cr, text.c_str());
+  const std::string hi = fmt::format("{:.3g}", bar.hi);
+  cairo_move_to(cr, bx + bw + 4, by + 10);
+  cairo_show_text(cr, hi.c_str());
+}
+
 }  // namespace
 
 void Figure::save(const std::filesystem::path& path) const {
   const std::string ext = path.extension().string();
   if (ext != ".png" && ext != ".svg") throw InputError::in(path.string(), "pictures are written as .png or .svg");
 
-  std::array<double, 4> view{};
-  if (view_) {
-    view = *view_;
-  } else {
-    double inf = std::numeric_limits<double>::infinity();
-    view = {inf, -inf, inf, -inf};
-    for (const auto& c : commands_) {
-      for (const auto& p : c.points) {
-        view = {std::min(view[0], p.x), std::max(view[1], p.x), std::min(view[2], p.y), std::max(view[3], p.y)};
-      }
-    }
-    if (!(view[0] <= view[1])) view = {0, 1, 0, 1};
-    const double margin = 0.03 * std::max({view[1] - view[0], view[3] - view[2], 1e-300});
-    view = {view[0] - margin, view[1] + margin, view[2] - margin, view[3] + margin};
-  }
+  const std::array<double, 4> view = view_ ? *view_ : fitted_view(commands_);
   const double w = std::max(view[1] - view[0], 1e-300), h = std::max(view[3] - view[2], 1e-300);
   const double area_w = layout_.width - kMarginLeft - kMarginRight;
   const double area_h = layout_.height - kMarginTop - kMarginBottom;
@@ -248,48 +294,8 @@ void Figure::save(const std::filesystem::path& path) const {
   cairo_set_font_size(cr, 18);
   cairo_move_to(cr, kMarginLeft, 30);
   cairo_show_text(cr, layout_.title.c_str());
-
-  // Legend in the top-right corner of the plot area, on a white box.
-  if (!legend_.empty()) {
-    const double row = 20, box_w = 260, x = kMarginLeft + area_w - box_w - 10, y = kMarginTop + 10;
-    cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
-    cairo_rectangle(cr, x, y, box_w, row * static_cast<double>(legend_.size()) + 10);
-    cairo_fill(cr);
-    cairo_set_font_size(cr, 13);
-    for (std::size_t i = 0; i < legend_.size(); ++i) {
-      const auto& e = legend_[i];
-      const double cy = y + 15 + row * static_cast<double>(i);
-      set_color(cr, e.stroke.color);
-      if (e.as_marker) {
-        cairo_arc(cr, x + 22, cy, 4, 0, 2 * std::numbers::pi);
-        cairo_fill(cr);
-      } else {
-        cairo_set_line_width(cr, e.stroke.width);
-        cairo_move_to(cr, x + 8, cy);
-        cairo_line_to(cr, x + 36, cy);
-        cairo_stroke(cr);
-      }
-      cairo_set_source_rgb(cr, 0, 0, 0);
-      cairo_move_to(cr, x + 44, cy + 4);
-      cairo_show_text(cr, e.label.c_str());
-    }
-  }
-  if (color_bar_) {
-    const double bx = kMarginLeft + area_w - 230, by = layout_.height - 22.0, bw = 200, bh = 12;
-    for (int i = 0; i < 100; ++i) {
-      set_color(cr, colormap((i + 0.5) / 100.0));
-      cairo_rectangle(cr, bx + bw * i / 100.0, by, bw / 100.0 + 0.5, bh);
-      cairo_fill(cr);
-    }
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_set_font_size(cr, 12);
-    const std::string text = fmt::format("{}  {:.3g}", color_bar_->label, color_bar_->lo);
-    cairo_move_to(cr, bx - 7.0 * static_cast<double>(text.size()) - 4, by + 10);
-    cairo_show_text(cr, text.c_str());
-    const std::string hi = fmt::format("{:.3g}", color_bar_->hi);
-    cairo_move_to(cr, bx + bw + 4, by + 10);
-    cairo_show_text(cr, hi.c_str());
-  }
+  draw_legend(cr, legend_, kMarginLeft + area_w, kMarginTop);
+  if (color_bar_) draw_color_bar(cr, *color_bar_, kMarginLeft + area_w, layout_.height);
 
   cairo_destroy(cr);
   if (ext == ".png") cairo_surface_write_to_png_stream(surface, append_to_string, &bytes);

@@ -83,19 +83,22 @@ class Figure {
     std::string text;
   };
 
- private:
-  FigureLayout layout_;
-  std::vector<Command> commands_;
+  /// One line of the legend.
   struct LegendEntry {
     std::string label;
     Stroke stroke;
     bool as_marker;
   };
-  std::vector<LegendEntry> legend_;
+  /// The colour bar's label and range.
   struct ColorBar {
     std::string label;
     double lo, hi;
   };
+
+ private:
+  FigureLayout layout_;
+  std::vector<Command> commands_;
+  std::vector<LegendEntry> legend_;
   std::optional<ColorBar> color_bar_;
   std::optional<std::array<double, 4>> view_;
 };
