@@ -150,13 +150,24 @@ std::optional<io::Checkpoint> prepare_output(const Options& options, const io::C
   return resumed;
 }
 
-int run_deform(const Options& options, RunState& state) {
-  const auto start = Clock::now();
-  RunTimings timings;
+/// What a run reads and checks before any work.
+struct RunInputs {
+  io::Case c;
+  std::optional<geometry::CadModel> cad;
+  io::LoadedMesh loaded;
+  std::filesystem::path output;
+  std::vector<io::InputFingerprint> fingerprints;
+  io::OutputFolder folder;  // removed again if the run fails before writing in it
+  std::optional<io::Checkpoint> resumed;
+  // A restarted run continues from the state a previous run saved (section 4.3).
+  std::optional<io::RestartState> previous;
+  std::optional<deform::MotionStart> restart;
+};
 
-  // 1. Everything the run needs is read and checked before any work.
-  auto t = Clock::now();
-  const io::Case c = io::read_case(options.case_file);
+/// 1. Everything the run needs, read and checked before any work.
+void read_inputs(const Options& options, RunState& state, RunInputs& in) {
+  in.c = io::read_case(options.case_file);
+  const io::Case& c = in.c;
   spdlog::info("case {}", c.file.string());
   const deform::Processes job = deform::processes();
   if (job.count > 1 && c.solver.linear != deform::LinearSolverKind::amg) {
@@ -171,50 +182,36 @@ int run_deform(const Options& options, RunState& state) {
   // Every file the case names is checked before any work: the CAD file too, whether or not a
   // patch takes faces from it.
   state.phase = "reading the CAD file";
-  const std::optional<geometry::CadModel> cad = io::read_case_cad(c);
+  in.cad = io::read_case_cad(c);
   state.phase = "reading the mesh";
-  io::LoadedMesh loaded = io::read_mesh(c.mesh);
-  const deform::Mesh& mesh = loaded.mesh;
+  in.loaded = io::read_mesh(c.mesh);
+  const deform::Mesh& mesh = in.loaded.mesh;
   state.nodes = mesh.node_count();
   state.cells = mesh.cell_count();
   spdlog::info("mesh {}: {} nodes, {} cells", c.mesh.string(), mesh.node_count(), mesh.cell_count());
   io::check_case_against_mesh(c, mesh);
-  const std::filesystem::path output = options.output.empty() ? c.output : std::filesystem::path(options.output);
-  const std::filesystem::path checkpoint_path = output / io::kCheckpointName;
+  in.output = options.output.empty() ? c.output : std::filesystem::path(options.output);
   state.phase = "checking the inputs";
-  auto fingerprints = io::input_fingerprints(c);
-  io::OutputFolder folder;  // removed again if the run fails before writing in it
-  std::optional<io::Checkpoint> resumed = prepare_output(options, c, mesh, output, fingerprints, folder);
-
-  // A restarted run continues from the state a previous run saved (section 4.3).
-  std::optional<io::RestartState> previous;
-  std::optional<deform::MotionStart> restart;
+  in.fingerprints = io::input_fingerprints(c);
+  in.resumed = prepare_output(options, c, mesh, in.output, in.fingerprints, in.folder);
   if (c.restart) {
-    previous = io::read_restart(*c.restart, mesh);
-    restart = deform::MotionStart{previous->points, previous->sliding};
-    spdlog::info("restarting from {} ({} sliding nodes)", c.restart->string(), previous->sliding.size());
+    in.previous = io::read_restart(*c.restart, mesh);
+    in.restart = deform::MotionStart{in.previous->points, in.previous->sliding};
+    spdlog::info("restarting from {} ({} sliding nodes)", c.restart->string(), in.previous->sliding.size());
   }
-  timings.read = seconds_since(t);
+}
 
-  // 2. The deflected shapes, from the FEM tables (section 4.2).
-  state.phase = "building the deflected shapes";
-  t = Clock::now();
-  const io::CaseSetup setup = io::set_up_case(c, mesh, previous ? &*previous : nullptr, cad ? &*cad : nullptr);
-  for (const auto& s : setup.shapes) {
-    spdlog::info("patch {}: deflected shape through {} FEM nodes (degree {})", s.patch, s.reconstruction.used_nodes,
-                 s.reconstruction.degree);
-  }
-  timings.shapes = seconds_since(t);
-
-  // 3. The motion, increment by increment, with a checkpoint after each.
-  CheckpointWriter checkpoints(checkpoint_path, c, mesh, std::move(fingerprints), options.stop_after_increment);
-  state.checkpoint = checkpoint_path;
-  if (resumed) state.checkpoint_increments = resumed->info.finished_increments;
+/// 3. The motion, increment by increment, with a checkpoint after each.
+deform::MotionResult move_the_mesh(const Options& options, RunState& state, const RunInputs& in, const io::CaseSetup& setup,
+                                   CheckpointWriter& checkpoints, Clock::time_point start) {
+  const io::Case& c = in.c;
+  const deform::Mesh& mesh = in.loaded.mesh;
+  const deform::Processes job = deform::processes();
   const int increments = c.solver.increments;
-  if (resumed) {
-    const io::CheckpointInfo& info = resumed->info;
+  if (in.resumed) {
+    const io::CheckpointInfo& info = in.resumed->info;
     spdlog::info("resuming from {} (written {}): {} of {} increments done, stage {:.4f}; on {}",
-                 checkpoint_path.string(), info.written_at, info.finished_increments, info.increments, info.lambda,
+                 checkpoints.path().string(), info.written_at, info.finished_increments, info.increments, info.lambda,
                  counted(omp_get_max_threads(), "thread"));
   } else {
     spdlog::info("moving the mesh in {} increments on {}{}, linear solver {}{}", increments,
@@ -239,26 +236,23 @@ int run_deform(const Options& options, RunState& state) {
     state.checkpoint_increments = k.finished_increments;
   };
   state.phase = "moving the mesh";
-  const deform::MotionResult result = [&] {
-    try {
-      return deform::move_mesh(mesh, setup.motions, c.material, c.solver, observers, restart ? &*restart : nullptr,
-                               resumed ? &resumed->state : nullptr);
-    } catch (const deform::FreeRigidMotion& e) {  // the roles as a whole: the case's `patches:`
-      throw InputError::at(c.file.string(), c.patches_line, fmt::format("patches: {}", e.what()));
-    }
-  }();
-  const std::optional<io::CheckpointInfo> resumed_from = resumed ? std::optional(resumed->info) : std::nullopt;
-  resumed.reset();  // its copy of the mesh is no longer needed
-  for (const auto& note : result.notes) spdlog::warn("{}", note);
-  const auto& m = result.timings;
-  spdlog::info("motion {:.2f} s: assembly {:.2f} s, preconditioner {:.2f} s, solve {:.2f} s, projection {:.2f} s",
-               m.total, m.assembly, m.preconditioner, m.solve, m.projection);
+  try {
+    return deform::move_mesh(mesh, setup.motions, c.material, c.solver, observers, in.restart ? &*in.restart : nullptr,
+                             in.resumed ? &in.resumed->state : nullptr);
+  } catch (const deform::FreeRigidMotion& e) {  // the roles as a whole: the case's `patches:`
+    throw InputError::at(c.file.string(), c.patches_line, fmt::format("patches: {}", e.what()));
+  }
+}
 
-  // 4. Outputs, each written atomically; on failure the last valid mesh. Every rank holds
-  // the same result: rank 0 writes it.
-  state.phase = "writing the outputs";
-  if (!job.root()) return result.success ? 0 : 1;
-  t = Clock::now();
+/// 4. Outputs, each written atomically; on failure the last valid mesh. Every rank holds the
+/// same result: rank 0 writes it. The exit code.
+int write_run_outputs(const RunInputs& in, const io::CaseSetup& setup, const deform::MotionResult& result,
+                      const Options& options, CheckpointWriter& checkpoints, RunTimings& timings,
+                      const io::CheckpointInfo* resumed_from, Clock::time_point start) {
+  const io::Case& c = in.c;
+  const deform::Mesh& mesh = in.loaded.mesh;
+  const std::filesystem::path& output = in.output;
+  const auto t = Clock::now();
   RunOutputs outputs = write_outputs(output, c, mesh, setup, result, options.binary);
   if (result.success) {  // the state the next coupling iteration restarts from
     io::write_restart(output / "restart.hmr", io::restart_state(c, mesh, result));
@@ -269,7 +263,7 @@ int run_deform(const Options& options, RunState& state) {
   timings.checkpoint = checkpoints.seconds();
   timings.checkpoint_bytes = checkpoints.bytes();
   timings.wall = seconds_since(start);
-  write_report(output, c, loaded, setup, result, timings, outputs, resumed_from ? &*resumed_from : nullptr);
+  write_report(output, c, in.loaded, setup, result, timings, outputs, resumed_from);
   checkpoints.remove();  // the run has ended: the outputs supersede it
 
   if (!result.success) {
@@ -281,6 +275,44 @@ int run_deform(const Options& options, RunState& state) {
   spdlog::info("done in {:.2f} s: min scaled Jacobian {:.3f}, outputs in {}", timings.wall,
                result.summary.min_scaled_jacobian, output.string());
   return 0;
+}
+
+int run_deform(const Options& options, RunState& state) {
+  const auto start = Clock::now();
+  RunTimings timings;
+
+  auto t = Clock::now();
+  RunInputs in;
+  read_inputs(options, state, in);
+  timings.read = seconds_since(t);
+
+  // 2. The deflected shapes, from the FEM tables (section 4.2).
+  state.phase = "building the deflected shapes";
+  t = Clock::now();
+  const io::CaseSetup setup = io::set_up_case(in.c, in.loaded.mesh, in.previous ? &*in.previous : nullptr,
+                                              in.cad ? &*in.cad : nullptr);
+  for (const auto& s : setup.shapes) {
+    spdlog::info("patch {}: deflected shape through {} FEM nodes (degree {})", s.patch, s.reconstruction.used_nodes,
+                 s.reconstruction.degree);
+  }
+  timings.shapes = seconds_since(t);
+
+  CheckpointWriter checkpoints(in.output / io::kCheckpointName, in.c, in.loaded.mesh, std::move(in.fingerprints),
+                               options.stop_after_increment);
+  state.checkpoint = checkpoints.path();
+  if (in.resumed) state.checkpoint_increments = in.resumed->info.finished_increments;
+  const deform::MotionResult result = move_the_mesh(options, state, in, setup, checkpoints, start);
+  const std::optional<io::CheckpointInfo> resumed_from = in.resumed ? std::optional(in.resumed->info) : std::nullopt;
+  in.resumed.reset();  // its copy of the mesh is no longer needed
+  for (const auto& note : result.notes) spdlog::warn("{}", note);
+  const auto& m = result.timings;
+  spdlog::info("motion {:.2f} s: assembly {:.2f} s, preconditioner {:.2f} s, solve {:.2f} s, projection {:.2f} s",
+               m.total, m.assembly, m.preconditioner, m.solve, m.projection);
+
+  state.phase = "writing the outputs";
+  if (!deform::processes().root()) return result.success ? 0 : 1;
+  return write_run_outputs(in, setup, result, options, checkpoints, timings, resumed_from ? &*resumed_from : nullptr,
+                           start);
 }
 
 }  // namespace
