@@ -105,18 +105,134 @@ RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c,
   return out;
 }
 
+namespace {
+
+using nlohmann::json;
+
+/// Every length `key` in mesh units has a `key_relative`: divided by `scale`, the diagonal of
+/// the undeformed mesh's bounding box.
+void put_length(json& object, const std::string& key, double length, double scale) {
+  object[key] = length;
+  object[key + "_relative"] = length / scale;
+}
+
+json deflections_json(const io::CaseSetup& setup, double scale) {
+  json deflections = json::array();
+  for (const auto& s : setup.shapes) {
+    const auto& r = s.reconstruction;
+    json deflection{{"patch", s.patch},
+                    {"nodes", r.nodes},
+                    {"used_nodes", r.used_nodes},
+                    {"merged_duplicates", r.merged_duplicates},
+                    {"degree", r.degree},
+                    {"form", geometry::to_string(r.form)}};
+    put_length(deflection, "max_node_distance_to_cad", r.max_node_distance_to_cad, scale);
+    put_length(deflection, "max_node_residual", r.max_node_residual, scale);
+    deflections.push_back(std::move(deflection));
+  }
+  return deflections;
+}
+
+json solver_json(const deform::SolverOptions& solver) {
+  return {{"increments", solver.increments},
+          {"newton_tolerance", solver.newton_tolerance},
+          {"max_newton_iterations", solver.max_newton_iterations},
+          {"pcg_tolerance", solver.pcg_tolerance},
+          {"max_pcg_iterations", solver.max_pcg_iterations},
+          {"max_increment_splits", solver.max_increment_splits},
+          {"linear", deform::to_string(solver.linear)},
+          {"amg", deform::to_string(solver.amg)},
+          {"forcing", deform::to_string(solver.forcing)},
+          {"processes", deform::processes().count}};
+}
+
+/// One attempt of an increment, with its Newton steps.
+json attempt_json(const deform::IncrementRecord& r, const deform::MotionResult& result) {
+  const double scale = result.length_scale;
+  json pcg = json::array(), tolerances = json::array(), norms = json::array(), residuals = json::array(),
+       projections = json::array(), relative_projections = json::array();
+  for (std::size_t i = 0; i < r.newton.size(); ++i) {
+    residuals.push_back(r.newton[i].residual);
+    if (i + 1 < r.newton.size() && result.sliding_nodes > 0) {
+      projections.push_back(r.newton[i].max_projection);
+      relative_projections.push_back(r.newton[i].max_projection / scale);
+    }
+    if (i + 1 < r.newton.size()) {
+      pcg.push_back(r.newton[i].pcg_iterations);
+      tolerances.push_back(r.newton[i].linear_tolerance);
+      norms.push_back(r.newton[i].linear_newton_norm ? "newton" : "residual");
+    }
+  }
+  json attempt{{"increment", r.increment},
+               {"stage", {r.lambda_begin, r.lambda_end}},
+               {"split_depth", r.split_depth},
+               {"accepted", r.accepted},
+               {"converged", r.converged},
+               {"newton_iterations", r.newton.empty() ? 0 : r.newton.size() - 1},
+               {"pcg_iterations", pcg},
+               {"linear_tolerances", tolerances},
+               {"linear_norms", norms},
+               {"residuals", residuals},
+               {"residual_reduction", r.residual_reduction},
+               // The quality is checked only once Newton has converged: unknown otherwise.
+               {"min_scaled_jacobian", r.converged ? json(r.min_scaled_jacobian) : json(nullptr)},
+               {"inverted_cells", r.converged ? json(r.inverted_cells) : json(nullptr)},
+               {"max_projection_distance", projections},
+               {"max_projection_distance_relative", relative_projections},
+               {"seconds", r.seconds},
+               {"failure", r.failure}};
+  put_length(attempt, "max_normal_slip", r.max_normal_slip, scale);
+  return attempt;
+}
+
+/// The increments' attempts, and the run's totals of Newton and PCG iterations.
+void put_increments(json& j, const deform::MotionResult& result) {
+  j["increments"] = json::array();
+  std::size_t newton_total = 0, pcg_total = 0;
+  for (const auto& r : result.increments) {
+    for (const auto& step : r.newton) pcg_total += static_cast<std::size_t>(step.pcg_iterations);
+    newton_total += r.newton.empty() ? 0 : r.newton.size() - 1;
+    j["increments"].push_back(attempt_json(r, result));
+  }
+  j["newton_iterations"] = newton_total;
+  j["pcg_iterations"] = pcg_total;
+}
+
+/// The motion's results: stage, node counts, memory, the lengths and the quality.
+void put_motion(json& j, const deform::Mesh& mesh, const deform::MotionResult& result) {
+  const double scale = result.length_scale;
+  j["stage_reached"] = result.lambda_reached;
+  j["sliding_nodes"] = result.sliding_nodes;
+  j["passive_nodes"] = result.passive_nodes;
+  j["periodic_pairs"] = result.periodic_pairs;
+  j["peak_memory_bytes"] = peak_memory_bytes();
+  j["length_scale"] = scale;
+  put_length(j, "max_periodic_mismatch", result.max_periodic_mismatch, scale);
+  put_length(j, "max_projection_distance", result.max_projection_distance, scale);
+  put_length(j, "final_projection_distance", result.final_projection_distance, scale);
+  put_length(j, "max_normal_slip", result.max_normal_slip, scale);
+  // Deprecated (docs/report-json.md): written as before for one more version.
+  j["periodic_max_mismatch"] = j["max_periodic_mismatch_relative"];
+  j["max_sliding_projection_distance"] = j["final_projection_distance_relative"];
+  j["min_scaled_jacobian"] = result.summary.min_scaled_jacobian;
+  j["inverted_cells"] = result.summary.inverted_cells;
+  j["quality"] = quality_json(mesh, result.summary);
+  j["notes"] = result.notes;
+}
+
+json seconds_json(const RunTimings& timings, const deform::MotionTimings& m) {
+  return {{"read", timings.read},         {"shapes", timings.shapes},   {"setup", m.setup},
+          {"assembly", m.assembly},       {"preconditioner", m.preconditioner},
+          {"solve", m.solve},             {"projection", m.projection}, {"quality", m.quality},
+          {"motion", m.total},            {"checkpoint", timings.checkpoint},
+          {"write", timings.write}};
+}
+
+}  // namespace
+
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
                   const io::CaseSetup& setup, const deform::MotionResult& result, const RunTimings& timings,
                   RunOutputs& outputs, const io::CheckpointInfo* resumed) {
-  using nlohmann::json;
-  const deform::Mesh& mesh = loaded.mesh;
-  // Every length `key` in mesh units has a `key_relative`: divided by the diagonal of the
-  // undeformed mesh's bounding box.
-  const double scale = result.length_scale;
-  const auto put_length = [scale](json& object, const std::string& key, double length) {
-    object[key] = length;
-    object[key + "_relative"] = length / scale;
-  };
   json j;
   j["hotmesh_version"] = HOTMESH_VERSION;
   j["command"] = "deform";
@@ -126,84 +242,10 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["mesh"] = mesh_summary(loaded, c.mesh);
   j["patches"] = json::array();
   for (const auto& m : setup.motions) j["patches"].push_back({{"name", m.patch}, {"role", deform::to_string(m.role)}});
-  j["deflections"] = json::array();
-  for (const auto& s : setup.shapes) {
-    const auto& r = s.reconstruction;
-    json deflection{{"patch", s.patch},
-                    {"nodes", r.nodes},
-                    {"used_nodes", r.used_nodes},
-                    {"merged_duplicates", r.merged_duplicates},
-                    {"degree", r.degree},
-                    {"form", geometry::to_string(r.form)}};
-    put_length(deflection, "max_node_distance_to_cad", r.max_node_distance_to_cad);
-    put_length(deflection, "max_node_residual", r.max_node_residual);
-    j["deflections"].push_back(std::move(deflection));
-  }
-  j["solver"] = {{"increments", c.solver.increments},
-                 {"newton_tolerance", c.solver.newton_tolerance},
-                 {"max_newton_iterations", c.solver.max_newton_iterations},
-                 {"pcg_tolerance", c.solver.pcg_tolerance},
-                 {"max_pcg_iterations", c.solver.max_pcg_iterations},
-                 {"max_increment_splits", c.solver.max_increment_splits},
-                 {"linear", deform::to_string(c.solver.linear)},
-                 {"amg", deform::to_string(c.solver.amg)},
-                 {"forcing", deform::to_string(c.solver.forcing)},
-                 {"processes", deform::processes().count}};
-  j["increments"] = json::array();
-  std::size_t newton_total = 0, pcg_total = 0;
-  for (const auto& r : result.increments) {
-    json pcg = json::array(), tolerances = json::array(), norms = json::array(), residuals = json::array(),
-         projections = json::array(), relative_projections = json::array();
-    for (std::size_t i = 0; i < r.newton.size(); ++i) {
-      residuals.push_back(r.newton[i].residual);
-      if (i + 1 < r.newton.size() && result.sliding_nodes > 0) {
-        projections.push_back(r.newton[i].max_projection);
-        relative_projections.push_back(r.newton[i].max_projection / scale);
-      }
-      if (i + 1 < r.newton.size()) {
-        pcg.push_back(r.newton[i].pcg_iterations);
-        tolerances.push_back(r.newton[i].linear_tolerance);
-        norms.push_back(r.newton[i].linear_newton_norm ? "newton" : "residual");
-      }
-      pcg_total += static_cast<std::size_t>(r.newton[i].pcg_iterations);
-    }
-    newton_total += r.newton.empty() ? 0 : r.newton.size() - 1;
-    json attempt{{"increment", r.increment},
-                 {"stage", {r.lambda_begin, r.lambda_end}},
-                 {"split_depth", r.split_depth},
-                 {"accepted", r.accepted},
-                 {"converged", r.converged},
-                 {"newton_iterations", r.newton.empty() ? 0 : r.newton.size() - 1},
-                 {"pcg_iterations", pcg},
-                 {"linear_tolerances", tolerances},
-                 {"linear_norms", norms},
-                 {"residuals", residuals},
-                 {"residual_reduction", r.residual_reduction},
-                 // The quality is checked only once Newton has converged: unknown otherwise.
-                 {"min_scaled_jacobian", r.converged ? json(r.min_scaled_jacobian) : json(nullptr)},
-                 {"inverted_cells", r.converged ? json(r.inverted_cells) : json(nullptr)},
-                 {"max_projection_distance", projections},
-                 {"max_projection_distance_relative", relative_projections},
-                 {"seconds", r.seconds},
-                 {"failure", r.failure}};
-    put_length(attempt, "max_normal_slip", r.max_normal_slip);
-    j["increments"].push_back(std::move(attempt));
-  }
-  j["newton_iterations"] = newton_total;
-  j["pcg_iterations"] = pcg_total;
-  j["stage_reached"] = result.lambda_reached;
-  j["sliding_nodes"] = result.sliding_nodes;
-  j["passive_nodes"] = result.passive_nodes;
-  j["periodic_pairs"] = result.periodic_pairs;
-  j["peak_memory_bytes"] = peak_memory_bytes();
-  j["length_scale"] = scale;
-  put_length(j, "max_periodic_mismatch", result.max_periodic_mismatch);
-  put_length(j, "max_projection_distance", result.max_projection_distance);
-  put_length(j, "final_projection_distance", result.final_projection_distance);
-  put_length(j, "max_normal_slip", result.max_normal_slip);
-  // Deprecated (docs/report-json.md): written as before for one more version.
-  j["periodic_max_mismatch"] = j["max_periodic_mismatch_relative"];
-  j["max_sliding_projection_distance"] = j["final_projection_distance_relative"];
+  j["deflections"] = deflections_json(setup, result.length_scale);
+  j["solver"] = solver_json(c.solver);
+  put_increments(j, result);
+  put_motion(j, loaded.mesh, result);
   if (c.restart) j["restarted_from"] = c.restart->string();
   if (resumed) {
     j["resumed_from"] = {{"checkpoint", (folder / io::kCheckpointName).string()},
@@ -214,16 +256,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["checkpoints"] = {{"written", timings.checkpoints},
                       {"seconds", timings.checkpoint},
                       {"last_bytes", timings.checkpoint_bytes}};
-  j["min_scaled_jacobian"] = result.summary.min_scaled_jacobian;
-  j["inverted_cells"] = result.summary.inverted_cells;
-  j["quality"] = quality_json(mesh, result.summary);
-  j["notes"] = result.notes;
-  const auto& m = result.timings;
-  j["seconds"] = {{"read", timings.read},         {"shapes", timings.shapes},   {"setup", m.setup},
-                  {"assembly", m.assembly},       {"preconditioner", m.preconditioner},
-                  {"solve", m.solve},             {"projection", m.projection}, {"quality", m.quality},
-                  {"motion", m.total},            {"checkpoint", timings.checkpoint},
-                  {"write", timings.write}};
+  j["seconds"] = seconds_json(timings, result.timings);
   j["wall_seconds"] = timings.wall;
   outputs.files.push_back(folder / "report.json");
   j["outputs"] = json::array();
