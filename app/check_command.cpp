@@ -204,7 +204,7 @@ CheckResult check_with_options(const Options& o, const std::vector<std::filesyst
   options.unit = parse_unit_option(o.unit);
   options.reconstruction.degree = o.degree;
   options.reconstruction.form =
-      o.form == "displacement" ? geometry::DeflectionForm::displacement : geometry::DeflectionForm::curve;
+      geometry::kDeflectionFormNames.parse(o.form).value();  // CLI::IsMember checked it
   if (!o.axis.empty()) {
     try {
       options.axis = geometry::Axis({o.axis[0], o.axis[1], o.axis[2]}, {o.axis[3], o.axis[4], o.axis[5]});
@@ -402,7 +402,7 @@ Command add_check_command(CLI::App& parent) {
       ->check(CLI::Range(1, 5))
       ->capture_default_str();
   cmd->add_option("--form", options->form, "curve or displacement (as the case's deflection form)")
-      ->check(CLI::IsMember({"curve", "displacement"}))
+      ->check(CLI::IsMember(geometry::kDeflectionFormNames.names()))
       ->capture_default_str();
   cmd->add_option("--format", options->format, "Report format: text, json or junit")
       ->check(CLI::IsMember({"text", "json", "junit"}))

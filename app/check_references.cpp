@@ -149,7 +149,7 @@ std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, CaseSta
   } else {
     const io::DeflectionSpec& d = *spec.deflection;
     const std::string fit = fmt::format("(eq. 21, {} form, degree {})",
-                                        d.form == geometry::DeflectionForm::displacement ? "displacement" : "curve",
+                                        geometry::to_string(d.form),
                                         d.degree);
     if (d.faces.empty()) {
       what = fmt::format("the curve through the FEM nodes of {}{}", name(d.file),

@@ -79,7 +79,7 @@ CurveRun without_cad(const Options& o, const geometry::DeflectionSamples& sample
 int run_curve(const Options& o) {
   geometry::ReconstructionOptions reconstruction;
   reconstruction.degree = o.degree;
-  reconstruction.form = o.form == "displacement" ? geometry::DeflectionForm::displacement : geometry::DeflectionForm::curve;
+  reconstruction.form = geometry::kDeflectionFormNames.parse(o.form).value();  // CLI::IsMember checked it
   reconstruction.tolerance = o.tolerance;
   reconstruction.far_nodes = o.drop_far_nodes ? geometry::FarNodePolicy::drop : geometry::FarNodePolicy::reject;
 
@@ -127,7 +127,7 @@ Command add_curve_command(CLI::App& parent) {
       ->check(CLI::Range(1, 5))
       ->capture_default_str();
   cmd->add_option("--form", options->form, "curve: interpolate Q+delta (eq. 21); displacement: r(t) + d(t)")
-      ->check(CLI::IsMember({"curve", "displacement"}))
+      ->check(CLI::IsMember(geometry::kDeflectionFormNames.names()))
       ->capture_default_str();
   cmd->add_option("--tolerance", options->tolerance,
                   "Largest node distance from the CAD curve (default: 1e-3 of the curve's size)")

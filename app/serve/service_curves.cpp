@@ -89,10 +89,11 @@ geometry::ReconstructionOptions reconstruction_field(const Json& request) {
   geometry::ReconstructionOptions options;
   options.degree = static_cast<int>(integer_field(request, "degree", 1, 5, 1));
   const std::string form = string_field(request, "form", "curve");
-  if (form != "curve" && form != "displacement") {
+  const auto known_form = geometry::kDeflectionFormNames.parse(form);
+  if (!known_form) {
     throw ApiError::bad_request(fmt::format("form: expected \"curve\" or \"displacement\", got \"{}\"", form));
   }
-  options.form = form == "curve" ? geometry::DeflectionForm::curve : geometry::DeflectionForm::displacement;
+  options.form = *known_form;
   options.tolerance = number_field(request, "tolerance", 0.0, 1e300, 0.0);
   options.far_nodes = bool_field(request, "drop_far_nodes", false) ? geometry::FarNodePolicy::drop
                                                                      : geometry::FarNodePolicy::reject;

@@ -21,18 +21,6 @@
 
 namespace hotmesh::deform {
 
-std::string_view to_string(BoundaryRole role) {
-  switch (role) {
-    case BoundaryRole::fixed: return "fixed";
-    case BoundaryRole::prescribed: return "prescribed";
-    case BoundaryRole::slip: return "slip";
-    case BoundaryRole::sliding: return "sliding";
-    case BoundaryRole::passive: return "passive";
-    case BoundaryRole::periodic: return "periodic";
-  }
-  return "?";
-}
-
 namespace {
 
 using Clock = std::chrono::steady_clock;

@@ -169,25 +169,9 @@ void transfer(Reader& reader, const std::filesystem::path& path, const char* for
 
 }  // namespace
 
-const char* to_string(LengthUnit unit) {
-  switch (unit) {
-    case LengthUnit::metre: return "m";
-    case LengthUnit::millimetre: return "mm";
-    case LengthUnit::centimetre: return "cm";
-    case LengthUnit::micrometre: return "um";
-    case LengthUnit::inch: return "in";
-    case LengthUnit::foot: return "ft";
-  }
-  return "?";
-}
+const char* to_string(LengthUnit unit) { return kLengthUnitNames.name(unit).data(); }
 
-std::optional<LengthUnit> parse_length_unit(std::string_view text) {
-  for (const LengthUnit unit : {LengthUnit::metre, LengthUnit::millimetre, LengthUnit::centimetre,
-                                LengthUnit::micrometre, LengthUnit::inch, LengthUnit::foot}) {
-    if (text == to_string(unit)) return unit;
-  }
-  return std::nullopt;
-}
+std::optional<LengthUnit> parse_length_unit(std::string_view text) { return kLengthUnitNames.parse(text); }
 
 const char* to_string(SurfaceKind kind) {
   switch (kind) {

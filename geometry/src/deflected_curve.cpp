@@ -10,13 +10,7 @@
 
 namespace hotmesh::geometry {
 
-const char* to_string(DeflectionForm form) {
-  switch (form) {
-    case DeflectionForm::curve: return "curve";
-    case DeflectionForm::displacement: return "displacement";
-  }
-  return "?";
-}
+const char* to_string(DeflectionForm form) { return kDeflectionFormNames.name(form).data(); }
 
 DeflectedCurve::DeflectedCurve(BSplineCurve2d undeformed) : undeformed_(std::move(undeformed)) { build_pieces(); }
 

@@ -36,28 +36,14 @@ using geometry::SampleFrame;
 
 constexpr std::array<std::string_view, 10> kTopKeys{"mesh",     "cad",     "length_unit", "output",  "axis",
                                                    "solver",   "material", "patches",    "pictures", "restart"};
-constexpr std::array<std::string_view, 6> kUnitNames{"m", "mm", "cm", "um", "in", "ft"};
+constexpr auto kUnitNames = geometry::kLengthUnitNames.names();
 constexpr std::array<std::string_view, 2> kAxisKeys{"origin", "direction"};
 constexpr std::array<std::string_view, 10> kSolverKeys{
     "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
     "max_increment_splits", "linear", "amg", "forcing"};
-/// The names of the linear solvers, in the order of enum deform::LinearSolverKind.
-constexpr std::array<std::string_view, 2> kLinearNames{to_string(deform::LinearSolverKind::jacobi_pcg),
-                                                      to_string(deform::LinearSolverKind::amg)};
-/// The names of the multigrid packages, in the order of enum deform::AmgPackage.
-constexpr std::array<std::string_view, 2> kAmgNames{to_string(deform::AmgPackage::gamg), to_string(deform::AmgPackage::hypre)};
-/// The names of the forcing terms, in the order of enum deform::ForcingTerm.
-constexpr std::array<std::string_view, 2> kForcingNames{to_string(deform::ForcingTerm::fixed),
-                                                       to_string(deform::ForcingTerm::eisenstat_walker)};
 constexpr std::array<std::string_view, 4> kMaterialKeys{"law", "alpha_s", "alpha_v", "drop_jacobian"};
-/// The names of the stiffness laws, in the order of enum deform::StiffnessLaw.
-constexpr std::array<std::string_view, 3> kLawNames{"shape_volume", "uniform", "inverse_volume"};
 constexpr std::array<std::string_view, 4> kPatchKeys{"role", "deflection", "partner", "angle_deg"};
 constexpr std::array<std::string_view, 4> kDeflectionKeys{"file", "degree", "faces", "form"};
-/// The names of the deflection forms, in the order of enum geometry::DeflectionForm.
-constexpr std::array<std::string_view, 2> kFormNames{"curve", "displacement"};
-/// The names of the roles, in the order of enum deform::BoundaryRole.
-constexpr std::array<std::string_view, 6> kRoleNames{"fixed", "prescribed", "slip", "sliding", "passive", "periodic"};
 constexpr std::string_view kRoleList = "fixed, prescribed, slip, sliding, passive, periodic";
 constexpr std::string_view kAxisExample = "axis: {origin: [0, 0, 0], direction: [0, 0, 1]}";
 
@@ -105,7 +91,7 @@ class CaseParser {
     has_cad_ = top.find("cad") != nullptr;
     if (has_cad_) read_cad(*top.find("cad"));
     if (const Entry* e = top.find("length_unit")) {
-      if (const auto unit = reader_.choice(*e, kUnitNames)) c_.length_unit = *geometry::parse_length_unit(kUnitNames[*unit]);
+      if (const auto unit = reader_.choice(*e, geometry::kLengthUnitNames)) c_.length_unit = *unit;
     }
     c_.output = folder_ / (c_.file.stem().string() + "-out");
     if (const Entry* e = top.find("output")) read_output(*e);
@@ -228,13 +214,13 @@ class CaseParser {
       s.max_increment_splits = reader_.integer_in(*x, 0, kMaxIncrementSplits).value_or(s.max_increment_splits);
     }
     if (const Entry* x = m.find("linear")) {
-      if (const auto k = reader_.choice(*x, kLinearNames)) s.linear = static_cast<deform::LinearSolverKind>(*k);
+      if (const auto k = reader_.choice(*x, deform::kLinearSolverNames)) s.linear = *k;
     }
     if (const Entry* x = m.find("amg")) {
-      if (const auto k = reader_.choice(*x, kAmgNames)) s.amg = static_cast<deform::AmgPackage>(*k);
+      if (const auto k = reader_.choice(*x, deform::kAmgPackageNames)) s.amg = *k;
     }
     if (const Entry* x = m.find("forcing")) {
-      if (const auto k = reader_.choice(*x, kForcingNames)) s.forcing = static_cast<deform::ForcingTerm>(*k);
+      if (const auto k = reader_.choice(*x, deform::kForcingTermNames)) s.forcing = *k;
     }
   }
 
@@ -243,7 +229,7 @@ class CaseParser {
     const MapEntries m = reader_.keys(e, kMaterialKeys);
     deform::MaterialOptions& mat = c_.material;
     if (const Entry* x = m.find("law")) {
-      if (const auto law = reader_.choice(*x, kLawNames)) mat.law = static_cast<deform::StiffnessLaw>(*law);
+      if (const auto law = reader_.choice(*x, deform::kStiffnessLawNames)) mat.law = *law;
     }
     if (const Entry* x = m.find("drop_jacobian")) mat.drop_jacobian = reader_.boolean(*x).value_or(mat.drop_jacobian);
     if (const Entry* x = m.find("alpha_s")) {
@@ -306,9 +292,9 @@ class CaseParser {
     const MapEntries m = reader_.map_or_empty(e, "a map {role: ...}") ? reader_.keys(e, kPatchKeys) : MapEntries{};
     if (const Entry* r = m.find("role")) {
       if (const auto text = reader_.text(*r, cat("a role (one of ", kRoleList, ")"))) {
-        const auto it = std::find(kRoleNames.begin(), kRoleNames.end(), *text);
-        notes.role_known = it != kRoleNames.end();
-        if (notes.role_known) spec.role = static_cast<PatchRole>(it - kRoleNames.begin());
+        const std::optional<PatchRole> role = deform::kBoundaryRoleNames.parse(*text);
+        notes.role_known = role.has_value();
+        if (role) spec.role = *role;
         if (!notes.role_known) reader_.error(*r, cat("unknown role '", *text, "'; expected one of ", kRoleList));
       }
     } else if (e.value.IsMap() || e.value.IsNull()) {
@@ -381,9 +367,9 @@ class CaseParser {
     }
     if (const Entry* faces = m.find("faces")) ok = read_faces(*faces, spec.faces) && ok;
     if (const Entry* form = m.find("form")) {
-      const auto value = reader_.choice(*form, kFormNames);
+      const auto value = reader_.choice(*form, geometry::kDeflectionFormNames);
       ok = ok && value.has_value();
-      if (value) spec.form = static_cast<geometry::DeflectionForm>(*value);
+      if (value) spec.form = *value;
     }
 
     if (table_read && spec.samples.frame == SampleFrame::meridional && !has_axis_) {

@@ -44,12 +44,9 @@ DeflectionSpec samples_from_json(const json& j) {
   d.degree = integer_value<int>(j.at("degree"));
   if (d.degree < 1 || d.degree > 5) throw std::out_of_range("degree " + std::to_string(d.degree) + " is not 1 to 5");
   const auto form = j.at("form").get<std::string>();
-  if (form != geometry::to_string(geometry::DeflectionForm::curve) &&
-      form != geometry::to_string(geometry::DeflectionForm::displacement)) {
-    throw std::domain_error("unknown form '" + form + "'");
-  }
-  d.form = form == geometry::to_string(geometry::DeflectionForm::displacement) ? geometry::DeflectionForm::displacement
-                                                                              : geometry::DeflectionForm::curve;
+  const auto known_form = geometry::kDeflectionFormNames.parse(form);
+  if (!known_form) throw std::domain_error("unknown form '" + form + "'");
+  d.form = *known_form;
   d.faces = detail::integer_values<int>(j.at("faces"));
   const int frame = integer_value<int>(j.at("frame"));
   if (frame < 0 || frame > static_cast<int>(geometry::SampleFrame::meridional)) {
@@ -139,13 +136,9 @@ RestartState read_restart(const std::filesystem::path& path, const deform::Mesh&
       RestartPatch patch;
       patch.name = p.at("name").get<std::string>();
       const std::string role = p.at("role").get<std::string>();
-      bool known = false;
-      for (int r = 0; r <= static_cast<int>(deform::BoundaryRole::periodic); ++r) {
-        if (deform::to_string(static_cast<deform::BoundaryRole>(r)) != role) continue;
-        patch.role = static_cast<deform::BoundaryRole>(r);
-        known = true;
-      }
+      const auto known = deform::kBoundaryRoleNames.parse(role);
       if (!known) throw std::domain_error("patch '" + patch.name + "' has an unknown role '" + role + "'");
+      patch.role = *known;
       if (p.contains("deflection")) patch.deflection = samples_from_json(p.at("deflection"));
       s.patches.push_back(std::move(patch));
     }

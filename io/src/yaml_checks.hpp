@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "hotmesh/geometry/enum_names.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/geometry/vec3.hpp"
 
@@ -268,6 +269,15 @@ class Reader {
     }
     error(e, cat("expected one of ", join(names), ", got ", describe(e.value)));
     return std::nullopt;
+  }
+
+  /// The enum value `e` names, as choice() above reads it.
+  template <class E, std::size_t N>
+  std::optional<E> choice(const Entry& e, const EnumNames<E, N>& table) {
+    const auto names = table.names();
+    const auto index = choice(e, names);
+    if (!index) return std::nullopt;
+    return table.entries[*index].value;
   }
 
   std::optional<geometry::Vec3> vec3(const Entry& e) {

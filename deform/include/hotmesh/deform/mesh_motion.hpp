@@ -30,6 +30,7 @@
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/boundary_shape.hpp"
+#include "hotmesh/geometry/enum_names.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 
 namespace hotmesh::deform {
@@ -42,7 +43,14 @@ enum class BoundaryRole : std::uint8_t {
   passive,     ///< displacement from a surface-only spring solve (section 6.1)
   periodic,    ///< u_slave = R u_master with its partner patch
 };
-std::string_view to_string(BoundaryRole role);
+/// The names the case file, report.json and restart files use.
+inline constexpr EnumNames<BoundaryRole, 6> kBoundaryRoleNames{{{{BoundaryRole::fixed, "fixed"},
+                                                                {BoundaryRole::prescribed, "prescribed"},
+                                                                {BoundaryRole::slip, "slip"},
+                                                                {BoundaryRole::sliding, "sliding"},
+                                                                {BoundaryRole::passive, "passive"},
+                                                                {BoundaryRole::periodic, "periodic"}}}};
+constexpr std::string_view to_string(BoundaryRole role) { return kBoundaryRoleNames.name(role); }
 
 /// What one mesh patch does during the motion.
 struct PatchMotion {

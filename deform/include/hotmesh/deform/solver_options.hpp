@@ -4,6 +4,8 @@
 
 #include <string_view>
 
+#include "hotmesh/geometry/enum_names.hpp"
+
 namespace hotmesh::deform {
 
 /// How each Newton step's linear system K(n) p = -R(n) is solved (docs/method.md).
@@ -24,12 +26,15 @@ enum class ForcingTerm {
   eisenstat_walker, ///< adaptive (inexact Newton), from the observed Newton rate, never below pcg_tolerance
 };
 
-/// The names the case file and report.json use: jacobi-pcg, amg; gamg, hypre; fixed, eisenstat-walker.
-constexpr std::string_view to_string(LinearSolverKind k) { return k == LinearSolverKind::amg ? "amg" : "jacobi-pcg"; }
-constexpr std::string_view to_string(AmgPackage p) { return p == AmgPackage::hypre ? "hypre" : "gamg"; }
-constexpr std::string_view to_string(ForcingTerm f) {
-  return f == ForcingTerm::eisenstat_walker ? "eisenstat-walker" : "fixed";
-}
+/// The names the case file and report.json use.
+inline constexpr EnumNames<LinearSolverKind, 2> kLinearSolverNames{
+    {{{LinearSolverKind::jacobi_pcg, "jacobi-pcg"}, {LinearSolverKind::amg, "amg"}}}};
+inline constexpr EnumNames<AmgPackage, 2> kAmgPackageNames{{{{AmgPackage::gamg, "gamg"}, {AmgPackage::hypre, "hypre"}}}};
+inline constexpr EnumNames<ForcingTerm, 2> kForcingTermNames{
+    {{{ForcingTerm::fixed, "fixed"}, {ForcingTerm::eisenstat_walker, "eisenstat-walker"}}}};
+constexpr std::string_view to_string(LinearSolverKind k) { return kLinearSolverNames.name(k); }
+constexpr std::string_view to_string(AmgPackage p) { return kAmgPackageNames.name(p); }
+constexpr std::string_view to_string(ForcingTerm f) { return kForcingTermNames.name(f); }
 
 /// Increments, Newton-Raphson (eqs. 7-8) and the inner PCG solves (section 3).
 struct SolverOptions {
@@ -53,6 +58,10 @@ enum class StiffnessLaw {
   uniform,         ///< 2G = alpha_s, lambda + 2G/3 = alpha_v everywhere
   inverse_volume,  ///< both moduli scaled by V_median / V_e (stiff small cells)
 };
+/// The names the case file uses.
+inline constexpr EnumNames<StiffnessLaw, 3> kStiffnessLawNames{{{{StiffnessLaw::shape_volume, "shape_volume"},
+                                                                {StiffnessLaw::uniform, "uniform"},
+                                                                {StiffnessLaw::inverse_volume, "inverse_volume"}}}};
 
 /// Pseudo-material of the elastic medium (the paper's appendix).
 struct MaterialOptions {

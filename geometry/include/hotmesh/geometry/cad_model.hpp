@@ -25,10 +25,18 @@
 #include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/bspline_curve.hpp"
 #include "hotmesh/geometry/bspline_surface.hpp"
+#include "hotmesh/geometry/enum_names.hpp"
 
 namespace hotmesh::geometry {
 
 enum class LengthUnit { metre, millimetre, centimetre, micrometre, inch, foot };
+/// The abbreviations the case file, the command line and the service use.
+inline constexpr EnumNames<LengthUnit, 6> kLengthUnitNames{{{{LengthUnit::metre, "m"},
+                                                            {LengthUnit::millimetre, "mm"},
+                                                            {LengthUnit::centimetre, "cm"},
+                                                            {LengthUnit::micrometre, "um"},
+                                                            {LengthUnit::inch, "in"},
+                                                            {LengthUnit::foot, "ft"}}}};
 
 const char* to_string(LengthUnit unit);  ///< "m", "mm", "cm", "um", "in", "ft"
 /// The unit named by one of those abbreviations; empty if none.

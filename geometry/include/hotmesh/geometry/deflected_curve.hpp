@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "hotmesh/geometry/bspline_curve.hpp"
+#include "hotmesh/geometry/enum_names.hpp"
 
 namespace hotmesh::geometry {
 
@@ -24,6 +25,9 @@ enum class DeflectionForm {
   displacement,  ///< d(t) interpolates delta_j; c(t) = r(t) + d(t) keeps the CAD curvature
 };
 
+/// The names the case file, the service and restart files use.
+inline constexpr EnumNames<DeflectionForm, 2> kDeflectionFormNames{
+    {{{DeflectionForm::curve, "curve"}, {DeflectionForm::displacement, "displacement"}}}};
 const char* to_string(DeflectionForm form);
 
 class DeflectedCurve {
