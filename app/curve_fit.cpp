@@ -18,29 +18,27 @@ void require_cad_frame(const geometry::DeflectionSamples& samples) {
 CurveRun fit_on_cad_curve(const geometry::MeridionalCurve& curve, const geometry::DeflectionSamples& samples,
                           const geometry::ReconstructionOptions& options, geometry::LengthUnit unit, std::string cad) {
   require_cad_frame(samples);
-  geometry::CurveSamples nodes = geometry::meridional_samples(samples, curve.axis);
-  geometry::Reconstruction fit = geometry::reconstruct(curve.curve, nodes, options);
+  geometry::CurveSamples nodes = geometry::curve_samples(samples, &curve.axis);
+  geometry::Reconstruction fit = geometry::fit_curve(nodes, &curve.curve, options);
   return {std::move(fit), std::move(nodes), curve.axis, unit, curve.faces, std::move(cad)};
 }
 
 CurveRun fit_without_cad(const geometry::DeflectionSamples& samples, std::optional<geometry::Axis> axis,
                          const geometry::ReconstructionOptions& options, geometry::LengthUnit unit,
                          std::string_view axis_name) {
-  geometry::CurveSamples nodes;
   if (samples.frame == geometry::SampleFrame::planar) {
     if (axis) {
       throw InputError(std::string(axis_name) +
                        " is for axisymmetric boundaries; the node table is planar (x, y)");
     }
-    nodes = geometry::planar_samples(samples);
   } else {
     if (!axis && samples.frame == geometry::SampleFrame::cartesian) {
       throw InputError::in(samples.source, "cartesian (x, y, z) nodes without CAD need " + std::string(axis_name));
     }
     if (!axis) axis = geometry::Axis();  // (r, z) as given; the z axis places the curves in 3D
-    nodes = geometry::meridional_samples(samples, *axis);
   }
-  geometry::Reconstruction fit = geometry::reconstruct_from_nodes(nodes, options);
+  geometry::CurveSamples nodes = geometry::curve_samples(samples, axis ? &*axis : nullptr);
+  geometry::Reconstruction fit = geometry::fit_curve(nodes, nullptr, options);
   return {std::move(fit), std::move(nodes), axis, unit, {}, {}};
 }
 

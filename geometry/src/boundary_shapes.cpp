@@ -54,18 +54,18 @@ ShapePoint PlaneShape::at(double /*t*/, double lambda, const Vec3& reference) co
 
 RevolvedShapeFit make_revolved_shape(const BSplineCurve2d& meridional, const Axis& axis,
                                      const DeflectionSamples& samples, const ReconstructionOptions& options) {
-  Reconstruction fit = reconstruct(meridional, meridional_samples(samples, axis), options);
+  Reconstruction fit = fit_curve(curve_samples(samples, &axis), &meridional, options);
   return {RevolvedShape(std::move(fit.curve), axis), std::move(fit.report)};
 }
 
 PlanarShapeFit make_planar_shape(const BSplineCurve2d& curve, const DeflectionSamples& samples,
                                  const ReconstructionOptions& options) {
-  Reconstruction fit = reconstruct(curve, planar_samples(samples), options);
+  Reconstruction fit = fit_curve(curve_samples(samples, nullptr), &curve, options);
   return {PlanarCurveShape(std::move(fit.curve)), std::move(fit.report)};
 }
 
 PlanarShapeFit make_planar_shape(const DeflectionSamples& samples, const ReconstructionOptions& options) {
-  Reconstruction fit = reconstruct_from_nodes(planar_samples(samples), options);
+  Reconstruction fit = fit_curve(curve_samples(samples, nullptr), nullptr, options);
   return {PlanarCurveShape(std::move(fit.curve)), std::move(fit.report)};
 }
 

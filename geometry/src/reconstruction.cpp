@@ -245,4 +245,13 @@ Reconstruction reconstruct_from_nodes(const CurveSamples& samples, const Reconst
   return interpolate_nodes(undeformed, std::move(nodes), samples, options, std::move(report));
 }
 
+CurveSamples curve_samples(const DeflectionSamples& samples, const Axis* axis) {
+  return axis ? meridional_samples(samples, *axis) : planar_samples(samples);
+}
+
+Reconstruction fit_curve(const CurveSamples& nodes, const BSplineCurve2d* undeformed,
+                         const ReconstructionOptions& options) {
+  return undeformed ? reconstruct(*undeformed, nodes, options) : reconstruct_from_nodes(nodes, options);
+}
+
 }  // namespace hotmesh::geometry

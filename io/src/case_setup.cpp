@@ -82,10 +82,10 @@ class CurveBuilder {
   Curve curve(const PatchSpec& spec, const std::optional<DeflectionSpec>& deflection) {
     if (!deflection) return {own_curve(spec), {}};
     const geometry::CurveSamples samples = curve_samples(*deflection);
-    const geometry::ReconstructionOptions options = reconstruction_options(*deflection);
-    geometry::Reconstruction rebuilt = deflection->faces.empty()
-                                           ? geometry::reconstruct_from_nodes(samples, options)
-                                           : geometry::reconstruct(cad_curve(*deflection), samples, options);
+    const std::optional<geometry::BSplineCurve2d> cad =
+        deflection->faces.empty() ? std::nullopt : std::optional(cad_curve(*deflection));
+    geometry::Reconstruction rebuilt =
+        geometry::fit_curve(samples, cad ? &*cad : nullptr, reconstruction_options(*deflection));
     return {std::move(rebuilt.curve), std::move(rebuilt.report)};
   }
 
@@ -127,7 +127,7 @@ class CurveBuilder {
   }
 
   geometry::CurveSamples curve_samples(const DeflectionSpec& d) const {
-    return mesh_.dimension == 2 ? geometry::planar_samples(d.samples) : geometry::meridional_samples(d.samples, axis());
+    return geometry::curve_samples(d.samples, mesh_.dimension == 2 ? nullptr : &axis());
   }
 
   static geometry::ReconstructionOptions reconstruction_options(const DeflectionSpec& d) {

@@ -99,6 +99,16 @@ Reconstruction reconstruct(const BSplineCurve2d& undeformed, const CurveSamples&
 /// length scaled to [0, 1], and the deflection is interpolated at those t.
 Reconstruction reconstruct_from_nodes(const CurveSamples& samples, const ReconstructionOptions& options = {});
 
+/// Section 4.2 from a node table, in two steps: the one pipeline behind the case file's
+/// deflections, `hotmesh curve`, `hotmesh check` and the service.
+/// 1. The table's nodes in the plane of the curve: (x, y) without an axis (planar_samples),
+///    (r, z) about `axis` (meridional_samples).
+CurveSamples curve_samples(const DeflectionSamples& samples, const Axis* axis);
+/// 2. Eq. (21) on the CAD curve `undeformed` (reconstruct), or without one on the curve the
+///    nodes define (reconstruct_from_nodes).
+Reconstruction fit_curve(const CurveSamples& nodes, const BSplineCurve2d* undeformed,
+                         const ReconstructionOptions& options = {});
+
 /// An order of unordered points sampled along one open curve: the longest path of their
 /// Euclidean minimum spanning tree gives the spine; points off it are inserted where they
 /// project onto it. The first point is the end with the smaller x (then y). A closed curve is
