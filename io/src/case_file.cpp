@@ -36,7 +36,6 @@ using geometry::SampleFrame;
 
 constexpr std::array<std::string_view, 10> kTopKeys{"mesh",     "cad",     "length_unit", "output",  "axis",
                                                    "solver",   "material", "patches",    "pictures", "restart"};
-constexpr auto kUnitNames = geometry::kLengthUnitNames.names();
 constexpr std::array<std::string_view, 2> kAxisKeys{"origin", "direction"};
 constexpr std::array<std::string_view, 10> kSolverKeys{
     "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
