@@ -118,7 +118,7 @@ class ConstrainedOperator final : public LinearOperator {
 /// condition of sufficient decrease (Eisenstat and Walker, SIAM J. Optim. 4, 1994),
 ///     ||R_n|| <= (1 - t (1 - eta_n-1)) ||R_n-1||,   t = 1e-4:
 /// choice 2 alone keeps eta near its cap while Newton stalls, and the loose solves then make
-/// no progress (the 2.7-million-cell stator well, docs/performance-log.md).
+/// no progress (the 2.7-million-cell stator well, the history of docs/performance.md).
 /// The norm the solve stops on: the plain ||r|| costs a fraction of the CG iterations of
 /// ||D^-1 r||, but the stiffest cells dominate it and a solve can meet it leaving ||D^-1 R|| as
 /// it was. So the first solve of an increment, which sets the course of the increment, and the

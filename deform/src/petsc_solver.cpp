@@ -102,7 +102,7 @@ void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows
 /// increments (0.15 GB per increment at 2.7 million cells), and stayed at 1.12 GB with the free
 /// pages released after each set-up. Released before each set-up too, once the old hierarchy is
 /// destroyed: else the set-up's peak sits on the old hierarchy's resident free pages, and at 2.7
-/// million cells it rose by 0.2-0.4 GiB per increment (docs/performance-log.md).
+/// million cells it rose by 0.2-0.4 GiB per increment (the history of docs/performance.md).
 void release_free_memory() {
 #if defined(__GLIBC__)
   malloc_trim(0);
