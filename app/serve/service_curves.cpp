@@ -13,6 +13,7 @@
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/cad_export.hpp"
 #include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "serve/curve_json.hpp"
 #include "serve/service.hpp"
@@ -87,7 +88,7 @@ geometry::DeflectionSamples table_field(const Json& request, const ServiceLimits
 
 geometry::ReconstructionOptions reconstruction_field(const Json& request) {
   geometry::ReconstructionOptions options;
-  options.degree = static_cast<int>(integer_field(request, "degree", 1, 5, 1));
+  options.degree = static_cast<int>(integer_field(request, "degree", 1, geometry::kMaxReconstructionDegree, 1));
   const std::string form = string_field(request, "form", "curve");
   const auto known_form = geometry::kDeflectionFormNames.parse(form);
   if (!known_form) {

@@ -16,7 +16,6 @@ namespace hotmesh::geometry {
 
 namespace {
 
-constexpr int kMaxDegree = 5;
 /// Nodes whose parameters differ by less than this fraction of the range are one node.
 constexpr double kSameParameter = 1e-10;
 constexpr std::size_t kListedNodes = 20;
@@ -31,9 +30,9 @@ struct PlacedNode {
 };
 
 void check_inputs(const CurveSamples& samples, const ReconstructionOptions& options) {
-  if (options.degree < 1 || options.degree > kMaxDegree) {
+  if (options.degree < 1 || options.degree > kMaxReconstructionDegree) {
     throw InputError::in(samples.source, "the degree of the deflected curve must be 1 to " +
-                                             std::to_string(kMaxDegree) + ", got " +
+                                             std::to_string(kMaxReconstructionDegree) + ", got " +
                                              std::to_string(options.degree));
   }
   if (!std::isfinite(options.tolerance) || options.tolerance < 0.0 ||

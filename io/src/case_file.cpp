@@ -22,6 +22,7 @@
 #include <utility>
 
 #include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "yaml_checks.hpp"
@@ -353,7 +354,7 @@ class CaseParser {
     bool ok = table_read;
     const Entry* degree = m.find("degree");
     if (degree != nullptr) {
-      const auto value = reader_.integer_in(*degree, 1, 5);
+      const auto value = reader_.integer_in(*degree, 1, geometry::kMaxReconstructionDegree);
       ok = ok && value.has_value();
       spec.degree = value.value_or(spec.degree);
     }

@@ -8,6 +8,7 @@
 #include "binary_file.hpp"
 #include "header_integers.hpp"
 #include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 
 namespace hotmesh::io {
@@ -42,7 +43,10 @@ DeflectionSpec samples_from_json(const json& j) {
   DeflectionSpec d;
   d.file = j.at("file").get<std::string>();
   d.degree = integer_value<int>(j.at("degree"));
-  if (d.degree < 1 || d.degree > 5) throw std::out_of_range("degree " + std::to_string(d.degree) + " is not 1 to 5");
+  if (d.degree < 1 || d.degree > geometry::kMaxReconstructionDegree) {
+    throw std::out_of_range("degree " + std::to_string(d.degree) + " is not 1 to " +
+                            std::to_string(geometry::kMaxReconstructionDegree));
+  }
   const auto form = j.at("form").get<std::string>();
   const auto known_form = geometry::kDeflectionFormNames.parse(form);
   if (!known_form) throw std::domain_error("unknown form '" + form + "'");

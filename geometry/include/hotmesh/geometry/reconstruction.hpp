@@ -50,6 +50,9 @@ enum class FarNodePolicy {
   drop,    ///< leave them out and list them in the report
 };
 
+/// The highest degree q of a deflected curve (eq. 21) hotmesh takes.
+inline constexpr int kMaxReconstructionDegree = 5;
+
 struct ReconstructionOptions {
   int degree = 1;  ///< q, 1..5; 1 is the paper's choice (linear FEM elements)
   DeflectionForm form = DeflectionForm::curve;
