@@ -88,7 +88,7 @@ std::vector<int> face_ids(const std::string& list, const std::string& text) {
 }
 
 /// The patches to check, in the order first named, with their faces and tables.
-std::vector<PatchCheckSpec> patch_specs(const Options& o, const deform::Mesh& mesh) {
+std::vector<PatchCheckSpec> patch_specs(const Options& o, const mesh::Mesh& mesh) {
   std::vector<PatchCheckSpec> specs;
   auto spec_of = [&](const std::string& patch, const std::string& option) -> PatchCheckSpec& {
     if (!mesh.find_patch(patch)) {
@@ -118,7 +118,7 @@ std::vector<PatchCheckSpec> patch_specs(const Options& o, const deform::Mesh& me
   return specs;
 }
 
-double default_tolerance(const deform::Mesh& mesh) {
+double default_tolerance(const mesh::Mesh& mesh) {
   geometry::Vec3 lo = mesh.points.front(), hi = lo;
   for (const auto& p : mesh.points) {
     for (int k = 0; k < 3; ++k) {
@@ -157,13 +157,13 @@ class DistanceTally {
 };
 
 /// The nodes of `patch` measured against its reference; each node against the nearest part.
-PatchCheck check_patch(const deform::Patch& patch, const deform::Mesh& mesh, PatchReference& reference,
+PatchCheck check_patch(const mesh::Patch& patch, const mesh::Mesh& mesh, PatchReference& reference,
                        double tolerance) {
   const auto start = std::chrono::steady_clock::now();
   DistanceTally whole(reference.description);
   std::vector<DistanceTally> parts;
   for (const auto& part : reference.parts) parts.emplace_back(part->description());
-  for (const deform::NodeId n : patch.nodes) {
+  for (const mesh::NodeId n : patch.nodes) {
     const geometry::Vec3& p = mesh.points[static_cast<std::size_t>(n)];
     std::size_t nearest = 0;
     double d = reference.parts[0]->distance(p);
@@ -213,7 +213,7 @@ CheckResult check_with_options(const Options& o, const std::vector<std::filesyst
     }
   }
   const io::LoadedMesh loaded = io::read_mesh(o.mesh);
-  const deform::Mesh& mesh = loaded.mesh;
+  const mesh::Mesh& mesh = loaded.mesh;
   const std::vector<PatchCheckSpec> specs = patch_specs(o, mesh);
   if (!o.output.empty()) io::refuse_overwriting_input(o.output, inputs);
   std::optional<geometry::CadModel> cad;
@@ -272,7 +272,7 @@ CheckResult check_with_case(const Options& o, std::vector<std::filesystem::path>
                                        case_mesh.mesh.points.size(), case_mesh.mesh.dimension));
     }
   }
-  const deform::Mesh& mesh = deformed ? deformed->mesh : case_mesh.mesh;
+  const mesh::Mesh& mesh = deformed ? deformed->mesh : case_mesh.mesh;
   std::vector<CasePatchReference> references =
       case_references(c, case_mesh.mesh, own_mesh ? CaseStage::undeformed : CaseStage::deflected);
   if (references.empty()) {
@@ -286,8 +286,8 @@ CheckResult check_with_case(const Options& o, std::vector<std::filesystem::path>
   result.unit = geometry::to_string(c.length_unit);
   result.tolerance = o.tolerance > 0.0 ? o.tolerance : default_tolerance(mesh);
   for (CasePatchReference& r : references) {
-    const deform::Patch* patch = mesh.find_patch(r.patch);
-    const deform::Patch* original = case_mesh.mesh.find_patch(r.patch);
+    const mesh::Patch* patch = mesh.find_patch(r.patch);
+    const mesh::Patch* original = case_mesh.mesh.find_patch(r.patch);
     if (!patch || patch->nodes.size() != original->nodes.size()) {
       throw InputError::in(mesh_path.string(),
                            fmt::format("patch '{}' {} in the case's mesh {}: give a mesh the case was deformed into",

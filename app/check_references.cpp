@@ -94,7 +94,7 @@ PatchReference revolved_faces(const PatchCheckSpec& spec, const geometry::CadMod
   return reference;
 }
 
-PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* cad, const deform::Mesh& mesh,
+PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* cad, const mesh::Mesh& mesh,
                          const ReferenceOptions& options) {
   const std::string faces = face_text(spec.faces);
   if (!spec.deflection) {
@@ -167,7 +167,7 @@ std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, CaseSta
 }  // namespace
 
 PatchReference make_patch_reference(const PatchCheckSpec& spec, const geometry::CadModel* cad,
-                                    const deform::Mesh& mesh, const ReferenceOptions& options) {
+                                    const mesh::Mesh& mesh, const ReferenceOptions& options) {
   if (!spec.faces.empty() && cad == nullptr) {
     throw InputError(fmt::format("--map {}: needs --cad, the file the faces belong to", spec.patch));
   }
@@ -181,7 +181,7 @@ PatchReference make_patch_reference(const PatchCheckSpec& spec, const geometry::
   }
 }
 
-std::vector<CasePatchReference> case_references(const io::Case& c, const deform::Mesh& case_mesh, CaseStage stage) {
+std::vector<CasePatchReference> case_references(const io::Case& c, const mesh::Mesh& case_mesh, CaseStage stage) {
   io::check_case_against_mesh(c, case_mesh);
   const io::CaseSetup setup = io::set_up_case(c, case_mesh);
   std::vector<CasePatchReference> references;

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/case_file.hpp"
@@ -53,7 +53,7 @@ struct ReferenceOptions {
 /// The reference of one patch. `cad` is null when no CAD file was given (then the spec has no
 /// faces). Throws hotmesh::InputError naming the patch for anything that does not fit.
 PatchReference make_patch_reference(const PatchCheckSpec& spec, const geometry::CadModel* cad,
-                                    const deform::Mesh& mesh, const ReferenceOptions& options);
+                                    const mesh::Mesh& mesh, const ReferenceOptions& options);
 
 /// Which shape of a case's boundaries a mesh is compared with.
 enum class CaseStage {
@@ -70,6 +70,6 @@ struct CasePatchReference {
 /// patches), in the order of the case file: the shapes hotmesh deform builds for the case from
 /// its own (undeformed) mesh `case_mesh`, at the stage asked for. Throws hotmesh::InputError
 /// as hotmesh deform's set-up does.
-std::vector<CasePatchReference> case_references(const io::Case& c, const deform::Mesh& case_mesh, CaseStage stage);
+std::vector<CasePatchReference> case_references(const io::Case& c, const mesh::Mesh& case_mesh, CaseStage stage);
 
 }  // namespace hotmesh::app

@@ -11,7 +11,7 @@
 
 namespace hotmesh::app {
 
-CheckpointWriter::CheckpointWriter(std::filesystem::path path, const io::Case& c, const deform::Mesh& mesh,
+CheckpointWriter::CheckpointWriter(std::filesystem::path path, const io::Case& c, const mesh::Mesh& mesh,
                                    std::vector<io::InputFingerprint> inputs, int kill_after_increment)
     : path_(std::move(path)), origin_(io::checkpoint_origin(c, mesh, std::move(inputs))), kill_after_(kill_after_increment) {}
 

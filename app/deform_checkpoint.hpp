@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
@@ -23,7 +23,7 @@ class CheckpointWriter {
  public:
   /// `kill_after_increment` > 0 is a testing hook (hidden option --stop-after-increment): the
   /// process kills itself with SIGKILL once the checkpoint of that increment is written.
-  CheckpointWriter(std::filesystem::path path, const io::Case& c, const deform::Mesh& mesh,
+  CheckpointWriter(std::filesystem::path path, const io::Case& c, const mesh::Mesh& mesh,
                    std::vector<io::InputFingerprint> inputs, int kill_after_increment);
 
   /// The checkpoint observer of deform::move_mesh.

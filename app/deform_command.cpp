@@ -20,9 +20,9 @@
 #include "commands.hpp"
 #include "deform_checkpoint.hpp"
 #include "deform_outputs.hpp"
-#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/deform/processes.hpp"
-#include "hotmesh/deform/threads.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/atomic_file.hpp"
@@ -114,7 +114,7 @@ void report_out_of_memory(const RunState& state) {
 
 /// Makes the output folder ready (`folder`); with --resume, reads the checkpoint in it and
 /// checks it against this run's inputs (`fingerprints`).
-std::optional<io::Checkpoint> prepare_output(const Options& options, const io::Case& c, const deform::Mesh& mesh,
+std::optional<io::Checkpoint> prepare_output(const Options& options, const io::Case& c, const mesh::Mesh& mesh,
                                              const std::filesystem::path& output,
                                              std::span<const io::InputFingerprint> fingerprints,
                                              io::OutputFolder& folder) {
@@ -175,17 +175,17 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
                                                       "processes) use `linear: amg`",
                                                       deform::to_string(c.solver.linear), job.count));
   }
-  // The threads before the mesh, while memory is plentiful (deform/threads.hpp).
+  // The threads before the mesh, while memory is plentiful (hotmesh/mesh/parallel_loops.hpp).
   const int threads = options.threads >= 0 ? options.threads : c.solver.threads;
   state.phase = fmt::format("starting {}", counted(threads > 0 ? threads : omp_get_max_threads(), "thread"));
-  deform::start_threads(threads);
+  mesh::start_threads(threads);
   // Every file the case names is checked before any work: the CAD file too, whether or not a
   // patch takes faces from it.
   state.phase = "reading the CAD file";
   in.cad = io::read_case_cad(c);
   state.phase = "reading the mesh";
   in.loaded = io::read_mesh(c.mesh);
-  const deform::Mesh& mesh = in.loaded.mesh;
+  const mesh::Mesh& mesh = in.loaded.mesh;
   state.nodes = mesh.node_count();
   state.cells = mesh.cell_count();
   spdlog::info("mesh {}: {} nodes, {} cells", c.mesh.string(), mesh.node_count(), mesh.cell_count());
@@ -205,7 +205,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
 deform::MotionResult move_the_mesh(const Options& options, RunState& state, const RunInputs& in, const io::CaseSetup& setup,
                                    CheckpointWriter& checkpoints, Clock::time_point start) {
   const io::Case& c = in.c;
-  const deform::Mesh& mesh = in.loaded.mesh;
+  const mesh::Mesh& mesh = in.loaded.mesh;
   const deform::Processes job = deform::processes();
   const int increments = c.solver.increments;
   if (in.resumed) {
@@ -250,7 +250,7 @@ int write_run_outputs(const RunInputs& in, const io::CaseSetup& setup, const def
                       const Options& options, CheckpointWriter& checkpoints, RunTimings& timings,
                       const io::CheckpointInfo* resumed_from, Clock::time_point start) {
   const io::Case& c = in.c;
-  const deform::Mesh& mesh = in.loaded.mesh;
+  const mesh::Mesh& mesh = in.loaded.mesh;
   const std::filesystem::path& output = in.output;
   const auto t = Clock::now();
   RunOutputs outputs = write_outputs(output, c, mesh, setup, result, options.binary);

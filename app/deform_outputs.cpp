@@ -18,13 +18,13 @@
 namespace hotmesh::app {
 namespace {
 
-io::VtuFields deform_fields(const deform::Mesh& mesh, const std::vector<deform::Vec3>& points,
+io::VtuFields deform_fields(const mesh::Mesh& mesh, const std::vector<geometry::Vec3>& points,
                             const deform::MotionResult& result) {
   io::VtuFields fields = io::quality_fields(mesh, points);
   std::vector<double> displacement;
   displacement.reserve(3 * points.size());
   for (std::size_t n = 0; n < points.size(); ++n) {
-    const deform::Vec3 d = points[n] - mesh.points[n];
+    const geometry::Vec3 d = points[n] - mesh.points[n];
     displacement.insert(displacement.end(), {d.x, d.y, d.z});
   }
   fields.point_data.push_back({"displacement", 3, std::move(displacement)});
@@ -35,8 +35,8 @@ io::VtuFields deform_fields(const deform::Mesh& mesh, const std::vector<deform::
 
 /// A picture of a 2D mesh coloured by quality, with the deflected boundaries as given by the
 /// FEM tables drawn in blue over it (as in the paper's figures).
-void picture(const std::filesystem::path& path, const std::string& title, const deform::Mesh& mesh,
-             const std::vector<deform::Vec3>& points, const std::vector<double>& quality,
+void picture(const std::filesystem::path& path, const std::string& title, const mesh::Mesh& mesh,
+             const std::vector<geometry::Vec3>& points, const std::vector<double>& quality,
              const io::CaseSetup& setup, const io::PictureView* view) {
   io::Figure figure({.width = 1400, .height = 900, .title = title, .x_label = "x", .y_label = "y"});
   io::draw_mesh(figure, mesh, points, {.edges = {io::colors::black, view ? 0.8 : 0.4}, .quality = quality});
@@ -60,7 +60,7 @@ std::uint64_t peak_memory_bytes() {
   return 0;
 }
 
-std::vector<std::string> output_names(const io::Case& c, const deform::Mesh& mesh) {
+std::vector<std::string> output_names(const io::Case& c, const mesh::Mesh& mesh) {
   std::vector<std::string> names{"deformed.msh", "deformed.vtu", "failed.vtu", "report.json", "restart.hmr",
                                  std::string(io::kCheckpointName)};
   if (mesh.dimension == 2) {
@@ -71,10 +71,10 @@ std::vector<std::string> output_names(const io::Case& c, const deform::Mesh& mes
   return names;
 }
 
-RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const deform::Mesh& mesh,
+RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const mesh::Mesh& mesh,
                          const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh) {
   RunOutputs out;
-  deform::Mesh moved = mesh;
+  mesh::Mesh moved = mesh;
   moved.points = result.points;
   io::write_gmsh(folder / "deformed.msh", moved, {.binary = binary_msh});
   out.files.push_back(folder / "deformed.msh");
@@ -199,7 +199,7 @@ void put_increments(json& j, const deform::MotionResult& result) {
 }
 
 /// The motion's results: stage, node counts, memory, the lengths and the quality.
-void put_motion(json& j, const deform::Mesh& mesh, const deform::MotionResult& result) {
+void put_motion(json& j, const mesh::Mesh& mesh, const deform::MotionResult& result) {
   const double scale = result.length_scale;
   j["stage_reached"] = result.lambda_reached;
   j["sliding_nodes"] = result.sliding_nodes;

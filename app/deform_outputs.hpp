@@ -31,9 +31,9 @@ struct RunOutputs {
 };
 
 /// The names of every file a run may write (to check none would replace an input).
-std::vector<std::string> output_names(const io::Case& c, const deform::Mesh& mesh);
+std::vector<std::string> output_names(const io::Case& c, const mesh::Mesh& mesh);
 
-RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const deform::Mesh& mesh,
+RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const mesh::Mesh& mesh,
                          const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh);
 
 /// report.json: status, increments with Newton and PCG iterations, quality, times per phase;

@@ -5,11 +5,11 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/mesh/quality.hpp"
 
 namespace hotmesh::app {
 
-nlohmann::json quality_json(const deform::Mesh& mesh, const deform::QualitySummary& q) {
+nlohmann::json quality_json(const mesh::Mesh& mesh, const mesh::QualitySummary& q) {
   nlohmann::json j;
   j["min_scaled_jacobian"] = q.min_scaled_jacobian;
   j["mean_scaled_jacobian"] = q.mean_scaled_jacobian;
@@ -20,16 +20,16 @@ nlohmann::json quality_json(const deform::Mesh& mesh, const deform::QualitySumma
 }
 
 nlohmann::json mesh_summary(const io::LoadedMesh& loaded, const std::filesystem::path& file) {
-  const deform::Mesh& mesh = loaded.mesh;
+  const mesh::Mesh& mesh = loaded.mesh;
   nlohmann::json j;
   j["file"] = file.string();
   j["dimension"] = mesh.dimension;
   j["nodes"] = mesh.node_count();
   j["cells"] = mesh.cell_count();
   std::map<std::string, std::size_t> by_type;
-  for (auto t : mesh.cells.types()) ++by_type[std::string(deform::name(t))];
+  for (auto t : mesh.cells.types()) ++by_type[std::string(mesh::name(t))];
   j["cell_types"] = by_type;
-  deform::Vec3 lo = mesh.points.front(), hi = lo;
+  geometry::Vec3 lo = mesh.points.front(), hi = lo;
   for (const auto& p : mesh.points) {
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
@@ -46,7 +46,7 @@ nlohmann::json mesh_summary(const io::LoadedMesh& loaded, const std::filesystem:
     j["cell_groups"].push_back({{"name", g.name}, {"tag", g.tag}, {"cells", g.cells.size()}});
   }
   j["notes"] = loaded.validation.notes;
-  const auto quality = deform::summarize_quality(deform::scaled_jacobians(mesh.cells, mesh.points));
+  const auto quality = mesh::summarize_quality(mesh::scaled_jacobians(mesh.cells, mesh.points));
   j["quality"] = quality_json(mesh, quality);
   return j;
 }

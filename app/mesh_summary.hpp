@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 
 namespace hotmesh::app {
@@ -15,8 +15,8 @@ namespace hotmesh::app {
 /// Counts, bounds, patches, cell groups, validation notes and the quality summary.
 nlohmann::json mesh_summary(const io::LoadedMesh& loaded, const std::filesystem::path& file);
 
-/// A quality summary (deform::QualitySummary) as JSON.
-nlohmann::json quality_json(const deform::Mesh& mesh, const deform::QualitySummary& quality);
+/// A quality summary (mesh::QualitySummary) as JSON.
+nlohmann::json quality_json(const mesh::Mesh& mesh, const mesh::QualitySummary& quality);
 
 /// The summary as aligned text for a terminal.
 std::string mesh_summary_text(const nlohmann::json& summary);

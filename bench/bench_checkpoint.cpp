@@ -24,7 +24,7 @@
 #include <fmt/format.h>
 
 #include "hotmesh/deform/mesh_motion.hpp"
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "machine_load.hpp"
@@ -40,7 +40,7 @@ using bench::median;
 
 /// The state a run hands out after an accepted increment: every point, and each boundary
 /// node as a sliding node with a target and hints; 8 increments of records.
-deform::MotionCheckpoint state_of(const deform::Mesh& mesh) {
+deform::MotionCheckpoint state_of(const mesh::Mesh& mesh) {
   deform::MotionCheckpoint s;
   s.increments = 16;
   s.finished_increments = 8;
@@ -48,10 +48,10 @@ deform::MotionCheckpoint state_of(const deform::Mesh& mesh) {
   s.points = mesh.points;
   std::vector<char> boundary(mesh.node_count(), 0);
   for (const auto& patch : mesh.patches) {
-    for (deform::NodeId n : patch.nodes) boundary[static_cast<std::size_t>(n)] = 1;
+    for (mesh::NodeId n : patch.nodes) boundary[static_cast<std::size_t>(n)] = 1;
   }
   for (std::size_t n = 0; n < mesh.node_count(); ++n) {
-    if (boundary[n]) s.sliding.push_back({static_cast<deform::NodeId>(n), mesh.points[n], {0.5, 0.25, 0.0}});
+    if (boundary[n]) s.sliding.push_back({static_cast<mesh::NodeId>(n), mesh.points[n], {0.5, 0.25, 0.0}});
   }
   for (int k = 1; k <= 8; ++k) {
     deform::IncrementRecord r;
@@ -84,8 +84,8 @@ int main(int argc, char** argv) {
   }
   try {
     const int n = std::max(2, static_cast<int>(std::lround(std::cbrt(static_cast<double>(cells)))));
-    const auto line = deform::uniform_line(0.0, 1.0, n);
-    const deform::Mesh mesh = deform::structured_hexes(line, line, line);
+    const auto line = mesh::uniform_line(0.0, 1.0, n);
+    const mesh::Mesh mesh = mesh::structured_hexes(line, line, line);
     std::filesystem::create_directories(dir);
     io::Case c;
     c.file = dir / "case.yaml";

@@ -27,7 +27,7 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/mesh_files.hpp"

@@ -22,7 +22,7 @@
 //    and every other boundary node fixed: iterations, time per iteration, the share of it
 //    spent in products, and the time to build the Jacobi preconditioner (K's diagonal).
 // 5. The cost of starting an OpenMP team next to the work each threshold of
-//    deform/src/parallel.hpp keeps on one thread (estimated from the rates measured above).
+//    mesh/include/hotmesh/mesh/parallel_loops.hpp keeps on one thread (estimated from the rates measured above).
 //
 // "other load" is the mean number of cores other processes kept busy during a measurement
 // (from /proc/stat): on a shared machine, rows with all threads and other load well above 0
@@ -50,12 +50,13 @@
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/pcg.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"  // the OpenMP thresholds under test in part 5
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "machine_load.hpp"
 #include "timing.hpp"
-#include "parallel.hpp"  // deform/src: the OpenMP thresholds under test in part 5
 
 using namespace hotmesh::deform;
+using namespace hotmesh::mesh;
 
 namespace {
 
@@ -262,7 +263,7 @@ class JacobiOperator final : public LinearOperator {
   std::size_t size() const override { return inverse_.size(); }
   void apply(std::span<const double> x, std::span<double> y) const override {
     const auto n = static_cast<std::ptrdiff_t>(x.size());
-#pragma omp parallel for schedule(static) if (n >= hotmesh::deform::detail::kParallelVector)
+#pragma omp parallel for schedule(static) if (n >= hotmesh::mesh::kParallelVector)
     for (std::ptrdiff_t i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
       y[k] = inverse_[k] * x[k];
@@ -373,7 +374,7 @@ ForkJoin fork_join_seconds(int threads) {
 /// One-thread seconds per entry of deform::axpy on vectors that fit in L1/L2.
 double axpy_seconds_per_entry() {
   omp_set_num_threads(1);
-  const std::size_t n = static_cast<std::size_t>(hotmesh::deform::detail::kParallelVector);
+  const std::size_t n = static_cast<std::size_t>(hotmesh::mesh::kParallelVector);
   std::vector<double> x(n, 1.0), y(n, 0.0);
   constexpr int kCalls = 1000;
   const double seconds = time_runs(
@@ -473,7 +474,7 @@ int main(int argc, char** argv) {
     const int all = thread_counts.back();
     const ForkJoin fork = fork_join_seconds(all);
     const double axpy_entry = axpy_seconds_per_entry();
-    fmt::print("\n### OpenMP thresholds (deform/src/parallel.hpp)\n\n");
+    fmt::print("\n### OpenMP thresholds (mesh/include/hotmesh/mesh/parallel_loops.hpp)\n\n");
     fmt::print("Starting and joining a team of {} threads, over 20000 regions (other load {:.2f}): median "
                "{:.2f} us, mean {:.2f} us, 99.9th percentile {:.1f} us, longest {:.0f} us. One-thread work each "
                "threshold keeps sequential, from the rates above, and its ratio to the mean start-up cost:\n\n",
@@ -483,7 +484,7 @@ int main(int argc, char** argv) {
     auto line = [&](const char* name, std::ptrdiff_t value, double seconds) {
       fmt::print("| {} | {} | {:.1f} us | {:.0f} |\n", name, value, 1e6 * seconds, seconds / fork.mean);
     };
-    using namespace hotmesh::deform::detail;
+    using namespace hotmesh::mesh;
     if (product_ns_per_madd > 0.0) {
       line("kParallelProduct (multiply-adds per colour)", kParallelProduct,
            static_cast<double>(kParallelProduct) * product_ns_per_madd * 1e-9);

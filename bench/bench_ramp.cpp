@@ -29,7 +29,7 @@
 #include <fmt/format.h>
 
 #include "hotmesh/deform/material.hpp"
-#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/case_setup.hpp"

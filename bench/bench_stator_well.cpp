@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/deform/quality.hpp"
-#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/mesh/validate.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "stator_well.hpp"
 
@@ -41,10 +41,10 @@ void run(std::int64_t target, const std::filesystem::path& folder) {
   auto mesh = sector_mesh(section, loop, size.theta_cells);
   const double t_sweep = since(t);
   t = Clock::now();
-  hotmesh::deform::validate_mesh(mesh);
+  hotmesh::mesh::validate_mesh(mesh);
   const double t_validate = since(t);
   t = Clock::now();
-  const auto quality = hotmesh::deform::summarize_quality(hotmesh::deform::scaled_jacobians(mesh.cells, mesh.points));
+  const auto quality = hotmesh::mesh::summarize_quality(hotmesh::mesh::scaled_jacobians(mesh.cells, mesh.points));
   const double t_quality = since(t);
   t = Clock::now();
   const auto file = folder / ("stator_well_" + std::to_string(target) + ".msh");

@@ -12,7 +12,7 @@
 #include <unordered_map>
 
 #include "hotmesh/geometry/input_error.hpp"
-#include "parallel.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
 #include "passive.hpp"
 #include "rigid_modes.hpp"
 
@@ -71,8 +71,8 @@ std::vector<double> locate(const Mesh& mesh, std::span<const Vec3> points, const
                            std::span<const NodeId> nodes) {
   const double tolerance = m.tolerance > 0.0 ? m.tolerance : 1e-3 * bounding_diagonal(mesh.points, patch.nodes);
   std::vector<geometry::ShapePoint> found(nodes.size());
-  LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
-#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= kParallelProjections)
+  mesh::LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
+#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= mesh::kParallelProjections)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nodes.size()); ++i) {
     errors.run([&] {
       const auto k = static_cast<std::size_t>(i);

@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "parallel.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
 #include "rank_exchange.hpp"
 
 namespace hotmesh::deform::detail {
@@ -328,8 +328,8 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
     } else {
       for (const auto& colour : order.colours) {
         const auto count = static_cast<std::ptrdiff_t>(colour.size());
-        LoopExceptions errors;  // add() throws on a broken invariant
-#pragma omp parallel for schedule(static) if (count >= kParallelCells)
+        mesh::LoopExceptions errors;  // add() throws on a broken invariant
+#pragma omp parallel for schedule(static) if (count >= mesh::kParallelCells)
         for (std::ptrdiff_t k = 0; k < count; ++k) errors.run([&] { add(colour[static_cast<std::size_t>(k)], false); });
         errors.rethrow();
       }

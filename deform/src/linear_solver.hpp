@@ -56,7 +56,7 @@ class LinearSolver {
   /// sliding nodes (eq. 17). Adds the element work to timings.assembly. By default k.update()
   /// and one product; the amg solver without stored element matrices assembles its matrix in
   /// the same pass. Also writes each node's stiffness (one value per node, see
-  /// add_node_stiffness), which scales the Newton residual's norm (mesh_motion.cpp).
+  /// add_node_stiffness), which scales the Newton residual's norm (move_mesh.cpp).
   virtual void update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
                       std::span<double> node_stiffness, MotionTimings& timings);
   /// Solves the system for p from p = 0 to ||r|| <= target.tolerance ||rhs||, r = rhs - K p,

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "hotmesh/deform/linear_algebra.hpp"
-#include "parallel.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {
@@ -81,7 +81,7 @@ void NodalFrames::update(const NodeConstraints& constraints, const PeriodicCoupl
   const int d = dim_;
   const auto dd = static_cast<std::size_t>(d * d);
   const auto nodes = static_cast<std::ptrdiff_t>(owner_.size());
-#pragma omp parallel for schedule(static) if (nodes >= kParallelNodes)
+#pragma omp parallel for schedule(static) if (nodes >= mesh::kParallelNodes)
   for (std::ptrdiff_t i = 0; i < nodes; ++i) {
     const auto n = static_cast<NodeId>(i);
     const auto k = static_cast<std::size_t>(i);
@@ -162,7 +162,7 @@ void NodalFrames::from_frames(std::span<const double> p, std::span<double> out) 
 void NodalFrames::turn(std::span<const double> v, std::span<double> out, bool into_frames) const {
   const auto d = static_cast<std::size_t>(dim_);
   const auto nodes = static_cast<std::ptrdiff_t>(owner_.size());
-#pragma omp parallel for schedule(static) if (nodes >= kParallelNodes)
+#pragma omp parallel for schedule(static) if (nodes >= mesh::kParallelNodes)
   for (std::ptrdiff_t i = 0; i < nodes; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const double* q = frames_.data() + k * d * d;

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "hotmesh/deform/constraints.hpp"
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_names.hpp"
 #include "periodic.hpp"
 
 namespace hotmesh::deform::detail {

@@ -18,7 +18,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_names.hpp"
 #include "periodic.hpp"
 
 namespace hotmesh::deform::detail {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_names.hpp"
 #include "hotmesh/geometry/axis.hpp"
 
 namespace hotmesh::deform::detail {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_names.hpp"
 
 namespace hotmesh::deform::detail {
 

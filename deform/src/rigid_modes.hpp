@@ -15,7 +15,7 @@
 
 #include <Eigen/Core>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_names.hpp"
 #include "periodic.hpp"
 
 namespace hotmesh::deform::detail {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "parallel.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
 #include "rank_exchange.hpp"
 
 namespace hotmesh::deform::detail {
@@ -34,8 +34,8 @@ void SlidingNodes::begin_increment(double a, double b, std::span<const Vec3> x, 
   }
   const Share mine = my_share(nodes.size());
   const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
-  LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
-#pragma omp parallel for schedule(dynamic, 64) if (count >= kParallelProjections)
+  mesh::LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
+#pragma omp parallel for schedule(dynamic, 64) if (count >= mesh::kParallelProjections)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
     errors.run([&] {
       const auto k = mine.begin + static_cast<std::size_t>(i);
@@ -57,8 +57,8 @@ double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double
   double largest = 0.0;
   const Share mine = my_share(nodes.size());
   const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
-  LoopExceptions errors;
-#pragma omp parallel for schedule(dynamic, 64) reduction(max : largest) if (count >= kParallelProjections)
+  mesh::LoopExceptions errors;
+#pragma omp parallel for schedule(dynamic, 64) reduction(max : largest) if (count >= mesh::kParallelProjections)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
     errors.run([&] {  // `largest` here is this thread's copy of the reduction
       const auto k = mine.begin + static_cast<std::size_t>(i);
@@ -91,8 +91,8 @@ void SlidingNodes::end_increment(std::span<const double> u) {
   auto& nodes = setup_.sliding;
   const Share mine = my_share(nodes.size());
   const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
-  LoopExceptions errors;
-#pragma omp parallel for schedule(dynamic, 64) if (count >= kParallelProjections)
+  mesh::LoopExceptions errors;
+#pragma omp parallel for schedule(dynamic, 64) if (count >= mesh::kParallelProjections)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
     errors.run([&] {
       const auto k = mine.begin + static_cast<std::size_t>(i);

@@ -8,7 +8,7 @@
 
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/geometry/input_error.hpp"
-#include "parallel.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
 
 namespace hotmesh::deform {
 
@@ -81,7 +81,7 @@ void StiffnessOperator::update(std::span<const Vec3> points) {
   if (!stores_matrices()) throw std::logic_error("StiffnessOperator::update: built without element storage");
   const auto n = static_cast<std::ptrdiff_t>(cells_->size());
   const auto block = static_cast<std::size_t>(element_dofs_ * element_dofs_);
-#pragma omp parallel for schedule(static) if (n >= detail::kParallelCells)
+#pragma omp parallel for schedule(static) if (n >= mesh::kParallelCells)
   for (std::ptrdiff_t c = 0; c < n; ++c) {
     const auto i = static_cast<std::size_t>(c);
     element_stiffness(cells_->type(i), gather(cells_->nodes(i), points), lame_[i], drop_jacobian_,
@@ -101,7 +101,7 @@ template <std::size_t N, std::size_t D>
 void apply_color(const ElementList& cells, std::span<const CellId> color, const double* matrices,
                  std::span<const double> x, std::span<double> y) {
   constexpr std::size_t kNodes = N / D;
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(color.size() * N * N) >= detail::kParallelProduct)
+#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(color.size() * N * N) >= mesh::kParallelProduct)
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(color.size()); ++k) {
     const auto c = static_cast<std::size_t>(color[static_cast<std::size_t>(k)]);
     const auto nodes = cells.nodes(c);

@@ -560,10 +560,10 @@ Case parse_case(std::string_view text, const std::filesystem::path& file) { retu
 
 Case read_case(const std::filesystem::path& file) { return parse_case(read_file(file), file); }
 
-void check_case_against_mesh(const Case& c, const deform::Mesh& mesh) {
+void check_case_against_mesh(const Case& c, const mesh::Mesh& mesh) {
   Problems problems;
   std::vector<std::string> mesh_names;
-  for (const deform::Patch& p : mesh.patches) {
+  for (const mesh::Patch& p : mesh.patches) {
     mesh_names.push_back(p.name);
     if (c.find_patch(p.name) == nullptr) {
       problems.add(c.patches_line, "patches",

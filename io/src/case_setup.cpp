@@ -26,14 +26,14 @@ struct Curve {
 
 /// The nodes of a 2D patch in order along it, following its edges; closed curves repeat their
 /// first node at the end.
-std::vector<deform::NodeId> chain_patch(const deform::Patch& patch, const deform::Mesh& mesh) {
-  std::map<deform::NodeId, std::vector<deform::NodeId>> next;
+std::vector<mesh::NodeId> chain_patch(const mesh::Patch& patch, const mesh::Mesh& mesh) {
+  std::map<mesh::NodeId, std::vector<mesh::NodeId>> next;
   for (std::size_t f = 0; f < patch.faces.size(); ++f) {
     const auto e = patch.faces.nodes(f);
     next[e[0]].push_back(e[1]);
     next[e[1]].push_back(e[0]);
   }
-  deform::NodeId start = next.begin()->first;
+  mesh::NodeId start = next.begin()->first;
   for (const auto& [node, neighbours] : next) {
     if (neighbours.size() > 2) {
       throw InputError(fmt::format("patch '{}' branches at node {}: a sliding patch must be a single curve",
@@ -41,11 +41,11 @@ std::vector<deform::NodeId> chain_patch(const deform::Patch& patch, const deform
     }
     if (neighbours.size() == 1) start = node;
   }
-  std::vector<deform::NodeId> chain{start};
-  deform::NodeId previous = -1, current = start;
+  std::vector<mesh::NodeId> chain{start};
+  mesh::NodeId previous = -1, current = start;
   while (chain.size() <= next.size()) {
     const auto& neighbours = next[current];
-    const auto it = std::find_if(neighbours.begin(), neighbours.end(), [&](deform::NodeId n) { return n != previous; });
+    const auto it = std::find_if(neighbours.begin(), neighbours.end(), [&](mesh::NodeId n) { return n != previous; });
     if (it == neighbours.end()) break;
     if (*it == start) {  // closed
       chain.push_back(start);
@@ -75,7 +75,7 @@ std::vector<geometry::Vec2> outline(const DeflectedCurve& curve) {
 /// deflected through the tables, rebased on a previous run's curves for a restart.
 class CurveBuilder {
  public:
-  CurveBuilder(const Case& c, const deform::Mesh& mesh, const geometry::CadModel* cad)
+  CurveBuilder(const Case& c, const mesh::Mesh& mesh, const geometry::CadModel* cad)
       : c_(c), mesh_(mesh), given_cad_(cad) {}
 
   /// The patch's curve as the case describes it (cold undeformed r, deflection D).
@@ -147,11 +147,11 @@ class CurveBuilder {
   /// A sliding patch without table slides over its own undeformed shape: the polyline through
   /// its nodes in 2D, their meridional polyline about the axis in 3D.
   DeflectedCurve own_curve(const PatchSpec& spec) const {
-    const deform::Patch& patch = *mesh_.find_patch(spec.name);
+    const mesh::Patch& patch = *mesh_.find_patch(spec.name);
     if (mesh_.dimension == 2) {
       std::vector<geometry::Vec2> points;
       std::vector<double> parameters{0.0};
-      for (deform::NodeId n : chain_patch(patch, mesh_)) {
+      for (mesh::NodeId n : chain_patch(patch, mesh_)) {
         const auto& p = mesh_.points[static_cast<std::size_t>(n)];
         if (!points.empty()) parameters.push_back(parameters.back() + distance(points.back(), {p.x, p.y}));
         points.push_back({p.x, p.y});
@@ -161,7 +161,7 @@ class CurveBuilder {
     }
     geometry::CurveSamples samples;
     samples.source = fmt::format("the nodes of patch '{}'", spec.name);
-    for (deform::NodeId n : patch.nodes) {
+    for (mesh::NodeId n : patch.nodes) {
       const auto cyl = axis().to_cylindrical(mesh_.points[static_cast<std::size_t>(n)]);
       samples.points.push_back({cyl.r, cyl.z});
       samples.deflections.push_back({0.0, 0.0});
@@ -170,7 +170,7 @@ class CurveBuilder {
   }
 
   const Case& c_;
-  const deform::Mesh& mesh_;
+  const mesh::Mesh& mesh_;
   const geometry::CadModel* given_cad_;
   std::optional<geometry::CadModel> cad_;  // read when first needed, if not given
 };
@@ -199,7 +199,7 @@ std::optional<geometry::CadModel> read_case_cad(const Case& c) {
   return geometry::CadModel::read(*c.cad, {.unit = c.length_unit});
 }
 
-CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh, const RestartState* previous,
+CaseSetup set_up_case(const Case& c, const mesh::Mesh& mesh, const RestartState* previous,
                       const geometry::CadModel* cad) {
   CaseSetup setup;
   CurveBuilder builder(c, mesh, cad);

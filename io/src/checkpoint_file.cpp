@@ -88,7 +88,7 @@ deform::IncrementRecord record_from_json(const json& j) {
   r.residual_reduction = number_from(j.at("residual_reduction"));
   r.min_scaled_jacobian = number_from(j.at("min_scaled_jacobian"));
   r.inverted_cells = detail::integer_value<std::size_t>(j.at("inverted_cells"));
-  r.worst_cell = detail::integer_value<deform::CellId>(j.at("worst_cell"));
+  r.worst_cell = detail::integer_value<mesh::CellId>(j.at("worst_cell"));
   r.max_normal_slip = number_from(j.at("max_normal_slip"));
   r.seconds = j.at("seconds").get<double>();
   r.failure = j.at("failure").get<std::string>();
@@ -123,9 +123,9 @@ std::string local_time_now() {
 /// The hash of a checkpoint's arrays, in file order (hints: kHints per sliding node).
 constexpr std::size_t kHints = std::tuple_size_v<decltype(deform::SlidingState::hints)>;
 
-std::uint64_t arrays_hash(const std::vector<deform::Vec3>& points, const std::vector<deform::SlidingState>& sliding) {
+std::uint64_t arrays_hash(const std::vector<geometry::Vec3>& points, const std::vector<deform::SlidingState>& sliding) {
   std::uint64_t h = detail::kFnvOffset;
-  detail::hash_words(h, points.data(), points.size() * sizeof(deform::Vec3));
+  detail::hash_words(h, points.data(), points.size() * sizeof(geometry::Vec3));
   for (const auto& s : sliding) detail::hash_words(h, &s.node, sizeof s.node);
   for (const auto& s : sliding) detail::hash_words(h, &s.target, sizeof s.target);
   for (const auto& s : sliding) detail::hash_words(h, s.hints.data(), sizeof s.hints);
@@ -230,7 +230,7 @@ std::vector<InputFingerprint> input_fingerprints(const Case& c) {
   return result;
 }
 
-CheckpointOrigin checkpoint_origin(const Case& c, const deform::Mesh& mesh, std::vector<InputFingerprint> inputs) {
+CheckpointOrigin checkpoint_origin(const Case& c, const mesh::Mesh& mesh, std::vector<InputFingerprint> inputs) {
   return {c.file.string(), mesh_fingerprint(mesh), std::move(inputs)};
 }
 
@@ -286,7 +286,7 @@ CheckpointInfo read_checkpoint_info(const std::filesystem::path& path) {
   }
 }
 
-Checkpoint read_checkpoint(const std::filesystem::path& path, const deform::Mesh& mesh,
+Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& mesh,
                            std::span<const InputFingerprint> inputs) {
   const std::string bytes = read_file(path);
   detail::BinaryReader in(bytes, path, std::string(kKind));
@@ -335,9 +335,9 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const deform::Mesh
     throw InputError::in(path.string(), "cannot resume: this checkpoint was written for another mesh (case " +
                                             k.info.case_file + ")");
   }
-  k.state.points = in.array<deform::Vec3>(nodes);
-  const auto ids = in.array<deform::NodeId>(sliding);
-  const auto targets = in.array<deform::Vec3>(sliding);
+  k.state.points = in.array<geometry::Vec3>(nodes);
+  const auto ids = in.array<mesh::NodeId>(sliding);
+  const auto targets = in.array<geometry::Vec3>(sliding);
   const auto hints = in.array<double>(sliding * kHints);
   k.state.sliding.resize(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {

@@ -4,7 +4,7 @@
 // depend on the locale. The first problem found throws an InputError "<source>:<line>: ...".
 #include "hotmesh/io/deflection_csv.hpp"
 
-#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/mesh/validate.hpp"
 
 #include <array>
 #include <charconv>
@@ -227,7 +227,7 @@ class TableReader {
       const auto value = parse_double(field);
       if (!value) fail(line, cat("'", field, "' in column '", name, "' is not a number"));
       if (!std::isfinite(*value)) fail(line, cat("'", field, "' in column '", name, "' is not a finite number"));
-      if (std::abs(*value) > deform::kLargestCoordinate) {
+      if (std::abs(*value) > mesh::kLargestCoordinate) {
         fail(line, cat("'", field, "' in column '", name, "' is beyond 1e30, the largest coordinate hotmesh moves "
                        "meshes at; is the table in another unit?"));
       }

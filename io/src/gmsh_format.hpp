@@ -6,36 +6,36 @@
 #include <optional>
 #include <string>
 
-#include "hotmesh/deform/element.hpp"
+#include "hotmesh/mesh/element.hpp"
 
 namespace hotmesh::io::gmsh {
 
 inline constexpr int kPointType = 15;  ///< one-node element; readers skip it
 
 /// Gmsh element-type number of a hotmesh element type.
-constexpr int gmsh_type(deform::ElementType type) {
+constexpr int gmsh_type(mesh::ElementType type) {
   switch (type) {
-    case deform::ElementType::line2: return 1;
-    case deform::ElementType::tri3: return 2;
-    case deform::ElementType::quad4: return 3;
-    case deform::ElementType::tet4: return 4;
-    case deform::ElementType::hex8: return 5;
-    case deform::ElementType::wedge6: return 6;
-    case deform::ElementType::pyramid5: return 7;
+    case mesh::ElementType::line2: return 1;
+    case mesh::ElementType::tri3: return 2;
+    case mesh::ElementType::quad4: return 3;
+    case mesh::ElementType::tet4: return 4;
+    case mesh::ElementType::hex8: return 5;
+    case mesh::ElementType::wedge6: return 6;
+    case mesh::ElementType::pyramid5: return 7;
   }
   return 0;
 }
 
 /// The hotmesh type of a supported Gmsh element-type number (1..7), nothing for the rest.
-constexpr std::optional<deform::ElementType> element_type(int gmsh) {
+constexpr std::optional<mesh::ElementType> element_type(int gmsh) {
   switch (gmsh) {
-    case 1: return deform::ElementType::line2;
-    case 2: return deform::ElementType::tri3;
-    case 3: return deform::ElementType::quad4;
-    case 4: return deform::ElementType::tet4;
-    case 5: return deform::ElementType::hex8;
-    case 6: return deform::ElementType::wedge6;
-    case 7: return deform::ElementType::pyramid5;
+    case 1: return mesh::ElementType::line2;
+    case 2: return mesh::ElementType::tri3;
+    case 3: return mesh::ElementType::quad4;
+    case 4: return mesh::ElementType::tet4;
+    case 5: return mesh::ElementType::hex8;
+    case 6: return mesh::ElementType::wedge6;
+    case 7: return mesh::ElementType::pyramid5;
     default: return std::nullopt;
   }
 }

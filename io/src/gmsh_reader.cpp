@@ -20,7 +20,7 @@ namespace gmsh {
 namespace {
 
 constexpr std::size_t kUnused = std::numeric_limits<std::size_t>::max();
-constexpr auto kMaxIndex = static_cast<std::size_t>(std::numeric_limits<deform::NodeId>::max());
+constexpr auto kMaxIndex = static_cast<std::size_t>(std::numeric_limits<mesh::NodeId>::max());
 
 std::string number_text(double v) {
   char buffer[32];
@@ -40,7 +40,7 @@ void NodeTagMap::prepare(std::size_t expected_nodes) {
   sparse_.clear();
 }
 
-bool NodeTagMap::insert(std::int64_t tag, deform::NodeId index) {
+bool NodeTagMap::insert(std::int64_t tag, mesh::NodeId index) {
   const auto t = static_cast<std::uint64_t>(tag);
   if (tag >= 0 && t < dense_limit_) {
     if (t >= dense_.size()) {
@@ -48,7 +48,7 @@ bool NodeTagMap::insert(std::int64_t tag, deform::NodeId index) {
           std::max<std::uint64_t>(t + 1, std::min<std::uint64_t>(2 * dense_.size(), dense_limit_));
       dense_.resize(static_cast<std::size_t>(grown), -1);
     }
-    deform::NodeId& slot = dense_[static_cast<std::size_t>(t)];
+    mesh::NodeId& slot = dense_[static_cast<std::size_t>(t)];
     if (slot >= 0) return false;
     slot = index;
     return true;
@@ -98,13 +98,13 @@ void MeshBuilder::begin_nodes(std::size_t expected) {
 void MeshBuilder::add_node_tag(std::int64_t tag, std::size_t at) {
   if (tag < 1) scanner_.fail_at(at, "node tag " + std::to_string(tag) + " is not positive");
   if (mesh_.node_ids.size() >= kMaxIndex) scanner_.fail_at(at, "more nodes than hotmesh can index (2^31 - 1)");
-  if (!tags_.insert(tag, static_cast<deform::NodeId>(mesh_.node_ids.size()))) {
+  if (!tags_.insert(tag, static_cast<mesh::NodeId>(mesh_.node_ids.size()))) {
     scanner_.fail_at(at, "node tag " + std::to_string(tag) + " is defined twice");
   }
   mesh_.node_ids.push_back(tag);
 }
 
-void MeshBuilder::add_point(const deform::Vec3& p, std::size_t at) {
+void MeshBuilder::add_point(const geometry::Vec3& p, std::size_t at) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
     scanner_.fail_at(at, "node " + std::to_string(mesh_.node_ids[mesh_.points.size()]) +
                              " has a coordinate that is not a finite number (" + number_text(p.x) + ", " +
@@ -122,9 +122,9 @@ void MeshBuilder::note_use(Elements& e, std::uint32_t set, std::size_t at) {
   if (e.first_use[set] == kUnused) e.first_use[set] = at;
 }
 
-void MeshBuilder::add_element(deform::ElementType type, std::int64_t tag, std::span<const deform::NodeId> nodes,
+void MeshBuilder::add_element(mesh::ElementType type, std::int64_t tag, std::span<const mesh::NodeId> nodes,
                               std::uint32_t set, std::size_t at) {
-  Elements& e = elements_[static_cast<std::size_t>(deform::dimension(type))];
+  Elements& e = elements_[static_cast<std::size_t>(mesh::dimension(type))];
   if (e.tags.size() >= kMaxIndex) scanner_.fail_at(at, "more elements than hotmesh can index (2^31 - 1)");
   e.list.add(type, nodes);
   e.tags.push_back(tag);
@@ -132,8 +132,8 @@ void MeshBuilder::add_element(deform::ElementType type, std::int64_t tag, std::s
   note_use(e, set, at);
 }
 
-bool MeshBuilder::repeats_last(deform::ElementType type, std::span<const deform::NodeId> nodes) const {
-  const Elements& e = elements_[static_cast<std::size_t>(deform::dimension(type))];
+bool MeshBuilder::repeats_last(mesh::ElementType type, std::span<const mesh::NodeId> nodes) const {
+  const Elements& e = elements_[static_cast<std::size_t>(mesh::dimension(type))];
   if (e.tags.empty()) return false;
   const std::size_t last = e.tags.size() - 1;
   if (e.list.type(last) != type) return false;
@@ -189,7 +189,7 @@ const std::string& MeshBuilder::name_of(int dimension, int tag, std::size_t firs
   return it->second.name;
 }
 
-deform::Mesh MeshBuilder::finish() {
+mesh::Mesh MeshBuilder::finish() {
   const int d = !elements_[3].tags.empty() ? 3 : (!elements_[2].tags.empty() ? 2 : 0);
   if (d == 0) {
     throw InputError::in(scanner_.source(), elements_[1].tags.empty()
@@ -203,14 +203,14 @@ deform::Mesh MeshBuilder::finish() {
   const Groups cell_groups = groups_of(d);
   mesh_.cell_groups.resize(cell_groups.tags.size());
   for (std::size_t g = 0; g < cell_groups.tags.size(); ++g) {
-    deform::CellGroup& group = mesh_.cell_groups[g];
+    mesh::CellGroup& group = mesh_.cell_groups[g];
     group.tag = cell_groups.tags[g];
     group.name = name_of(d, group.tag, cell_groups.first_use[g],
                          "hotmesh keeps cell groups by name (give it one, e.g. Physical Volume(\"fluid\", tag))");
   }
   for (std::size_t c = 0; c < cells.sets.size(); ++c) {
     for (std::size_t g : cell_groups.of_set[cells.sets[c]]) {
-      mesh_.cell_groups[g].cells.push_back(static_cast<deform::CellId>(c));
+      mesh_.cell_groups[g].cells.push_back(static_cast<mesh::CellId>(c));
     }
   }
 
@@ -218,7 +218,7 @@ deform::Mesh MeshBuilder::finish() {
   const Groups patch_groups = groups_of(d - 1);
   mesh_.patches.resize(patch_groups.tags.size());
   for (std::size_t p = 0; p < patch_groups.tags.size(); ++p) {
-    deform::Patch& patch = mesh_.patches[p];
+    mesh::Patch& patch = mesh_.patches[p];
     patch.tag = patch_groups.tags[p];
     patch.name = name_of(d - 1, patch.tag, patch_groups.first_use[p], "hotmesh assigns boundary roles by patch name");
   }
@@ -230,7 +230,7 @@ deform::Mesh MeshBuilder::finish() {
 
   scanner_.set_section("$PhysicalNames");
   std::map<std::string_view, int> tag_of_name;
-  for (const deform::Patch& patch : mesh_.patches) {
+  for (const mesh::Patch& patch : mesh_.patches) {
     const auto [it, added] = tag_of_name.try_emplace(patch.name, patch.tag);
     if (!added) {
       const std::string message = "physical groups " + std::to_string(it->second) + " and " +
@@ -250,7 +250,7 @@ void wrong_node_count(const Scanner& s, std::size_t at, std::int64_t tag, int gm
                       std::size_t needed) {
   const auto type = element_type(gmsh_type);
   std::string text = "element " + std::to_string(tag) + " of type " + std::to_string(gmsh_type);
-  if (type) text.append(" (").append(deform::name(*type)).append(")");
+  if (type) text.append(" (").append(mesh::name(*type)).append(")");
   text += found < needed ? " has " + std::to_string(found) + " node tags, needs " + std::to_string(needed)
                          : " has more than " + std::to_string(needed) + " node tags";
   s.fail_at(at, text);
@@ -317,7 +317,7 @@ void read_physical_names(Scanner& s, MeshBuilder& b) {
 }  // namespace
 }  // namespace gmsh
 
-deform::Mesh parse_gmsh(std::string_view content, std::string_view source) {
+mesh::Mesh parse_gmsh(std::string_view content, std::string_view source) {
   using namespace gmsh;
   Scanner s(content, source);
   const Version version = read_format(s);
@@ -373,6 +373,6 @@ deform::Mesh parse_gmsh(std::string_view content, std::string_view source) {
   return builder.finish();
 }
 
-deform::Mesh read_gmsh(const std::filesystem::path& path) { return parse_gmsh(read_file(path), path.string()); }
+mesh::Mesh read_gmsh(const std::filesystem::path& path) { return parse_gmsh(read_file(path), path.string()); }
 
 }  // namespace hotmesh::io

@@ -2,7 +2,7 @@
 // the sections common to both versions and drives the rest; gmsh_reader_v2.cpp and
 // gmsh_reader_v4.cpp read $Nodes / $Elements (and $Entities) of formats 2.2 and 4.1.
 // All of them feed a MeshBuilder, which turns nodes, elements and physical groups into a
-// deform::Mesh once the whole file is read (only then is the mesh dimension known).
+// mesh::Mesh once the whole file is read (only then is the mesh dimension known).
 #pragma once
 
 #include <array>
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "gmsh_scanner.hpp"
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 
 namespace hotmesh::io::gmsh {
 
@@ -26,9 +26,9 @@ class NodeTagMap {
  public:
   void prepare(std::size_t expected_nodes);
   /// False if the tag is already taken.
-  bool insert(std::int64_t tag, deform::NodeId index);
+  bool insert(std::int64_t tag, mesh::NodeId index);
   /// -1 if no node has this tag.
-  deform::NodeId find(std::int64_t tag) const {
+  mesh::NodeId find(std::int64_t tag) const {
     if (tag >= 0 && static_cast<std::uint64_t>(tag) < dense_.size()) return dense_[static_cast<std::size_t>(tag)];
     if (sparse_.empty()) return -1;
     const auto it = sparse_.find(tag);
@@ -37,8 +37,8 @@ class NodeTagMap {
 
  private:
   std::uint64_t dense_limit_ = 0;
-  std::vector<deform::NodeId> dense_;
-  std::unordered_map<std::int64_t, deform::NodeId> sparse_;
+  std::vector<mesh::NodeId> dense_;
+  std::unordered_map<std::int64_t, mesh::NodeId> sparse_;
 };
 
 /// Collects what the version readers find and assembles the mesh.
@@ -61,30 +61,30 @@ class MeshBuilder {
   /// tag < 1 or a tag already used.
   void add_node_tag(std::int64_t tag, std::size_t at);
   /// The coordinates of the next node whose tag was given; fails if one is not finite.
-  void add_point(const deform::Vec3& p, std::size_t at);
+  void add_point(const geometry::Vec3& p, std::size_t at);
   void end_nodes() { nodes_read_ = true; }
   /// Index of the node with `tag`; an element at `at` refers to it.
-  deform::NodeId node(std::int64_t tag, std::size_t at) const {
-    const deform::NodeId index = tags_.find(tag);
+  mesh::NodeId node(std::int64_t tag, std::size_t at) const {
+    const mesh::NodeId index = tags_.find(tag);
     if (index < 0) undefined_node(tag, at);
     return index;
   }
 
   // ---- elements ----
-  void add_element(deform::ElementType type, std::int64_t tag, std::span<const deform::NodeId> nodes, std::uint32_t set,
+  void add_element(mesh::ElementType type, std::int64_t tag, std::span<const mesh::NodeId> nodes, std::uint32_t set,
                    std::size_t at);
   /// Gmsh 2.2 writes an element once per physical group it is in, in consecutive lines:
   /// true if `nodes` of `type` repeat the last element of that dimension.
-  bool repeats_last(deform::ElementType type, std::span<const deform::NodeId> nodes) const;
+  bool repeats_last(mesh::ElementType type, std::span<const mesh::NodeId> nodes) const;
   std::uint32_t last_membership(int dimension) const;
   void set_last_membership(int dimension, std::uint32_t set, std::size_t at);
 
   /// The mesh; checks names of physical groups.
-  deform::Mesh finish();
+  mesh::Mesh finish();
 
  private:
   struct Elements {
-    deform::ElementList list;
+    mesh::ElementList list;
     std::vector<std::int64_t> tags;
     std::vector<std::uint32_t> sets;
     std::vector<std::size_t> first_use;  ///< by set id: where the set was first used
@@ -108,7 +108,7 @@ class MeshBuilder {
 
   Scanner& scanner_;
   bool nodes_read_ = false;
-  deform::Mesh mesh_;
+  mesh::Mesh mesh_;
   NodeTagMap tags_;
   std::array<Elements, 4> elements_;  ///< by dimension (0 unused)
   std::vector<std::vector<int>> sets_{{}};

@@ -37,10 +37,10 @@ class ElementSink {
       s.fail_at(at, "element " + std::to_string(tag) + " has physical tag " + std::to_string(physical) +
                         " (must be 0 for none, or positive)");
     }
-    std::array<deform::NodeId, deform::kMaxElementNodes> nodes{};
+    std::array<mesh::NodeId, mesh::kMaxElementNodes> nodes{};
     for (std::size_t k = 0; k < node_tags.size(); ++k) nodes[k] = b_.node(node_tags[k], at);
-    const std::span<const deform::NodeId> used(nodes.data(), node_tags.size());
-    const int dimension = deform::dimension(*type);
+    const std::span<const mesh::NodeId> used(nodes.data(), node_tags.size());
+    const int dimension = mesh::dimension(*type);
     const auto group = static_cast<int>(physical);
     const auto d = static_cast<std::size_t>(dimension);
     if (group != 0 && dimension == previous_dimension_ && elementary == previous_elementary_[d] &&
@@ -73,12 +73,12 @@ class ElementSink {
 std::size_t nodes_of(int gmsh_type) {
   if (gmsh_type == kPointType) return 1;
   const auto type = element_type(gmsh_type);
-  return type ? static_cast<std::size_t>(deform::node_count(*type)) : 0;
+  return type ? static_cast<std::size_t>(mesh::node_count(*type)) : 0;
 }
 
 void read_elements_ascii(Scanner& s, MeshBuilder& b, std::size_t n) {
   ElementSink sink(b);
-  std::array<std::int64_t, deform::kMaxElementNodes> node_tags{};
+  std::array<std::int64_t, mesh::kMaxElementNodes> node_tags{};
   for (std::size_t i = 0; i < n; ++i) {
     s.skip_blank();
     const std::size_t at = s.position();
@@ -106,7 +106,7 @@ void read_elements_ascii(Scanner& s, MeshBuilder& b, std::size_t n) {
 void read_elements_binary(Scanner& s, MeshBuilder& b, std::size_t n) {
   ElementSink sink(b);
   std::vector<std::int32_t> record;
-  std::array<std::int64_t, deform::kMaxElementNodes> node_tags{};
+  std::array<std::int64_t, mesh::kMaxElementNodes> node_tags{};
   std::size_t done = 0;
   while (done < n) {
     const std::size_t header_at = s.position();

@@ -187,8 +187,8 @@ void read_elements_v4(Scanner& s, MeshBuilder& b, const EntityGroups* entities) 
     s.end_line("the element counts");
   }
   std::size_t done = 0;
-  std::array<deform::NodeId, deform::kMaxElementNodes> nodes{};
-  std::array<std::uint64_t, 1 + deform::kMaxElementNodes> record{};
+  std::array<mesh::NodeId, mesh::kMaxElementNodes> nodes{};
+  std::array<std::uint64_t, 1 + mesh::kMaxElementNodes> record{};
   for (std::size_t block = 0; block < blocks; ++block) {
     const std::size_t at = s.position();
     int dimension = 0, entity = 0, gmsh_type = 0;
@@ -212,7 +212,7 @@ void read_elements_v4(Scanner& s, MeshBuilder& b, const EntityGroups* entities) 
     }
     const auto type = element_type(gmsh_type);
     if (!type && gmsh_type != kPointType) s.fail_at(at, unsupported_type_message(gmsh_type));
-    const std::size_t needed = type ? static_cast<std::size_t>(deform::node_count(*type)) : 1;
+    const std::size_t needed = type ? static_cast<std::size_t>(mesh::node_count(*type)) : 1;
     std::uint32_t set = 0;
     if (entities != nullptr && type) {
       const auto it = entities->find(entity_key(dimension, entity));

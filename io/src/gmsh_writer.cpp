@@ -29,9 +29,9 @@
 namespace hotmesh::io {
 namespace {
 
-using deform::ElementList;
-using deform::ElementType;
-using deform::Mesh;
+using mesh::ElementList;
+using mesh::ElementType;
+using mesh::Mesh;
 
 /// Buffered output of 4.1 records: in ASCII each field is text followed by a blank and
 /// end_record() ends the line; in binary each field is its raw bytes.
@@ -120,12 +120,12 @@ void check_name(const std::string& name) {
 
 void check_elements(const ElementList& list, int dimension, std::size_t nodes, const std::string& what) {
   for (std::size_t i = 0; i < list.size(); ++i) {
-    if (deform::dimension(list.type(i)) != dimension) {
-      misuse(what + " " + std::to_string(i) + " is a " + std::string(deform::name(list.type(i))) +
+    if (mesh::dimension(list.type(i)) != dimension) {
+      misuse(what + " " + std::to_string(i) + " is a " + std::string(mesh::name(list.type(i))) +
              ", not of dimension " + std::to_string(dimension));
     }
   }
-  for (deform::NodeId n : list.all_nodes()) {
+  for (mesh::NodeId n : list.all_nodes()) {
     if (n < 0 || static_cast<std::size_t>(n) >= nodes)
       misuse(what + " refers to missing node index " + std::to_string(n));
   }
@@ -137,13 +137,13 @@ void check_mesh(const Mesh& mesh) {
     misuse("node_ids and points differ in size");
   if (!mesh.cell_ids.empty() && mesh.cell_ids.size() != mesh.cells.size()) misuse("cell_ids and cells differ in size");
   check_elements(mesh.cells, mesh.dimension, mesh.points.size(), "cell");
-  for (const deform::Patch& patch : mesh.patches) {
+  for (const mesh::Patch& patch : mesh.patches) {
     check_name(patch.name);
     check_elements(patch.faces, mesh.dimension - 1, mesh.points.size(), "patch '" + patch.name + "' face");
   }
-  for (const deform::CellGroup& group : mesh.cell_groups) {
+  for (const mesh::CellGroup& group : mesh.cell_groups) {
     check_name(group.name);
-    for (deform::CellId c : group.cells) {
+    for (mesh::CellId c : group.cells) {
       if (c < 0 || static_cast<std::size_t>(c) >= mesh.cells.size()) {
         misuse("cell group '" + group.name + "' refers to missing cell index " + std::to_string(c));
       }
@@ -156,7 +156,7 @@ struct Box {
                             std::numeric_limits<double>::max()};
   std::array<double, 3> high{std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest(),
                              std::numeric_limits<double>::lowest()};
-  void add(const deform::Vec3& p) {
+  void add(const geometry::Vec3& p) {
     for (int i = 0; i < 3; ++i) {
       low[static_cast<std::size_t>(i)] = std::min(low[static_cast<std::size_t>(i)], p[i]);
       high[static_cast<std::size_t>(i)] = std::max(high[static_cast<std::size_t>(i)], p[i]);
@@ -176,7 +176,7 @@ CellSets cell_sets(const Mesh& mesh) {
   result.of_cell.assign(mesh.cells.size(), 0);
   std::map<std::pair<std::uint32_t, std::size_t>, std::uint32_t> next;  // (set, group) -> set + group
   for (std::size_t g = 0; g < mesh.cell_groups.size(); ++g) {
-    for (deform::CellId c : mesh.cell_groups[g].cells) {
+    for (mesh::CellId c : mesh.cell_groups[g].cells) {
       std::uint32_t& set = result.of_cell[static_cast<std::size_t>(c)];
       if (!result.sets[set].empty() && result.sets[set].back() == g) continue;  // listed twice
       const auto [it, added] = next.try_emplace({set, g}, static_cast<std::uint32_t>(result.sets.size()));
@@ -213,7 +213,7 @@ void write_block(Out& out, const Mesh& mesh, int dimension, int entity, const El
   for (std::size_t i = begin; i < end; ++i) {
     const std::int64_t tag = tags ? (*tags)[i] : first_tag + static_cast<std::int64_t>(i - begin);
     out.size(static_cast<std::uint64_t>(tag));
-    for (deform::NodeId n : list.nodes(i)) out.size(static_cast<std::uint64_t>(mesh.node_id(n)));
+    for (mesh::NodeId n : list.nodes(i)) out.size(static_cast<std::uint64_t>(mesh.node_id(n)));
     out.end_record();
   }
 }
@@ -239,7 +239,7 @@ CellEntities cell_entities(const Mesh& mesh, const CellSets& sets) {
   e.boxes.resize(e.sets.size());
   for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
     Box& box = e.boxes[static_cast<std::size_t>(e.of_set[sets.of_cell[c]] - 1)];
-    for (deform::NodeId n : mesh.cells.nodes(c)) box.add(mesh.points[static_cast<std::size_t>(n)]);
+    for (mesh::NodeId n : mesh.cells.nodes(c)) box.add(mesh.points[static_cast<std::size_t>(n)]);
   }
   return e;
 }
@@ -279,7 +279,7 @@ void write_entities(Out& out, const Mesh& mesh, std::span<const int> patch_tags,
   out.end_record();
   for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
     Box box;
-    for (deform::NodeId n : mesh.patches[p].faces.all_nodes()) box.add(mesh.points[static_cast<std::size_t>(n)]);
+    for (mesh::NodeId n : mesh.patches[p].faces.all_nodes()) box.add(mesh.points[static_cast<std::size_t>(n)]);
     const int tag[] = {patch_tags[p]};
     write_entity(out, static_cast<int>(p) + 1, box, tag);
   }
@@ -296,7 +296,7 @@ void write_nodes(Out& out, const Mesh& mesh) {
   const std::size_t n = mesh.points.size();
   std::int64_t min_node = 0, max_node = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::int64_t id = mesh.node_id(static_cast<deform::NodeId>(i));
+    const std::int64_t id = mesh.node_id(static_cast<mesh::NodeId>(i));
     min_node = i == 0 ? id : std::min(min_node, id);
     max_node = i == 0 ? id : std::max(max_node, id);
   }
@@ -313,10 +313,10 @@ void write_nodes(Out& out, const Mesh& mesh) {
     out.size(n);
     out.end_record();
     for (std::size_t i = 0; i < n; ++i) {
-      out.size(static_cast<std::uint64_t>(mesh.node_id(static_cast<deform::NodeId>(i))));
+      out.size(static_cast<std::uint64_t>(mesh.node_id(static_cast<mesh::NodeId>(i))));
       out.end_record();
     }
-    for (const deform::Vec3& p : mesh.points) {
+    for (const geometry::Vec3& p : mesh.points) {
       out.real(p.x);
       out.real(p.y);
       out.real(p.z);
@@ -353,7 +353,7 @@ void write_elements(Out& out, const Mesh& mesh, const CellSets& sets, const Cell
   }
   std::int64_t min_cell = 0, max_cell = 0;
   for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
-    const std::int64_t id = mesh.cell_id(static_cast<deform::CellId>(c));
+    const std::int64_t id = mesh.cell_id(static_cast<mesh::CellId>(c));
     min_cell = c == 0 ? id : std::min(min_cell, id);
     max_cell = c == 0 ? id : std::max(max_cell, id);
   }

@@ -26,7 +26,7 @@ LoadedMesh read_mesh(const std::filesystem::path& path) {
   }
   LoadedMesh loaded{read_gmsh(path), {}};
   try {
-    loaded.validation = deform::validate_mesh(loaded.mesh);
+    loaded.validation = mesh::validate_mesh(loaded.mesh);
   } catch (const InputError& e) {
     throw InputError::in(path.string(), e.what());
   }
@@ -34,14 +34,14 @@ LoadedMesh read_mesh(const std::filesystem::path& path) {
   return loaded;
 }
 
-void write_mesh(const std::filesystem::path& path, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+void write_mesh(const std::filesystem::path& path, const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
                 const VtuFields& fields) {
   switch (mesh_format(path)) {
     case MeshFormat::gmsh: {
       if (points.data() == mesh.points.data()) {
         write_gmsh(path, mesh);
       } else {
-        deform::Mesh moved = mesh;
+        mesh::Mesh moved = mesh;
         moved.points.assign(points.begin(), points.end());
         write_gmsh(path, moved);
       }

@@ -6,7 +6,7 @@
 
 namespace hotmesh::io {
 
-void draw_mesh(Figure& figure, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+void draw_mesh(Figure& figure, const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
                const MeshDrawing& drawing) {
   if (mesh.dimension != 2) throw std::invalid_argument("draw_mesh draws 2D meshes");
   const bool filled = !drawing.quality.empty();
@@ -17,7 +17,7 @@ void draw_mesh(Figure& figure, const deform::Mesh& mesh, std::span<const deform:
   std::vector<PlotPoint> corners;
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
     corners.clear();
-    for (deform::NodeId n : mesh.cells.nodes(c)) {
+    for (mesh::NodeId n : mesh.cells.nodes(c)) {
       const auto& p = points[static_cast<std::size_t>(n)];
       corners.push_back({p.x, p.y});
     }

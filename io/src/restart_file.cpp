@@ -71,16 +71,16 @@ DeflectionSpec samples_from_json(const json& j) {
 
 }  // namespace
 
-std::uint64_t mesh_fingerprint(const deform::Mesh& mesh) {
+std::uint64_t mesh_fingerprint(const mesh::Mesh& mesh) {
   std::uint64_t h = detail::kFnvOffset;
   hash_bytes(h, &mesh.dimension, sizeof mesh.dimension);
-  hash_bytes(h, mesh.points.data(), mesh.points.size() * sizeof(deform::Vec3));
+  hash_bytes(h, mesh.points.data(), mesh.points.size() * sizeof(geometry::Vec3));
   const auto nodes = mesh.cells.all_nodes();
-  hash_bytes(h, nodes.data(), nodes.size() * sizeof(deform::NodeId));
+  hash_bytes(h, nodes.data(), nodes.size() * sizeof(mesh::NodeId));
   return h;
 }
 
-RestartState restart_state(const Case& c, const deform::Mesh& mesh, const deform::MotionResult& result) {
+RestartState restart_state(const Case& c, const mesh::Mesh& mesh, const deform::MotionResult& result) {
   RestartState s;
   s.mesh_fingerprint = mesh_fingerprint(mesh);
   s.points = result.points;
@@ -107,7 +107,7 @@ void write_restart(const std::filesystem::path& path, const RestartState& state)
   std::ostream& out = file.stream();
   detail::write_header(out, kMagic, header.dump());
   write_array(out, state.points);
-  std::vector<deform::NodeId> nodes;
+  std::vector<mesh::NodeId> nodes;
   std::vector<double> parameters;
   for (const auto& o : state.sliding) {
     nodes.push_back(o.node);
@@ -118,7 +118,7 @@ void write_restart(const std::filesystem::path& path, const RestartState& state)
   file.commit();
 }
 
-RestartState read_restart(const std::filesystem::path& path, const deform::Mesh& mesh) {
+RestartState read_restart(const std::filesystem::path& path, const mesh::Mesh& mesh) {
   const std::string bytes = read_file(path);
   detail::BinaryReader in(bytes, path, "restart file");
   const std::string text = in.header(kMagic, "write one with `hotmesh deform`: restart.hmr");
@@ -156,8 +156,8 @@ RestartState read_restart(const std::filesystem::path& path, const deform::Mesh&
                                         "a restart must use the same undeformed mesh as the run that wrote it (case " +
                                             s.case_file + ")");
   }
-  s.points = in.array<deform::Vec3>(nodes);
-  const auto ids = in.array<deform::NodeId>(sliding);
+  s.points = in.array<geometry::Vec3>(nodes);
+  const auto ids = in.array<mesh::NodeId>(sliding);
   const auto parameters = in.array<double>(sliding);
   for (std::size_t i = 0; i < ids.size(); ++i) s.sliding.push_back({ids[i], parameters[i]});
   return s;

@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 
 namespace hotmesh::io {
@@ -50,8 +50,8 @@ Block array_block(const VtuArray& a, std::size_t count, const char* where) {
 
 }  // namespace
 
-std::uint8_t vtk_cell_type(deform::ElementType type) {
-  using deform::ElementType;
+std::uint8_t vtk_cell_type(mesh::ElementType type) {
+  using mesh::ElementType;
   switch (type) {
     case ElementType::line2: return 3;
     case ElementType::tri3: return 5;
@@ -64,7 +64,7 @@ std::uint8_t vtk_cell_type(deform::ElementType type) {
   return 0;
 }
 
-void write_vtu(std::ostream& out, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+void write_vtu(std::ostream& out, const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
                const VtuFields& fields) {
   if (points.size() != mesh.node_count()) throw std::invalid_argument("write_vtu: one point per mesh node expected");
   const auto& cells = mesh.cells;
@@ -119,22 +119,22 @@ void write_vtu(std::ostream& out, const deform::Mesh& mesh, std::span<const defo
   out << "\n  </AppendedData>\n</VTKFile>\n";
 }
 
-VtuFields quality_fields(const deform::Mesh& mesh, std::span<const deform::Vec3> points) {
+VtuFields quality_fields(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points) {
   VtuFields fields;
-  std::vector<double> quality = deform::scaled_jacobians(mesh.cells, points);
+  std::vector<double> quality = mesh::scaled_jacobians(mesh.cells, points);
   std::vector<std::uint8_t> inverted(quality.size());
   std::transform(quality.begin(), quality.end(), inverted.begin(), [](double q) { return q <= 0.0 ? 1 : 0; });
   fields.cell_data.push_back({"scaled_jacobian", 1, std::move(quality)});
   fields.cell_data.push_back({"inverted", 1, std::move(inverted)});
   std::vector<std::int32_t> patch(mesh.node_count(), 0);
   for (std::size_t p = mesh.patches.size(); p-- > 0;) {
-    for (deform::NodeId n : mesh.patches[p].nodes) patch[static_cast<std::size_t>(n)] = static_cast<std::int32_t>(p + 1);
+    for (mesh::NodeId n : mesh.patches[p].nodes) patch[static_cast<std::size_t>(n)] = static_cast<std::int32_t>(p + 1);
   }
   fields.point_data.push_back({"patch", 1, std::move(patch)});
   return fields;
 }
 
-void write_vtu(const std::filesystem::path& path, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+void write_vtu(const std::filesystem::path& path, const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
                const VtuFields& fields) {
   AtomicFile file(path);
   write_vtu(file.stream(), mesh, points, fields);

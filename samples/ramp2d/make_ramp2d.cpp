@@ -18,7 +18,7 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
 
@@ -68,9 +68,9 @@ int main(int argc, char** argv) {
   try {
     const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
     std::filesystem::create_directories(folder);
-    const auto xs = hotmesh::deform::uniform_line(0.0, kLength, kCellsX);
-    const auto ys = hotmesh::deform::stretched_line(0.0, kHeight, kCellsY, kFirstCellY);
-    const auto mesh = hotmesh::deform::structured_quads(xs, ys, {"left", "right", "bottom", "top"});
+    const auto xs = hotmesh::mesh::uniform_line(0.0, kLength, kCellsX);
+    const auto ys = hotmesh::mesh::stretched_line(0.0, kHeight, kCellsY, kFirstCellY);
+    const auto mesh = hotmesh::mesh::structured_quads(xs, ys, {"left", "right", "bottom", "top"});
     hotmesh::io::write_gmsh(folder / "ramp2d.msh", mesh);
     hotmesh::io::write_file_atomically(folder / "ramp.csv", deflection_table());
     std::printf("wrote %s and %s\n", (folder / "ramp2d.msh").c_str(), (folder / "ramp.csv").c_str());

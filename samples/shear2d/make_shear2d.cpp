@@ -18,7 +18,7 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
 
@@ -36,7 +36,7 @@ constexpr int kCellsHalfY = 12;
 constexpr double kFirstCellY = 0.01;
 
 std::vector<double> clustered_height() {
-  const auto half = hotmesh::deform::stretched_line(0.0, 0.5 * kHeight, kCellsHalfY, kFirstCellY);
+  const auto half = hotmesh::mesh::stretched_line(0.0, 0.5 * kHeight, kCellsHalfY, kFirstCellY);
   std::vector<double> ys = half;
   for (auto it = half.rbegin() + 1; it != half.rend(); ++it) ys.push_back(kHeight - *it);
   return ys;
@@ -62,8 +62,8 @@ int main(int argc, char** argv) {
   try {
     const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
     std::filesystem::create_directories(folder);
-    const auto xs = hotmesh::deform::uniform_line(0.0, kLength, kCellsX);
-    const auto mesh = hotmesh::deform::structured_quads(xs, clustered_height(), {"inlet", "outlet", "bottom", "top"});
+    const auto xs = hotmesh::mesh::uniform_line(0.0, kLength, kCellsX);
+    const auto mesh = hotmesh::mesh::structured_quads(xs, clustered_height(), {"inlet", "outlet", "bottom", "top"});
     hotmesh::io::write_gmsh(folder / "shear2d.msh", mesh);
     hotmesh::io::write_file_atomically(folder / "top.csv", wall_table());
     hotmesh::io::write_file_atomically(folder / "inlet.csv", end_table(0.0));

@@ -29,8 +29,8 @@
 #include <fmt/format.h>
 
 #include "fem_tables.hpp"
-#include "hotmesh/deform/quality.hpp"
-#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/mesh/validate.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "stator_well.hpp"
@@ -93,8 +93,8 @@ int main(int argc, char** argv) {
     const hotmesh::samples::BlockMesher mesher(block_layout(loop), spacing_field());
     const Size size = o.refinement > 0.0 ? size_at(mesher, o.refinement) : size_for_cells(mesher, o.cells);
     auto mesh = sector_mesh(mesher.mesh(size.refinement), loop, size.theta_cells);
-    hotmesh::deform::validate_mesh(mesh);
-    const auto quality = hotmesh::deform::summarize_quality(hotmesh::deform::scaled_jacobians(mesh.cells, mesh.points));
+    hotmesh::mesh::validate_mesh(mesh);
+    const auto quality = hotmesh::mesh::summarize_quality(hotmesh::mesh::scaled_jacobians(mesh.cells, mesh.points));
     hotmesh::io::write_gmsh(o.folder / kMeshFile, mesh, {.binary = o.binary});
 
     // 3. FEM tables and case files.

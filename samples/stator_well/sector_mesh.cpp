@@ -29,10 +29,10 @@ Size size_for_cells(const BlockMesher& mesher, std::int64_t cells) {
   return cells - below.cells < above.cells - cells ? below : above;
 }
 
-deform::Mesh sector_mesh(const QuadMesh& section, const std::vector<ProfileCurve>& loop, int theta_cells) {
-  using deform::ElementType;
-  using deform::NodeId;
-  deform::Mesh mesh;
+mesh::Mesh sector_mesh(const QuadMesh& section, const std::vector<ProfileCurve>& loop, int theta_cells) {
+  using mesh::ElementType;
+  using mesh::NodeId;
+  mesh::Mesh mesh;
   mesh.dimension = 3;
   const auto layer_nodes = static_cast<NodeId>(section.nodes.size());
   const auto layers = static_cast<std::size_t>(theta_cells) + 1;
@@ -62,7 +62,7 @@ deform::Mesh sector_mesh(const QuadMesh& section, const std::vector<ProfileCurve
   // (a_k, b_k, b_k+1, a_k+1) has its normal out of the fluid; the periodic faces are the
   // quads of the first layer turned over and those of the last layer.
   for (int p = 0; p < kPatchCount; ++p) {
-    deform::Patch patch;
+    mesh::Patch patch;
     patch.name = std::string(name(static_cast<Patch>(p)));
     patch.tag = p + 1;
     mesh.patches.push_back(std::move(patch));
@@ -79,11 +79,11 @@ deform::Mesh sector_mesh(const QuadMesh& section, const std::vector<ProfileCurve
     lo.add(ElementType::quad4, {node(q[0], 0), node(q[3], 0), node(q[2], 0), node(q[1], 0)});
     hi.add(ElementType::quad4, {node(q[0], theta_cells), node(q[1], theta_cells), node(q[2], theta_cells), node(q[3], theta_cells)});
   }
-  deform::CellGroup fluid;
+  mesh::CellGroup fluid;
   fluid.name = "fluid";
   fluid.tag = kPatchCount + 1;
   fluid.cells.resize(mesh.cells.size());
-  for (std::size_t c = 0; c < fluid.cells.size(); ++c) fluid.cells[c] = static_cast<deform::CellId>(c);
+  for (std::size_t c = 0; c < fluid.cells.size(); ++c) fluid.cells[c] = static_cast<mesh::CellId>(c);
   mesh.cell_groups.push_back(std::move(fluid));
   mesh.derive_node_sets();
   return mesh;

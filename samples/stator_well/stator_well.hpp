@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "block_mesh.hpp"
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/geometry/revolved_export.hpp"
 
 namespace hotmesh::samples::stator_well {
@@ -92,7 +92,7 @@ Size size_for_cells(const BlockMesher& mesher, std::int64_t cells);
 /// theta layer by layer, patches tagged in Patch order (walls by their profile curve's patch,
 /// per_lo at theta = 0 and per_hi at the sector angle), one cell group "fluid". Boundary faces
 /// point out of the fluid.
-deform::Mesh sector_mesh(const QuadMesh& section, const std::vector<ProfileCurve>& loop, int theta_cells);
+mesh::Mesh sector_mesh(const QuadMesh& section, const std::vector<ProfileCurve>& loop, int theta_cells);
 
 /// (r, z) of a point given as (z, r): the meridional convention of hotmesh's geometry.
 inline Vec2 to_rz(const Vec2& zr) { return {zr.y, zr.x}; }

@@ -21,8 +21,8 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/deform/mesh_topology.hpp"
-#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/mesh/mesh_topology.hpp"
+#include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/figure.hpp"
 #include "hotmesh/io/gmsh.hpp"
@@ -30,8 +30,8 @@
 
 namespace {
 
-using hotmesh::deform::Mesh;
-using hotmesh::deform::NodeId;
+using hotmesh::mesh::Mesh;
+using hotmesh::mesh::NodeId;
 
 struct View {
   std::string name;
@@ -80,23 +80,23 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-const hotmesh::deform::Patch& patch_of(const Mesh& mesh, const std::string& name, const std::filesystem::path& file) {
+const hotmesh::mesh::Patch& patch_of(const Mesh& mesh, const std::string& name, const std::filesystem::path& file) {
   const auto* patch = mesh.find_patch(name);
   if (!patch) throw hotmesh::InputError(fmt::format("{}: no patch '{}'", file.string(), name));
   return *patch;
 }
 
 /// (z, r) about the z axis, scaled.
-hotmesh::deform::Vec3 section_point(const hotmesh::deform::Vec3& p, double scale) {
+hotmesh::geometry::Vec3 section_point(const hotmesh::geometry::Vec3& p, double scale) {
   return {p.z * scale, std::hypot(p.x, p.y) * scale, 0.0};
 }
 
 /// The patch's faces as a 2D mesh in (z, r), with the scaled Jacobian of each face's cell.
-Mesh section(const Mesh& mesh, const hotmesh::deform::Patch& patch, double scale, std::vector<double>& quality) {
+Mesh section(const Mesh& mesh, const hotmesh::mesh::Patch& patch, double scale, std::vector<double>& quality) {
   Mesh flat;
   flat.dimension = 2;
   std::map<NodeId, NodeId> local;
-  const hotmesh::deform::FaceIndex index(mesh.cells, mesh.node_count());
+  const hotmesh::mesh::FaceIndex index(mesh.cells, mesh.node_count());
   std::vector<NodeId> ids;
   for (std::size_t f = 0; f < patch.faces.size(); ++f) {
     ids.clear();
@@ -110,7 +110,7 @@ Mesh section(const Mesh& mesh, const hotmesh::deform::Patch& patch, double scale
     double q = 1.0;
     if (!cells.empty()) {
       const auto c = static_cast<std::size_t>(cells.front().cell);
-      q = hotmesh::deform::scaled_jacobian(mesh.cells.type(c), hotmesh::deform::gather(mesh.cells.nodes(c), mesh.points));
+      q = hotmesh::mesh::scaled_jacobian(mesh.cells.type(c), hotmesh::mesh::gather(mesh.cells.nodes(c), mesh.points));
     }
     quality.push_back(q);
   }
@@ -118,7 +118,7 @@ Mesh section(const Mesh& mesh, const hotmesh::deform::Patch& patch, double scale
 }
 
 /// The boundary of a patch (edges of one face only), as segments in (z, r).
-std::vector<std::array<hotmesh::io::PlotPoint, 2>> outline(const Mesh& mesh, const hotmesh::deform::Patch& patch, double scale) {
+std::vector<std::array<hotmesh::io::PlotPoint, 2>> outline(const Mesh& mesh, const hotmesh::mesh::Patch& patch, double scale) {
   std::map<std::pair<NodeId, NodeId>, int> uses;
   for (std::size_t f = 0; f < patch.faces.size(); ++f) {
     const auto n = patch.faces.nodes(f);

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "output_folders.hpp"
 #include "run_command.hpp"
@@ -34,9 +34,9 @@ struct RampCase {
 
 /// A coarse ramp channel written to `dir`, with tables for the half and the full ramp.
 inline void write_coarse_ramp(const std::filesystem::path& dir) {
-  const auto xs = deform::uniform_line(0.0, 2.0, 21);
-  const auto ys = deform::stretched_line(0.0, 1.0, 12, 0.004);
-  io::write_gmsh(dir / "ramp.msh", deform::structured_quads(xs, ys, {"left", "right", "bottom", "top"}));
+  const auto xs = mesh::uniform_line(0.0, 2.0, 21);
+  const auto ys = mesh::stretched_line(0.0, 1.0, 12, 0.004);
+  io::write_gmsh(dir / "ramp.msh", mesh::structured_quads(xs, ys, {"left", "right", "bottom", "top"}));
   for (const auto& [name, height] : {std::pair{"half.csv", 0.25}, std::pair{"full.csv", 0.5}}) {
     write_text(dir / name, fmt::format("x,y,dx,dy\n0,0,0,0\n0.975,0,0,0\n1.025,0,0,{}\n2,0,0,{}\n", height, height));
   }

@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/geometry/cad_export.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
@@ -37,15 +37,15 @@ test::CommandResult hotmesh(const std::string& arguments) {
 std::string q(const std::filesystem::path& path) { return shell_quote(path.string()); }
 
 /// The node in the middle of a patch's node list (sorted by index).
-deform::NodeId middle_node(const deform::Mesh& mesh, const std::string& patch) {
+mesh::NodeId middle_node(const mesh::Mesh& mesh, const std::string& patch) {
   const auto& nodes = mesh.find_patch(patch)->nodes;
   return nodes[nodes.size() / 2];
 }
 
 /// The node of `patch` nearest to `point`.
-deform::NodeId nearest_node(const deform::Mesh& mesh, const std::string& patch, const geometry::Vec3& point) {
+mesh::NodeId nearest_node(const mesh::Mesh& mesh, const std::string& patch, const geometry::Vec3& point) {
   const auto& nodes = mesh.find_patch(patch)->nodes;
-  return *std::min_element(nodes.begin(), nodes.end(), [&](deform::NodeId a, deform::NodeId b) {
+  return *std::min_element(nodes.begin(), nodes.end(), [&](mesh::NodeId a, mesh::NodeId b) {
     return distance(mesh.points[static_cast<std::size_t>(a)], point) < distance(mesh.points[static_cast<std::size_t>(b)], point);
   });
 }
@@ -89,8 +89,8 @@ TEST(CheckCommand, RampSampleDeformedMeshLiesOnTheDeflectedWallAndAMovedNodeIsFo
   EXPECT_NEAR(pass["tolerance"].get<double>(), 1e-6 * std::sqrt(5.0), 1e-12);  // 1e-6 of the 2 x 1 channel
 
   // Move one node of the flat part of the wall 1 mm up: the check fails and names it.
-  deform::Mesh mesh = io::read_gmsh(dir / "out/deformed.msh");
-  const deform::NodeId moved = nearest_node(mesh, "bottom", {0.3, 0.0, 0.0});
+  mesh::Mesh mesh = io::read_gmsh(dir / "out/deformed.msh");
+  const mesh::NodeId moved = nearest_node(mesh, "bottom", {0.3, 0.0, 0.0});
   mesh.points[static_cast<std::size_t>(moved)].y += 1e-3;
   io::write_gmsh(dir / "perturbed.msh", mesh);
   const auto [fail_code, fail] = check_json("--mesh " + q(dir / "perturbed.msh") + table);
@@ -109,10 +109,10 @@ TEST(CheckCommand, RampSampleDeformedMeshLiesOnTheDeflectedWallAndAMovedNodeIsFo
 
 /// A 30-degree sector of the annulus 0.5 < r < 0.7, 0 < z < 1 about the z axis, as hexes:
 /// patch "inner" on the cylinder r = 0.5, "bottom" on the plane z = 0.
-deform::Mesh annulus_sector() {
-  const auto xs = deform::uniform_line(0.0, 1.0, 3), ys = deform::uniform_line(0.0, 1.0, 6),
-             zs = deform::uniform_line(0.0, 1.0, 5);
-  deform::Mesh mesh = deform::structured_hexes(xs, ys, zs, {"inner", "outer", "side0", "side1", "bottom", "top"});
+mesh::Mesh annulus_sector() {
+  const auto xs = mesh::uniform_line(0.0, 1.0, 3), ys = mesh::uniform_line(0.0, 1.0, 6),
+             zs = mesh::uniform_line(0.0, 1.0, 5);
+  mesh::Mesh mesh = mesh::structured_hexes(xs, ys, zs, {"inner", "outer", "side0", "side1", "bottom", "top"});
   for (auto& p : mesh.points) {
     const double r = 0.5 + 0.2 * p.x, theta = std::numbers::pi / 6 * p.y;
     p = {r * std::cos(theta), r * std::sin(theta), p.z};
@@ -153,7 +153,7 @@ TEST(CheckCommand, RevolvedMeshAgainstCadFacesAndTheDeflectedCylinder) {
   ASSERT_FALSE(cad["faces"][0]["axis"].is_null());  // a cylinder: a fitted axis
   ASSERT_TRUE(cad["faces"][1]["axis"].is_null());   // a plane: none
 
-  deform::Mesh mesh = annulus_sector();
+  mesh::Mesh mesh = annulus_sector();
   io::write_gmsh(dir / "sector.msh", mesh);
   const std::string common = "--cad " + q(dir / "sector.step") + " --map inner=1 --map bottom=2 --mesh ";
   const auto [pass_code, pass] = check_json(common + q(dir / "sector.msh"));
@@ -165,8 +165,8 @@ TEST(CheckCommand, RevolvedMeshAgainstCadFacesAndTheDeflectedCylinder) {
   EXPECT_THAT(pass["patches"][1]["reference"].get<std::string>(), HasSubstr("their surfaces"));
 
   // One node of the inner wall 0.2 mm outwards, one of the bottom 0.3 mm down.
-  deform::Mesh perturbed = mesh;
-  const deform::NodeId inner = middle_node(mesh, "inner"), bottom = middle_node(mesh, "bottom");
+  mesh::Mesh perturbed = mesh;
+  const mesh::NodeId inner = middle_node(mesh, "inner"), bottom = middle_node(mesh, "bottom");
   auto& p = perturbed.points[static_cast<std::size_t>(inner)];
   p = p * ((0.5 + 2e-4) / std::hypot(p.x, p.y));
   p.z = mesh.points[static_cast<std::size_t>(inner)].z;
@@ -188,8 +188,8 @@ TEST(CheckCommand, RevolvedMeshAgainstCadFacesAndTheDeflectedCylinder) {
           << deflection(z) * std::sin(0.3) << ",0\n";
   }
   test::write_text(dir / "inner.csv", table.str());
-  deform::Mesh deformed = mesh;
-  for (const deform::NodeId n : mesh.find_patch("inner")->nodes) {
+  mesh::Mesh deformed = mesh;
+  for (const mesh::NodeId n : mesh.find_patch("inner")->nodes) {
     auto& d = deformed.points[static_cast<std::size_t>(n)];
     d = d * ((0.5 + deflection(d.z)) / 0.5);
     d.z = mesh.points[static_cast<std::size_t>(n)].z;
@@ -210,8 +210,8 @@ TEST(CheckCommand, RevolvedMeshAgainstCadFacesAndTheDeflectedCylinder) {
 TEST(CheckCommand, JunitReportFileIsWellFormedXmlWithATestCasePerPatch) {
   test::TempDir dir;
   write_cylinder_and_plane(dir / "sector.step");
-  deform::Mesh mesh = annulus_sector();
-  const deform::NodeId moved = middle_node(mesh, "bottom");
+  mesh::Mesh mesh = annulus_sector();
+  const mesh::NodeId moved = middle_node(mesh, "bottom");
   mesh.points[static_cast<std::size_t>(moved)].z += 1e-3;
   io::write_gmsh(dir / "sector.msh", mesh);
   const auto r = hotmesh("-q check --cad " + q(dir / "sector.step") + " --map inner=1 --map bottom=2 --mesh " +
@@ -283,8 +283,8 @@ TEST(CheckCommand, StatorWellCasingOnEitherSideOfTheBladeIsCheckedPerProfile) {
   EXPECT_GT(patch["parts"][1]["nodes"].get<int>(), 100);
 
   // A node of the rear casing 0.1 mm outwards: that part fails and names it, the other passes.
-  deform::Mesh mesh = io::read_gmsh(sample / "stator_well.msh");
-  const deform::NodeId moved = nearest_node(mesh, "casing", {0.45, 0.0, 0.08});
+  mesh::Mesh mesh = io::read_gmsh(sample / "stator_well.msh");
+  const mesh::NodeId moved = nearest_node(mesh, "casing", {0.45, 0.0, 0.08});
   auto& p = mesh.points[static_cast<std::size_t>(moved)];
   p = p * ((0.45 + 1e-4) / std::hypot(p.x, p.y));
   p.z = 0.08 + (p.z - 0.08);  // unchanged: only r moves
@@ -337,15 +337,15 @@ TEST(CheckCommand, JunitReportOfACheckThatCannotBeMadeIsATestCaseInError) {
 }
 
 /// The node of `patch` nearest to `point` that is on no other patch of `mesh`.
-deform::NodeId nearest_own_node(const deform::Mesh& mesh, const std::string& patch, const geometry::Vec3& point) {
-  std::vector<deform::NodeId> own;
-  for (const deform::NodeId n : mesh.find_patch(patch)->nodes) {
-    const bool shared = std::any_of(mesh.patches.begin(), mesh.patches.end(), [&](const deform::Patch& other) {
+mesh::NodeId nearest_own_node(const mesh::Mesh& mesh, const std::string& patch, const geometry::Vec3& point) {
+  std::vector<mesh::NodeId> own;
+  for (const mesh::NodeId n : mesh.find_patch(patch)->nodes) {
+    const bool shared = std::any_of(mesh.patches.begin(), mesh.patches.end(), [&](const mesh::Patch& other) {
       return other.name != patch && std::binary_search(other.nodes.begin(), other.nodes.end(), n);
     });
     if (!shared) own.push_back(n);
   }
-  return *std::min_element(own.begin(), own.end(), [&](deform::NodeId a, deform::NodeId b) {
+  return *std::min_element(own.begin(), own.end(), [&](mesh::NodeId a, mesh::NodeId b) {
     return distance(mesh.points[static_cast<std::size_t>(a)], point) < distance(mesh.points[static_cast<std::size_t>(b)], point);
   });
 }
@@ -374,8 +374,8 @@ TEST(CheckCommand, CaseFileGivesTheWallsADeformedMeshIsCheckedAgainst) {
 
   // A node of the flat part of the deflected wall 10 um up (the cells there are thin: the
   // sliding nodes gathered on the ramp): found.
-  deform::Mesh mesh = io::read_gmsh(dir / "out/deformed.msh");
-  const deform::NodeId moved = nearest_own_node(mesh, "bottom", {0.3, 0.0, 0.0});
+  mesh::Mesh mesh = io::read_gmsh(dir / "out/deformed.msh");
+  const mesh::NodeId moved = nearest_own_node(mesh, "bottom", {0.3, 0.0, 0.0});
   mesh.points[static_cast<std::size_t>(moved)].y += 1e-5;
   io::write_gmsh(dir / "perturbed.msh", mesh);
   const auto [fail_code, fail] = check_json(q(dir / "perturbed.msh") + " --case " + q(case_file));

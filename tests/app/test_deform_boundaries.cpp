@@ -12,8 +12,8 @@
 #include <fmt/format.h>
 
 #include "deform_cases.hpp"
-#include "hotmesh/deform/quality.hpp"
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -66,15 +66,15 @@ TEST_P(SlidingChannelWithSlipEnds, RunsWithoutAFixedPatch) {
       EXPECT_TRUE(increment["converged"].get<bool>());
     }
   }
-  const deform::Mesh moved = io::read_gmsh(out / "deformed.msh");
-  for (deform::NodeId n : moved.find_patch("bottom")->nodes) {
+  const mesh::Mesh moved = io::read_gmsh(out / "deformed.msh");
+  for (mesh::NodeId n : moved.find_patch("bottom")->nodes) {
     const auto& p = moved.points[static_cast<std::size_t>(n)];
     const double ramp = p.x <= 0.975 ? 0.0 : p.x >= 1.025 ? 0.5 : 0.5 * (p.x - 0.975) / 0.05;
     EXPECT_NEAR(p.y, ramp, 1e-9) << "x = " << p.x;
   }
-  for (deform::NodeId n : moved.find_patch("left")->nodes) EXPECT_NEAR(moved.points[static_cast<std::size_t>(n)].x, 0.0, 1e-12);
-  for (deform::NodeId n : moved.find_patch("right")->nodes) EXPECT_NEAR(moved.points[static_cast<std::size_t>(n)].x, 2.0, 1e-12);
-  EXPECT_EQ(deform::summarize_quality(deform::scaled_jacobians(moved.cells, moved.points)).inverted_cells, 0u);
+  for (mesh::NodeId n : moved.find_patch("left")->nodes) EXPECT_NEAR(moved.points[static_cast<std::size_t>(n)].x, 0.0, 1e-12);
+  for (mesh::NodeId n : moved.find_patch("right")->nodes) EXPECT_NEAR(moved.points[static_cast<std::size_t>(n)].x, 2.0, 1e-12);
+  EXPECT_EQ(mesh::summarize_quality(mesh::scaled_jacobians(moved.cells, moved.points)).inverted_cells, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(LinearSolvers, SlidingChannelWithSlipEnds, ::testing::Values("jacobi-pcg", "amg"));
@@ -84,7 +84,7 @@ TEST(DeformBoundaries, PassiveInletAndOutletOnASlidingFloorKeepTheirPlanes) {
   // (the table reaches past both ends): the deflected floor is y = 0.095 + 0.05 x. Its corners
   // with the passive inlet and outlet end where it crosses x = 0 and x = 2.
   test::TempDir dir;
-  io::write_gmsh(dir / "channel.msh", deform::structured_quads(deform::uniform_line(0.0, 2.0, 20), deform::uniform_line(0.0, 1.0, 10),
+  io::write_gmsh(dir / "channel.msh", mesh::structured_quads(mesh::uniform_line(0.0, 2.0, 20), mesh::uniform_line(0.0, 1.0, 10),
                                                                {"inlet", "outlet", "floor", "ceiling"}));
   std::string table = "x,y,dx,dy\n";
   for (int j = 0; j <= 6; ++j) {
@@ -98,11 +98,11 @@ TEST(DeformBoundaries, PassiveInletAndOutletOnASlidingFloorKeepTheirPlanes) {
   test::CommandResult r;
   const std::filesystem::path out = run(dir, yaml, r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const deform::Mesh moved = io::read_gmsh(out / "deformed.msh");
+  const mesh::Mesh moved = io::read_gmsh(out / "deformed.msh");
   const auto& floor = moved.find_patch("floor")->nodes;
   for (const auto& [name, x] : {std::pair{"inlet", 0.0}, std::pair{"outlet", 2.0}}) {
     std::size_t corners = 0;
-    for (deform::NodeId n : moved.find_patch(name)->nodes) {
+    for (mesh::NodeId n : moved.find_patch(name)->nodes) {
       const auto& p = moved.points[static_cast<std::size_t>(n)];
       EXPECT_NEAR(p.x, x, 1e-12) << name;  // on the inlet's (outlet's) plane
       if (!std::binary_search(floor.begin(), floor.end(), n)) continue;
@@ -111,11 +111,11 @@ TEST(DeformBoundaries, PassiveInletAndOutletOnASlidingFloorKeepTheirPlanes) {
     }
     EXPECT_EQ(corners, 1u) << name;
   }
-  for (deform::NodeId n : floor) {
+  for (mesh::NodeId n : floor) {
     const auto& p = moved.points[static_cast<std::size_t>(n)];
     EXPECT_NEAR(p.y, 0.095 + 0.05 * p.x, 1e-9);
   }
-  EXPECT_EQ(deform::summarize_quality(deform::scaled_jacobians(moved.cells, moved.points)).inverted_cells, 0u);
+  EXPECT_EQ(mesh::summarize_quality(mesh::scaled_jacobians(moved.cells, moved.points)).inverted_cells, 0u);
 }
 
 TEST(DeformBoundaries, SectorFreeToTurnAboutItsAxisIsRefusedAtPatches) {

@@ -15,9 +15,9 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/gmsh.hpp"
-#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/mesh/quality.hpp"
 #include "deform_cases.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -55,14 +55,14 @@ TEST(DeformCommand, RampSampleCompletesWithEveryOutputAndReport) {
     EXPECT_EQ(inc["pcg_iterations"].size(), inc["newton_iterations"].get<std::size_t>());
   }
   // The deformed mesh: the lower wall lies on the ramp, and no cell is inverted.
-  const deform::Mesh moved = io::read_gmsh(out / "deformed.msh");
-  for (deform::NodeId n : moved.find_patch("bottom")->nodes) {
+  const mesh::Mesh moved = io::read_gmsh(out / "deformed.msh");
+  for (mesh::NodeId n : moved.find_patch("bottom")->nodes) {
     const double x = moved.points[static_cast<std::size_t>(n)].x;
     const double y = moved.points[static_cast<std::size_t>(n)].y;
     const double ramp = x <= 0.975 ? 0.0 : x >= 1.025 ? 0.5 : 0.5 * (x - 0.975) / 0.05;
     EXPECT_NEAR(y, ramp, 1e-9) << "x = " << x;
   }
-  const auto q = deform::summarize_quality(deform::scaled_jacobians(moved.cells, moved.points));
+  const auto q = mesh::summarize_quality(mesh::scaled_jacobians(moved.cells, moved.points));
   EXPECT_EQ(q.inverted_cells, 0u);
 }
 
@@ -127,8 +127,8 @@ TEST(DeformCommand, FailedMotionKeepsLastValidMeshAndMarksFailedCells) {
   EXPECT_EQ(report["status"], "failed");
   EXPECT_LT(report["stage_reached"].get<double>(), 1.0);
   EXPECT_THAT(report["message"].get<std::string>(), HasSubstr("cell"));
-  const deform::Mesh kept = io::read_gmsh(out / "deformed.msh");
-  EXPECT_EQ(deform::summarize_quality(deform::scaled_jacobians(kept.cells, kept.points)).inverted_cells, 0u);
+  const mesh::Mesh kept = io::read_gmsh(out / "deformed.msh");
+  EXPECT_EQ(mesh::summarize_quality(mesh::scaled_jacobians(kept.cells, kept.points)).inverted_cells, 0u);
   EXPECT_THAT(test::read_text(out / "failed.vtu"), HasSubstr("Name=\"inverted\""));
 }
 
@@ -250,8 +250,8 @@ TEST(DeformCommand, RestartFromSavedStateMatchesAStraightRun) {
     ASSERT_EQ(r.exit_code, 0) << name << ": " << r.output;
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "first-out" / "restart.hmr"));
-  const deform::Mesh straight = io::read_gmsh(dir / "straight-out" / "deformed.msh");
-  const deform::Mesh restarted = io::read_gmsh(dir / "second-out" / "deformed.msh");
+  const mesh::Mesh straight = io::read_gmsh(dir / "straight-out" / "deformed.msh");
+  const mesh::Mesh restarted = io::read_gmsh(dir / "second-out" / "deformed.msh");
   double largest = 0.0;
   for (std::size_t n = 0; n < straight.node_count(); ++n) {
     largest = std::max(largest, distance(straight.points[n], restarted.points[n]));
@@ -347,7 +347,7 @@ TEST(DeformCommand, RestartRefusesAnotherMeshOrChangedRoles) {
   EXPECT_EQ(roles.exit_code, 2);
   EXPECT_THAT(roles.output, HasSubstr("patches.top: it was sliding in the run being restarted"));
   // Another mesh.
-  io::write_gmsh(dir / "other.msh", deform::structured_quads(deform::uniform_line(0, 2, 20), deform::uniform_line(0, 1, 12),
+  io::write_gmsh(dir / "other.msh", mesh::structured_quads(mesh::uniform_line(0, 2, 20), mesh::uniform_line(0, 1, 12),
                                                             {"left", "right", "bottom", "top"}));
   std::string other = ramp_case("full.csv", 2, "restart: first-out/restart.hmr\n");
   other.replace(other.find("ramp.msh"), 8, "other.msh");

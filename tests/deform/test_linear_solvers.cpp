@@ -10,7 +10,7 @@
 #include <random>
 
 #include "hotmesh/deform/material.hpp"
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "linear_solver.hpp"
 #include "nodal_frames.hpp"
 #include "periodic.hpp"
@@ -79,9 +79,9 @@ struct SectorSystem {
       test::jiggle_interior(m, 0.2);
       return m;
     }
-    const auto rs = uniform_line(1.0, 2.0, 6);
-    const auto ts = uniform_line(0.0, kAngle * std::numbers::pi / 180.0, 5);
-    Mesh m = structured_quads(rs, ts, {"inner", "outer", "per_lo", "per_hi"});
+    const auto rs = mesh::uniform_line(1.0, 2.0, 6);
+    const auto ts = mesh::uniform_line(0.0, kAngle * std::numbers::pi / 180.0, 5);
+    Mesh m = mesh::structured_quads(rs, ts, {"inner", "outer", "per_lo", "per_hi"});
     for (auto& p : m.points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), 0.0};
     test::jiggle_interior(m, 0.2);
     return m;

@@ -10,9 +10,9 @@
 #include <numbers>
 #include <optional>
 
-#include "hotmesh/deform/mesh_motion.hpp"
-#include "hotmesh/deform/structured_mesh.hpp"
-#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/deform/move_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
+#include "hotmesh/mesh/validate.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "test_shapes.hpp"
 #include "test_support.hpp"
@@ -123,9 +123,9 @@ struct Ramp {
 };
 
 TEST(MeshMotion, PaperRampWithoutSlidingCompletesWithoutInvertedCells) {
-  const auto xs = uniform_line(0.0, 2.0, 57);
-  const auto ys = stretched_line(0.0, 1.0, 40, 0.001);
-  const Mesh mesh = structured_quads(xs, ys, {"left", "right", "bottom", "top"});
+  const auto xs = mesh::uniform_line(0.0, 2.0, 57);
+  const auto ys = mesh::stretched_line(0.0, 1.0, 40, 0.001);
+  const Mesh mesh = mesh::structured_quads(xs, ys, {"left", "right", "bottom", "top"});
   auto bottom = std::make_shared<test::TestCurveShape>(
       std::vector<Vec3>{{0, 0, 0}, {Ramp::a, 0, 0}, {Ramp::b, 0, 0}, {2, 0, 0}},
       [](const Vec3& p, double lambda) { return p + Vec3{0.0, lambda * Ramp::lift(p.x), 0.0}; });
@@ -149,7 +149,7 @@ TEST(MeshMotion, PaperRampWithoutSlidingCompletesWithoutInvertedCells) {
 }
 
 TEST(MeshMotion, ResultIsBitIdenticalForAnyThreadCount) {
-  // Large enough that element and vector loops run in parallel (deform/src/parallel.hpp).
+  // Large enough that element and vector loops run in parallel (mesh/include/hotmesh/mesh/parallel_loops.hpp).
   Mesh mesh = test::square_ring(16, 16, 0.25, 1.0, 5, 0.5, 1.1);
   test::jiggle_interior(mesh, 0.2);
   const auto motions = rotating_inner_square(mesh, 0.25);

@@ -9,7 +9,7 @@
 #include <map>
 #include <numbers>
 
-#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"

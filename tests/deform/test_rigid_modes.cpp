@@ -10,8 +10,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "hotmesh/deform/mesh_motion.hpp"
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/deform/move_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "rigid_modes.hpp"
@@ -34,7 +34,7 @@ std::shared_ptr<test::TestCurveShape> ramp_floor() {
 }
 
 Mesh channel() {
-  return structured_quads(uniform_line(0.0, 2.0, 21), uniform_line(0.0, 1.0, 12), {"inlet", "outlet", "floor", "ceiling"});
+  return mesh::structured_quads(mesh::uniform_line(0.0, 2.0, 21), mesh::uniform_line(0.0, 1.0, 12), {"inlet", "outlet", "floor", "ceiling"});
 }
 
 std::vector<PatchMotion> sliding_channel() {

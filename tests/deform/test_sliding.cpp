@@ -12,10 +12,10 @@
 
 #include "hotmesh/deform/constraints.hpp"
 #include "hotmesh/deform/material.hpp"
-#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/deform/pcg.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "test_shapes.hpp"
 #include "test_support.hpp"
 
@@ -61,11 +61,11 @@ std::shared_ptr<test::TestCurveShape> still_wall(double y) {
 /// The ramp mesh: the paper's (57 x 40, first cell 0.001), or a coarser one for 3D tests
 /// (21 x 12, first cell 0.004: still a ramp narrower than a cell).
 Mesh ramp_mesh(int layers = 0, bool coarse = false) {
-  const auto xs = uniform_line(0.0, 2.0, coarse ? 21 : 57);
-  const auto ys = stretched_line(0.0, 1.0, coarse ? 12 : 40, coarse ? 0.004 : 0.001);
-  if (layers == 0) return structured_quads(xs, ys, {"left", "right", "bottom", "top"});
-  const auto zs = uniform_line(0.0, 0.1, layers);
-  return structured_hexes(xs, ys, zs, {"left", "right", "bottom", "top", "zmin", "zmax"});
+  const auto xs = mesh::uniform_line(0.0, 2.0, coarse ? 21 : 57);
+  const auto ys = mesh::stretched_line(0.0, 1.0, coarse ? 12 : 40, coarse ? 0.004 : 0.001);
+  if (layers == 0) return mesh::structured_quads(xs, ys, {"left", "right", "bottom", "top"});
+  const auto zs = mesh::uniform_line(0.0, 0.1, layers);
+  return mesh::structured_hexes(xs, ys, zs, {"left", "right", "bottom", "top", "zmin", "zmax"});
 }
 
 std::vector<PatchMotion> ramp_motions(bool sliding, Ramp ramp, bool extruded = false) {

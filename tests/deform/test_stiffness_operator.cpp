@@ -69,7 +69,7 @@ TEST(StiffnessOperator, ColoursNeverShareANode) {
 }
 
 TEST(StiffnessOperator, ProductIsBitIdenticalForAnyThreadCount) {
-  // Large enough that the element loops run in parallel (deform/src/parallel.hpp).
+  // Large enough that the element loops run in parallel (mesh/include/hotmesh/mesh/parallel_loops.hpp).
   Mesh mesh = test::square_ring(16, 16, 0.3, 1.0, 4, 0.6);
   test::jiggle_interior(mesh, 0.2);
   const StiffnessOperator k = make_operator(mesh);

@@ -619,7 +619,7 @@ TEST_F(CaseFile, RoleNames) {
 
 class CaseAgainstMesh : public CaseFile {
  protected:
-  std::string mesh_error(std::string_view yaml, const deform::Mesh& mesh) {
+  std::string mesh_error(std::string_view yaml, const mesh::Mesh& mesh) {
     const Case c = parse(yaml);
     try {
       check_case_against_mesh(c, mesh);

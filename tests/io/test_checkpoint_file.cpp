@@ -35,14 +35,14 @@ Case case_in(const test::TempDir& dir) {
   return c;
 }
 
-deform::MotionCheckpoint some_state(const deform::Mesh& mesh) {
+deform::MotionCheckpoint some_state(const mesh::Mesh& mesh) {
   deform::MotionCheckpoint s;
   s.increments = 8;
   s.finished_increments = 2;
   s.lambda = 0.3125;
   s.split_pieces = {{3, 0.3125, 0.34375, 2}, {3, 0.34375, 0.375, 2}};
   s.points = mesh.points;
-  for (auto& p : s.points) p = (1.0 + 1e-13) * p + deform::Vec3{0.1, -0.2, 0.0};
+  for (auto& p : s.points) p = (1.0 + 1e-13) * p + geometry::Vec3{0.1, -0.2, 0.0};
   s.sliding = {{3, {0.5, 1.0 / 3.0, 0.0}, {0.25, geometry::kNoHint, 0.0}}, {7, {1.0, 2.0, 3.0}, {1.0, 2.0, 3.0}}};
   deform::IncrementRecord rejected;
   rejected.increment = 3;
@@ -71,7 +71,7 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 TEST(CheckpointFile, RoundTripKeepsEveryFieldBitForBit) {
   test::TempDir dir;
   const Case c = case_in(dir);
-  const deform::Mesh mesh = test::unit_square(3, 2);
+  const mesh::Mesh mesh = test::unit_square(3, 2);
   const auto inputs = input_fingerprints(c);
   ASSERT_EQ(inputs.size(), 3u);  // case file, mesh, table
   EXPECT_EQ(inputs[1].bytes, 10u);
@@ -90,7 +90,7 @@ TEST(CheckpointFile, RoundTripKeepsEveryFieldBitForBit) {
   EXPECT_EQ(s.split_pieces[0].split_depth, 2);
   EXPECT_TRUE(same_bits(s.split_pieces[1].lambda_begin, 0.34375));
   ASSERT_EQ(s.points.size(), expected.points.size());
-  EXPECT_EQ(std::memcmp(s.points.data(), expected.points.data(), s.points.size() * sizeof(deform::Vec3)), 0);
+  EXPECT_EQ(std::memcmp(s.points.data(), expected.points.data(), s.points.size() * sizeof(geometry::Vec3)), 0);
   ASSERT_EQ(s.sliding.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(s.sliding[i].node, expected.sliding[i].node);
@@ -126,7 +126,7 @@ TEST(CheckpointFile, SizeDoesNotGrowWithTheIncrementsLeft) {
   // after each one. After increment 2 of 8 or of 8000, the state is the same but for N.
   test::TempDir dir;
   const Case c = case_in(dir);
-  const deform::Mesh mesh = test::unit_square(3, 2);
+  const mesh::Mesh mesh = test::unit_square(3, 2);
   const CheckpointOrigin origin = checkpoint_origin(c, mesh, input_fingerprints(c));
   deform::MotionCheckpoint s = some_state(mesh);
   write_checkpoint(dir / "few.hmc", origin, s);
@@ -138,7 +138,7 @@ TEST(CheckpointFile, SizeDoesNotGrowWithTheIncrementsLeft) {
 TEST(CheckpointFile, ReadsFormatOneListingEveryStepLeft) {
   test::TempDir dir;
   const Case c = case_in(dir);
-  const deform::Mesh mesh = test::unit_square(3, 2);
+  const mesh::Mesh mesh = test::unit_square(3, 2);
   const auto inputs = input_fingerprints(c);
   write_checkpoint(dir / "checkpoint.hmc", checkpoint_origin(c, mesh, inputs), some_state(mesh));
   test::rewrite_as_checkpoint_format_1(dir / "checkpoint.hmc");
@@ -150,14 +150,14 @@ TEST(CheckpointFile, ReadsFormatOneListingEveryStepLeft) {
   EXPECT_TRUE(same_bits(k.state.split_pieces[1].lambda_end, 0.375));
   EXPECT_EQ(k.state.records.size(), 2u);
   EXPECT_EQ(k.state.finished_increments, 2);
-  EXPECT_EQ(std::memcmp(k.state.points.data(), expected.points.data(), k.state.points.size() * sizeof(deform::Vec3)), 0);
+  EXPECT_EQ(std::memcmp(k.state.points.data(), expected.points.data(), k.state.points.size() * sizeof(geometry::Vec3)), 0);
   EXPECT_EQ(read_checkpoint_info(dir / "checkpoint.hmc").finished_increments, 2);
 }
 
 TEST(CheckpointFile, ChangedInputIsRefusedNamingTheFile) {
   test::TempDir dir;
   const Case c = case_in(dir);
-  const deform::Mesh mesh = test::unit_square(3, 2);
+  const mesh::Mesh mesh = test::unit_square(3, 2);
   write_checkpoint(dir / "checkpoint.hmc", checkpoint_origin(c, mesh, input_fingerprints(c)), some_state(mesh));
   test::write_text(dir / "wall.csv", "x,y,dx,dy\n0,0,0,0\n1,0,0,0.2\n");  // same size, other bytes
   try {
@@ -185,9 +185,9 @@ TEST(CheckpointFile, ChangedInputIsRefusedNamingTheFile) {
 TEST(CheckpointFile, AnotherMeshIsRefused) {
   test::TempDir dir;
   const Case c = case_in(dir);
-  const deform::Mesh mesh = test::unit_square(3, 2);
+  const mesh::Mesh mesh = test::unit_square(3, 2);
   write_checkpoint(dir / "checkpoint.hmc", checkpoint_origin(c, mesh, input_fingerprints(c)), some_state(mesh));
-  deform::Mesh moved = mesh;
+  mesh::Mesh moved = mesh;
   moved.points[4].x += 1e-9;
   try {
     read_checkpoint(dir / "checkpoint.hmc", moved, input_fingerprints(c));
@@ -200,7 +200,7 @@ TEST(CheckpointFile, AnotherMeshIsRefused) {
 TEST(CheckpointFile, DamagedOrForeignFilesAreRefused) {
   test::TempDir dir;
   const Case c = case_in(dir);
-  const deform::Mesh mesh = test::unit_square(3, 2);
+  const mesh::Mesh mesh = test::unit_square(3, 2);
   const auto inputs = input_fingerprints(c);
   write_checkpoint(dir / "checkpoint.hmc", checkpoint_origin(c, mesh, inputs), some_state(mesh));
   const std::string good = test::read_text(dir / "checkpoint.hmc");

@@ -15,7 +15,7 @@
 #include <new>
 #include <string>
 
-#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/figure.hpp"
 #include "hotmesh/io/mesh_picture.hpp"
@@ -126,11 +126,11 @@ TEST(Colormap, RunsFromBlueToRedAndClamps) {
 
 TEST(MeshPicture, InvertedCellIsDrawnDarkRed) {
   test::TempDir dir;
-  const deform::Mesh mesh = test::unit_square(2, 1);
-  std::vector<deform::Vec3> points = mesh.points;
+  const mesh::Mesh mesh = test::unit_square(2, 1);
+  std::vector<geometry::Vec3> points = mesh.points;
   points[1].x = 1.5;  // the middle line moves past the right wall: the right cell is inverted
   points[4].x = 1.5;
-  const auto quality = deform::scaled_jacobians(mesh.cells, points);
+  const auto quality = mesh::scaled_jacobians(mesh.cells, points);
   ASSERT_GT(quality[0], 0.0);
   ASSERT_LT(quality[1], 0.0);
   Figure figure({.width = 400, .height = 300, .axes = false});

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/deform/quality.hpp"
-#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/mesh/validate.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "test_support.hpp"
@@ -28,9 +28,9 @@ void PrintTo(const Vec3& p, std::ostream* out) { *out << "(" << p.x << ", " << p
 namespace hotmesh::io {
 namespace {
 
-using deform::ElementList;
-using deform::ElementType;
-using deform::Mesh;
+using mesh::ElementList;
+using mesh::ElementType;
+using mesh::Mesh;
 using test::TempDir;
 
 struct Flavour {
@@ -89,12 +89,12 @@ void expect_same_points(const Mesh& a, const Mesh& b, const std::string& label) 
 /// element order, rounded to 1e-9 as gmsh's ASCII output is not exact), sorted; so meshes equal
 /// up to node/element numbering and order compare equal.
 using Shape = std::pair<ElementType, std::vector<std::array<double, 3>>>;
-std::vector<Shape> shapes(const ElementList& list, const std::vector<deform::Vec3>& points) {
+std::vector<Shape> shapes(const ElementList& list, const std::vector<geometry::Vec3>& points) {
   std::vector<Shape> result;
   for (std::size_t i = 0; i < list.size(); ++i) {
     Shape s{list.type(i), {}};
-    for (deform::NodeId n : list.nodes(i)) {
-      const deform::Vec3& p = points[static_cast<std::size_t>(n)];
+    for (mesh::NodeId n : list.nodes(i)) {
+      const geometry::Vec3& p = points[static_cast<std::size_t>(n)];
       auto round = [](double v) { return std::round(v * 1e9) / 1e9; };
       s.second.push_back({round(p.x), round(p.y), round(p.z)});
     }
@@ -115,13 +115,13 @@ Geometry geometry_of(const Mesh& mesh) {
   Geometry g;
   g.dimension = mesh.dimension;
   g.cells = shapes(mesh.cells, mesh.points);
-  for (const deform::Patch& p : mesh.patches) {
+  for (const mesh::Patch& p : mesh.patches) {
     g.patches[p.name] = shapes(p.faces, mesh.points);
     g.tags["patch " + p.name] = p.tag;
   }
-  for (const deform::CellGroup& group : mesh.cell_groups) {
+  for (const mesh::CellGroup& group : mesh.cell_groups) {
     ElementList cells;
-    for (deform::CellId c : group.cells)
+    for (mesh::CellId c : group.cells)
       cells.add(mesh.cells.type(static_cast<std::size_t>(c)), mesh.cells.nodes(static_cast<std::size_t>(c)));
     g.groups[group.name] = shapes(cells, mesh.points);
     g.tags["group " + group.name] = group.tag;
@@ -133,9 +133,9 @@ std::size_t count_type(const Mesh& mesh, ElementType type) {
   return static_cast<std::size_t>(std::count(mesh.cells.types().begin(), mesh.cells.types().end(), type));
 }
 
-std::vector<deform::CellId> all_cells(std::size_t n) {
-  std::vector<deform::CellId> cells(n);
-  for (std::size_t i = 0; i < n; ++i) cells[i] = static_cast<deform::CellId>(i);
+std::vector<mesh::CellId> all_cells(std::size_t n) {
+  std::vector<mesh::CellId> cells(n);
+  for (std::size_t i = 0; i < n; ++i) cells[i] = static_cast<mesh::CellId>(i);
   return cells;
 }
 
@@ -193,11 +193,11 @@ TEST(GmshFromGmsh, QuadChannelIsTheSameInAllFourFormats) {
   EXPECT_EQ(mesh.cell_groups[1].name, "zone");
   EXPECT_EQ(mesh.cell_groups[0].cells, all_cells(nx * ny));
   EXPECT_EQ(mesh.cell_groups[1].cells, all_cells(nx * ny));
-  for (const deform::Vec3& p : mesh.points) EXPECT_EQ(p.z, 0.0);
+  for (const geometry::Vec3& p : mesh.points) EXPECT_EQ(p.z, 0.0);
 
-  const auto report = deform::validate_mesh(mesh);
+  const auto report = mesh::validate_mesh(mesh);
   EXPECT_EQ(report.boundary_faces, 2 * (nx + ny));
-  const auto q = deform::summarize_quality(deform::scaled_jacobians(mesh.cells, mesh.points));
+  const auto q = mesh::summarize_quality(mesh::scaled_jacobians(mesh.cells, mesh.points));
   EXPECT_NEAR(q.min_scaled_jacobian, 1.0, 1e-9);  // all rectangles
 }
 
@@ -223,7 +223,7 @@ TEST(GmshFromGmsh, ExtrudedHexBoxIsTheSameInAllFourFormats) {
   EXPECT_EQ(mesh.cell_groups[0].tag, 20);
   EXPECT_EQ(mesh.cell_groups[0].cells.size(), nx * ny * nz);
 
-  const auto report = deform::validate_mesh(mesh);
+  const auto report = mesh::validate_mesh(mesh);
   EXPECT_EQ(report.boundary_faces, 2 * (nx * ny + ny * nz + nx * nz));
   EXPECT_EQ(report.interior_patch_faces, 0u);
 }
@@ -246,10 +246,10 @@ TEST(GmshFromGmsh, MixedHexPrismMeshIsTheSameInAllFourFormats) {
   EXPECT_EQ(mesh.cell_groups[0].cells.size(), 12u);
   EXPECT_EQ(mesh.cell_groups[1].name, "prisms");
   EXPECT_EQ(mesh.cell_groups[1].cells.size(), 24u);
-  for (deform::CellId c : mesh.cell_groups[1].cells) {
+  for (mesh::CellId c : mesh.cell_groups[1].cells) {
     EXPECT_EQ(mesh.cells.type(static_cast<std::size_t>(c)), ElementType::wedge6);
   }
-  const auto report = deform::validate_mesh(mesh);
+  const auto report = mesh::validate_mesh(mesh);
   EXPECT_EQ(report.boundary_faces, 60u);
 }
 
@@ -260,11 +260,11 @@ TEST(GmshFromGmsh, TetCubeIsTheSameInAllFourFormatsAndFillsTheCube) {
   EXPECT_EQ(count_type(mesh, ElementType::tet4), mesh.cell_count());
   ASSERT_EQ(mesh.patches.size(), 1u);
   for (ElementType t : mesh.patches[0].faces.types()) EXPECT_EQ(t, ElementType::tri3);
-  const auto report = deform::validate_mesh(mesh);  // also reorients
+  const auto report = mesh::validate_mesh(mesh);  // also reorients
   EXPECT_EQ(report.boundary_faces, mesh.patches[0].faces.size());
   double volume = 0.0;
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
-    const auto e = deform::gather(mesh.cells.nodes(c), mesh.points);
+    const auto e = mesh::gather(mesh.cells.nodes(c), mesh.points);
     volume += geometry::triple(e.p[1] - e.p[0], e.p[2] - e.p[0], e.p[3] - e.p[0]) / 6.0;
   }
   EXPECT_NEAR(volume, 1.0, 1e-12);
@@ -318,14 +318,14 @@ Mesh awkward_mesh() {
   Mesh mesh = test::unit_cube(2);  // 27 nodes, 8 hexes, 6 patches
   const std::size_t n = mesh.node_count();
   for (std::size_t i = 0; i < n; ++i) {
-    deform::Vec3& p = mesh.points[i];
-    p = p * (1.0 / 3.0) + deform::Vec3{0.1, -1e-300, 1e17};
+    geometry::Vec3& p = mesh.points[i];
+    p = p * (1.0 / 3.0) + geometry::Vec3{0.1, -1e-300, 1e17};
     p.x += 1e-9 * static_cast<double>(i);
     mesh.node_ids.push_back(i % 5 == 0 ? std::int64_t{2'000'000'000} + static_cast<std::int64_t>(i)
                                        : 7 * static_cast<std::int64_t>(n - i));
   }
   // Two prisms on top of the cube's zmax face, between hexes in cell order.
-  const auto a = static_cast<deform::NodeId>(mesh.points.size());
+  const auto a = static_cast<mesh::NodeId>(mesh.points.size());
   mesh.points.push_back({0.0, 0.0, 2.0});
   mesh.points.push_back({0.5, 0.0, 2.0});
   mesh.points.push_back({0.0, 0.5, 2.0});
@@ -417,7 +417,7 @@ TEST(GmshRoundTrip, WriterRenumbersMissingAndRepeatedGroupTags) {
   const Mesh back = parse_gmsh(gmsh_string(mesh, false), "x.msh");
   ASSERT_EQ(back.patches.size(), 4u);
   std::map<std::string, int> tags;
-  for (const deform::Patch& p : back.patches) tags[p.name] = p.tag;
+  for (const mesh::Patch& p : back.patches) tags[p.name] = p.tag;
   EXPECT_EQ(tags["xmax"], 2);
   EXPECT_EQ(tags["ymax"], 4);
   EXPECT_EQ(tags["xmin"], 5);

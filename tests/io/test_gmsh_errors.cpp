@@ -21,8 +21,8 @@
 namespace hotmesh::io {
 namespace {
 
-using deform::ElementType;
-using deform::Mesh;
+using mesh::ElementType;
+using mesh::Mesh;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
@@ -126,14 +126,14 @@ TEST(GmshReaderInput, TinyFilesAreValid) {
   EXPECT_EQ(v2.dimension, 2);
   EXPECT_EQ(v2.node_count(), 6u);
   EXPECT_EQ(v2.cells.type(1), ElementType::quad4);
-  EXPECT_THAT(std::vector<deform::NodeId>(v2.cells.nodes(1).begin(), v2.cells.nodes(1).end()),
+  EXPECT_THAT(std::vector<mesh::NodeId>(v2.cells.nodes(1).begin(), v2.cells.nodes(1).end()),
               ::testing::ElementsAre(1, 2, 5, 4));
   EXPECT_EQ(v2.cell_ids, (std::vector<std::int64_t>{3, 4}));
   ASSERT_EQ(v2.patches.size(), 2u);
   EXPECT_EQ(v2.patches[1].name, "wall");
-  EXPECT_EQ(v2.patches[1].nodes, (std::vector<deform::NodeId>{0, 1}));
+  EXPECT_EQ(v2.patches[1].nodes, (std::vector<mesh::NodeId>{0, 1}));
   ASSERT_EQ(v2.cell_groups.size(), 1u);
-  EXPECT_EQ(v2.cell_groups[0].cells, (std::vector<deform::CellId>{0, 1}));
+  EXPECT_EQ(v2.cell_groups[0].cells, (std::vector<mesh::CellId>{0, 1}));
 
   Mesh v4 = parse_gmsh(kTiny41, "tiny41.msh");
   EXPECT_EQ(v4.cell_ids, (std::vector<std::int64_t>{2, 3}));
@@ -380,9 +380,9 @@ TEST(GmshReaderInput, Format22ElementRepeatedPerGroupIsOneCell) {
   EXPECT_EQ(mesh.cell_count(), 3u);
   EXPECT_EQ(mesh.cell_ids, (std::vector<std::int64_t>{3, 4, 15}));
   ASSERT_EQ(mesh.cell_groups.size(), 2u);
-  EXPECT_EQ(mesh.cell_groups[0].cells, (std::vector<deform::CellId>{0, 1}));
+  EXPECT_EQ(mesh.cell_groups[0].cells, (std::vector<mesh::CellId>{0, 1}));
   EXPECT_EQ(mesh.cell_groups[1].name, "hot");
-  EXPECT_EQ(mesh.cell_groups[1].cells, (std::vector<deform::CellId>{0, 1, 2}));
+  EXPECT_EQ(mesh.cell_groups[1].cells, (std::vector<mesh::CellId>{0, 1, 2}));
   ASSERT_EQ(mesh.patches.size(), 3u);
   EXPECT_EQ(mesh.patches[1].faces, mesh.patches[2].faces);  // the edge is in "wall" and "bottom"
   EXPECT_EQ(mesh.patches[2].name, "bottom");

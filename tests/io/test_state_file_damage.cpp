@@ -44,7 +44,7 @@ std::string with_header_edit(const std::string& bytes, std::string_view magic, c
 }
 
 /// A restart file of `mesh` with one prescribed patch and its table, as a run writes it.
-void write_good_restart(const std::filesystem::path& path, const deform::Mesh& mesh) {
+void write_good_restart(const std::filesystem::path& path, const mesh::Mesh& mesh) {
   RestartState state;
   state.mesh_fingerprint = mesh_fingerprint(mesh);
   state.points = mesh.points;
@@ -66,7 +66,7 @@ constexpr std::string_view kRestartMagic = "HOTMESH-RESTART\n";
 // another mesh.
 TEST(StateFileDamage, RestartFingerprintBeyond64Bits) {
   test::TempDir dir;
-  const deform::Mesh mesh = test::unit_square(2, 2);
+  const mesh::Mesh mesh = test::unit_square(2, 2);
   write_good_restart(dir / "good.hmr", mesh);
   const std::string good = test::read_text(dir / "good.hmr");
   const std::string fingerprint = "\"mesh_fingerprint\":" + std::to_string(mesh_fingerprint(mesh));
@@ -81,7 +81,7 @@ TEST(StateFileDamage, RestartFingerprintBeyond64Bits) {
 TEST(StateFileDamage, CheckpointHashBeyond64Bits) {
   test::TempDir dir;
   test::write_text(dir / "case.yaml", "mesh: mesh.msh\n");
-  const deform::Mesh mesh = test::unit_square(2, 2);
+  const mesh::Mesh mesh = test::unit_square(2, 2);
   const std::vector<InputFingerprint> inputs{{dir / "case.yaml", 15, 1234}};
   deform::MotionCheckpoint state;
   state.increments = 4;
@@ -97,7 +97,7 @@ TEST(StateFileDamage, CheckpointHashBeyond64Bits) {
 
 TEST(StateFileDamage, RestartTablesAndRolesOutsideWhatARunWrites) {
   test::TempDir dir;
-  const deform::Mesh mesh = test::unit_square(2, 2);
+  const mesh::Mesh mesh = test::unit_square(2, 2);
   write_good_restart(dir / "good.hmr", mesh);
   EXPECT_EQ(read_restart(dir / "good.hmr", mesh).patches.at(0).deflection->degree, 1);
 

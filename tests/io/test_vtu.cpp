@@ -9,15 +9,15 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/io/vtu.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::io {
 namespace {
 
-using deform::Mesh;
-using deform::Vec3;
+using mesh::Mesh;
+using geometry::Vec3;
 
 /// Runs VTK's reader on a file and returns what it saw.
 nlohmann::json read_with_vtk(const std::filesystem::path& vtu) {

@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/mesh_files.hpp"
@@ -44,7 +44,7 @@ Outcome run_case(const fs::path& case_file, deform::LinearSolverKind linear, dou
   c.solver.max_pcg_iterations = 100000;
   if (increments > 0) c.solver.increments = increments;
   Outcome o{deform::move_mesh(loaded.mesh, setup.motions, c.material, c.solver), 0.0};
-  deform::Vec3 lo = loaded.mesh.points.front(), hi = lo;
+  geometry::Vec3 lo = loaded.mesh.points.front(), hi = lo;
   for (const auto& p : loaded.mesh.points) {
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};

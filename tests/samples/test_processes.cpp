@@ -146,7 +146,7 @@ class Processes : public ::testing::Test {
     const auto ma = io::read_mesh(a / "deformed.msh").mesh, mb = io::read_mesh(b / "deformed.msh").mesh;
     double largest = 0.0;
     for (std::size_t i = 0; i < ma.points.size(); ++i) largest = std::max(largest, distance(ma.points[i], mb.points[i]));
-    return largest / deform::bounding_diagonal(ma.points);
+    return largest / mesh::bounding_diagonal(ma.points);
   }
 
   static test::TempDir* dir_;
@@ -212,7 +212,7 @@ TEST_F(Processes, RunsOnTwoRanksRepeatOnABusyMachine) {
   test::write_text(dir / "repeat.yaml", text);
 
   const io::Case repeat = io::read_case(dir / "repeat.yaml");
-  const deform::Mesh mesh = io::read_mesh(repeat.mesh).mesh;
+  const mesh::Mesh mesh = io::read_mesh(repeat.mesh).mesh;
   const auto inputs = io::input_fingerprints(repeat);
   std::vector<deform::MotionCheckpoint> runs;
   {

@@ -17,8 +17,8 @@
 
 #include "dimensions.hpp"
 #include "fem_tables.hpp"
-#include "hotmesh/deform/quality.hpp"
-#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/mesh/validate.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
 #include "hotmesh/io/atomic_file.hpp"
@@ -41,7 +41,7 @@ struct Small {
   BlockMesher mesher{block_layout(loop), spacing_field()};
   Size size = size_for_cells(mesher, kSmallCells);
   QuadMesh section = mesher.mesh(size.refinement);
-  deform::Mesh mesh = sector_mesh(section, loop, size.theta_cells);
+  mesh::Mesh mesh = sector_mesh(section, loop, size.theta_cells);
   SevereCase severe;
   std::vector<FemTable> tables = fem_tables(loop, severe);
   hotmesh::test::TempDir dir;
@@ -66,7 +66,7 @@ const Small& small() {
   return s;
 }
 
-geometry::Vec2 rz(const deform::Vec3& p) { return {std::hypot(p.x, p.y), p.z}; }
+geometry::Vec2 rz(const geometry::Vec3& p) { return {std::hypot(p.x, p.y), p.z}; }
 
 TEST(StatorWellSizes, TheSmallSizeIsAbout20kCellsCountedWithoutBuildingIt) {
   const Small& s = small();
@@ -99,11 +99,11 @@ TEST(StatorWellSizes, OneParameterReachesThePapersSize) {
 
 TEST(StatorWellMesh, IsValidWithPositiveCornersAndGoodCells) {
   const Small& s = small();
-  deform::Mesh copy = s.mesh;
-  const auto report = deform::validate_mesh(copy);
+  mesh::Mesh copy = s.mesh;
+  const auto report = mesh::validate_mesh(copy);
   EXPECT_EQ(report.reoriented_cells, 0u);  // written with positive corner Jacobians
   EXPECT_EQ(report.interior_patch_faces, 0u);
-  const auto quality = deform::summarize_quality(deform::scaled_jacobians(s.mesh.cells, s.mesh.points));
+  const auto quality = mesh::summarize_quality(mesh::scaled_jacobians(s.mesh.cells, s.mesh.points));
   EXPECT_EQ(quality.inverted_cells, 0u);
   EXPECT_GT(quality.min_scaled_jacobian, 0.7);  // the 135-degree corners where fillet blocks meet
   EXPECT_GT(quality.mean_scaled_jacobian, 0.98);
@@ -122,8 +122,8 @@ TEST(StatorWellMesh, PatchesAreNamedAndTaggedInOrderAndCoverTheBoundary) {
     EXPECT_FALSE(s.mesh.patches[i].faces.empty()) << expected[i];
     faces += s.mesh.patches[i].faces.size();
   }
-  deform::Mesh copy = s.mesh;
-  EXPECT_EQ(deform::validate_mesh(copy).boundary_faces, faces);  // every boundary face in one patch
+  mesh::Mesh copy = s.mesh;
+  EXPECT_EQ(mesh::validate_mesh(copy).boundary_faces, faces);  // every boundary face in one patch
 }
 
 TEST(StatorWellMesh, PeriodicFacesMatchByTheSectorRotation) {
@@ -133,15 +133,15 @@ TEST(StatorWellMesh, PeriodicFacesMatchByTheSectorRotation) {
   ASSERT_EQ(lo.size(), hi.size());
   const double a = kSectorDegrees * std::numbers::pi / 180.0;
   // Sorted by (z, r), rotated per_lo nodes and per_hi nodes pair up one to one.
-  const auto key = [](const deform::Vec3& p) { return std::pair{p.z, std::hypot(p.x, p.y)}; };
-  std::vector<deform::Vec3> rotated, target;
+  const auto key = [](const geometry::Vec3& p) { return std::pair{p.z, std::hypot(p.x, p.y)}; };
+  std::vector<geometry::Vec3> rotated, target;
   for (auto n : lo) {
     const auto& p = s.mesh.points[static_cast<std::size_t>(n)];
     EXPECT_NEAR(p.y, 0.0, 1e-15);  // theta = 0
     rotated.push_back({p.x * std::cos(a) - p.y * std::sin(a), p.x * std::sin(a) + p.y * std::cos(a), p.z});
   }
   for (auto n : hi) target.push_back(s.mesh.points[static_cast<std::size_t>(n)]);
-  const auto by_key = [&](const deform::Vec3& p, const deform::Vec3& q) { return key(p) < key(q); };
+  const auto by_key = [&](const geometry::Vec3& p, const geometry::Vec3& q) { return key(p) < key(q); };
   std::sort(rotated.begin(), rotated.end(), by_key);
   std::sort(target.begin(), target.end(), by_key);
   double worst = 0.0;

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 
 namespace hotmesh::test {
 
@@ -43,21 +43,21 @@ void write_text(const std::filesystem::path& path, std::string_view text) {
   if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
-deform::Mesh unit_square(int nx, int ny) {
-  const auto xs = deform::uniform_line(0.0, 1.0, nx);
-  const auto ys = deform::uniform_line(0.0, 1.0, ny);
-  return deform::structured_quads(xs, ys);
+mesh::Mesh unit_square(int nx, int ny) {
+  const auto xs = mesh::uniform_line(0.0, 1.0, nx);
+  const auto ys = mesh::uniform_line(0.0, 1.0, ny);
+  return mesh::structured_quads(xs, ys);
 }
 
-deform::Mesh unit_cube(int n) {
-  const auto line = deform::uniform_line(0.0, 1.0, n);
-  return deform::structured_hexes(line, line, line);
+mesh::Mesh unit_cube(int n) {
+  const auto line = mesh::uniform_line(0.0, 1.0, n);
+  return mesh::structured_hexes(line, line, line);
 }
 
-deform::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers, double depth,
+mesh::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers, double depth,
                          double growth) {
-  using deform::ElementType;
-  using deform::NodeId;
+  using mesh::ElementType;
+  using mesh::NodeId;
   const int around = 4 * per_side;
   // Point at perimeter position j (0..around) of the square with half side h, counter-clockwise
   // from (h, -h).
@@ -65,15 +65,15 @@ deform::Mesh square_ring(int per_side, int radial, double inner, double outer, i
     const int side = (j / per_side) % 4;
     const double s = -h + 2.0 * h * (j % per_side) / per_side;
     switch (side) {
-      case 0: return deform::Vec3{h, s, 0};
-      case 1: return deform::Vec3{-s, h, 0};
-      case 2: return deform::Vec3{-h, -s, 0};
-      default: return deform::Vec3{s, -h, 0};
+      case 0: return geometry::Vec3{h, s, 0};
+      case 1: return geometry::Vec3{-s, h, 0};
+      case 2: return geometry::Vec3{-h, -s, 0};
+      default: return geometry::Vec3{s, -h, 0};
     }
   };
-  deform::Mesh ring;
+  mesh::Mesh ring;
   ring.dimension = 2;
-  const auto half_sides = deform::geometric_line(inner, outer, radial, growth);
+  const auto half_sides = mesh::geometric_line(inner, outer, radial, growth);
   for (int k = 0; k <= radial; ++k) {
     const double h = half_sides[static_cast<std::size_t>(k)];
     for (int j = 0; j < around; ++j) ring.points.push_back(on_square(j, h));
@@ -94,11 +94,11 @@ deform::Mesh square_ring(int per_side, int radial, double inner, double outer, i
   ring.derive_node_sets();
   if (layers == 0) return ring;
 
-  deform::Mesh mesh;
+  mesh::Mesh mesh;
   mesh.dimension = 3;
   const auto plane = static_cast<NodeId>(ring.points.size());
   for (int l = 0; l <= layers; ++l) {
-    for (deform::Vec3 p : ring.points) mesh.points.push_back({p.x, p.y, depth * l / layers});
+    for (geometry::Vec3 p : ring.points) mesh.points.push_back({p.x, p.y, depth * l / layers});
   }
   for (int l = 0; l < layers; ++l) {
     const NodeId lo = l * plane, hi = (l + 1) * plane;
@@ -133,16 +133,16 @@ deform::Mesh square_ring(int per_side, int radial, double inner, double outer, i
   return mesh;
 }
 
-deform::Mesh annular_sector(int nr, int nt, int nz, double r0, double r1, double z0, double z1, double angle_deg) {
-  const auto rs = deform::uniform_line(r0, r1, nr);
-  const auto ts = deform::uniform_line(0.0, angle_deg * 3.14159265358979323846 / 180.0, nt);
-  const auto zs = deform::uniform_line(z0, z1, nz);
-  deform::Mesh mesh = deform::structured_hexes(rs, ts, zs, {"inner", "outer", "per_lo", "per_hi", "bottom", "top"});
+mesh::Mesh annular_sector(int nr, int nt, int nz, double r0, double r1, double z0, double z1, double angle_deg) {
+  const auto rs = mesh::uniform_line(r0, r1, nr);
+  const auto ts = mesh::uniform_line(0.0, angle_deg * 3.14159265358979323846 / 180.0, nt);
+  const auto zs = mesh::uniform_line(z0, z1, nz);
+  mesh::Mesh mesh = mesh::structured_hexes(rs, ts, zs, {"inner", "outer", "per_lo", "per_hi", "bottom", "top"});
   for (auto& p : mesh.points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), p.z};  // (r, theta, z) -> (x, y, z)
   return mesh;
 }
 
-void jiggle_interior(deform::Mesh& mesh, double fraction) {
+void jiggle_interior(mesh::Mesh& mesh, double fraction) {
   std::vector<char> on_boundary(mesh.node_count(), 0);
   for (const auto& p : mesh.patches) {
     for (auto n : p.nodes) on_boundary[static_cast<std::size_t>(n)] = 1;
@@ -170,7 +170,7 @@ void jiggle_interior(deform::Mesh& mesh, double fraction) {
     const double dx = uniform(), dy = uniform(), dz = uniform();
     if (on_boundary[n]) continue;
     const double r = fraction * shortest[n];
-    mesh.points[n] += deform::Vec3{r * dx, r * dy, mesh.dimension == 3 ? r * dz : 0.0};
+    mesh.points[n] += geometry::Vec3{r * dx, r * dy, mesh.dimension == 3 ? r * dz : 0.0};
   }
 }
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 
 namespace hotmesh::test {
 
@@ -39,24 +39,24 @@ std::string read_text(const std::filesystem::path& path);
 void write_text(const std::filesystem::path& path, std::string_view text);
 
 /// The unit square [0,1]^2 as nx x ny quads; patches xmin, xmax, ymin, ymax.
-deform::Mesh unit_square(int nx, int ny);
+mesh::Mesh unit_square(int nx, int ny);
 /// The unit cube [0,1]^3 as n^3 hexes; patches xmin, xmax, ymin, ymax, zmin, zmax.
-deform::Mesh unit_cube(int n);
+mesh::Mesh unit_cube(int n);
 
 /// The region between two concentric squares centred at the origin (half sides `inner` and
 /// `outer`) as an O-grid of quads: 4 * per_side cells around, `radial` across, each ring
 /// `growth` times wider than the one inside it. Patches "inner" and "outer". With
 /// layers > 0, extruded to hexes over z in [0, depth] with patches "zmin" and "zmax" too.
-deform::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers = 0, double depth = 0.0,
+mesh::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers = 0, double depth = 0.0,
                          double growth = 1.0);
 
 /// A sector of an annulus about the z axis: r in [r0, r1], z in [z0, z1], theta in
 /// [0, angle_deg], as nr x nt x nz hexes. Patches "inner" (r0), "outer" (r1), "per_lo"
 /// (theta 0), "per_hi" (theta angle), "bottom" (z0), "top" (z1).
-deform::Mesh annular_sector(int nr, int nt, int nz, double r0, double r1, double z0, double z1, double angle_deg);
+mesh::Mesh annular_sector(int nr, int nt, int nz, double r0, double r1, double z0, double z1, double angle_deg);
 
 /// Moves interior nodes (those on no patch) pseudo-randomly by up to `fraction` of the
 /// smallest edge length around them, keeping the mesh valid; deterministic.
-void jiggle_interior(deform::Mesh& mesh, double fraction);
+void jiggle_interior(mesh::Mesh& mesh, double fraction);
 
 }  // namespace hotmesh::test

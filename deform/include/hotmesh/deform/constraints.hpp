@@ -12,7 +12,7 @@
 #include <span>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_names.hpp"
 
 namespace hotmesh::deform {
 

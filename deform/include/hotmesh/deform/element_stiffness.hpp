@@ -10,7 +10,7 @@
 #include <span>
 
 #include "hotmesh/deform/material.hpp"
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_names.hpp"
 
 namespace hotmesh::deform {
 

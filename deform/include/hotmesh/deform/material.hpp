@@ -16,7 +16,7 @@
 #include <span>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_names.hpp"
 #include "hotmesh/deform/solver_options.hpp"
 
 namespace hotmesh::deform {

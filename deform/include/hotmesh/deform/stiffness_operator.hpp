@@ -14,7 +14,7 @@
 
 #include "hotmesh/deform/linear_algebra.hpp"
 #include "hotmesh/deform/material.hpp"
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/deform/mesh_names.hpp"
 
 namespace hotmesh::deform {
 

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/geometry/axis.hpp"
@@ -92,6 +92,6 @@ Case read_case(const std::filesystem::path& file);
 
 /// Checks the case against the mesh it names: every mesh patch has a role and every case
 /// patch exists in the mesh. Throws hotmesh::InputError listing each problem with its line.
-void check_case_against_mesh(const Case& c, const deform::Mesh& mesh);
+void check_case_against_mesh(const Case& c, const mesh::Mesh& mesh);
 
 }  // namespace hotmesh::io

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
@@ -45,7 +45,7 @@ std::optional<geometry::CadModel> read_case_cad(const Case& c);
 /// file at fault) when a table cannot describe its patch: wrong frame for the mesh, FEM nodes
 /// off the CAD curve, too few nodes, patch roles that differ from the run being restarted, ...
 /// `cad` is the case's CAD model if already read (read_case_cad); else it is read if needed.
-CaseSetup set_up_case(const Case& c, const deform::Mesh& mesh, const RestartState* previous = nullptr,
+CaseSetup set_up_case(const Case& c, const mesh::Mesh& mesh, const RestartState* previous = nullptr,
                       const geometry::CadModel* cad = nullptr);
 
 }  // namespace hotmesh::io

@@ -19,7 +19,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/io/case_file.hpp"
 
@@ -57,7 +57,7 @@ struct CheckpointOrigin {
 };
 
 /// The origin of run `c` on `mesh` (`inputs` from input_fingerprints(c)); computed once a run.
-CheckpointOrigin checkpoint_origin(const Case& c, const deform::Mesh& mesh, std::vector<InputFingerprint> inputs);
+CheckpointOrigin checkpoint_origin(const Case& c, const mesh::Mesh& mesh, std::vector<InputFingerprint> inputs);
 
 struct Checkpoint {
   CheckpointInfo info;
@@ -77,7 +77,7 @@ CheckpointInfo read_checkpoint_info(const std::filesystem::path& path);
 /// Reads a checkpoint and checks that it belongs to this run: written by this format, for
 /// this mesh, from the same input files byte for byte. Throws hotmesh::InputError naming the
 /// checkpoint and what differs (the file that changed) otherwise.
-Checkpoint read_checkpoint(const std::filesystem::path& path, const deform::Mesh& mesh,
+Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& mesh,
                            std::span<const InputFingerprint> inputs);
 
 }  // namespace hotmesh::io

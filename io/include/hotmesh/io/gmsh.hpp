@@ -9,7 +9,7 @@
 #include <iosfwd>
 #include <string_view>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 
 namespace hotmesh::io {
 
@@ -31,10 +31,10 @@ namespace hotmesh::io {
 /// - 4.1 files with $PartitionedEntities are rejected; 2.2 files of partitioned meshes list
 ///   every element once and are read whole (partition tags ignored). Sections the reader does
 ///   not need ($Comments, $NodeData, $Periodic, ...) are skipped; CRLF line ends are accepted.
-deform::Mesh parse_gmsh(std::string_view content, std::string_view source);
+mesh::Mesh parse_gmsh(std::string_view content, std::string_view source);
 
 /// Reads a .msh file (parse_gmsh on its content).
-deform::Mesh read_gmsh(const std::filesystem::path& path);
+mesh::Mesh read_gmsh(const std::filesystem::path& path);
 
 struct GmshWriteOptions {
   bool binary = false;  ///< 4.1 binary (this machine's byte order, 64-bit size_t) instead of ASCII
@@ -50,9 +50,9 @@ struct GmshWriteOptions {
 /// dimension, a name holding a double quote or line break). Check the stream's state afterwards.
 /// gmsh itself (4.8) saves only elements in physical groups: cells in no group are kept by
 /// hotmesh's reader but dropped if the file is re-saved by gmsh.
-void write_gmsh(std::ostream& out, const deform::Mesh& mesh, const GmshWriteOptions& options = {});
+void write_gmsh(std::ostream& out, const mesh::Mesh& mesh, const GmshWriteOptions& options = {});
 /// Writes a .msh file atomically (io::AtomicFile): an existing file is replaced only once the
 /// new one is complete. Throws hotmesh::InputError if the file cannot be written.
-void write_gmsh(const std::filesystem::path& path, const deform::Mesh& mesh, const GmshWriteOptions& options = {});
+void write_gmsh(const std::filesystem::path& path, const mesh::Mesh& mesh, const GmshWriteOptions& options = {});
 
 }  // namespace hotmesh::io

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <span>
 
-#include "hotmesh/deform/mesh.hpp"
-#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/mesh/mesh.hpp"
+#include "hotmesh/mesh/validate.hpp"
 #include "hotmesh/io/vtu.hpp"
 
 namespace hotmesh::io {
@@ -18,8 +18,8 @@ enum class MeshFormat { gmsh, vtu };
 MeshFormat mesh_format(const std::filesystem::path& path);
 
 struct LoadedMesh {
-  deform::Mesh mesh;
-  deform::ValidationReport validation;
+  mesh::Mesh mesh;
+  mesh::ValidationReport validation;
 };
 
 /// Reads and validates a mesh; every error names the file.
@@ -27,7 +27,7 @@ LoadedMesh read_mesh(const std::filesystem::path& path);
 
 /// Writes `mesh` with its nodes at `points` in the format of the extension; VTU files get
 /// `fields` (plus nothing else), Gmsh files ignore them.
-void write_mesh(const std::filesystem::path& path, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+void write_mesh(const std::filesystem::path& path, const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
                 const VtuFields& fields = {});
 
 }  // namespace hotmesh::io

@@ -4,7 +4,7 @@
 
 #include <span>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/io/figure.hpp"
 
 namespace hotmesh::io {
@@ -18,7 +18,7 @@ struct MeshDrawing {
 };
 
 /// Draws the cells of a 2D mesh at `points` (x, y) into `figure`.
-void draw_mesh(Figure& figure, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+void draw_mesh(Figure& figure, const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
                const MeshDrawing& drawing = {});
 
 }  // namespace hotmesh::io

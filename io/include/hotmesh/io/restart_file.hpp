@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/io/case_file.hpp"
 
@@ -26,22 +26,22 @@ struct RestartPatch {
 
 struct RestartState {
   std::uint64_t mesh_fingerprint = 0;  ///< of the undeformed mesh the run started from
-  std::vector<deform::Vec3> points;    ///< where the run left every node
+  std::vector<geometry::Vec3> points;    ///< where the run left every node
   std::vector<deform::SlidingOrigin> sliding;
   std::vector<RestartPatch> patches;
   std::string case_file;               ///< for messages
 };
 
 /// A hash of a mesh's dimension, coordinates and cells: restart files belong to one mesh.
-std::uint64_t mesh_fingerprint(const deform::Mesh& mesh);
+std::uint64_t mesh_fingerprint(const mesh::Mesh& mesh);
 
 /// The state after a successful run of case `c` on `mesh`.
-RestartState restart_state(const Case& c, const deform::Mesh& mesh, const deform::MotionResult& result);
+RestartState restart_state(const Case& c, const mesh::Mesh& mesh, const deform::MotionResult& result);
 
 void write_restart(const std::filesystem::path& path, const RestartState& state);
 
 /// Reads a restart file written for `mesh`. Throws hotmesh::InputError naming the file if it
 /// is not a restart file, is damaged, or belongs to another mesh.
-RestartState read_restart(const std::filesystem::path& path, const deform::Mesh& mesh);
+RestartState read_restart(const std::filesystem::path& path, const mesh::Mesh& mesh);
 
 }  // namespace hotmesh::io

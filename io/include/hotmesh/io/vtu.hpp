@@ -11,7 +11,7 @@
 #include <variant>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 
 namespace hotmesh::io {
 
@@ -28,17 +28,17 @@ struct VtuFields {
 };
 
 /// VTK cell type number of a hotmesh element type (VTK_QUAD = 9, VTK_HEXAHEDRON = 12, ...).
-std::uint8_t vtk_cell_type(deform::ElementType type);
+std::uint8_t vtk_cell_type(mesh::ElementType type);
 
 /// Cell quality (scaled_jacobian, inverted) and, per node, the 1-based index of the first
 /// patch it lies on (0 inside): the arrays every VTU from hotmesh carries.
-VtuFields quality_fields(const deform::Mesh& mesh, std::span<const deform::Vec3> points);
+VtuFields quality_fields(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points);
 
 /// Writes the cells of `mesh` at coordinates `points` (mesh.points, or a deformed copy).
 /// Throws std::invalid_argument if an array has the wrong length.
-void write_vtu(std::ostream& out, const deform::Mesh& mesh, std::span<const deform::Vec3> points,
+void write_vtu(std::ostream& out, const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
                const VtuFields& fields);
-void write_vtu(const std::filesystem::path& path, const deform::Mesh& mesh,
-               std::span<const deform::Vec3> points, const VtuFields& fields);
+void write_vtu(const std::filesystem::path& path, const mesh::Mesh& mesh,
+               std::span<const geometry::Vec3> points, const VtuFields& fields);
 
 }  // namespace hotmesh::io

@@ -3,10 +3,10 @@
 
 #include <cmath>
 
-#include "hotmesh/deform/structured_mesh.hpp"
-#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
+#include "hotmesh/mesh/validate.hpp"
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 namespace {
 
 TEST(StructuredLines, StretchedLineHasRequestedFirstSpacingAndEnds) {
@@ -43,4 +43,4 @@ TEST(StructuredMesh, RejectsNonIncreasingCoordinates) {
 }
 
 }  // namespace
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

@@ -1,10 +1,10 @@
-#include "hotmesh/deform/element.hpp"
+#include "hotmesh/mesh/element.hpp"
 
 #include <cassert>
 #include <cmath>
 #include <stdexcept>
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 namespace {
 
 constexpr LocalFace F(std::uint8_t a, std::uint8_t b) { return {2, {a, b, 0, 0}}; }
@@ -144,4 +144,4 @@ std::span<const std::uint8_t> reversal(ElementType type) {
   return {};
 }
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

@@ -1,5 +1,5 @@
-// hotmesh deform: starting the OpenMP threads while a failure can still be reported.
-#include "hotmesh/deform/threads.hpp"
+// hotmesh mesh: starting the OpenMP threads while a failure can still be reported.
+#include "hotmesh/mesh/parallel_loops.hpp"
 
 #include <omp.h>
 #include <pthread.h>
@@ -8,7 +8,7 @@
 #include <new>
 #include <vector>
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 namespace {
 
 void* wait_for(void* release) {
@@ -46,4 +46,4 @@ void start_threads(int count) {
   }
 }
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

@@ -1,4 +1,4 @@
-// hotmesh deform: checks a freshly loaded mesh before any work is done on it.
+// hotmesh mesh: checks a freshly loaded mesh before any work is done on it.
 // Rejected, with a message naming the node, cell or patch: references to missing nodes,
 // non-finite coordinates, a 2D mesh off its plane, nodes used by no cell, duplicate nodes,
 // folded or degenerate cells (a corner Jacobian <= 0 that is not a plain reversal), faces
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 
 struct ValidationReport {
   std::size_t reoriented_cells = 0;
@@ -42,4 +42,4 @@ struct ValidationOptions {
 /// Throws hotmesh::InputError describing the first class of problem found.
 ValidationReport validate_mesh(Mesh& mesh, const ValidationOptions& options = {});
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

@@ -1,4 +1,4 @@
-// hotmesh deform: cell quality. The scaled Jacobian of a cell is the minimum over its corners
+// hotmesh mesh: cell quality. The scaled Jacobian of a cell is the minimum over its corners
 // of det[e_1 .. e_d] / (|e_1| .. |e_d|), e_k the edges leaving the corner (element.hpp), scaled
 // so that the ideal shape scores 1. It is <= 0 where a corner is folded or inverted: such a
 // cell is "inverted" (ARCHITECTURE.md, method note 9).
@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 
 /// Scaled corner Jacobians of one element (2D types use the z component of e_1 x e_2), in the
 /// order of corner_stencils(type). Returns the number of corners written. A corner with a
@@ -43,4 +43,4 @@ struct QualitySummary {
 };
 QualitySummary summarize_quality(std::span<const double> scaled_jacobians);
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

@@ -1,7 +1,7 @@
-// Tests of how an exception leaves an OpenMP loop (deform/src/parallel.hpp): a std::bad_alloc
+// Tests of how an exception leaves an OpenMP loop (mesh/include/hotmesh/mesh/parallel_loops.hpp): a std::bad_alloc
 // thrown in one body comes out of the loop, on one thread or several, where it would otherwise
 // end the process with std::terminate; and the threads of a process start up front
-// (hotmesh/deform/threads.hpp).
+// (hotmesh/mesh/parallel_loops.hpp).
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -9,10 +9,10 @@
 #include <new>
 #include <stdexcept>
 
-#include "hotmesh/deform/threads.hpp"
-#include "parallel.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
 
-namespace hotmesh::deform::detail {
+namespace hotmesh::mesh {
 namespace {
 
 TEST(LoopExceptions, BadAllocInOneBodyLeavesTheLoop) {
@@ -65,4 +65,4 @@ TEST(Threads, StartThreadsSetsTheCountAndStartsThem) {
 }
 
 }  // namespace
-}  // namespace hotmesh::deform::detail
+}  // namespace hotmesh::mesh

@@ -1,10 +1,10 @@
-#include "hotmesh/deform/quality.hpp"
-#include "parallel.hpp"
+#include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 
 int scaled_corner_jacobians(ElementType type, const ElementPoints& element,
                             std::array<double, kMaxElementNodes>& out) {
@@ -39,7 +39,7 @@ double scaled_jacobian(ElementType type, const ElementPoints& element) {
 std::vector<double> scaled_jacobians(const ElementList& cells, std::span<const Vec3> points) {
   const auto n = static_cast<std::ptrdiff_t>(cells.size());
   std::vector<double> q(cells.size());
-#pragma omp parallel for schedule(static) if (n >= detail::kParallelCells)
+#pragma omp parallel for schedule(static) if (n >= kParallelCells)
   for (std::ptrdiff_t c = 0; c < n; ++c) {
     const auto i = static_cast<std::size_t>(c);
     q[i] = scaled_jacobian(cells.type(i), gather(cells.nodes(i), points));
@@ -83,4 +83,4 @@ QualitySummary summarize_quality(std::span<const double> scaled_jacobians) {
   return s;
 }
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

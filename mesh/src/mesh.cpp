@@ -1,8 +1,8 @@
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 
 #include <algorithm>
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 
 void ElementList::reserve(std::size_t elements, std::size_t nodes) {
   types_.reserve(elements);
@@ -55,4 +55,4 @@ double bounding_diagonal(std::span<const Vec3> points, std::span<const NodeId> n
                       [&](std::size_t i) -> const Vec3& { return points[static_cast<std::size_t>(nodes[i])]; });
 }
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

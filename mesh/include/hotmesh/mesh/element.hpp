@@ -1,4 +1,4 @@
-// hotmesh deform: linear element types and their reference topology.
+// hotmesh mesh: linear element types and their reference topology.
 // Node numbering is Gmsh's, which for these linear elements is also VTK's:
 //   quad4: 0-1-2-3 counter-clockwise in the x-y plane
 //   hex8:  0-1-2-3 bottom face, 4-5-6-7 top face above them (right-handed)
@@ -11,7 +11,7 @@
 #include <span>
 #include <string_view>
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 
 enum class ElementType : std::uint8_t { line2, tri3, quad4, tet4, hex8, wedge6, pyramid5 };
 
@@ -55,4 +55,4 @@ double ideal_corner_scale(ElementType type);
 /// corner Jacobians are all negative it yields the same cell with positive orientation.
 std::span<const std::uint8_t> reversal(ElementType type);
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

@@ -1,6 +1,6 @@
 // hotmesh deform: increments, the Newton-Raphson cycle (eqs. 7-8), quality checks, increment
 // splitting, and the state a run hands out after each accepted step to be resumed from.
-#include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/deform/move_mesh.hpp"
 
 #include <array>
 #include <chrono>
@@ -17,7 +17,7 @@
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "linear_solver.hpp"
-#include "parallel.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
 
 namespace hotmesh::deform {
 
@@ -338,7 +338,7 @@ class Motion {
   }
 
   void displace(const std::vector<Vec3>& x, std::span<const double> u, std::vector<Vec3>& out) const {
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(x.size()) >= detail::kParallelNodes)
+#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(x.size()) >= mesh::kParallelNodes)
     for (std::ptrdiff_t n = 0; n < static_cast<std::ptrdiff_t>(x.size()); ++n) {
       const auto i = static_cast<std::size_t>(n);
       Vec3 p = x[i];

@@ -1,4 +1,4 @@
-#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/mesh/validate.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,12 +9,12 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/deform/mesh_topology.hpp"
-#include "hotmesh/deform/quality.hpp"
+#include "hotmesh/mesh/mesh_topology.hpp"
+#include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/geometry/input_error.hpp"
-#include "parallel.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 namespace {
 
 constexpr std::size_t kExamples = 5;
@@ -267,7 +267,7 @@ void check_duplicate_nodes(const Mesh& mesh, double relative_tolerance) {
 std::size_t orient_cells(Mesh& mesh) {
   const std::size_t n = mesh.cells.size();
   std::vector<Orientation> orientations(n);
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(n) >= detail::kParallelCells)
+#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(n) >= kParallelCells)
   for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(n); ++c) {
     const auto i = static_cast<std::size_t>(c);
     orientations[i] = orientation(mesh.cells.type(i), gather(mesh.cells.nodes(i), mesh.points));
@@ -359,4 +359,4 @@ ValidationReport validate_mesh(Mesh& mesh, const ValidationOptions& options) {
   return report;
 }
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

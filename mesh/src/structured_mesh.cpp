@@ -1,9 +1,9 @@
-#include "hotmesh/deform/structured_mesh.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 namespace {
 
 void check_line(std::span<const double> line, const char* what) {
@@ -149,4 +149,4 @@ std::vector<double> stretched_line(double a, double b, int n, double first_spaci
   return geometric_line(a, b, n, 0.5 * (lo + hi));
 }
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

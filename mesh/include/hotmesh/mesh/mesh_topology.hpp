@@ -1,4 +1,4 @@
-// hotmesh deform: faces of cells and how they meet. Faces are matched by their node sets
+// hotmesh mesh: faces of cells and how they meet. Faces are matched by their node sets
 // through an index that buckets every cell face under its smallest node (a CSR array, one
 // pass to count and one to fill): memory is one CellFace per cell face, and a lookup
 // compares a face with the handful of faces sharing its smallest node.
@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 
 /// Face `local` (an index into faces(type)) of cell `cell`.
 struct CellFace {
@@ -63,4 +63,4 @@ struct FaceTopology {
 };
 FaceTopology face_topology(const FaceIndex& index);
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

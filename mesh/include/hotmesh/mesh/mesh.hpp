@@ -1,4 +1,4 @@
-// hotmesh deform: the mesh model every module works on.
+// hotmesh mesh: the mesh model every module works on.
 // Points, cells (quad4 in the x-y plane for 2D, hex8 for 3D, with tet4/wedge6/pyramid5 and
 // tri3 representable), named boundary patches as lists of faces, and the node sets derived
 // from the patches. Filled by io's readers and checked by validate_mesh().
@@ -11,10 +11,10 @@
 #include <string_view>
 #include <vector>
 
-#include "hotmesh/deform/element.hpp"
+#include "hotmesh/mesh/element.hpp"
 #include "hotmesh/geometry/vec3.hpp"
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 
 using geometry::Vec3;
 using NodeId = std::int32_t;  ///< 0-based index into Mesh::points
@@ -115,4 +115,4 @@ inline ElementPoints gather(std::span<const NodeId> nodes, std::span<const Vec3>
   return e;
 }
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

@@ -1,16 +1,16 @@
-// Tests of hotmesh::deform::validate_mesh: each class of broken mesh gives an InputError
+// Tests of hotmesh::mesh::validate_mesh: each class of broken mesh gives an InputError
 // naming the offending node, cell or patch; valid meshes pass, reversed ones are reoriented.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "hotmesh/deform/quality.hpp"
-#include "hotmesh/deform/validate.hpp"
+#include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/mesh/validate.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "test_support.hpp"
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 namespace {
 
 using ::testing::HasSubstr;
@@ -187,4 +187,4 @@ TEST(ValidateMesh, RejectsNonManifoldFace) {
 }
 
 }  // namespace
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

@@ -1,4 +1,4 @@
-// hotmesh deform: structured quad and hex blocks built from coordinate lines, with one patch
+// hotmesh mesh: structured quad and hex blocks built from coordinate lines, with one patch
 // per side. Used by samples, benchmarks and tests to build meshes in code.
 #pragma once
 
@@ -6,9 +6,9 @@
 #include <span>
 #include <string>
 
-#include "hotmesh/deform/mesh.hpp"
+#include "hotmesh/mesh/mesh.hpp"
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 
 /// Quads on the grid xs x ys (strictly increasing coordinates), nodes numbered x fastest.
 /// Patches, in order: names[0] at x = xs.front(), names[1] at x = xs.back(),
@@ -30,4 +30,4 @@ std::vector<double> geometric_line(double a, double b, int n, double ratio);
 /// (first_spacing < (b - a) / n; the growth ratio is solved for).
 std::vector<double> stretched_line(double a, double b, int n, double first_spacing);
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh

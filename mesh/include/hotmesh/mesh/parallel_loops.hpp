@@ -1,15 +1,20 @@
-// hotmesh deform (internal): below these sizes a loop runs on one thread, because starting
-// and joining a thread team costs more than the work. It costs far more on a loaded machine,
-// where OpenMP threads that spin while they wait steal the time slices of the others: a
-// small case on a busy machine then runs tens of times slower in parallel than serially.
-// And: how an exception leaves an OpenMP loop.
+// hotmesh mesh: how the loops over cells and nodes (here and in deform) run on OpenMP threads.
+// Below the sizes here a loop runs on one thread, because starting and joining a thread team
+// costs more than the work. It costs far more on a loaded machine, where OpenMP threads that
+// spin while they wait steal the time slices of the others: a small case on a busy machine
+// then runs tens of times slower in parallel than serially.
+// And: how an exception leaves an OpenMP loop, and starting the threads up front. libgomp
+// creates a loop's threads when the first loop runs on them and ends the process when it
+// cannot (exit code 1, "libgomp: Thread creation failed"), as under a memory limit without
+// room for their stacks. start_threads() creates them first, where a failure is an exception
+// the command reports as out of memory (exit code 4).
 #pragma once
 
 #include <atomic>
 #include <cstddef>
 #include <exception>
 
-namespace hotmesh::deform::detail {
+namespace hotmesh::mesh {
 
 inline constexpr std::ptrdiff_t kParallelVector = 1 << 16;   ///< entries of a vector kernel
 inline constexpr std::ptrdiff_t kParallelNodes = 1 << 15;    ///< nodes of a cheap nodal loop
@@ -61,4 +66,9 @@ class LoopExceptions {
   std::exception_ptr first_;
 };
 
-}  // namespace hotmesh::deform::detail
+/// Sets the number of threads of the loops (`count` > 0; 0 keeps OpenMP's: OMP_NUM_THREADS, or
+/// one per core) and starts them now, before the run holds its memory. Throws std::bad_alloc
+/// if the system cannot create that many threads. OpenMP keeps them for the loops that follow.
+void start_threads(int count = 0);
+
+}  // namespace hotmesh::mesh

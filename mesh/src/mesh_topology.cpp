@@ -1,8 +1,8 @@
-#include "hotmesh/deform/mesh_topology.hpp"
+#include "hotmesh/mesh/mesh_topology.hpp"
 
 #include <algorithm>
 
-namespace hotmesh::deform {
+namespace hotmesh::mesh {
 
 FaceNodes face_nodes(const ElementList& cells, CellFace face) {
   const auto cell = static_cast<std::size_t>(face.cell);
@@ -99,4 +99,4 @@ FaceTopology face_topology(const FaceIndex& index) {
   return t;
 }
 
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::mesh
