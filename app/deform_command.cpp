@@ -21,16 +21,16 @@
 #include "deform_checkpoint.hpp"
 #include "deform_outputs.hpp"
 #include "hotmesh/deform/move_mesh.hpp"
-#include "hotmesh/deform/processes.hpp"
-#include "hotmesh/mesh/parallel_loops.hpp"
 #include "hotmesh/geometry/input_error.hpp"
-#include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/atomic_file.hpp"
+#include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/io/output_folder.hpp"
 #include "hotmesh/io/restart_file.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
+#include "hotmesh/parallel/processes.hpp"
 #include "logging.hpp"
 
 namespace hotmesh::app {
@@ -94,7 +94,7 @@ void log_newton_step(const deform::NewtonProgress& p, spdlog::level::level_enum 
 
 void report_out_of_memory(const RunState& state) {
   std::string sizes = state.nodes > 0 ? fmt::format(" on a mesh of {} nodes and {} cells", state.nodes, state.cells) : "";
-  const deform::Processes job = deform::processes();
+  const parallel::Processes job = parallel::processes();
   const std::string rank = job.count > 1 ? fmt::format(" in rank {} of {}", job.rank, job.count) : "";
   spdlog::error("out of memory{} while {}{} (peak memory of this process {:.2f} GB)", rank, state.phase, sizes,
                 static_cast<double>(peak_memory_bytes()) / 1e9);
@@ -142,7 +142,7 @@ std::optional<io::Checkpoint> prepare_output(const Options& options, const io::C
   }
   for (const auto& name : names) io::refuse_overwriting_input(output / name, inputs);
   // Only rank 0 writes: the other ranks leave the folder to it.
-  if (deform::processes().root()) {
+  if (parallel::processes().root()) {
     io::remove_stale_temporaries(output, names);
   } else {
     folder.keep();
@@ -169,7 +169,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
   in.c = io::read_case(options.case_file);
   const io::Case& c = in.c;
   spdlog::info("case {}", c.file.string());
-  const deform::Processes job = deform::processes();
+  const parallel::Processes job = parallel::processes();
   if (job.count > 1 && c.solver.linear != deform::LinearSolverKind::amg) {
     throw InputError::in(c.file.string(), fmt::format("solver.linear: {} runs in one process; with mpirun ({} "
                                                       "processes) use `linear: amg`",
@@ -206,7 +206,7 @@ deform::MotionResult move_the_mesh(const Options& options, RunState& state, cons
                                    CheckpointWriter& checkpoints, Clock::time_point start) {
   const io::Case& c = in.c;
   const mesh::Mesh& mesh = in.loaded.mesh;
-  const deform::Processes job = deform::processes();
+  const parallel::Processes job = parallel::processes();
   const int increments = c.solver.increments;
   if (in.resumed) {
     const io::CheckpointInfo& info = in.resumed->info;
@@ -238,7 +238,7 @@ deform::MotionResult move_the_mesh(const Options& options, RunState& state, cons
   state.phase = "moving the mesh";
   try {
     return deform::move_mesh(mesh, setup.motions, c.material, c.solver, observers, in.restart ? &*in.restart : nullptr,
-                             in.resumed ? &in.resumed->state : nullptr);
+                             in.resumed ? &in.resumed->state : nullptr, parallel::job_exchange());
   } catch (const deform::FreeRigidMotion& e) {  // the roles as a whole: the case's `patches:`
     throw InputError::at(c.file.string(), c.patches_line, fmt::format("patches: {}", e.what()));
   }
@@ -310,7 +310,7 @@ int run_deform(const Options& options, RunState& state) {
                m.total, m.assembly, m.preconditioner, m.solve, m.projection);
 
   state.phase = "writing the outputs";
-  if (!deform::processes().root()) return result.success ? 0 : 1;
+  if (!parallel::processes().root()) return result.success ? 0 : 1;
   return write_run_outputs(in, setup, result, options, checkpoints, timings, resumed_from ? &*resumed_from : nullptr,
                            start);
 }
@@ -338,7 +338,7 @@ Command add_deform_command(CLI::App& parent) {
       ->check(CLI::PositiveNumber);
   return [options] {
     RunState state;
-    const deform::Processes job = deform::start_processes();  // mpirun: MPI, this process's rank
+    const parallel::Processes job = parallel::start_processes();  // mpirun: MPI, this process's rank
     if (!job.root()) quiet_other_ranks(job.rank);
     try {
       return run_deform(*options, state);

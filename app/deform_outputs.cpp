@@ -1,6 +1,6 @@
 #include "deform_outputs.hpp"
 
-#include "hotmesh/deform/processes.hpp"
+#include "hotmesh/parallel/processes.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -143,7 +143,7 @@ json solver_json(const deform::SolverOptions& solver) {
           {"linear", deform::to_string(solver.linear)},
           {"amg", deform::to_string(solver.amg)},
           {"forcing", deform::to_string(solver.forcing)},
-          {"processes", deform::processes().count}};
+          {"processes", parallel::processes().count}};
 }
 
 /// One attempt of an increment, with its Newton steps.

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "hotmesh/deform/processes.hpp"
 #include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/parallel/processes.hpp"
 #include "logging.hpp"
 
 int main(int argc, char** argv) {
@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   // stops alone would leave the others waiting for it. A bad input stops every rank at the
   // same place: rank 0 reports it.
   const auto finish = [](int code) {
-    if (hotmesh::deform::processes().count > 1 && code > 1) hotmesh::deform::abort_processes(code);
+    if (hotmesh::parallel::processes().count > 1 && code > 1) hotmesh::parallel::abort_processes(code);
     return code;
   };
   try {
@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     }
     return 2;
   } catch (const hotmesh::InputError& e) {
-    if (hotmesh::deform::processes().root()) spdlog::error("{}", e.what());
+    if (hotmesh::parallel::processes().root()) spdlog::error("{}", e.what());
     else std::this_thread::sleep_for(std::chrono::seconds(2));  // rank 0 reports, and ends the job
     return finish(2);
   } catch (const std::bad_alloc&) {

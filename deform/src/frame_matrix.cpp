@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "hotmesh/mesh/parallel_loops.hpp"
-#include "rank_exchange.hpp"
 
 namespace hotmesh::deform::detail {
 
@@ -38,10 +37,10 @@ PetscInt* petsc_copy(const std::vector<PetscInt>& v) {
 
 }  // namespace
 
-std::vector<int> partition_cells(const ElementList& list, const NodeCells& around, int d, const Processes& job) {
+std::vector<int> partition_cells(const ElementList& list, const NodeCells& around, int d, const parallel::Processes& job) {
   std::vector<int> rank_of(list.size(), 0);
   if (job.count == 1) return rank_of;
-  const Share mine = share_of(list.size(), job.rank, job.count);
+  const parallel::Share mine = parallel::share_of(list.size(), job.rank, job.count);
   std::vector<PetscInt> offsets{0}, neighbours;
   std::vector<CellId> touching;
   for (std::size_t c = mine.begin; c < mine.end; ++c) {
@@ -138,7 +137,7 @@ void BlockRows::scatter(std::span<const double> rows, std::span<double> full, st
 }
 
 Mat create_frame_matrix(const ElementList& cells, const NodeCells& around, const NodalFrames& frames,
-                        const BlockRows& rows, const Processes& job) {
+                        const BlockRows& rows, const parallel::Processes& job) {
   const int d = frames.dimension();
   const PetscInt lo = rows.begin(job.rank), hi = rows.end(job.rank);
   // Every node adds the blocks of its cells' nodes to its own block row (a master's row thus

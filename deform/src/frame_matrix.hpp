@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/deform/processes.hpp"
+#include "hotmesh/parallel/processes.hpp"
 #include "linear_solver.hpp"
 #include "nodal_frames.hpp"
 
@@ -40,7 +40,7 @@ struct NodeCells {
 /// The rank that does each cell's element work. With several processes: PETSc's partitioner
 /// (PT-Scotch by default, -hotmesh_mat_partitioning_type to change) on the graph of cells
 /// that share a face (d nodes or more), each rank giving the edges of its share of the cells.
-std::vector<int> partition_cells(const ElementList& list, const NodeCells& around, int d, const Processes& job);
+std::vector<int> partition_cells(const ElementList& list, const NodeCells& around, int d, const parallel::Processes& job);
 
 /// The block rows of the matrix: one per node with at least one unknown (free or sliding);
 /// a slave shares its master's. Fixed nodes (and slaves of fixed masters) have none and are
@@ -69,7 +69,7 @@ struct BlockRows {
 /// A square matrix of block size d over the block rows, the rows of `job.rank` stored by this
 /// process, preallocated from the node graph with slaves merged into their masters.
 Mat create_frame_matrix(const ElementList& cells, const NodeCells& around, const NodalFrames& frames,
-                        const BlockRows& rows, const Processes& job);
+                        const BlockRows& rows, const parallel::Processes& job);
 
 /// The order cells are assembled in with one process: the colours of the stiffness operator
 /// (no two cells of a colour share a node, so threads may add into the matrix side by side),

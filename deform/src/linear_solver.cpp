@@ -11,10 +11,10 @@ namespace hotmesh::deform::detail {
 
 std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& options);  // jacobi_pcg.cpp
 
-std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options) {
+std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks) {
   switch (options.linear) {
     case LinearSolverKind::jacobi_pcg: return make_jacobi_pcg_solver(options);
-    case LinearSolverKind::amg: return make_amg_solver(options);
+    case LinearSolverKind::amg: return make_amg_solver(options, ranks);
   }
   return make_jacobi_pcg_solver(options);
 }

@@ -19,6 +19,7 @@
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
+#include "hotmesh/parallel/rank_exchange.hpp"
 #include "periodic.hpp"
 
 namespace hotmesh::deform::detail {
@@ -85,8 +86,9 @@ void add_node_stiffness(std::span<const NodeId> nodes, std::span<const double> k
 /// and are skipped.
 double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d);
 
-/// The solver SolverOptions::linear names. `amg` initialises PETSc (and MPI) on first use.
-std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options);
+/// The solver SolverOptions::linear names, for the processes of `ranks`. `amg` initialises
+/// PETSc (and MPI) on first use.
+std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks);
 /// Whether that solver wants the element matrices stored (jacobi-pcg) or computes them itself
 /// while it assembles (amg: 4.6 kB less per hex).
 bool stores_element_matrices(const SolverOptions& options);

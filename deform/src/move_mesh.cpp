@@ -37,14 +37,15 @@ static_assert(std::tuple_size_v<decltype(SlidingState::hints)> == detail::Slidin
 class Motion {
  public:
   Motion(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
-         const SolverOptions& solver, const MotionObservers& observers, const MotionStart* start)
+         const SolverOptions& solver, const MotionObservers& observers, const MotionStart* start,
+         const parallel::RankExchange& ranks)
       : mesh_(mesh),
         solver_(solver),
         observers_(observers),
         setup_(detail::set_up_boundaries(mesh, patches, start)),
-        sliding_(setup_, static_cast<std::size_t>(mesh.dimension)),
+        sliding_(setup_, static_cast<std::size_t>(mesh.dimension), ranks),
         stiffness_(mesh, element_lame(mesh, material), material.drop_jacobian, detail::stores_element_matrices(solver)),
-        linear_(detail::make_linear_solver(solver)),
+        linear_(detail::make_linear_solver(solver, ranks)),
         dim_(static_cast<std::size_t>(mesh.dimension)),
         size_(std::max(bounding_diagonal(mesh.points), 1e-300)) {}
 
@@ -366,9 +367,9 @@ class Motion {
 
 MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
                        const SolverOptions& solver, const MotionObservers& observers, const MotionStart* start,
-                       const MotionCheckpoint* resume) {
+                       const MotionCheckpoint* resume, const parallel::RankExchange& ranks) {
   const auto begin = Clock::now();
-  Motion motion(mesh, patches, material, solver, observers, start);
+  Motion motion(mesh, patches, material, solver, observers, start, ranks);
   motion.set_setup_time(seconds_since(begin));
   return motion.run(resume);
 }

@@ -18,7 +18,7 @@
 // of the KSP and PC can be given with the prefix `hotmesh_`, e.g.
 // PETSC_OPTIONS="-hotmesh_pc_gamg_threshold 0.05 -hotmesh_ksp_view".
 //
-// With several processes (mpirun, hotmesh/deform/processes.hpp) every rank keeps the whole
+// With several processes (mpirun, hotmesh/parallel/processes.hpp) every rank keeps the whole
 // mesh, but the matrix and the element work are distributed: PETSc's partitioner (PT-Scotch)
 // splits the cells along their faces, each node's block row goes to the lowest rank among its
 // cells (rows numbered rank by rank, so each rank owns a contiguous range), each rank computes
@@ -44,7 +44,6 @@
 #include <string>
 
 #include "frame_matrix.hpp"
-#include "rank_exchange.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {
@@ -151,8 +150,9 @@ enum class Reuse { none, interpolation, preconditioner };
 
 class AmgSolver final : public LinearSolver {
  public:
-  explicit AmgSolver(const SolverOptions& options) : options_(options), job_(processes()) {
-    start_petsc();
+  AmgSolver(const SolverOptions& options, const parallel::RankExchange& ranks)
+      : options_(options), ranks_(ranks), job_{ranks.rank(), ranks.ranks()} {
+    parallel::start_petsc();
     if (options_.amg == AmgPackage::gamg) {
       // One symmetric Gauss-Seidel sweep as smoother on every level. The default Chebyshev/
       // Jacobi smoother made the preconditioner indefinite on the ramp: its eigenvalue
@@ -204,8 +204,8 @@ class AmgSolver final : public LinearSolver {
     std::fill(r.begin(), r.end(), 0.0);
     std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
     assemble(s, u, r, node_stiffness);
-    sum_over_processes(r);  // each rank added its cells' part
-    sum_over_processes(node_stiffness);
+    ranks_.sum(r);  // each rank added its cells' part
+    ranks_.sum(node_stiffness);
     s.periodic.fold_nodal(node_stiffness);
     s.periodic.fold(r);
     s.constraints.project(r);
@@ -364,7 +364,8 @@ class AmgSolver final : public LinearSolver {
   }
 
   SolverOptions options_;
-  Processes job_;
+  const parallel::RankExchange& ranks_;
+  parallel::Processes job_;  ///< this rank, of how many
   std::vector<CellId> local_cells_;  ///< the cells whose element work this rank does
   Reuse reuse_ = Reuse::preconditioner;
   /// Rotations in the near-null space (-hotmesh_amg_rotations). Off: PCGAMG of PETSc 3.18
@@ -392,14 +393,16 @@ class AmgSolver final : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options) { return std::make_unique<AmgSolver>(options); }
+std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options, const parallel::RankExchange& ranks) {
+  return std::make_unique<AmgSolver>(options, ranks);
+}
 
 std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const NodalFrames& frames,
                                             std::span<const double> x, bool twice) {
-  start_petsc();
+  parallel::start_petsc();
   const ElementList& cells = system.stiffness.cells();
   const NodeCells around(cells, frames.node_count());
-  const Processes one;
+  const parallel::Processes one;
   const std::vector<int> rank_of_cell(cells.size(), 0);
   const BlockRows rows(frames, around, rank_of_cell, one.count);
   const auto d = static_cast<std::size_t>(frames.dimension());

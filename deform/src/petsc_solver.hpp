@@ -3,7 +3,7 @@
 // d, preallocated once from the node graph, and solved by CG with algebraic multigrid (PCGAMG
 // with the rigid-body near-null space, or hypre's BoomerAMG). PETSc and MPI types stay in
 // petsc_solver.cpp and frame_matrix.hpp (the matrix); PETSc is initialised on first use, once
-// per process (rank_exchange.hpp), and finalised at exit.
+// per process (hotmesh/parallel/processes.hpp), and finalised at exit.
 #pragma once
 
 #include <memory>
@@ -15,7 +15,8 @@
 
 namespace hotmesh::deform::detail {
 
-std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options);
+/// With several processes in `ranks`, the matrix and the element work are distributed among them.
+std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options, const parallel::RankExchange& ranks);
 
 /// For tests: K~ of the system in `frames` (updated by the caller), assembled into a PETSc
 /// matrix exactly as the amg solver does it, applied to x~ (MatMult). With `twice`, assembled

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "hotmesh/mesh/parallel_loops.hpp"
-#include "rank_exchange.hpp"
 
 namespace hotmesh::deform::detail {
 
@@ -26,13 +25,13 @@ void SlidingNodes::set_displacement(std::span<double> u, NodeId n, const Vec3& d
 void SlidingNodes::begin_increment(double a, double b, std::span<const Vec3> x, std::span<double> u) {
   auto& nodes = setup_.sliding;
   forcing_.assign(nodes.size(), {});
-  if (processes().count > 1) placed_.assign(nodes.size() * kPlacementWidth, 0.0);
+  if (!ranks_.alone()) placed_.assign(nodes.size(), {});
 
   const double share = (b - a) / (1.0 - a);  // 1 / (N - k + 1) for equal increments (eq. 22)
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     forcing_[k] = share * (nodes[k].target - x[static_cast<std::size_t>(nodes[k].node)]);
   }
-  const Share mine = my_share(nodes.size());
+  const parallel::Share mine = ranks_.my_share(nodes.size());
   const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
   mesh::LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
 #pragma omp parallel for schedule(dynamic, 64) if (count >= mesh::kParallelProjections)
@@ -55,7 +54,7 @@ void SlidingNodes::begin_increment(double a, double b, std::span<const Vec3> x, 
 double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double> u) {
   auto& nodes = setup_.sliding;
   double largest = 0.0;
-  const Share mine = my_share(nodes.size());
+  const parallel::Share mine = ranks_.my_share(nodes.size());
   const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
   mesh::LoopExceptions errors;
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : largest) if (count >= mesh::kParallelProjections)
@@ -75,7 +74,7 @@ double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double
   errors.rethrow();
   share_placements(u);
   follow_sliding_rims(setup_, x, u);
-  return max_over_processes(largest);
+  return ranks_.max(largest);
 }
 
 double SlidingNodes::normal_component(std::span<const double> p) const {
@@ -89,7 +88,7 @@ double SlidingNodes::normal_component(std::span<const double> p) const {
 
 void SlidingNodes::end_increment(std::span<const double> u) {
   auto& nodes = setup_.sliding;
-  const Share mine = my_share(nodes.size());
+  const parallel::Share mine = ranks_.my_share(nodes.size());
   const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
   mesh::LoopExceptions errors;
 #pragma omp parallel for schedule(dynamic, 64) if (count >= mesh::kParallelProjections)
@@ -108,53 +107,37 @@ void SlidingNodes::end_increment(std::span<const double> u) {
 }
 
 // With several processes each rank placed its share of the nodes; every rank needs them all.
-// A node's projection hints travel with it, so a node's projections do not depend on the
-// number of ranks.
 
 void SlidingNodes::record(std::size_t k, const Vec3& displacement, const Placement& p) {
   if (placed_.empty()) return;
-  double* item = placed_.data() + k * kPlacementWidth;
-  item[0] = displacement.x, item[1] = displacement.y, item[2] = displacement.z;
-  item[3] = p.normal_count;
-  for (std::size_t j = 0; j < p.normals.size(); ++j) {
-    item[4 + 3 * j] = p.normals[j].x, item[5 + 3 * j] = p.normals[j].y, item[6 + 3 * j] = p.normals[j].z;
-  }
-  std::copy(setup_.sliding[k].hints.begin(), setup_.sliding[k].hints.end(), item + kHintsAt);
+  placed_[k] = {displacement, p.normals, p.normal_count, setup_.sliding[k].hints};
 }
 
 void SlidingNodes::share_placements(std::span<double> u) {
   if (placed_.empty()) return;
   auto& nodes = setup_.sliding;
-  gather_shares(placed_, kPlacementWidth);
-  const Share mine = my_share(nodes.size());
+  ranks_.gather_shares(std::span(placed_));
+  const parallel::Share mine = ranks_.my_share(nodes.size());
   for (std::size_t k = 0; k < nodes.size(); ++k) {
-    if (k >= mine.begin && k < mine.end) continue;
-    // The placing rank's own inputs, so that every rank holds the same bits.
-    const double* item = placed_.data() + k * kPlacementWidth;
-    set_displacement(u, nodes[k].node, {item[0], item[1], item[2]});
-    decltype(Placement::normals) normals;
-    for (std::size_t j = 0; j < normals.size(); ++j) normals[j] = {item[4 + 3 * j], item[5 + 3 * j], item[6 + 3 * j]};
-    setup_.constraints.set_normals(nodes[k].node, {normals.data(), static_cast<std::size_t>(item[3])});
-    std::copy(item + kHintsAt, item + kPlacementWidth, nodes[k].hints.begin());
+    if (mine.contains(k)) continue;
+    // The placing rank's own results, so that every rank holds the same bits.
+    const PlacedNode& placed = placed_[k];
+    set_displacement(u, nodes[k].node, placed.displacement);
+    setup_.constraints.set_normals(nodes[k].node, {placed.normals.data(), static_cast<std::size_t>(placed.normal_count)});
+    nodes[k].hints = placed.hints;
   }
 }
 
 void SlidingNodes::share_targets() {
-  if (processes().count == 1) return;
+  if (ranks_.alone()) return;
   auto& nodes = setup_.sliding;
-  constexpr std::size_t kWidth = 3 + SlidingNode::kMaxShapes;  // target, hints
-  std::vector<double> items(nodes.size() * kWidth);
-  const Share mine = my_share(nodes.size());
-  for (std::size_t k = mine.begin; k < mine.end; ++k) {
-    double* item = items.data() + k * kWidth;
-    item[0] = nodes[k].target.x, item[1] = nodes[k].target.y, item[2] = nodes[k].target.z;
-    std::copy(nodes[k].hints.begin(), nodes[k].hints.end(), item + 3);
-  }
-  gather_shares(items, kWidth);
+  std::vector<MovedTarget> moved(nodes.size());
+  const parallel::Share mine = ranks_.my_share(nodes.size());
+  for (std::size_t k = mine.begin; k < mine.end; ++k) moved[k] = {nodes[k].target, nodes[k].hints};
+  ranks_.gather_shares(std::span(moved));
   for (std::size_t k = 0; k < nodes.size(); ++k) {
-    const double* item = items.data() + k * kWidth;
-    nodes[k].target = {item[0], item[1], item[2]};
-    std::copy(item + 3, item + kWidth, nodes[k].hints.begin());
+    nodes[k].target = moved[k].target;
+    nodes[k].hints = moved[k].hints;
   }
 }
 

@@ -13,16 +13,18 @@
 #pragma once
 
 #include <span>
-#include <tuple>
 #include <vector>
 
 #include "boundary_conditions.hpp"
+#include "hotmesh/parallel/rank_exchange.hpp"
 
 namespace hotmesh::deform::detail {
 
 class SlidingNodes {
  public:
-  SlidingNodes(BoundarySetup& setup, std::size_t dofs_per_node) : setup_(setup), dim_(dofs_per_node) {}
+  /// The nodes are projected in shares by the ranks of `ranks`, every rank getting them all.
+  SlidingNodes(BoundarySetup& setup, std::size_t dofs_per_node, const parallel::RankExchange& ranks)
+      : setup_(setup), dim_(dofs_per_node), ranks_(ranks) {}
 
   std::size_t size() const { return setup_.sliding.size(); }
 
@@ -48,20 +50,29 @@ class SlidingNodes {
   Vec3 displacement(std::span<const double> u, NodeId n) const;
   void set_displacement(std::span<double> u, NodeId n, const Vec3& d) const;
 
-  /// Several processes: each rank places its share of the nodes (rank_exchange.hpp) and
-  /// record()s the placements (u, normals, hints), which share_placements() gives every rank;
-  /// share_targets() does the same for the targets of end_increment().
+  /// Several processes: each rank places its share of the nodes and record()s the placements,
+  /// which share_placements() gives every rank; share_targets() does the same for the targets
+  /// of end_increment(). A node's projection hints travel with it, so its projections do not
+  /// depend on the number of ranks.
+  struct PlacedNode {
+    Vec3 displacement;
+    decltype(Placement::normals) normals;
+    int normal_count = 0;
+    decltype(SlidingNode::hints) hints;
+  };
+  struct MovedTarget {
+    Vec3 target;
+    decltype(SlidingNode::hints) hints;
+  };
   void record(std::size_t k, const Vec3& displacement, const Placement& p);
   void share_placements(std::span<double> u);
   void share_targets();
-  /// u (3), the normal count, the normals (3 each), the hints.
-  static constexpr std::size_t kHintsAt = 4 + 3 * std::tuple_size_v<decltype(Placement::normals)>;
-  static constexpr std::size_t kPlacementWidth = kHintsAt + SlidingNode::kMaxShapes;
 
   BoundarySetup& setup_;
   std::size_t dim_;
-  std::vector<Vec3> forcing_;  ///< dx1 = u0s of the current increment, per sliding node
-  std::vector<double> placed_;  ///< kPlacementWidth per sliding node (several processes only)
+  const parallel::RankExchange& ranks_;
+  std::vector<Vec3> forcing_;       ///< dx1 = u0s of the current increment, per sliding node
+  std::vector<PlacedNode> placed_;  ///< per sliding node (several processes only)
 };
 
 }  // namespace hotmesh::deform::detail

@@ -276,12 +276,12 @@ TEST_P(FramesIn, AmgElementPassGivesTheResidualAndMatrixOfStoredElementMatrices)
   const std::size_t d = static_cast<std::size_t>(s.stiffness.dofs_per_node()), nodes = u.size() / d;
   std::vector<double> stiffness_stored(nodes), stiffness_streamed(nodes);
   MotionTimings timings;
-  auto jacobi = detail::make_linear_solver(options);
+  auto jacobi = detail::make_linear_solver(options, parallel::one_process());
   jacobi->update(s.stiffness, s.system(), u, expected, stiffness_stored, timings);
   options.linear = LinearSolverKind::amg;
   StiffnessOperator streamed(s.mesh, element_lame(s.mesh, {}), true, false);
   const ConstrainedSystem on_the_fly{streamed, s.constraints, s.periodic, s.points, {}};
-  auto amg = detail::make_linear_solver(options);
+  auto amg = detail::make_linear_solver(options, parallel::one_process());
   amg->update(streamed, on_the_fly, u, r, stiffness_streamed, timings);
   EXPECT_LE(max_difference(r, expected), 1e-12 * max_abs(expected));
   std::vector<double> blocks(nodes * d * d), traces(nodes, 0.0);
@@ -322,7 +322,7 @@ TEST_P(LinearSolverOn, SolvesTheSameStepAsMatrixFreeJacobiPcg) {
     SolverOptions options;
     options.linear = kind;
     options.amg = amg;
-    auto solver = detail::make_linear_solver(options);
+    auto solver = detail::make_linear_solver(options, parallel::one_process());
     std::vector<double> p(rhs.size(), 1.0);  // overwritten: solves start from p = 0
     MotionTimings timings;
     solver->begin_increment();
@@ -387,7 +387,7 @@ TEST_P(FramesIn, EverySolverStopsOnTheResidualScaledByTheNodeStiffness) {
     options.amg = amg;
     std::vector<double> p(rhs.size());
     const auto solve = [&](bool newton_norm) {
-      auto solver = detail::make_linear_solver(options);
+      auto solver = detail::make_linear_solver(options, parallel::one_process());
       MotionTimings timings;
       solver->begin_increment();
       const auto result = solver->solve(system, rhs, p, {tolerance, newton_norm}, timings);

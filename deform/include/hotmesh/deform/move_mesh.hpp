@@ -20,6 +20,7 @@
 #include <span>
 
 #include "hotmesh/deform/mesh_motion.hpp"
+#include "hotmesh/parallel/rank_exchange.hpp"
 
 namespace hotmesh::deform {
 
@@ -34,8 +35,11 @@ namespace hotmesh::deform {
 /// options and `start`) where its checkpoint left it; its result is the uninterrupted run's
 /// (records and timings include those of the interrupted run). Throws hotmesh::InputError if
 /// the checkpoint does not fit the set-up (node counts, sliding nodes, increments).
+/// With `ranks` the processes of a job (each with the same mesh and set-up) share the work of
+/// the run (hotmesh/parallel/processes.hpp) and all end with the same result.
 MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
                        const SolverOptions& solver, const MotionObservers& observers = {},
-                       const MotionStart* start = nullptr, const MotionCheckpoint* resume = nullptr);
+                       const MotionStart* start = nullptr, const MotionCheckpoint* resume = nullptr,
+                       const parallel::RankExchange& ranks = parallel::one_process());
 
 }  // namespace hotmesh::deform

@@ -1,5 +1,5 @@
-// hotmesh deform: the processes of a job and what they exchange (MPI through PETSc's mpi.h).
-#include "hotmesh/deform/processes.hpp"
+// hotmesh parallel: the processes of a job and what they exchange (MPI through PETSc's mpi.h).
+#include "hotmesh/parallel/processes.hpp"
 
 #include <omp.h>
 #include <petscsys.h>
@@ -8,15 +8,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "hotmesh/geometry/input_error.hpp"
-#include "rank_exchange.hpp"
 
-namespace hotmesh::deform {
+namespace hotmesh::parallel {
 namespace {
 
 Processes g_job;                      ///< {0, 1} until start_processes() finds several
@@ -62,12 +62,67 @@ void check_mpi(int code, const char* what) {
   if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI failed in ") + what + " (error code " + std::to_string(code) + ")");
 }
 
+/// The exchange of a job of several processes, over MPI on PETSc's world communicator.
+class MpiExchange final : public RankExchange {
+ public:
+  int rank() const override { return g_job.rank; }
+  int ranks() const override { return g_job.count; }
+
+  void sum(std::span<double> values) const override {
+    // In pieces: an MPI count is an int.
+    constexpr std::size_t kPiece = 1 << 26;
+    for (std::size_t at = 0; at < values.size(); at += kPiece) {
+      const auto n = static_cast<int>(std::min(kPiece, values.size() - at));
+      check_mpi(MPI_Allreduce(MPI_IN_PLACE, values.data() + at, n, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD), "MPI_Allreduce");
+    }
+  }
+
+  double max(double value) const override {
+    check_mpi(MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD), "MPI_Allreduce");
+    return value;
+  }
+
+ protected:
+  void gather_share_bytes(std::span<std::byte> items, std::size_t item_size) const override {
+    const std::size_t count = items.size() / item_size;
+    if (items.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+      throw std::runtime_error("MPI_Allgatherv: " + std::to_string(items.size()) + " bytes to gather, more than an MPI count holds");
+    }
+    std::vector<int> counts(static_cast<std::size_t>(g_job.count)), offsets(counts.size());
+    for (int r = 0; r < g_job.count; ++r) {
+      const Share s = share_of(count, r, g_job.count);
+      counts[static_cast<std::size_t>(r)] = static_cast<int>((s.end - s.begin) * item_size);
+      offsets[static_cast<std::size_t>(r)] = static_cast<int>(s.begin * item_size);
+    }
+    check_mpi(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, items.data(), counts.data(), offsets.data(), MPI_BYTE,
+                             PETSC_COMM_WORLD),
+              "MPI_Allgatherv");
+  }
+};
+
+/// The exchange of a job of one process.
+class OneProcess final : public RankExchange {
+ public:
+  int rank() const override { return 0; }
+  int ranks() const override { return 1; }
+  void sum(std::span<double>) const override {}
+  double max(double value) const override { return value; }
+
+ protected:
+  void gather_share_bytes(std::span<std::byte>, std::size_t) const override {}
+};
+
 }  // namespace
+
+const RankExchange& one_process() {
+  static const OneProcess one;
+  return one;
+}
 
 Processes start_processes() {
   const int launched = launched_processes();
   if (launched == 0) return g_job;
-  detail::start_petsc();
+  start_petsc();
   int rank = 0, count = 1;
   check_mpi(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), "MPI_Comm_rank");
   check_mpi(MPI_Comm_size(PETSC_COMM_WORLD, &count), "MPI_Comm_size");
@@ -86,14 +141,18 @@ Processes start_processes() {
 
 Processes processes() { return g_job; }
 
+const RankExchange& job_exchange() {
+  static const MpiExchange mpi;
+  if (g_job.count > 1) return mpi;
+  return one_process();
+}
+
 void abort_processes(int exit_code) {
   std::fflush(stdout);
   std::fflush(stderr);
   if (g_job.count > 1) MPI_Abort(PETSC_COMM_WORLD, exit_code);
   std::exit(exit_code);
 }
-
-namespace detail {
 
 void start_petsc() {
   static std::once_flag once;
@@ -123,36 +182,4 @@ Share share_of(std::size_t count, int rank, int ranks) {
   return {begin, begin + base + (r < extra ? 1 : 0)};
 }
 
-void gather_shares(std::span<double> items, std::size_t width) {
-  const Processes job = processes();
-  if (job.count == 1) return;
-  const std::size_t count = items.size() / width;
-  std::vector<int> counts(static_cast<std::size_t>(job.count)), offsets(counts.size());
-  for (int r = 0; r < job.count; ++r) {
-    const Share s = share_of(count, r, job.count);
-    counts[static_cast<std::size_t>(r)] = static_cast<int>((s.end - s.begin) * width);
-    offsets[static_cast<std::size_t>(r)] = static_cast<int>(s.begin * width);
-  }
-  check_mpi(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, items.data(), counts.data(), offsets.data(), MPI_DOUBLE,
-                           PETSC_COMM_WORLD),
-            "MPI_Allgatherv");
-}
-
-void sum_over_processes(std::span<double> values) {
-  if (processes().count == 1) return;
-  // In pieces: an MPI count is an int.
-  constexpr std::size_t kPiece = 1 << 26;
-  for (std::size_t at = 0; at < values.size(); at += kPiece) {
-    const auto n = static_cast<int>(std::min(kPiece, values.size() - at));
-    check_mpi(MPI_Allreduce(MPI_IN_PLACE, values.data() + at, n, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD), "MPI_Allreduce");
-  }
-}
-
-double max_over_processes(double value) {
-  if (processes().count == 1) return value;
-  check_mpi(MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD), "MPI_Allreduce");
-  return value;
-}
-
-}  // namespace detail
-}  // namespace hotmesh::deform
+}  // namespace hotmesh::parallel
