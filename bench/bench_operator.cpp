@@ -180,7 +180,7 @@ struct ProductModel {
 
 ProductModel product_model(const StiffnessOperator& k) {
   const auto cells = static_cast<double>(k.cells().size());
-  const auto n = static_cast<double>(k.element_size());
+  const auto n = static_cast<double>(k.kernel().element_size());
   const double nodes = n / k.dofs_per_node();
   ProductModel m;
   m.bytes = cells * n * n * 8.0 + cells * (4.0 * nodes + 8.0 + 4.0) + static_cast<double>(k.size()) * 8.0 * 4.0;
@@ -424,8 +424,8 @@ int main(int argc, char** argv) {
     k.update(mesh.points);  // touch the matrices once before timing
     const ProductModel model = product_model(k);
     for (int t : thread_counts) {
-      Row row{label, mesh.cell_count(), k.size(), k.coloring().colors(), t, model, measure_operator(k, mesh, t),
-              static_cast<double>(mesh.cell_count()) * k.element_size() * k.element_size() * 8.0};
+      Row row{label, mesh.cell_count(), k.size(), k.kernel().coloring().colors(), t, model, measure_operator(k, mesh, t),
+              static_cast<double>(mesh.cell_count()) * k.kernel().element_size() * k.kernel().element_size() * 8.0};
       std::fprintf(stderr, "%s, %d threads: update %.3f s, apply %.4f s\n", label.c_str(), t,
                    row.rates.update.seconds, row.rates.apply.seconds);
       if (t == 1) {

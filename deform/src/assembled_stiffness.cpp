@@ -7,7 +7,7 @@ namespace hotmesh::deform {
 
 Eigen::SparseMatrix<double> assemble_sparse(const StiffnessOperator& k) {
   const auto& cells = k.cells();
-  const auto n = static_cast<std::size_t>(k.element_size());
+  const auto n = static_cast<std::size_t>(k.kernel().element_size());
   const auto d = static_cast<std::size_t>(k.dofs_per_node());
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(cells.size() * n * n);

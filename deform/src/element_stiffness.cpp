@@ -69,4 +69,14 @@ void element_stiffness(ElementType type, const ElementPoints& element, const Lam
   }
 }
 
+void add_node_stiffness(std::span<const NodeId> nodes, std::span<const double> ke, std::size_t d,
+                        std::span<double> node_stiffness) {
+  const std::size_t n = nodes.size() * d;
+  for (std::size_t a = 0; a < nodes.size(); ++a) {
+    double trace = 0.0;
+    for (std::size_t i = 0; i < d; ++i) trace += ke[(a * d + i) * n + a * d + i];
+    node_stiffness[static_cast<std::size_t>(nodes[a])] += trace / static_cast<double>(d);
+  }
+}
+
 }  // namespace hotmesh::deform

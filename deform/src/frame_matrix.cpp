@@ -177,7 +177,7 @@ Mat create_frame_matrix(const ElementList& cells, const NodeCells& around, const
   return a;
 }
 
-AssemblyOrder::AssemblyOrder(const StiffnessOperator& k, const NodalFrames& frames) {
+AssemblyOrder::AssemblyOrder(const StiffnessKernel& k, const NodalFrames& frames) {
   const CellColoring& coloring = k.coloring();
   for (std::size_t c = 0; c < coloring.colors(); ++c) {
     colours.emplace_back();
@@ -192,28 +192,17 @@ AssemblyOrder::AssemblyOrder(const StiffnessOperator& k, const NodalFrames& fram
 
 void ElementPass::frame_element(CellId cell, const NodalFrames& frames, const BlockRows& rows, FrameElement& out) const {
   const auto d = static_cast<std::size_t>(frames.dimension());
-  const auto n = static_cast<std::size_t>(s.stiffness.element_size());
+  const auto n = static_cast<std::size_t>(s.kernel.element_size());
   const std::size_t corners = n / d;
-  const auto nodes = s.stiffness.cells().nodes(static_cast<std::size_t>(cell));
+  const auto nodes = s.kernel.cells().nodes(static_cast<std::size_t>(cell));
   std::array<double, 24 * 24> scratch{};
   const double* ke = scratch.data();
-  if (s.stiffness.stores_matrices()) {
-    ke = s.stiffness.element_matrix(cell).data();
+  if (stored) {
+    ke = stored->element_matrix(cell).data();
   } else {
-    s.stiffness.element_matrix_at(cell, s.points, {scratch.data(), n * n});
+    s.kernel.element_matrix(cell, s.points, {scratch.data(), n * n});
   }
-  if (!u.empty()) {  // K_e u_e into the residual
-    std::array<double, 24> ue{};
-    for (std::size_t a = 0; a < corners; ++a) {
-      for (std::size_t i = 0; i < d; ++i) ue[a * d + i] = u[static_cast<std::size_t>(nodes[a]) * d + i];
-    }
-    for (std::size_t row = 0; row < n; ++row) {
-      double sum = 0.0;
-      for (std::size_t j = 0; j < n; ++j) sum += ke[row * n + j] * ue[j];
-      r[static_cast<std::size_t>(nodes[row / d]) * d + row % d] += sum;
-    }
-    add_node_stiffness(nodes, {ke, n * n}, d, node_stiffness);
-  }
+  if (residual) residual->add(nodes, {ke, n * n});
   std::array<std::int32_t, 8> owners{};
   frames.transform_element(nodes, {ke, n * n}, {out.values.data(), n * n}, {owners.data(), corners});
   for (std::size_t k = 0; k < corners; ++k) out.index[k] = rows[owners[k]];
@@ -266,13 +255,13 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
                            const AssemblyOrder& order, std::span<const CellId> local, bool first) {
   const auto d = static_cast<std::size_t>(frames.dimension());
   const auto bs = static_cast<PetscInt>(d);
-  const auto n = static_cast<std::size_t>(pass.s.stiffness.element_size());
+  const auto n = static_cast<std::size_t>(pass.s.kernel.element_size());
   const auto corners = static_cast<PetscInt>(n / d);  // block rows and columns of K~_e
   if (first) {  // the sparsity only (zero blocks, no K_e): the values are added below, as every later assembly adds them
     const std::vector<double> zeros(n * n, 0.0);
     std::array<PetscInt, 8> index{};
     for (const CellId cell : local) {
-      const auto nodes = pass.s.stiffness.cells().nodes(static_cast<std::size_t>(cell));
+      const auto nodes = pass.s.kernel.cells().nodes(static_cast<std::size_t>(cell));
       for (std::size_t k = 0; k < nodes.size(); ++k) index[k] = rows[frames.owner(nodes[k])];
       check(MatSetValuesBlocked(a, corners, index.data(), corners, index.data(), zeros.data(), ADD_VALUES),
             "MatSetValuesBlocked");

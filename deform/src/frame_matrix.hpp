@@ -79,7 +79,7 @@ struct AssemblyOrder {
   std::vector<std::vector<CellId>> colours;
   std::vector<CellId> with_slaves;
 
-  AssemblyOrder(const StiffnessOperator& k, const NodalFrames& frames);
+  AssemblyOrder(const StiffnessKernel& k, const NodalFrames& frames);
 };
 
 /// K~_e of one cell and the block rows of its corners (negative for a node without unknowns:
@@ -89,16 +89,15 @@ struct FrameElement {
   std::array<PetscInt, 8> index{};
 };
 
-/// Where an element pass takes K_e from: the stored matrices, or element_stiffness at the
-/// system's points (no storage: 4.6 kB per hex saved, the matrices computed once per pass).
-/// With `u` given, the pass also adds K_e u_e into `r` (the Newton residual, before folding).
+/// Where an element pass takes K_e from: the `stored` matrices, or the system's kernel at its
+/// points (no storage: 4.6 kB per hex saved, the matrices computed once per pass). With a
+/// `residual`, the pass also hands each K_e to it (the Newton loop's residual).
 struct ElementPass {
   const ConstrainedSystem& s;
-  std::span<const double> u;
-  std::span<double> r;
-  std::span<double> node_stiffness;  ///< with u: each corner's stiffness added (add_node_stiffness)
+  const StiffnessOperator* stored = nullptr;
+  const ResidualPass* residual = nullptr;
 
-  /// K~_e of `cell` in `frames`, its corners' block rows; adds K_e u_e into r.
+  /// K~_e of `cell` in `frames`, its corners' block rows; K_e to the residual.
   void frame_element(CellId cell, const NodalFrames& frames, const BlockRows& rows, FrameElement& out) const;
 };
 

@@ -128,19 +128,20 @@ class NodalJacobi final : public LinearOperator {
 /// ||D^-1 r|| with the system's node stiffness for the Newton norm; the plain ||r|| otherwise.
 std::function<double(std::span<const double>)> residual_norm(const ConstrainedSystem& s, bool newton_norm) {
   if (!newton_norm) return {};
-  const auto d = static_cast<std::size_t>(s.stiffness.dofs_per_node());
+  const auto d = static_cast<std::size_t>(s.kernel.dofs_per_node());
   return [&s, d](std::span<const double> r) { return scaled_residual_norm(r, s.node_stiffness, d); };
 }
 
 class JacobiPcgSolver final : public LinearSolver {
  public:
-  explicit JacobiPcgSolver(const SolverOptions& options) : max_iterations_(options.max_pcg_iterations) {}
+  JacobiPcgSolver(const SolverOptions& options, const StiffnessOperator& stored)
+      : stored_(stored), max_iterations_(options.max_pcg_iterations) {}
 
   LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p,
                           const LinearTarget& target, MotionTimings& timings) override {
-    const ConstrainedOperator k(s.stiffness, s.constraints, s.periodic);
+    const ConstrainedOperator k(stored_, s.constraints, s.periodic);
     auto t = Clock::now();
-    const NodalJacobi m(s.stiffness, s.constraints, s.periodic);
+    const NodalJacobi m(stored_, s.constraints, s.periodic);
     timings.preconditioner += seconds_since(t);
     t = Clock::now();
     std::fill(p.begin(), p.end(), 0.0);
@@ -156,13 +157,14 @@ class JacobiPcgSolver final : public LinearSolver {
   }
 
  private:
+  const StiffnessOperator& stored_;  ///< K(n): the element matrices the Newton loop updated
   int max_iterations_;
 };
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& options) {
-  return std::make_unique<JacobiPcgSolver>(options);
+std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& options, const StiffnessOperator& stored) {
+  return std::make_unique<JacobiPcgSolver>(options, stored);
 }
 
 }  // namespace hotmesh::deform::detail

@@ -2,34 +2,27 @@
 #include "linear_solver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
+#include "hotmesh/deform/element_stiffness.hpp"
 #include "petsc_solver.hpp"
 
 namespace hotmesh::deform::detail {
 
-std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& options);  // jacobi_pcg.cpp
+std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& options,
+                                                     const StiffnessOperator& stored);  // jacobi_pcg.cpp
 
-std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks) {
-  switch (options.linear) {
-    case LinearSolverKind::jacobi_pcg: return make_jacobi_pcg_solver(options);
-    case LinearSolverKind::amg: return make_amg_solver(options, ranks);
-  }
-  return make_jacobi_pcg_solver(options);
+std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks,
+                                                 const StiffnessOperator* stored) {
+  if (options.linear == LinearSolverKind::amg) return make_amg_solver(options, ranks, stored);
+  if (!stored) throw std::invalid_argument("make_linear_solver: jacobi-pcg needs the stored element matrices");
+  return make_jacobi_pcg_solver(options, *stored);
 }
 
 bool stores_element_matrices(const SolverOptions& options) { return options.linear != LinearSolverKind::amg; }
-
-void add_node_stiffness(std::span<const NodeId> nodes, std::span<const double> ke, std::size_t d,
-                        std::span<double> node_stiffness) {
-  const std::size_t n = nodes.size() * d;
-  for (std::size_t a = 0; a < nodes.size(); ++a) {
-    double trace = 0.0;
-    for (std::size_t i = 0; i < d; ++i) trace += ke[(a * d + i) * n + a * d + i];
-    node_stiffness[static_cast<std::size_t>(nodes[a])] += trace / static_cast<double>(d);
-  }
-}
 
 double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d) {
   double sum = 0.0;
@@ -43,21 +36,59 @@ double scaled_residual_norm(std::span<const double> r, std::span<const double> n
   return std::sqrt(sum);
 }
 
-void LinearSolver::update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
-                          std::span<double> node_stiffness, MotionTimings& timings) {
-  const auto start = std::chrono::steady_clock::now();
-  k.update(s.points);
-  timings.assembly += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
-  const auto d = static_cast<std::size_t>(k.dofs_per_node());
-  const ElementList& cells = k.cells();
-  for (std::size_t c = 0; c < cells.size(); ++c) {  // in cell order: deterministic, cheap next to a product
-    add_node_stiffness(cells.nodes(c), k.element_matrix(static_cast<CellId>(c)), d, node_stiffness);
+namespace {
+
+template <std::size_t N, std::size_t D>
+void add_element_residual(std::span<const NodeId> nodes, const double* ke, std::span<const double> u, std::span<double> r) {
+  std::array<double, N> ue, re;
+  for (std::size_t a = 0; a < N / D; ++a) {
+    for (std::size_t i = 0; i < D; ++i) ue[a * D + i] = u[static_cast<std::size_t>(nodes[a]) * D + i];
   }
-  s.periodic.fold_nodal(node_stiffness);
-  k.apply(u, r);
+  element_product<N>(ke, ue.data(), re.data());
+  for (std::size_t a = 0; a < N / D; ++a) {
+    for (std::size_t i = 0; i < D; ++i) r[static_cast<std::size_t>(nodes[a]) * D + i] += re[a * D + i];
+  }
+}
+
+}  // namespace
+
+void ResidualPass::add(std::span<const NodeId> nodes, std::span<const double> ke) const {
+  const std::size_t d = nodes.size() == 8 ? 3 : 2;  // hex8 or quad4, the solver's cells
+  if (d == 3) {
+    add_element_residual<24, 3>(nodes, ke.data(), u, r);
+  } else {
+    add_element_residual<8, 2>(nodes, ke.data(), u, r);
+  }
+  add_node_stiffness(nodes, ke, d, node_stiffness);
+}
+
+void newton_residual(const ConstrainedSystem& s, StiffnessOperator* stored, ElementAssembler* assembler,
+                     const parallel::RankExchange& ranks, std::span<const double> u, std::span<double> r,
+                     std::span<double> node_stiffness, MotionTimings& timings) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto seconds = [&start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
+  if (stored) {
+    stored->update(s.points);
+    timings.assembly += seconds();
+    const auto d = static_cast<std::size_t>(s.kernel.dofs_per_node());
+    const ElementList& cells = s.kernel.cells();
+    for (std::size_t c = 0; c < cells.size(); ++c) {  // in cell order: deterministic, cheap next to a product
+      add_node_stiffness(cells.nodes(c), stored->element_matrix(static_cast<CellId>(c)), d, node_stiffness);
+    }
+    s.periodic.fold_nodal(node_stiffness);
+    stored->apply(u, r);
+  } else {
+    if (!assembler) throw std::invalid_argument("newton_residual: neither stored element matrices nor a solver that computes them");
+    std::fill(r.begin(), r.end(), 0.0);
+    assembler->assemble(s, {u, r, node_stiffness});
+    ranks.sum(r);  // each rank added its cells' part
+    ranks.sum(node_stiffness);
+    s.periodic.fold_nodal(node_stiffness);
+  }
   s.periodic.fold(r);
   s.constraints.project(r);
+  if (!stored) timings.assembly += seconds();
 }
 
 LinearTarget Forcing::next(int n, double residual, double initial) {

@@ -24,12 +24,13 @@
 
 namespace hotmesh::deform::detail {
 
-/// The system of one Newton step: K(n) as element matrices at the current geometry, the
-/// directions nodes may not move in (with the current normals of sliding nodes), periodic
-/// pairs, the current points (the AMG near-null space is built from them) and each node's
-/// stiffness D as LinearSolver::update wrote it (the Newton loop's norm ||D^-1 R||).
+/// The system of one Newton step: K(n) at the current geometry (the element kernel; stored
+/// element matrices, where a solver uses them, it was made with), the directions nodes may not
+/// move in (with the current normals of sliding nodes), periodic pairs, the current points (the
+/// AMG near-null space is built from them) and each node's stiffness D as newton_residual()
+/// wrote it (the Newton loop's norm ||D^-1 R||).
 struct ConstrainedSystem {
-  const StiffnessOperator& stiffness;
+  const StiffnessKernel& kernel;
   const NodeConstraints& constraints;
   const PeriodicCoupling& periodic;
   std::span<const Vec3> points;
@@ -49,17 +50,28 @@ struct LinearSolveResult {
   double reduction = 0.0;    ///< ||r|| / ||r0|| reached
 };
 
+/// The Newton loop's part of a pass over the element matrices: R = K(n) u (before folding and
+/// projection) and each node's stiffness (add_node_stiffness), from each K_e as it comes.
+struct ResidualPass {
+  std::span<const double> u;
+  std::span<double> r;
+  std::span<double> node_stiffness;
+  /// Adds K_e u_e (element_product) and the corners' stiffness of the cell with `nodes`.
+  void add(std::span<const NodeId> nodes, std::span<const double> ke) const;
+};
+
+/// A solver that computes the element matrices itself, into a matrix of its own (amg without
+/// stored element matrices): one pass over this rank's cells gives every K_e at s.points, once
+/// per Newton step, to its matrix and to the Newton loop's `residual`.
+class ElementAssembler {
+ public:
+  virtual ~ElementAssembler() = default;
+  virtual void assemble(const ConstrainedSystem& s, const ResidualPass& residual) = 0;
+};
+
 class LinearSolver {
  public:
   virtual ~LinearSolver() = default;
-  /// The element pass of a Newton step: K(n) at s.points (k is s.stiffness) and the residual
-  /// r = P T^T K(n) u of eq. (7): folded onto periodic masters, only its tangential part F_t at
-  /// sliding nodes (eq. 17). Adds the element work to timings.assembly. By default k.update()
-  /// and one product; the amg solver without stored element matrices assembles its matrix in
-  /// the same pass. Also writes each node's stiffness (one value per node, see
-  /// add_node_stiffness), which scales the Newton residual's norm (move_mesh.cpp).
-  virtual void update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
-                      std::span<double> node_stiffness, MotionTimings& timings);
   /// Solves the system for p from p = 0 to ||r|| <= target.tolerance ||rhs||, r = rhs - K p,
   /// or, with target.newton_norm, to ||D^-1 r|| <= target.tolerance ||D^-1 rhs||: the norm the
   /// Newton loop converges in (scaled_residual_norm, Forcing). `rhs` lies in the
@@ -70,13 +82,20 @@ class LinearSolver {
                                   const LinearTarget& target, MotionTimings& timings) = 0;
   /// A new increment (or piece of one) starts: preconditioners kept for reuse are dropped.
   virtual void begin_increment() {}
+  /// The solver's element pass, if it computes the element matrices itself; null when it
+  /// solves with the stored ones.
+  virtual ElementAssembler* assembler() { return nullptr; }
 };
 
-/// Adds to each corner of a cell its share of the node's stiffness: the trace of the corner's
-/// d x d diagonal block of K_e over d (invariant under the rotations of nodal frames and
-/// periodic pairs). `ke` is the element matrix, row-major, of size (d * corners)^2.
-void add_node_stiffness(std::span<const NodeId> nodes, std::span<const double> ke, std::size_t d,
-                        std::span<double> node_stiffness);
+/// The residual of a Newton step, R(n) = P T^T K(n) u(n) of eq. (7), at s.points: folded onto
+/// periodic masters, only its tangential part F_t at sliding nodes (eq. 17); and each node's
+/// stiffness D, which scales its norm (scaled_residual_norm). K(n) comes from `stored`, updated
+/// here at s.points (R = K u by its product); without stored matrices from the element pass of
+/// the solver's `assembler`, which computes each K_e once for its matrix and for R, each rank
+/// its cells, summed over `ranks`. Adds the element work to timings.assembly.
+void newton_residual(const ConstrainedSystem& s, StiffnessOperator* stored, ElementAssembler* assembler,
+                     const parallel::RankExchange& ranks, std::span<const double> u, std::span<double> r,
+                     std::span<double> node_stiffness, MotionTimings& timings);
 
 /// ||D^-1 R||: the Newton residual with each node's force divided by the node's stiffness,
 /// i.e. the displacement a Jacobi sweep would still move each node by (in the mesh's length
@@ -86,9 +105,11 @@ void add_node_stiffness(std::span<const NodeId> nodes, std::span<const double> k
 /// and are skipped.
 double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d);
 
-/// The solver SolverOptions::linear names, for the processes of `ranks`. `amg` initialises
-/// PETSc (and MPI) on first use.
-std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks);
+/// The solver SolverOptions::linear names, for the processes of `ranks`, with the element
+/// matrices `stored` (which jacobi-pcg needs: std::invalid_argument without; amg computes them
+/// itself without). `amg` initialises PETSc (and MPI) on first use.
+std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks,
+                                                 const StiffnessOperator* stored);
 /// Whether that solver wants the element matrices stored (jacobi-pcg) or computes them itself
 /// while it assembles (amg: 4.6 kB less per hex).
 bool stores_element_matrices(const SolverOptions& options);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include <fmt/format.h>
@@ -44,8 +45,10 @@ class Motion {
         observers_(observers),
         setup_(detail::set_up_boundaries(mesh, patches, start)),
         sliding_(setup_, static_cast<std::size_t>(mesh.dimension), ranks),
-        stiffness_(mesh, element_lame(mesh, material), material.drop_jacobian, detail::stores_element_matrices(solver)),
-        linear_(detail::make_linear_solver(solver, ranks)),
+        ranks_(ranks),
+        kernel_(std::make_shared<const StiffnessKernel>(mesh, element_lame(mesh, material), material.drop_jacobian)),
+        stored_(detail::stores_element_matrices(solver) ? std::optional<StiffnessOperator>(kernel_) : std::nullopt),
+        linear_(detail::make_linear_solver(solver, ranks, stored_ ? &*stored_ : nullptr)),
         dim_(static_cast<std::size_t>(mesh.dimension)),
         size_(std::max(bounding_diagonal(mesh.points), 1e-300)) {}
 
@@ -217,7 +220,7 @@ class Motion {
   /// nodes, the forcing displacement u0s on sliding nodes (eqs. 13, 22), zero elsewhere.
   std::vector<double> initial_displacements(double a, double b) {
     const std::vector<Vec3>& x = result_.points;
-    std::vector<double> u(stiffness_.size(), 0.0);
+    std::vector<double> u(kernel_->size(), 0.0);
     for (const auto& p : setup_.prescribed) {
       const auto i = static_cast<std::size_t>(p.node);
       const Vec3 target = detail::prescribed_position(p, setup_.reference[i], b);
@@ -261,7 +264,7 @@ class Motion {
     record.lambda_begin = a;
     record.lambda_end = b;
     const std::vector<Vec3>& x = result_.points;
-    const std::size_t dofs = stiffness_.size();
+    const std::size_t dofs = kernel_->size();
 
     std::vector<double> u = initial_displacements(a, b);
 
@@ -274,8 +277,9 @@ class Motion {
       displace(x, u, trial);
       // K(n) at the current geometry (eq. 8) and R(n) = K(n) u(n) - f (eq. 7; f is K's action on
       // the boundary motion), with only its tangential part F_t at sliding nodes (eq. 17).
-      const detail::ConstrainedSystem system{stiffness_, setup_.constraints, setup_.periodic, trial, node_stiffness};
-      linear_->update(stiffness_, system, u, r, node_stiffness, result_.timings);
+      const detail::ConstrainedSystem system{*kernel_, setup_.constraints, setup_.periodic, trial, node_stiffness};
+      detail::newton_residual(system, stored_ ? &*stored_ : nullptr, linear_->assembler(), ranks_, u, r, node_stiffness,
+                              result_.timings);
       const double residual = detail::scaled_residual_norm(r, node_stiffness, dim_);
       if (it == 0) r0 = residual;
       record.newton.push_back({residual, 0, true, 0.0});
@@ -353,7 +357,9 @@ class Motion {
   const MotionObservers& observers_;
   detail::BoundarySetup setup_;
   detail::SlidingNodes sliding_;
-  StiffnessOperator stiffness_;
+  const parallel::RankExchange& ranks_;
+  std::shared_ptr<const StiffnessKernel> kernel_;  ///< K_e of any cell (eq. 35 and the Q1 element)
+  std::optional<StiffnessOperator> stored_;         ///< the K_e of each Newton step (jacobi-pcg)
   std::unique_ptr<detail::LinearSolver> linear_;
   std::size_t dim_;
   double size_;

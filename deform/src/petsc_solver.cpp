@@ -1,7 +1,8 @@
 // hotmesh deform: the assembled linear solver on PETSc (SolverOptions::linear = amg).
 //
-// Per Newton step, in one pass over the cells (update()): every K_e is computed at the current
-// points (not stored), K_e u_e added to the Newton residual, and K~_e = T_e^T K_e T_e in the
+// Per Newton step, in one pass over the cells (ElementAssembler::assemble, which the Newton
+// loop's newton_residual() calls): every K_e is computed at the current points (not stored),
+// handed to the Newton residual (ResidualPass), and K~_e = T_e^T K_e T_e in the
 // nodal frames of the current normals (nodal_frames.hpp) added into a matrix of block size d
 // whose sparsity was preallocated once from the node graph, slaves merged into their masters
 // (MAT_NEW_NONZERO_LOCATION_ERR guards it). Then (solve()) the right-hand side is r~ = T^T r,
@@ -148,10 +149,10 @@ struct StoppingTest {
 
 enum class Reuse { none, interpolation, preconditioner };
 
-class AmgSolver final : public LinearSolver {
+class AmgSolver final : public LinearSolver, public ElementAssembler {
  public:
-  AmgSolver(const SolverOptions& options, const parallel::RankExchange& ranks)
-      : options_(options), ranks_(ranks), job_{ranks.rank(), ranks.ranks()} {
+  AmgSolver(const SolverOptions& options, const parallel::RankExchange& ranks, const StiffnessOperator* stored)
+      : options_(options), ranks_(ranks), job_{ranks.rank(), ranks.ranks()}, stored_(stored) {
     parallel::start_petsc();
     if (options_.amg == AmgPackage::gamg) {
       // One symmetric Gauss-Seidel sweep as smoother on every level. The default Chebyshev/
@@ -192,33 +193,18 @@ class AmgSolver final : public LinearSolver {
 
   void begin_increment() override { fresh_ = true; }
 
-  /// Without stored element matrices: one pass computes every K_e, adds its part of the
-  /// residual and assembles K~ (the matrix is then ready for solve()).
-  void update(StiffnessOperator& k, const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
-              std::span<double> node_stiffness, MotionTimings& timings) override {
-    if (k.stores_matrices()) {
-      LinearSolver::update(k, s, u, r, node_stiffness, timings);
-      return;
-    }
-    const auto t = Clock::now();
-    std::fill(r.begin(), r.end(), 0.0);
-    std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
-    assemble(s, u, r, node_stiffness);
-    ranks_.sum(r);  // each rank added its cells' part
-    ranks_.sum(node_stiffness);
-    s.periodic.fold_nodal(node_stiffness);
-    s.periodic.fold(r);
-    s.constraints.project(r);
-    timings.assembly += seconds_since(t);
-  }
+  /// Without stored element matrices: one pass computes every K_e, gives it to the residual
+  /// and assembles K~ (the matrix is then ready for solve()).
+  void assemble(const ConstrainedSystem& s, const ResidualPass& residual) override { assemble_matrix(s, &residual); }
+  ElementAssembler* assembler() override { return stored_ ? nullptr : this; }
 
   LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p,
                           const LinearTarget& target, MotionTimings& timings) override {
     auto t = Clock::now();
-    if (!assembled_) assemble(s, {}, {}, {});  // from the stored element matrices
+    if (!assembled_) assemble_matrix(s, nullptr);  // from the stored element matrices
     assembled_ = false;
     timings.assembly += seconds_since(t);
-    const auto d = static_cast<std::size_t>(s.stiffness.dofs_per_node());
+    const auto d = static_cast<std::size_t>(s.kernel.dofs_per_node());
     frames_->to_frames(rhs, full_);
     rows_->gather(full_, rhs_, d);
     LinearSolveResult result;
@@ -279,32 +265,31 @@ class AmgSolver final : public LinearSolver {
 
  private:
   /// K~ of the system at its points, with the frames of its current normals.
-  void assemble(const ConstrainedSystem& s, std::span<const double> u, std::span<double> r,
-                std::span<double> node_stiffness) {
+  void assemble_matrix(const ConstrainedSystem& s, const ResidualPass* residual) {
     if (!a_) create(s);
     frames_->update(s.constraints, s.periodic);
-    assemble_frame_matrix(a_, {s, u, r, node_stiffness}, *frames_, *rows_, *order_, local_cells_, !pattern_);
+    assemble_frame_matrix(a_, {s, stored_, residual}, *frames_, *rows_, *order_, local_cells_, !pattern_);
     pattern_ = true;
     assembled_ = true;
   }
 
   void create(const ConstrainedSystem& s) {
-    const int d = s.stiffness.dofs_per_node();
-    const std::size_t nodes = s.stiffness.size() / static_cast<std::size_t>(d);
+    const int d = s.kernel.dofs_per_node();
+    const std::size_t nodes = s.kernel.size() / static_cast<std::size_t>(d);
     frames_.emplace(nodes, d);
     frames_->update(s.constraints, s.periodic);
-    const ElementList& cells = s.stiffness.cells();
+    const ElementList& cells = s.kernel.cells();
     const NodeCells around(cells, nodes);
     const std::vector<int> rank_of_cell = partition_cells(cells, around, d, job_);
     for (std::size_t c = 0; c < cells.size(); ++c) {
       if (rank_of_cell[c] == job_.rank) local_cells_.push_back(static_cast<CellId>(c));
     }
     rows_.emplace(*frames_, around, rank_of_cell, job_.count);
-    order_.emplace(s.stiffness, *frames_);
+    order_.emplace(s.kernel, *frames_);
     a_ = create_frame_matrix(cells, around, *frames_, *rows_, job_);
     check(MatCreateVecs(a_, &x_, &b_), "MatCreateVecs");
     if (job_.count > 1) check(VecScatterCreateToAll(x_, &to_all_, &all_), "VecScatterCreateToAll");
-    full_.assign(s.stiffness.size(), 0.0);
+    full_.assign(s.kernel.size(), 0.0);
     rhs_.assign(static_cast<std::size_t>(rows_->count) * static_cast<std::size_t>(d), 0.0);
     solution_.assign(rhs_.size(), 0.0);
   }
@@ -366,6 +351,7 @@ class AmgSolver final : public LinearSolver {
   SolverOptions options_;
   const parallel::RankExchange& ranks_;
   parallel::Processes job_;  ///< this rank, of how many
+  const StiffnessOperator* stored_;  ///< K(n) as stored element matrices; null: computed in the pass
   std::vector<CellId> local_cells_;  ///< the cells whose element work this rank does
   Reuse reuse_ = Reuse::preconditioner;
   /// Rotations in the near-null space (-hotmesh_amg_rotations). Off: PCGAMG of PETSc 3.18
@@ -385,7 +371,7 @@ class AmgSolver final : public LinearSolver {
   Vec all_ = nullptr;
   bool fresh_ = true;
   bool pattern_ = false;    ///< the sparsity is fixed (after the first assembly)
-  bool assembled_ = false;  ///< update() assembled K~ for the coming solve()
+  bool assembled_ = false;  ///< the element pass assembled K~ for the coming solve()
   std::vector<double> full_;             ///< d per node, in the frames
   std::vector<double> rhs_, solution_;  ///< d per block row
   StoppingTest stopping_;
@@ -393,25 +379,26 @@ class AmgSolver final : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options, const parallel::RankExchange& ranks) {
-  return std::make_unique<AmgSolver>(options, ranks);
+std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options, const parallel::RankExchange& ranks,
+                                              const StiffnessOperator* stored) {
+  return std::make_unique<AmgSolver>(options, ranks, stored);
 }
 
-std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const NodalFrames& frames,
-                                            std::span<const double> x, bool twice) {
+std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const StiffnessOperator* stored,
+                                            const NodalFrames& frames, std::span<const double> x, bool twice) {
   parallel::start_petsc();
-  const ElementList& cells = system.stiffness.cells();
+  const ElementList& cells = system.kernel.cells();
   const NodeCells around(cells, frames.node_count());
   const parallel::Processes one;
   const std::vector<int> rank_of_cell(cells.size(), 0);
   const BlockRows rows(frames, around, rank_of_cell, one.count);
   const auto d = static_cast<std::size_t>(frames.dimension());
-  const AssemblyOrder order(system.stiffness, frames);
+  const AssemblyOrder order(system.kernel, frames);
   std::vector<CellId> all(cells.size());
   std::iota(all.begin(), all.end(), CellId{0});
   Mat a = create_frame_matrix(cells, around, frames, rows, one);
-  assemble_frame_matrix(a, {system, {}, {}}, frames, rows, order, all, true);
-  if (twice) assemble_frame_matrix(a, {system, {}, {}}, frames, rows, order, all, false);
+  assemble_frame_matrix(a, {system, stored, nullptr}, frames, rows, order, all, true);
+  if (twice) assemble_frame_matrix(a, {system, stored, nullptr}, frames, rows, order, all, false);
   Vec vx = nullptr, vy = nullptr;
   check(MatCreateVecs(a, &vx, &vy), "MatCreateVecs");
   std::vector<double> compressed(static_cast<std::size_t>(rows.count) * d);

@@ -1,9 +1,9 @@
-// hotmesh deform: the matrix-free stiffness operator (storage and element loops layer).
+// hotmesh deform: the element kernel over a mesh's cells, and the matrix-free stiffness
+// operator with stored element matrices (storage layer).
 #include "hotmesh/deform/stiffness_operator.hpp"
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <stdexcept>
 
 #include "hotmesh/deform/element_stiffness.hpp"
@@ -52,7 +52,7 @@ CellColoring color_cells(const ElementList& cells, std::size_t node_count) {
   return coloring;
 }
 
-StiffnessOperator::StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian, bool store)
+StiffnessKernel::StiffnessKernel(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian)
     : cells_(&mesh.cells),
       nodes_(mesh.node_count()),
       dim_(mesh.dimension),
@@ -66,31 +66,35 @@ StiffnessOperator::StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, b
                        " cells only; this mesh has " + std::string(name(t)) + " cells");
     }
   }
-  if (lame_.size() != mesh.cell_count()) throw std::invalid_argument("StiffnessOperator: one Lame per cell");
+  if (lame_.size() != mesh.cell_count()) throw std::invalid_argument("StiffnessKernel: one Lame per cell");
   element_dofs_ = element_dofs(expected);
   coloring_ = color_cells(mesh.cells, nodes_);
-  if (store) matrices_.assign(mesh.cell_count() * static_cast<std::size_t>(element_dofs_ * element_dofs_), 0.0);
 }
 
-void StiffnessOperator::element_matrix_at(CellId c, std::span<const Vec3> points, std::span<double> k) const {
+void StiffnessKernel::element_matrix(CellId c, std::span<const Vec3> points, std::span<double> k) const {
   const auto i = static_cast<std::size_t>(c);
   element_stiffness(cells_->type(i), gather(cells_->nodes(i), points), lame_[i], drop_jacobian_, k);
 }
 
+StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kernel)
+    : kernel_(std::move(kernel)),
+      matrices_(kernel_->cells().size() * static_cast<std::size_t>(kernel_->element_size() * kernel_->element_size()), 0.0) {}
+
+StiffnessOperator::StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian)
+    : StiffnessOperator(std::make_shared<const StiffnessKernel>(mesh, std::move(lame), drop_jacobian)) {}
+
 void StiffnessOperator::update(std::span<const Vec3> points) {
-  if (!stores_matrices()) throw std::logic_error("StiffnessOperator::update: built without element storage");
-  const auto n = static_cast<std::ptrdiff_t>(cells_->size());
-  const auto block = static_cast<std::size_t>(element_dofs_ * element_dofs_);
+  const auto n = static_cast<std::ptrdiff_t>(kernel_->cells().size());
+  const auto block = static_cast<std::size_t>(kernel_->element_size() * kernel_->element_size());
 #pragma omp parallel for schedule(static) if (n >= mesh::kParallelCells)
   for (std::ptrdiff_t c = 0; c < n; ++c) {
     const auto i = static_cast<std::size_t>(c);
-    element_stiffness(cells_->type(i), gather(cells_->nodes(i), points), lame_[i], drop_jacobian_,
-                      std::span<double>(matrices_.data() + i * block, block));
+    kernel_->element_matrix(static_cast<CellId>(c), points, std::span<double>(matrices_.data() + i * block, block));
   }
 }
 
 std::span<const double> StiffnessOperator::element_matrix(CellId c) const {
-  const auto block = static_cast<std::size_t>(element_dofs_ * element_dofs_);
+  const auto block = static_cast<std::size_t>(kernel_->element_size() * kernel_->element_size());
   return {matrices_.data() + static_cast<std::size_t>(c) * block, block};
 }
 
@@ -110,24 +114,8 @@ void apply_color(const ElementList& cells, std::span<const CellId> color, const 
       const auto base = static_cast<std::size_t>(nodes[a]) * D;
       for (std::size_t i = 0; i < D; ++i) xe[a * D + i] = x[base + i];
     }
-    const double* ke = matrices + c * N * N;
-    std::array<double, N> ye{};
-    if constexpr (N >= 24) {
-      // Hexes: y_e = K_e x_e as a sum of columns scaled by x_j, so the inner loop runs along
-      // contiguous memory and vectorises (K_e is symmetric: column j is the stored row j).
-      // 10 % faster than row sums here (bench_operator); for the 8x8 quad matrices row sums win.
-      for (std::size_t j = 0; j < N; ++j) {
-        const double xj = xe[j];
-        const double* column = ke + j * N;
-        for (std::size_t r = 0; r < N; ++r) ye[r] += column[r] * xj;
-      }
-    } else {
-      for (std::size_t r = 0; r < N; ++r) {
-        double s = 0.0;
-        for (std::size_t j = 0; j < N; ++j) s += ke[r * N + j] * xe[j];
-        ye[r] = s;
-      }
-    }
+    std::array<double, N> ye;
+    element_product<N>(matrices + c * N * N, xe.data(), ye.data());
     for (std::size_t a = 0; a < kNodes; ++a) {
       const auto base = static_cast<std::size_t>(nodes[a]) * D;
       for (std::size_t i = 0; i < D; ++i) y[base + i] += ye[a * D + i];
@@ -138,21 +126,21 @@ void apply_color(const ElementList& cells, std::span<const CellId> color, const 
 }  // namespace
 
 void StiffnessOperator::apply(std::span<const double> x, std::span<double> y) const {
-  assert(stores_matrices());
   std::fill(y.begin(), y.end(), 0.0);
-  for (std::size_t k = 0; k < coloring_.colors(); ++k) {
-    const std::span<const CellId> color(coloring_.cells.data() + coloring_.offsets[k],
-                                        static_cast<std::size_t>(coloring_.offsets[k + 1] - coloring_.offsets[k]));
-    if (dim_ == 2) {
-      apply_color<8, 2>(*cells_, color, matrices_.data(), x, y);
+  const CellColoring& coloring = kernel_->coloring();
+  for (std::size_t k = 0; k < coloring.colors(); ++k) {
+    const std::span<const CellId> color(coloring.cells.data() + coloring.offsets[k],
+                                        static_cast<std::size_t>(coloring.offsets[k + 1] - coloring.offsets[k]));
+    if (kernel_->dofs_per_node() == 2) {
+      apply_color<8, 2>(kernel_->cells(), color, matrices_.data(), x, y);
     } else {
-      apply_color<24, 3>(*cells_, color, matrices_.data(), x, y);
+      apply_color<24, 3>(kernel_->cells(), color, matrices_.data(), x, y);
     }
   }
 }
 
 void StiffnessOperator::diagonal(std::span<double> d) const {
-  const auto dim = static_cast<std::size_t>(dim_);
+  const auto dim = static_cast<std::size_t>(kernel_->dofs_per_node());
   std::vector<double> blocks(size() * dim);
   diagonal_blocks(blocks);
   for (std::size_t i = 0; i < size(); ++i) d[i] = blocks[i * dim + i % dim];
@@ -161,11 +149,12 @@ void StiffnessOperator::diagonal(std::span<double> d) const {
 void StiffnessOperator::diagonal_blocks(std::span<double> blocks) const {
   // Sequential in cell order: deterministic, and cheap next to a product.
   std::fill(blocks.begin(), blocks.end(), 0.0);
-  const auto n = static_cast<std::size_t>(element_dofs_);
-  const auto dim = static_cast<std::size_t>(dim_);
-  for (std::size_t c = 0; c < cells_->size(); ++c) {
+  const auto n = static_cast<std::size_t>(kernel_->element_size());
+  const auto dim = static_cast<std::size_t>(kernel_->dofs_per_node());
+  const ElementList& cells = kernel_->cells();
+  for (std::size_t c = 0; c < cells.size(); ++c) {
     const auto ke = element_matrix(static_cast<CellId>(c));
-    const auto nodes = cells_->nodes(c);
+    const auto nodes = cells.nodes(c);
     for (std::size_t a = 0; a < nodes.size(); ++a) {
       double* block = blocks.data() + static_cast<std::size_t>(nodes[a]) * dim * dim;
       for (std::size_t i = 0; i < dim; ++i) {

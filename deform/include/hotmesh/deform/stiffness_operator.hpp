@@ -1,7 +1,11 @@
-// hotmesh deform: the global stiffness K of the mesh, matrix-free (section 3). The element
-// matrices K_e are computed once per Newton iteration at the current coordinates and stored;
-// y = K x and the residual are element loops over the connectivity (eqs. 9-10):
+// hotmesh deform: the global stiffness K of the mesh, in the paper's three layers: the
+// pointwise material law (eq. 35, material.hpp), the element kernel (Q1 with the Jacobian
+// dropped, element_stiffness.hpp, applied to the cells by StiffnessKernel), and the storage.
+// Here the storage is matrix-free (section 3): the element matrices K_e are computed once per
+// Newton iteration at the current coordinates and stored, and y = K x is an element loop over
+// the connectivity (eqs. 9-10):
 //     (K x)_i = sum_{H containing i} [B_i^H] [K^H] {x^H}
+// (the amg solver assembles the same K_e into a PETSc matrix instead, petsc_solver.cpp).
 // Elements are coloured so that no two of one colour share a node: colours run one after
 // another, the elements of a colour in parallel. Every node then receives its contributions
 // in the same order whatever the number of threads, so results are race-free and
@@ -9,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -26,33 +31,22 @@ struct CellColoring {
 };
 CellColoring color_cells(const ElementList& cells, std::size_t node_count);
 
-class StiffnessOperator final : public LinearOperator {
+/// The element kernel over the cells of a mesh: K_e of any cell at given points, with the
+/// cell's Lamé parameters (eq. 35, material.hpp) and the Q1 element of element_stiffness.hpp.
+/// It stores nothing per Newton step; StiffnessOperator stores the K_e, the amg solver
+/// assembles them as they come.
+class StiffnessKernel {
  public:
   /// The mesh must have only quad4 (2D) or only hex8 (3D) cells; `lame` has one entry per
-  /// cell. Throws hotmesh::InputError otherwise. Keeps a reference to mesh.cells. Without
-  /// `store`, the element matrices are not kept (the amg solver computes them while it
-  /// assembles): update(), apply(), diagonal() and element_matrix() are then not available,
-  /// element_matrix_at() is.
-  StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian, bool store = true);
+  /// cell. Throws hotmesh::InputError otherwise. Keeps a reference to mesh.cells.
+  StiffnessKernel(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian);
 
-  /// Recomputes every K_e at `points` (parallel over cells).
-  void update(std::span<const Vec3> points);
-  bool stores_matrices() const { return !matrices_.empty() || cells_->size() == 0; }
-  /// K_e of cell c at `points`, computed now, row-major into k.
-  void element_matrix_at(CellId c, std::span<const Vec3> points, std::span<double> k) const;
+  /// K_e of cell c at `points`, row-major into k (element_size()^2 values).
+  void element_matrix(CellId c, std::span<const Vec3> points, std::span<double> k) const;
 
-  std::size_t size() const override { return nodes_ * static_cast<std::size_t>(dim_); }
-  /// y = K x for dof vectors laid out node after node (x_0, y_0, [z_0,] x_1, ...).
-  void apply(std::span<const double> x, std::span<double> y) const override;
-  /// The diagonal of K.
-  void diagonal(std::span<double> d) const;
-  /// The d x d diagonal blocks of K, one per node, row-major, node after node.
-  void diagonal_blocks(std::span<double> blocks) const;
-
+  std::size_t size() const { return nodes_ * static_cast<std::size_t>(dim_); }  ///< dofs of the mesh
   int dofs_per_node() const { return dim_; }
   int element_size() const { return element_dofs_; }
-  /// K_e of cell c, row-major.
-  std::span<const double> element_matrix(CellId c) const;
   const ElementList& cells() const { return *cells_; }
   const CellColoring& coloring() const { return coloring_; }
 
@@ -64,6 +58,35 @@ class StiffnessOperator final : public LinearOperator {
   std::vector<Lame> lame_;
   bool drop_jacobian_;
   CellColoring coloring_;
+};
+
+/// K matrix-free with stored element matrices (the paper's section 3): update() computes every
+/// K_e at the current points, apply() is the element loop of eqs. (9)-(10).
+class StiffnessOperator final : public LinearOperator {
+ public:
+  explicit StiffnessOperator(std::shared_ptr<const StiffnessKernel> kernel);
+  /// The kernel of `mesh` (see StiffnessKernel), with storage for its element matrices.
+  StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian);
+
+  /// Recomputes every K_e at `points` (parallel over cells).
+  void update(std::span<const Vec3> points);
+
+  std::size_t size() const override { return kernel_->size(); }
+  /// y = K x for dof vectors laid out node after node (x_0, y_0, [z_0,] x_1, ...).
+  void apply(std::span<const double> x, std::span<double> y) const override;
+  /// The diagonal of K.
+  void diagonal(std::span<double> d) const;
+  /// The d x d diagonal blocks of K, one per node, row-major, node after node.
+  void diagonal_blocks(std::span<double> blocks) const;
+
+  /// K_e of cell c as update() stored it, row-major.
+  std::span<const double> element_matrix(CellId c) const;
+  const StiffnessKernel& kernel() const { return *kernel_; }
+  int dofs_per_node() const { return kernel_->dofs_per_node(); }
+  const ElementList& cells() const { return kernel_->cells(); }
+
+ private:
+  std::shared_ptr<const StiffnessKernel> kernel_;
   std::vector<double> matrices_;
 };
 
