@@ -2,7 +2,6 @@
 #include "linear_solver.hpp"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -36,28 +35,12 @@ double scaled_residual_norm(std::span<const double> r, std::span<const double> n
   return std::sqrt(sum);
 }
 
-namespace {
-
-template <std::size_t N, std::size_t D>
-void add_element_residual(std::span<const NodeId> nodes, const double* ke, std::span<const double> u, std::span<double> r) {
-  std::array<double, N> ue, re;
-  for (std::size_t a = 0; a < N / D; ++a) {
-    for (std::size_t i = 0; i < D; ++i) ue[a * D + i] = u[static_cast<std::size_t>(nodes[a]) * D + i];
-  }
-  element_product<N>(ke, ue.data(), re.data());
-  for (std::size_t a = 0; a < N / D; ++a) {
-    for (std::size_t i = 0; i < D; ++i) r[static_cast<std::size_t>(nodes[a]) * D + i] += re[a * D + i];
-  }
-}
-
-}  // namespace
-
 void ResidualPass::add(std::span<const NodeId> nodes, std::span<const double> ke) const {
   const std::size_t d = nodes.size() == 8 ? 3 : 2;  // hex8 or quad4, the solver's cells
   if (d == 3) {
-    add_element_residual<24, 3>(nodes, ke.data(), u, r);
+    add_element_product<24, 3>(nodes, ke.data(), u, r);
   } else {
-    add_element_residual<8, 2>(nodes, ke.data(), u, r);
+    add_element_product<8, 2>(nodes, ke.data(), u, r);
   }
   add_node_stiffness(nodes, ke, d, node_stiffness);
 }

@@ -3,7 +3,6 @@
 #include "hotmesh/deform/stiffness_operator.hpp"
 
 #include <algorithm>
-#include <array>
 #include <stdexcept>
 
 #include "hotmesh/deform/element_stiffness.hpp"
@@ -104,22 +103,10 @@ namespace {
 template <std::size_t N, std::size_t D>
 void apply_color(const ElementList& cells, std::span<const CellId> color, const double* matrices,
                  std::span<const double> x, std::span<double> y) {
-  constexpr std::size_t kNodes = N / D;
 #pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(color.size() * N * N) >= mesh::kParallelProduct)
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(color.size()); ++k) {
     const auto c = static_cast<std::size_t>(color[static_cast<std::size_t>(k)]);
-    const auto nodes = cells.nodes(c);
-    std::array<double, N> xe;
-    for (std::size_t a = 0; a < kNodes; ++a) {
-      const auto base = static_cast<std::size_t>(nodes[a]) * D;
-      for (std::size_t i = 0; i < D; ++i) xe[a * D + i] = x[base + i];
-    }
-    std::array<double, N> ye;
-    element_product<N>(matrices + c * N * N, xe.data(), ye.data());
-    for (std::size_t a = 0; a < kNodes; ++a) {
-      const auto base = static_cast<std::size_t>(nodes[a]) * D;
-      for (std::size_t i = 0; i < D; ++i) y[base + i] += ye[a * D + i];
-    }
+    add_element_product<N, D>(cells.nodes(c), matrices + c * N * N, x, y);
   }
 }
 

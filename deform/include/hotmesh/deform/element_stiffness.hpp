@@ -7,6 +7,7 @@
 //     K_ab,ij = lambda g_a,i g_b,j + G (g_a,j g_b,i + delta_ij g_a . g_b).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <span>
 
@@ -44,6 +45,24 @@ void element_product(const double* ke, const double* xe, double* ye) {
       for (std::size_t j = 0; j < N; ++j) s += ke[r * N + j] * xe[j];
       ye[r] = s;
     }
+  }
+}
+
+/// y += K_e x_e for the cell with corners `nodes`, x and y dof vectors laid out node after node
+/// (D per node): the body of every element loop of the solver, the matrix-free K x and the
+/// Newton residual K u alike.
+template <std::size_t N, std::size_t D>
+void add_element_product(std::span<const NodeId> nodes, const double* ke, std::span<const double> x, std::span<double> y) {
+  constexpr std::size_t kCorners = N / D;
+  std::array<double, N> xe, ye;
+  for (std::size_t a = 0; a < kCorners; ++a) {
+    const auto base = static_cast<std::size_t>(nodes[a]) * D;
+    for (std::size_t i = 0; i < D; ++i) xe[a * D + i] = x[base + i];
+  }
+  element_product<N>(ke, xe.data(), ye.data());
+  for (std::size_t a = 0; a < kCorners; ++a) {
+    const auto base = static_cast<std::size_t>(nodes[a]) * D;
+    for (std::size_t i = 0; i < D; ++i) y[base + i] += ye[a * D + i];
   }
 }
 
