@@ -18,6 +18,7 @@
 
 #include "hotmesh/parallel/processes.hpp"
 #include "linear_solver.hpp"
+#include "newton.hpp"
 #include "nodal_frames.hpp"
 
 namespace hotmesh::deform::detail {

@@ -13,12 +13,13 @@
 #include <fmt/format.h>
 
 #include "boundary_conditions.hpp"
-#include "sliding.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/geometry/input_error.hpp"
-#include "linear_solver.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
+#include "linear_solver.hpp"
+#include "newton.hpp"
+#include "sliding.hpp"
 
 namespace hotmesh::deform {
 

@@ -152,7 +152,7 @@ enum class Reuse { none, interpolation, preconditioner };
 class AmgSolver final : public LinearSolver, public ElementAssembler {
  public:
   AmgSolver(const SolverOptions& options, const parallel::RankExchange& ranks, const StiffnessOperator* stored)
-      : options_(options), ranks_(ranks), job_{ranks.rank(), ranks.ranks()}, stored_(stored) {
+      : options_(options), job_{ranks.rank(), ranks.ranks()}, stored_(stored) {
     parallel::start_petsc();
     if (options_.amg == AmgPackage::gamg) {
       // One symmetric Gauss-Seidel sweep as smoother on every level. The default Chebyshev/
@@ -349,7 +349,6 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   }
 
   SolverOptions options_;
-  const parallel::RankExchange& ranks_;
   parallel::Processes job_;  ///< this rank, of how many
   const StiffnessOperator* stored_;  ///< K(n) as stored element matrices; null: computed in the pass
   std::vector<CellId> local_cells_;  ///< the cells whose element work this rank does

@@ -12,6 +12,7 @@
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "linear_solver.hpp"
+#include "newton.hpp"
 #include "nodal_frames.hpp"
 #include "periodic.hpp"
 #include "petsc_solver.hpp"

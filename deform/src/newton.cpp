@@ -1,0 +1,74 @@
+// hotmesh deform: the Newton loop's residual, and the forcing term of inexact Newton.
+#include "newton.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "hotmesh/deform/element_stiffness.hpp"
+
+namespace hotmesh::deform::detail {
+
+void ResidualPass::add(std::span<const NodeId> nodes, std::span<const double> ke) const {
+  const std::size_t d = nodes.size() == 8 ? 3 : 2;  // hex8 or quad4, the solver's cells
+  if (d == 3) {
+    add_element_product<24, 3>(nodes, ke.data(), u, r);
+  } else {
+    add_element_product<8, 2>(nodes, ke.data(), u, r);
+  }
+  add_node_stiffness(nodes, ke, d, node_stiffness);
+}
+
+void newton_residual(const ConstrainedSystem& s, StiffnessOperator* stored, ElementAssembler* assembler,
+                     const parallel::RankExchange& ranks, std::span<const double> u, std::span<double> r,
+                     std::span<double> node_stiffness, MotionTimings& timings) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto seconds = [&start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
+  if (stored) {
+    stored->update(s.points);
+    timings.assembly += seconds();
+    const auto d = static_cast<std::size_t>(s.kernel.dofs_per_node());
+    const ElementList& cells = s.kernel.cells();
+    for (std::size_t c = 0; c < cells.size(); ++c) {  // in cell order: deterministic, cheap next to a product
+      add_node_stiffness(cells.nodes(c), stored->element_matrix(static_cast<CellId>(c)), d, node_stiffness);
+    }
+    s.periodic.fold_nodal(node_stiffness);
+    stored->apply(u, r);
+  } else {
+    if (!assembler) throw std::invalid_argument("newton_residual: neither stored element matrices nor a solver that computes them");
+    std::fill(r.begin(), r.end(), 0.0);
+    assembler->assemble(s, {u, r, node_stiffness});
+    ranks.sum(r);  // each rank added its cells' part
+    ranks.sum(node_stiffness);
+    s.periodic.fold_nodal(node_stiffness);
+  }
+  s.periodic.fold(r);
+  s.constraints.project(r);
+  if (!stored) timings.assembly += seconds();
+}
+
+LinearTarget Forcing::next(int n, double residual, double initial) {
+  const double floor = options_.pcg_tolerance;
+  double eta = floor;
+  constexpr double kSufficientDecrease = 1e-4;  // t
+  const bool decreased =
+      n == 0 || residual <= (1.0 - kSufficientDecrease * (1.0 - previous_eta_)) * previous_residual_;
+  if (options_.forcing == ForcingTerm::eisenstat_walker && n > 0 && previous_residual_ > 0.0 && decreased) {
+    constexpr double kGamma = 0.9, kAlpha = 2.0, kMax = 0.1;
+    const double ratio = residual / previous_residual_;
+    eta = kGamma * std::pow(ratio, kAlpha);
+    const double safeguard = kGamma * std::pow(previous_eta_, kAlpha);
+    if (safeguard > 0.1) eta = std::max(eta, safeguard);
+    eta = std::min(eta, kMax);
+    // Solving beyond what the Newton tolerance asks of this step is wasted.
+    if (residual > 0.0) eta = std::max(eta, 0.5 * options_.newton_tolerance * initial / residual);
+    eta = std::clamp(eta, floor, std::max(kMax, floor));
+  }
+  previous_residual_ = residual;
+  previous_eta_ = eta;
+  return {eta, n == 0 || !decreased};
+}
+
+}  // namespace hotmesh::deform::detail
