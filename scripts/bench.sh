@@ -49,6 +49,7 @@ args_for() {
       bench_ramp) echo "--runs 1" ;;
       bench_projection) echo "20000" ;;
       bench_bspline) echo "--quick" ;;
+      bench_renumbering) echo "--quick" ;;
       bench_stator_solve) echo "5000" ;;
       bench_checkpoint) echo "--cells 100000 --runs 1" ;;
     esac
