@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -159,7 +160,7 @@ TEST(StatorWellMesh, WallNodesLieOnTheCadCurvesOfTheirPatch) {
     double worst = 0.0;
     for (auto n : s.mesh.find_patch(name(patch))->nodes) {
       const auto q = rz(s.mesh.points[static_cast<std::size_t>(n)]);
-      double d = INFINITY;
+      double d = std::numeric_limits<double>::infinity();
       for (const auto& c : curves) d = std::min(d, c.project(q, 0.0).distance);
       worst = std::max(worst, d);
     }
@@ -231,7 +232,7 @@ TEST(StatorWellTables, DescribeTheSevereCase) {
     for (const FemNode& n : t.nodes) EXPECT_EQ(n.dzr.x, stator(t.patch) ? 0.0 : s.severe.axial_shift) << name(t.patch);
   }
   // The seal clearance between the fin tips and the disc base closes by about 60 %.
-  double tip = NAN, base = NAN;
+  double tip = std::numeric_limits<double>::quiet_NaN(), base = tip;
   for (const FemNode& n : s.table(Patch::fins).nodes) {
     if (std::abs(n.zr.y - kRFinTip * 1e-3) < 1e-12) tip = n.dzr.y;
   }
