@@ -142,6 +142,7 @@ json solver_json(const deform::SolverOptions& solver) {
           {"max_increment_splits", solver.max_increment_splits},
           {"linear", deform::to_string(solver.linear)},
           {"amg", deform::to_string(solver.amg)},
+          {"amg_reuse", deform::kAmgReuseNames.name(solver.amg_reuse)},
           {"forcing", deform::to_string(solver.forcing)},
           {"processes", parallel::processes().count}};
 }

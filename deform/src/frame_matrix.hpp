@@ -47,7 +47,7 @@ std::vector<int> partition_cells(const ElementList& list, const NodeCells& aroun
 /// a slave shares its master's. Fixed nodes (and slaves of fixed masters) have none and are
 /// left out: as rows holding only a diagonal they would be isolated vertices of the matrix
 /// graph, which PCGAMG makes aggregates of one node (whose d rows cannot carry the rigid-body
-/// rotations, see AmgSolver::rotations_), and work for nothing. The set does not change
+/// rotations, see set_near_null_space in petsc_solver.cpp), and work for nothing. The set does not change
 /// during a run: sliding nodes keep at least one tangential direction. A node's row belongs
 /// to the lowest rank among its cells; rows are numbered rank by rank, nodes in order within
 /// a rank (with one process: in node order).

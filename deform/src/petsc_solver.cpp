@@ -13,10 +13,9 @@
 // The multigrid hierarchy is built at the first Newton step of an increment and kept for
 // the later steps of the increment (KSPSetReusePreconditioner): K changes little between
 // them, the old hierarchy stays a symmetric positive definite preconditioner, and rebuilding
-// it costs more than the few extra CG iterations (docs/performance.md). PETSC_OPTIONS
-// `-hotmesh_amg_reuse none|interpolation|preconditioner` changes that (interpolation: GAMG
-// keeps its aggregates and prolongators and recomputes the Galerkin operators); any option
-// of the KSP and PC can be given with the prefix `hotmesh_`, e.g.
+// it costs more than the few extra CG iterations (docs/performance.md). The case file's
+// `amg_reuse` changes that (SolverOptions::amg_reuse); any option of the KSP and PC can be
+// given in PETSC_OPTIONS with the prefix `hotmesh_`, e.g.
 // PETSC_OPTIONS="-hotmesh_pc_gamg_threshold 0.05 -hotmesh_ksp_view".
 //
 // With several processes (mpirun, hotmesh/parallel/processes.hpp) every rank keeps the whole
@@ -38,7 +37,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstring>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -75,11 +73,13 @@ void copy_from(Vec from, std::span<double> to) {
   check(VecRestoreArrayRead(from, &x), "VecRestoreArrayRead");
 }
 
-/// The rigid-body modes in the frames as the matrix's near-null space (PCGAMG's aggregates
-/// interpolate them exactly).
-void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows, std::span<const Vec3> points,
-                         bool rotations) {
-  const auto modes = frames.near_null_space(points, rotations);
+/// The d translations in the frames as the matrix's near-null space (PCGAMG's aggregates
+/// interpolate them exactly). Not the rotations: with them PCGAMG of PETSc 3.18 makes
+/// aggregates of one node here and there, whose d rows cannot carry 3 (2D) or 6 (3D) modes;
+/// their prolongator columns vanish, the coarse matrices get zero rows and the smoother fails
+/// (the sliding ramp, the stator well). With the translations alone every aggregate has enough rows.
+void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows, std::span<const Vec3> points) {
+  const auto modes = frames.near_null_space(points, false);
   const auto d = static_cast<std::size_t>(frames.dimension());
   std::vector<double> compressed(static_cast<std::size_t>(rows.count) * d);
   std::vector<Vec> vectors(modes.size(), nullptr);
@@ -147,8 +147,6 @@ struct StoppingTest {
 
 // --- The solver ---------------------------------------------------------------------------
 
-enum class Reuse { none, interpolation, preconditioner };
-
 class AmgSolver final : public LinearSolver, public ElementAssembler {
  public:
   AmgSolver(const SolverOptions& options, const parallel::RankExchange& ranks, const StiffnessOperator* stored)
@@ -167,14 +165,9 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     }
     // BoomerAMG kept across Newton steps needed 20 times the iterations on the ramp; its
     // set-up is cheap, so hypre rebuilds every step.
-    std::array<char, 32> reuse{};
-    std::strcpy(reuse.data(), options_.amg == AmgPackage::hypre ? "none" : "preconditioner");
-    PetscBool set = PETSC_FALSE;
-    check(PetscOptionsGetString(nullptr, "hotmesh_", "-amg_reuse", reuse.data(), reuse.size(), &set), "PetscOptionsGetString");
-    const std::string r = reuse.data();
-    reuse_ = r == "none" ? Reuse::none : r == "preconditioner" ? Reuse::preconditioner : Reuse::interpolation;
-    if (options_.amg == AmgPackage::hypre && reuse_ == Reuse::interpolation) reuse_ = Reuse::none;  // GAMG only
-    check(PetscOptionsGetBool(nullptr, "hotmesh_", "-amg_rotations", &rotations_, &set), "PetscOptionsGetBool");
+    reuse_ = options_.amg_reuse;
+    if (reuse_ == AmgReuse::automatic) reuse_ = options_.amg == AmgPackage::hypre ? AmgReuse::none : AmgReuse::preconditioner;
+    if (options_.amg == AmgPackage::hypre && reuse_ == AmgReuse::interpolation) reuse_ = AmgReuse::none;  // gamg only
   }
 
   ~AmgSolver() override {
@@ -217,16 +210,16 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
       return result;
     }
     t = Clock::now();
-    const bool rebuild = fresh_ || reuse_ == Reuse::none;
-    if (rebuild) set_near_null_space(a_, *frames_, *rows_, s.points, rotations_);
+    const bool rebuild = fresh_ || reuse_ == AmgReuse::none;
+    if (rebuild) set_near_null_space(a_, *frames_, *rows_, s.points);
     // Each increment's hierarchy from a new KSP, as in a new process: PCGAMG carries state from
     // one set-up into the next, and a run resumed from a checkpoint would otherwise take other
     // CG iterations than the uninterrupted run.
-    if (!ksp_ || (fresh_ && reuse_ != Reuse::interpolation)) create_ksp();
+    if (!ksp_ || (fresh_ && reuse_ != AmgReuse::interpolation)) create_ksp();
     PC pc = nullptr;
     check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-    if (reuse_ == Reuse::interpolation) check(PCGAMGSetReuseInterpolation(pc, fresh_ ? PETSC_FALSE : PETSC_TRUE), "PCGAMGSetReuseInterpolation");
-    check(KSPSetReusePreconditioner(ksp_, reuse_ == Reuse::preconditioner && !fresh_ ? PETSC_TRUE : PETSC_FALSE),
+    if (reuse_ == AmgReuse::interpolation) check(PCGAMGSetReuseInterpolation(pc, fresh_ ? PETSC_FALSE : PETSC_TRUE), "PCGAMGSetReuseInterpolation");
+    check(KSPSetReusePreconditioner(ksp_, reuse_ == AmgReuse::preconditioner && !fresh_ ? PETSC_TRUE : PETSC_FALSE),
           "KSPSetReusePreconditioner");
     check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
     // StoppingTest decides convergence; PETSc keeps only the iteration limit.
@@ -352,13 +345,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   parallel::Processes job_;  ///< this rank, of how many
   const StiffnessOperator* stored_;  ///< K(n) as stored element matrices; null: computed in the pass
   std::vector<CellId> local_cells_;  ///< the cells whose element work this rank does
-  Reuse reuse_ = Reuse::preconditioner;
-  /// Rotations in the near-null space (-hotmesh_amg_rotations). Off: PCGAMG of PETSc 3.18
-  /// makes aggregates of one node here and there, whose d rows cannot carry 3 (2D) or 6 (3D)
-  /// modes; their prolongator columns vanish, the coarse matrices get zero rows and the
-  /// smoother fails (the sliding ramp, the stator well). With the d translations alone every
-  /// aggregate has enough rows.
-  PetscBool rotations_ = PETSC_FALSE;
+  AmgReuse reuse_ = AmgReuse::preconditioner;  ///< never automatic
   std::optional<NodalFrames> frames_;
   std::optional<BlockRows> rows_;
   std::optional<AssemblyOrder> order_;

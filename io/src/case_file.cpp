@@ -38,9 +38,9 @@ using geometry::SampleFrame;
 constexpr std::array<std::string_view, 10> kTopKeys{"mesh",     "cad",     "length_unit", "output",  "axis",
                                                    "solver",   "material", "patches",    "pictures", "restart"};
 constexpr std::array<std::string_view, 2> kAxisKeys{"origin", "direction"};
-constexpr std::array<std::string_view, 10> kSolverKeys{
+constexpr std::array<std::string_view, 11> kSolverKeys{
     "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
-    "max_increment_splits", "linear", "amg", "forcing"};
+    "max_increment_splits", "linear", "amg", "amg_reuse", "forcing"};
 constexpr std::array<std::string_view, 4> kMaterialKeys{"law", "alpha_s", "alpha_v", "drop_jacobian"};
 constexpr std::array<std::string_view, 4> kPatchKeys{"role", "deflection", "partner", "angle_deg"};
 constexpr std::array<std::string_view, 4> kDeflectionKeys{"file", "degree", "faces", "form"};
@@ -218,6 +218,15 @@ class CaseParser {
     }
     if (const Entry* x = m.find("amg")) {
       if (const auto k = reader_.choice(*x, deform::kAmgPackageNames)) s.amg = *k;
+    }
+    if (const Entry* x = m.find("amg_reuse")) {
+      if (const auto k = reader_.choice(*x, deform::kAmgReuseNames)) {
+        if (*k == deform::AmgReuse::interpolation && s.amg == deform::AmgPackage::hypre) {
+          reader_.error(*x, "interpolation is kept by amg: gamg only; with hypre choose preconditioner or none");
+        } else {
+          s.amg_reuse = *k;
+        }
+      }
     }
     if (const Entry* x = m.find("forcing")) {
       if (const auto k = reader_.choice(*x, deform::kForcingTermNames)) s.forcing = *k;

@@ -243,6 +243,22 @@ TEST_F(CaseFile, RejectsUnknownLinearSolverMultigridAndForcing) {
   EXPECT_THAT(error, HasSubstr(at(7) + "solver.forcing: expected one of fixed, eisenstat-walker, got 'adaptive'"));
 }
 
+TEST_F(CaseFile, ReadsWhatTheMultigridKeepsAndRefusesInterpolationForHypre) {
+  EXPECT_EQ(parse(std::string(kBase)).solver.amg_reuse, deform::AmgReuse::automatic);
+  EXPECT_EQ(parse(std::string(kBase) + "solver: {linear: amg, amg_reuse: interpolation}\n").solver.amg_reuse,
+            deform::AmgReuse::interpolation);
+  EXPECT_EQ(parse(std::string(kBase) + "solver: {linear: amg, amg: hypre, amg_reuse: preconditioner}\n").solver.amg_reuse,
+            deform::AmgReuse::preconditioner);
+  const std::string error = error_with(
+      "solver:\n"
+      "  amg: hypre\n"
+      "  amg_reuse: interpolation\n"
+      "  linear: amg\n");
+  EXPECT_THAT(error, HasSubstr(at(6) + "solver.amg_reuse: interpolation is kept by amg: gamg only"));
+  EXPECT_THAT(error_with("solver: {amg_reuse: always}\n"),
+              HasSubstr("solver.amg_reuse: expected one of auto, preconditioner, interpolation, none, got 'always'"));
+}
+
 TEST_F(CaseFile, RejectsBadLawFlagAndPictures) {
   const std::string error = error_with(
       "material: {law: spring, drop_jacobian: maybe}\n"

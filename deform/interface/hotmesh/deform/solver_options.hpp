@@ -20,6 +20,15 @@ enum class AmgPackage {
   hypre,  ///< hypre's BoomerAMG (classical AMG, nodal coarsening)
 };
 
+/// What the amg solver keeps of a Newton step's multigrid for the later steps of the increment
+/// (K changes little between them; the first step of an increment always builds anew).
+enum class AmgReuse {
+  automatic,       ///< `preconditioner` with gamg, `none` with hypre (kept, BoomerAMG needed 20x the iterations)
+  preconditioner,  ///< the whole hierarchy, operators included (KSPSetReusePreconditioner)
+  interpolation,   ///< gamg's aggregates and prolongators; the Galerkin operators are recomputed
+  none,            ///< rebuilt every Newton step
+};
+
 /// The tolerance of each inner linear solve.
 enum class ForcingTerm {
   fixed,            ///< pcg_tolerance every time
@@ -30,6 +39,10 @@ enum class ForcingTerm {
 inline constexpr EnumNames<LinearSolverKind, 2> kLinearSolverNames{
     {{{LinearSolverKind::jacobi_pcg, "jacobi-pcg"}, {LinearSolverKind::amg, "amg"}}}};
 inline constexpr EnumNames<AmgPackage, 2> kAmgPackageNames{{{{AmgPackage::gamg, "gamg"}, {AmgPackage::hypre, "hypre"}}}};
+inline constexpr EnumNames<AmgReuse, 4> kAmgReuseNames{{{{AmgReuse::automatic, "auto"},
+                                                        {AmgReuse::preconditioner, "preconditioner"},
+                                                        {AmgReuse::interpolation, "interpolation"},
+                                                        {AmgReuse::none, "none"}}}};
 inline constexpr EnumNames<ForcingTerm, 2> kForcingTermNames{
     {{{ForcingTerm::fixed, "fixed"}, {ForcingTerm::eisenstat_walker, "eisenstat-walker"}}}};
 constexpr std::string_view to_string(LinearSolverKind k) { return kLinearSolverNames.name(k); }
@@ -49,6 +62,7 @@ struct SolverOptions {
   int max_increment_splits = 4;
   LinearSolverKind linear = LinearSolverKind::jacobi_pcg;
   AmgPackage amg = AmgPackage::gamg;
+  AmgReuse amg_reuse = AmgReuse::automatic;
   ForcingTerm forcing = ForcingTerm::fixed;
 };
 
