@@ -174,7 +174,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
                                                       deform::to_string(c.solver.linear), job.count));
   }
   // The threads before the mesh, while memory is plentiful (hotmesh/mesh/parallel_loops.hpp).
-  const int threads = options.threads >= 0 ? options.threads : c.solver.threads;
+  const int threads = options.threads >= 0 ? options.threads : c.threads;
   state.phase = fmt::format("starting {}", counted(threads > 0 ? threads : omp_get_max_threads(), "thread"));
   mesh::start_threads(threads);
   // Every file the case names is checked before any work: the CAD file too, whether or not a
