@@ -1,7 +1,5 @@
 #include "deform_checkpoint.hpp"
 
-#include <signal.h>
-
 #include <chrono>
 #include <system_error>
 
@@ -12,8 +10,8 @@
 namespace hotmesh::app {
 
 CheckpointWriter::CheckpointWriter(std::filesystem::path path, const io::Case& c, const mesh::Mesh& mesh,
-                                   std::vector<io::InputFingerprint> inputs, int kill_after_increment)
-    : path_(std::move(path)), origin_(io::checkpoint_origin(c, mesh, std::move(inputs))), kill_after_(kill_after_increment) {}
+                                   std::vector<io::InputFingerprint> inputs)
+    : path_(std::move(path)), origin_(io::checkpoint_origin(c, mesh, std::move(inputs))) {}
 
 void CheckpointWriter::write(const deform::MotionCheckpoint& state) {
   const auto start = std::chrono::steady_clock::now();
@@ -25,11 +23,6 @@ void CheckpointWriter::write(const deform::MotionCheckpoint& state) {
   ++written_;
   spdlog::debug("checkpoint at stage {:.4f} ({} of {} increments done): {:.1f} MB written in {:.2f} s", state.lambda,
                 state.finished_increments, state.increments, static_cast<double>(bytes_) / 1e6, seconds);
-  if (kill_after_ > 0 && state.finished_increments >= kill_after_) {
-    spdlog::warn("--stop-after-increment {}: killing this process (testing hook)", kill_after_);
-    spdlog::default_logger()->flush();
-    ::raise(SIGKILL);
-  }
 }
 
 void CheckpointWriter::remove() {

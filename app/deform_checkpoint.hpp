@@ -21,10 +21,8 @@ namespace hotmesh::app {
 /// Writes the checkpoints of one run.
 class CheckpointWriter {
  public:
-  /// `kill_after_increment` > 0 is a testing hook (hidden option --stop-after-increment): the
-  /// process kills itself with SIGKILL once the checkpoint of that increment is written.
   CheckpointWriter(std::filesystem::path path, const io::Case& c, const mesh::Mesh& mesh,
-                   std::vector<io::InputFingerprint> inputs, int kill_after_increment);
+                   std::vector<io::InputFingerprint> inputs);
 
   /// The checkpoint observer of deform::move_mesh.
   void write(const deform::MotionCheckpoint& state);
@@ -39,7 +37,6 @@ class CheckpointWriter {
  private:
   std::filesystem::path path_;
   io::CheckpointOrigin origin_;
-  int kill_after_ = 0;
   int written_ = 0;
   double seconds_ = 0.0;
   std::uint64_t bytes_ = 0;

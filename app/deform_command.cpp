@@ -51,8 +51,6 @@ struct Options {
   bool binary = false;
   bool resume = false;
   bool progress = false;
-  int stop_after_increment = 0;         ///< testing hook: SIGKILL after this increment's checkpoint
-  int fail_allocation_in_increment = 0;  ///< testing hook: std::bad_alloc during this increment
 };
 
 /// Where the run is, for the message if memory runs out (kept outside the run, which the
@@ -176,7 +174,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
                                                       deform::to_string(c.solver.linear), job.count));
   }
   // The threads before the mesh, while memory is plentiful (hotmesh/mesh/parallel_loops.hpp).
-  const int threads = options.threads >= 0 ? options.threads : c.solver.threads;
+  const int threads = options.threads >= 0 ? options.threads : c.threads;
   state.phase = fmt::format("starting {}", counted(threads > 0 ? threads : omp_get_max_threads(), "thread"));
   mesh::start_threads(threads);
   // Every file the case names is checked before any work: the CAD file too, whether or not a
@@ -227,8 +225,6 @@ deform::MotionResult move_the_mesh(const Options& options, RunState& state, cons
   observers.increment = [increments](const deform::IncrementRecord& r) { log_increment(r, increments); };
   observers.newton = [&](const deform::NewtonProgress& p) {
     state.phase = fmt::format("moving the mesh (increment {} of {})", p.step.increment, increments);
-    // Testing hook: under mpirun only the last rank fails, as one rank of a job runs out first.
-    if (p.step.increment == options.fail_allocation_in_increment && job.rank == job.count - 1) throw std::bad_alloc();
     log_newton_step(p, newton_level, sliding, seconds_since(start));
   };
   observers.checkpoint = [&](const deform::MotionCheckpoint& k) {
@@ -297,8 +293,7 @@ int run_deform(const Options& options, RunState& state) {
   }
   timings.shapes = seconds_since(t);
 
-  CheckpointWriter checkpoints(in.output / io::kCheckpointName, in.c, in.loaded.mesh, std::move(in.fingerprints),
-                               options.stop_after_increment);
+  CheckpointWriter checkpoints(in.output / io::kCheckpointName, in.c, in.loaded.mesh, std::move(in.fingerprints));
   state.checkpoint = checkpoints.path();
   if (in.resumed) state.checkpoint_increments = in.resumed->info.finished_increments;
   const deform::MotionResult result = move_the_mesh(options, state, in, setup, checkpoints, start);
@@ -331,11 +326,6 @@ Command add_deform_command(CLI::App& parent) {
                 "Continue an interrupted run from the checkpoint in its output folder (same case and inputs)");
   cmd->add_flag("--progress", options->progress,
                 "Log every Newton step (the default for meshes of 100 000 cells or more; -v shows them too)");
-  // Testing hooks, not shown in --help (docs/case-file.md, "Long runs").
-  cmd->add_option("--stop-after-increment", options->stop_after_increment)->group("")->check(CLI::PositiveNumber);
-  cmd->add_option("--fail-allocation-in-increment", options->fail_allocation_in_increment)
-      ->group("")
-      ->check(CLI::PositiveNumber);
   return [options] {
     RunState state;
     const parallel::Processes job = parallel::start_processes();  // mpirun: MPI, this process's rank

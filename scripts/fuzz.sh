@@ -72,11 +72,12 @@ main() {
   export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
 
   # A restart file and a checkpoint of the ramp2d sample, made again whenever hotmesh or the
-  # sample changed. The checkpoint, of the sample's own case killed after its first increment,
-  # names the case's files and their hashes (so it belongs to this checkout, as fuzz_checkpoint
-  # checks); the restart file comes from a whole run of two increments on the sample's mesh and
-  # patches, with a small bump for the bottom wall to slide over (the sample's ramp takes a
-  # minute under the sanitizers).
+  # sample changed. The checkpoint, of the sample's own case killed with SIGKILL right after
+  # its first checkpoint by the tests' fault library (tests/support/fault_library.cpp, built
+  # here: this build has no tests), names the case's files and their hashes (so it belongs to
+  # this checkout, as fuzz_checkpoint checks); the restart file comes from a whole run of two
+  # increments on the sample's mesh and patches, with a small bump for the bottom wall to slide
+  # over (the sample's ramp takes a minute under the sanitizers).
   state_runs=$out/state-runs
   ramp2d=$(pwd)/samples/ramp2d
   newest_input=$(ls -t "$hotmesh" "$ramp2d"/ramp2d-sliding.yaml "$ramp2d"/ramp2d.msh "$ramp2d"/ramp.csv |
@@ -90,8 +91,9 @@ main() {
         -e "s|increments: 16|increments: 2|" \
         -e '/^pictures:/,$d' "$ramp2d/ramp2d-sliding.yaml" > "$state_runs/bump.yaml"
     ASAN_OPTIONS=detect_leaks=0 "$hotmesh" -q deform "$state_runs/bump.yaml" -o "$state_runs/restart"
-    { ASAN_OPTIONS=detect_leaks=0 "$hotmesh" -q deform "$ramp2d/ramp2d-sliding.yaml" \
-        -o "$state_runs/checkpoint" --stop-after-increment 1 || true; } 2>/dev/null  # killed after increment 1
+    clang++ -std=c++20 -O2 -shared -fPIC tests/support/fault_library.cpp -o "$state_runs/libhotmesh_faults.so" -ldl
+    { ASAN_OPTIONS=detect_leaks=0 LD_PRELOAD="$state_runs/libhotmesh_faults.so" HOTMESH_TEST_KILL_AFTER_CHECKPOINT=1 \
+        "$hotmesh" -q deform "$ramp2d/ramp2d-sliding.yaml" -o "$state_runs/checkpoint" || true; } 2>/dev/null
     [[ -f $state_runs/checkpoint/checkpoint.hmc ]] || { echo "hotmesh: no checkpoint.hmc was written" >&2; exit 1; }
   fi
 

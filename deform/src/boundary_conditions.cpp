@@ -65,11 +65,11 @@ SlipPlane slip_plane(const Mesh& mesh, const Patch& patch) {
   return {origin, normal / norm(normal)};
 }
 
-/// Parameters of `nodes` on the undeformed shape (stage 0); throws if any is farther than the
-/// tolerance, listing them.
+/// Parameters of `nodes` on the undeformed shape (stage 0); throws if any is farther from it
+/// than 1e-3 times the diagonal of the patch's bounding box, listing them.
 std::vector<double> locate(const Mesh& mesh, std::span<const Vec3> points, const Patch& patch, const PatchMotion& m,
                            std::span<const NodeId> nodes) {
-  const double tolerance = m.tolerance > 0.0 ? m.tolerance : 1e-3 * bounding_diagonal(mesh.points, patch.nodes);
+  const double tolerance = 1e-3 * bounding_diagonal(mesh.points, patch.nodes);
   std::vector<geometry::ShapePoint> found(nodes.size());
   mesh::LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
 #pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(nodes.size()) >= mesh::kParallelProjections)

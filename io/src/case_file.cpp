@@ -209,7 +209,7 @@ class CaseParser {
     integer("max_newton_iterations", s.max_newton_iterations, 1);
     fraction("pcg_tolerance", s.pcg_tolerance);
     integer("max_pcg_iterations", s.max_pcg_iterations, 1);
-    integer("threads", s.threads, 0);
+    integer("threads", c_.threads, 0);
     if (const Entry* x = m.find("max_increment_splits")) {
       s.max_increment_splits = reader_.integer_in(*x, 0, kMaxIncrementSplits).value_or(s.max_increment_splits);
     }

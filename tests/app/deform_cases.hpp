@@ -11,6 +11,7 @@
 
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/gmsh.hpp"
+#include "faults.hpp"
 #include "output_folders.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -20,6 +21,10 @@ namespace hotmesh::test {
 inline const std::filesystem::path kSample = std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "ramp2d";
 
 inline CommandResult hotmesh(const std::string& arguments) { return run_command(std::string(HOTMESH_EXE) + " " + arguments); }
+/// `hotmesh arguments` with `faults` injected (faults.hpp).
+inline CommandResult hotmesh(const std::string& arguments, const Faults& faults) {
+  return run_command(fault_variables(faults) + HOTMESH_EXE + " " + arguments);
+}
 
 /// A copy of the ramp sample in a temporary folder, with its case file replaced by `yaml`.
 struct RampCase {

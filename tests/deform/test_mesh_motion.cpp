@@ -26,7 +26,7 @@ using test::AffineShape;
 
 std::vector<PatchMotion> all_patches(const Mesh& mesh, BoundaryRole role, std::shared_ptr<const geometry::BoundaryShape> shape = {}) {
   std::vector<PatchMotion> motions;
-  for (const Patch& p : mesh.patches) motions.push_back({p.name, role, shape, 0.0});
+  for (const Patch& p : mesh.patches) motions.push_back({p.name, role, shape});
   return motions;
 }
 
@@ -64,10 +64,10 @@ std::vector<PatchMotion> rotating_inner_square(const Mesh& mesh, double inner) {
   const std::vector<Vec3> square{{inner, -inner, 0}, {inner, inner, 0}, {-inner, inner, 0}, {-inner, -inner, 0},
                                  {inner, -inner, 0}};
   auto shape = std::make_shared<test::TestCurveShape>(square, test::rotation(std::numbers::pi / 4));
-  std::vector<PatchMotion> motions{{"inner", BoundaryRole::prescribed, shape, 0.0}, {"outer", BoundaryRole::fixed, nullptr, 0.0}};
+  std::vector<PatchMotion> motions{{"inner", BoundaryRole::prescribed, shape}, {"outer", BoundaryRole::fixed, nullptr}};
   if (mesh.dimension == 3) {
-    motions.push_back({"zmin", BoundaryRole::slip, nullptr, 0.0});
-    motions.push_back({"zmax", BoundaryRole::slip, nullptr, 0.0});
+    motions.push_back({"zmin", BoundaryRole::slip, nullptr});
+    motions.push_back({"zmax", BoundaryRole::slip, nullptr});
   }
   return motions;
 }
@@ -129,10 +129,10 @@ TEST(MeshMotion, PaperRampWithoutSlidingCompletesWithoutInvertedCells) {
   auto bottom = std::make_shared<test::TestCurveShape>(
       std::vector<Vec3>{{0, 0, 0}, {Ramp::a, 0, 0}, {Ramp::b, 0, 0}, {2, 0, 0}},
       [](const Vec3& p, double lambda) { return p + Vec3{0.0, lambda * Ramp::lift(p.x), 0.0}; });
-  const std::vector<PatchMotion> motions{{"left", BoundaryRole::fixed, nullptr, 0.0},
-                                         {"right", BoundaryRole::slip, nullptr, 0.0},
-                                         {"bottom", BoundaryRole::prescribed, bottom, 0.0},
-                                         {"top", BoundaryRole::fixed, nullptr, 0.0}};
+  const std::vector<PatchMotion> motions{{"left", BoundaryRole::fixed, nullptr},
+                                         {"right", BoundaryRole::slip, nullptr},
+                                         {"bottom", BoundaryRole::prescribed, bottom},
+                                         {"top", BoundaryRole::fixed, nullptr}};
   const MotionResult r = move_mesh(mesh, motions, {}, {});
   ASSERT_TRUE(r.success) << r.message;
   EXPECT_EQ(r.summary.inverted_cells, 0u);
@@ -301,10 +301,10 @@ TEST(MeshMotion, ImpossibleMotionStopsWithLastValidMeshNamingCellAndIncrement) {
   const Mesh mesh = test::unit_square(6, 6);
   auto top = std::make_shared<test::TestCurveShape>(std::vector<Vec3>{{0, 1, 0}, {1, 1, 0}},
                                                     [](const Vec3& p, double lambda) { return p - Vec3{0, 1.5 * lambda, 0}; });
-  const std::vector<PatchMotion> motions{{"xmin", BoundaryRole::slip, nullptr, 0.0},
-                                         {"xmax", BoundaryRole::slip, nullptr, 0.0},
-                                         {"ymin", BoundaryRole::fixed, nullptr, 0.0},
-                                         {"ymax", BoundaryRole::prescribed, top, 0.0}};
+  const std::vector<PatchMotion> motions{{"xmin", BoundaryRole::slip, nullptr},
+                                         {"xmax", BoundaryRole::slip, nullptr},
+                                         {"ymin", BoundaryRole::fixed, nullptr},
+                                         {"ymax", BoundaryRole::prescribed, top}};
   SolverOptions options;
   options.increments = 4;
   options.max_increment_splits = 2;
@@ -333,8 +333,8 @@ MotionResult rotate_ring_at_scale(double scale) {
   auto shape = std::make_shared<test::TestCurveShape>(square, test::rotation(std::numbers::pi / 8));
   SolverOptions options;
   options.increments = 4;
-  const std::vector<PatchMotion> motions{{"inner", BoundaryRole::prescribed, shape, 0.0},
-                                         {"outer", BoundaryRole::fixed, nullptr, 0.0}};
+  const std::vector<PatchMotion> motions{{"inner", BoundaryRole::prescribed, shape},
+                                         {"outer", BoundaryRole::fixed, nullptr}};
   return move_mesh(mesh, motions, {}, options);
 }
 
@@ -384,7 +384,7 @@ TEST(MeshMotion, SetUpErrorsAreInputErrors) {
 TEST(MeshMotion, SlipOnCurvedPatchIsRefused) {
   Mesh mesh = test::square_ring(4, 3, 0.3, 1.0);
   for (NodeId n : mesh.find_patch("outer")->nodes) mesh.points[static_cast<std::size_t>(n)] *= 1.0;
-  std::vector<PatchMotion> motions{{"inner", BoundaryRole::fixed, nullptr, 0.0}, {"outer", BoundaryRole::slip, nullptr, 0.0}};
+  std::vector<PatchMotion> motions{{"inner", BoundaryRole::fixed, nullptr}, {"outer", BoundaryRole::slip, nullptr}};
   try {
     move_mesh(mesh, motions, {}, {});
     FAIL();

@@ -69,17 +69,17 @@ Mesh ramp_mesh(int layers = 0, bool coarse = false) {
 }
 
 std::vector<PatchMotion> ramp_motions(bool sliding, Ramp ramp, bool extruded = false) {
-  std::vector<PatchMotion> m{{"left", BoundaryRole::fixed, nullptr, 0.0}, {"right", BoundaryRole::slip, nullptr, 0.0}};
+  std::vector<PatchMotion> m{{"left", BoundaryRole::fixed, nullptr}, {"right", BoundaryRole::slip, nullptr}};
   if (sliding) {
-    m.push_back({"bottom", BoundaryRole::sliding, ramp_wall(ramp), 0.0});
-    m.push_back({"top", BoundaryRole::sliding, still_wall(1.0), 0.0});
+    m.push_back({"bottom", BoundaryRole::sliding, ramp_wall(ramp)});
+    m.push_back({"top", BoundaryRole::sliding, still_wall(1.0)});
   } else {
-    m.push_back({"bottom", BoundaryRole::prescribed, ramp_wall(ramp), 0.0});
-    m.push_back({"top", BoundaryRole::fixed, nullptr, 0.0});
+    m.push_back({"bottom", BoundaryRole::prescribed, ramp_wall(ramp)});
+    m.push_back({"top", BoundaryRole::fixed, nullptr});
   }
   if (extruded) {
-    m.push_back({"zmin", BoundaryRole::slip, nullptr, 0.0});
-    m.push_back({"zmax", BoundaryRole::slip, nullptr, 0.0});
+    m.push_back({"zmin", BoundaryRole::slip, nullptr});
+    m.push_back({"zmax", BoundaryRole::slip, nullptr});
   }
   return m;
 }
@@ -300,10 +300,10 @@ TEST(Sliding, NodeOnTwoSlidingWallsStaysOnBoth) {
                                                        [](const Vec3& p, double l) { return p + Vec3{0, 0.1 * l * p.x, 0}; });
   auto right = std::make_shared<test::TestCurveShape>(std::vector<Vec3>{{1, 0, 0}, {1, 1, 0}},
                                                       [](const Vec3& p, double l) { return p + l * Vec3{0.05 * p.y, 0.1, 0}; });
-  const std::vector<PatchMotion> motions{{"xmin", BoundaryRole::fixed, nullptr, 0.0},
-                                         {"xmax", BoundaryRole::sliding, right, 0.0},
-                                         {"ymin", BoundaryRole::sliding, bottom, 0.0},
-                                         {"ymax", BoundaryRole::fixed, nullptr, 0.0}};
+  const std::vector<PatchMotion> motions{{"xmin", BoundaryRole::fixed, nullptr},
+                                         {"xmax", BoundaryRole::sliding, right},
+                                         {"ymin", BoundaryRole::sliding, bottom},
+                                         {"ymax", BoundaryRole::fixed, nullptr}};
   const MotionResult r = move_mesh(mesh, motions, {}, {});
   ASSERT_TRUE(r.success) << r.message;
   const Vec3 corner = r.points[6];  // (1, 0)

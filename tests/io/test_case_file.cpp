@@ -112,7 +112,7 @@ TEST_F(CaseFile, ParsesFullExample) {
   EXPECT_EQ(c.solver.max_newton_iterations, 20);
   EXPECT_EQ(c.solver.pcg_tolerance, 1e-2);
   EXPECT_EQ(c.solver.max_pcg_iterations, 1000);
-  EXPECT_EQ(c.solver.threads, 2);
+  EXPECT_EQ(c.threads, 2);
   EXPECT_EQ(c.material.alpha_s, 2.0);
   EXPECT_EQ(c.material.alpha_v, 0.1);
   EXPECT_EQ(c.patches_line, 9u);
@@ -169,7 +169,7 @@ TEST_F(CaseFile, AppliesDefaults) {
   EXPECT_EQ(c.solver.max_newton_iterations, solver.max_newton_iterations);
   EXPECT_EQ(c.solver.pcg_tolerance, solver.pcg_tolerance);
   EXPECT_EQ(c.solver.max_pcg_iterations, solver.max_pcg_iterations);
-  EXPECT_EQ(c.solver.threads, solver.threads);
+  EXPECT_EQ(c.threads, 0);  // all cores
   EXPECT_EQ(c.material.alpha_s, material.alpha_s);
   EXPECT_EQ(c.material.alpha_v, material.alpha_v);
   EXPECT_EQ(c.material.law, material.law);

@@ -44,9 +44,6 @@ struct PatchMotion {
   BoundaryRole role = BoundaryRole::fixed;
   /// prescribed: the boundary's undeformed and deflected shape (required).
   std::shared_ptr<const geometry::BoundaryShape> shape;
-  /// Largest distance allowed between a patch node and the undeformed shape; 0 means
-  /// 1e-3 times the diagonal of the patch's bounding box.
-  double tolerance = 0.0;
   /// periodic, on the side that declares the pair: the partner patch, and the rotation (about
   /// `axis`, radians, right-handed) that carries this patch onto it. Empty partner on the
   /// other side.

@@ -56,7 +56,6 @@ struct SolverOptions {
   int max_newton_iterations = 30;
   double pcg_tolerance = 1e-3;      ///< relative residual of each inner linear solve
   int max_pcg_iterations = 5000;
-  int threads = 0;                  ///< OpenMP threads; 0: all available cores
   /// An increment that inverts a cell or whose Newton iteration fails is retried as two
   /// half increments, recursively, at most this many times in a row (0: never).
   int max_increment_splits = 4;

@@ -69,6 +69,9 @@ struct Case {
   std::filesystem::path output;              ///< default: <case name>-out beside the case file
   std::optional<geometry::Axis> axis;
   deform::SolverOptions solver;
+  /// OpenMP threads of the run, 0: all cores. The case file sets it among the solver's options
+  /// (solver.threads); it is the process's, which starts its threads before reading the mesh.
+  int threads = 0;
   deform::MaterialOptions material;
   std::vector<PatchSpec> patches;            ///< in the order of the case file
   std::size_t patches_line = 0;              ///< line of the `patches:` key
