@@ -1,6 +1,11 @@
 // hotmesh geometry: closest points on the stages of a deflected curve (section 4.2): a sampled
 // box tree for a global start, safeguarded Newton on the squared distance with de Boor
 // evaluation for the local solve.
+// Why not CGAL's AABB tree: its primitives are fixed segments, one geometry per tree. Here one
+// tree serves every stage lambda of the motion, its boxes holding the sample segments of r and
+// c_1 and so of every c_lambda between them (affine in lambda); with CGAL each increment would
+// build a tree of its own. And a query here wants every run of segments within twice the
+// sampling deviation of the nearest, to start Newton from each, not the one closest point.
 #include "hotmesh/geometry/curve_projector.hpp"
 
 #include <algorithm>
