@@ -27,7 +27,6 @@ constexpr int kMaxNewtonIterations = 60;
 constexpr double kLocalStep = 1e-7;
 /// After an accepted step shorter than this (relative to the scale) Newton stops.
 constexpr double kFinalStep = 1e-9;
-constexpr int kMaxRuns = 16;
 constexpr int kMaxSplitDepth = 24;
 
 double squared(const Vec2& v) { return dot(v, v); }
@@ -269,20 +268,20 @@ CurveProjection CurveProjector::finish(const Vec2& p, double lambda, const Local
   return result;
 }
 
-CurveProjection CurveProjector::global_search(const Vec2& p, double lambda) const {
-  const std::size_t segments = samples_.size() - 1;
-  const auto segment_distance = [&](std::size_t i, double& t) {
-    const Vec2 a = samples_[i].r + lambda * (samples_[i].c - samples_[i].r);
-    const Vec2 b = samples_[i + 1].r + lambda * (samples_[i + 1].c - samples_[i + 1].r);
-    const Vec2 ab = b - a;
-    const double length2 = squared(ab);
-    const double u = length2 > 0.0 ? std::clamp(dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
-    t = samples_[i].t + u * (samples_[i + 1].t - samples_[i].t);
-    return squared(a + u * ab - p);
-  };
-  const auto box_distance = [&](std::size_t node) { return box_squared_distance(tree_[node].lo, tree_[node].hi, p); };
+double CurveProjector::segment_squared_distance(std::size_t i, const Vec2& p, double lambda, double& t) const {
+  const Vec2 a = samples_[i].r + lambda * (samples_[i].c - samples_[i].r);
+  const Vec2 b = samples_[i + 1].r + lambda * (samples_[i + 1].c - samples_[i + 1].r);
+  const Vec2 ab = b - a;
+  const double length2 = squared(ab);
+  const double u = length2 > 0.0 ? std::clamp(dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+  t = samples_[i].t + u * (samples_[i + 1].t - samples_[i].t);
+  return squared(a + u * ab - p);
+}
 
-  // 1. Distance to the nearest segment of the sample polyline (branch and bound).
+// 1. Distance to the nearest segment of the sample polyline (branch and bound).
+double CurveProjector::nearest_segment_squared_distance(const Vec2& p, double lambda) const {
+  const std::size_t segments = samples_.size() - 1;
+  const auto box_distance = [&](std::size_t node) { return box_squared_distance(tree_[node].lo, tree_[node].hi, p); };
   std::size_t stack[128];
   std::size_t top = 0;
   double best = kInfinity;
@@ -292,32 +291,27 @@ CurveProjection CurveProjector::global_search(const Vec2& p, double lambda) cons
     if (box_distance(node) >= best) continue;
     if (node >= leaves_) {
       double t = 0.0;
-      if (node - leaves_ < segments) best = std::min(best, segment_distance(node - leaves_, t));
+      if (node - leaves_ < segments) best = std::min(best, segment_squared_distance(node - leaves_, p, lambda, t));
       continue;
     }
     const std::size_t near = box_distance(2 * node) <= box_distance(2 * node + 1) ? 2 * node : 2 * node + 1;
     stack[top++] = near ^ 1u;  // the sibling: visited after the nearer child
     stack[top++] = near;
   }
+  return best;
+}
 
-  // 2. Runs of consecutive segments within twice the sampling deviation of that distance: the
-  //    curve's closest point lies next to one of them.
-  struct Run {
-    std::size_t last;
-    double squared_distance;
-    double t;
-    std::size_t segment;
-  };
-  Run runs[kMaxRuns];
+// 2. Runs of consecutive segments within the threshold, in increasing order of segments.
+int CurveProjector::runs_within(const Vec2& p, double lambda, double threshold, Run (&runs)[kMaxRuns]) const {
+  const std::size_t segments = samples_.size() - 1;
   int run_count = 0;
   int current = -1;
-  const double reach = std::sqrt(best) + 2.0 * deviation_;
-  const double threshold = reach * reach;
-  top = 0;
+  std::size_t stack[128];
+  std::size_t top = 0;
   stack[top++] = 1;
   while (top > 0) {
     const std::size_t node = stack[--top];
-    if (box_distance(node) > threshold) continue;
+    if (box_squared_distance(tree_[node].lo, tree_[node].hi, p) > threshold) continue;
     if (node < leaves_) {
       stack[top++] = 2 * node + 1;  // left child first: segments in increasing order
       stack[top++] = 2 * node;
@@ -326,7 +320,7 @@ CurveProjection CurveProjector::global_search(const Vec2& p, double lambda) cons
     const std::size_t segment = node - leaves_;
     double t = 0.0;
     if (segment >= segments) continue;
-    const double d = segment_distance(segment, t);
+    const double d = segment_squared_distance(segment, p, lambda, t);
     if (d > threshold) continue;
     if (current >= 0 && runs[current].last + 1 == segment) {
       Run& run = runs[current];
@@ -336,7 +330,7 @@ CurveProjection CurveProjector::global_search(const Vec2& p, double lambda) cons
     }
     if (run_count < kMaxRuns) {
       current = run_count++;
-    } else {
+    } else {  // full: the new run replaces the farthest, if it is nearer
       current = static_cast<int>(std::max_element(runs, runs + kMaxRuns,
                                                   [](const Run& a, const Run& b) {
                                                     return a.squared_distance < b.squared_distance;
@@ -349,7 +343,16 @@ CurveProjection CurveProjector::global_search(const Vec2& p, double lambda) cons
     }
     runs[current] = {segment, d, t, segment};
   }
+  return run_count;
+}
 
+CurveProjection CurveProjector::global_search(const Vec2& p, double lambda) const {
+  const double best = nearest_segment_squared_distance(p, lambda);
+  // The curve's closest point lies next to a run of segments within twice the sampling
+  // deviation of the nearest segment's distance.
+  const double reach = std::sqrt(best) + 2.0 * deviation_;
+  Run runs[kMaxRuns];
+  const int run_count = runs_within(p, lambda, reach * reach, runs);
   // 3. Newton from the best point of each run; the closest result wins.
   Local winner{};
   winner.squared_distance = kInfinity;

@@ -71,10 +71,25 @@ class CurveProjector {
     bool converged;
   };
 
+  /// Consecutive polyline segments near a query point, with the nearest point among them.
+  struct Run {
+    std::size_t last;         // its last segment
+    double squared_distance;  // of the nearest point
+    double t;                 // the nearest point's parameter
+    std::size_t segment;      // the nearest point's segment
+  };
+  static constexpr int kMaxRuns = 16;  // the nearest runs kept by a global search
+
   void sample_pieces();
   void build_tree();
   Local newton(const Vec2& p, double lambda, double t, std::size_t piece) const;
   CurveProjection global_search(const Vec2& p, double lambda) const;
+  /// Squared distance from p to segment i of the sample polyline of c_lambda; t its parameter.
+  double segment_squared_distance(std::size_t i, const Vec2& p, double lambda, double& t) const;
+  double nearest_segment_squared_distance(const Vec2& p, double lambda) const;
+  /// The runs of segments within squared distance `threshold` of p (at most kMaxRuns, the
+  /// nearest), into `runs`; returns their count.
+  int runs_within(const Vec2& p, double lambda, double threshold, Run (&runs)[kMaxRuns]) const;
   CurveProjection finish(const Vec2& p, double lambda, const Local& local) const;
 
   DeflectedCurve curve_;
