@@ -171,10 +171,83 @@ void read_nodes_v4(Scanner& s, MeshBuilder& b) {
   s.expect_end("Nodes");
 }
 
+namespace {
+
+/// The header of a block of $Elements: the entity its elements belong to and their type.
+struct ElementBlock {
+  std::size_t at = 0;  ///< where the header starts, for messages
+  int dimension = 0, entity = 0, gmsh_type = 0;
+  std::size_t count = 0;
+};
+
+ElementBlock read_element_block_header(Scanner& s) {
+  ElementBlock block;
+  block.at = s.position();
+  if (s.binary()) {
+    block.dimension = binary_int(s, "entity dimension", 0, 3);
+    block.entity = binary_int(s, "entity tag", kMinInt, kMaxInt);
+    block.gmsh_type = binary_int(s, "element type", kMinInt, kMaxInt);
+    block.count = binary_count(s, "number of elements in the block", 16);
+  } else {
+    s.skip_blank();
+    block.dimension = s.small_integer("entity dimension", 0, 3);
+    block.entity = s.small_integer("entity tag", kMinInt, kMaxInt);
+    block.gmsh_type = s.small_integer("element type", kMinInt, kMaxInt);
+    block.count = s.count("number of elements in the block", 4);
+    s.end_line("the element block header");
+  }
+  return block;
+}
+
+/// The physical groups of the block's entity (0 without $Entities).
+std::uint32_t entity_set(Scanner& s, const ElementBlock& block, const EntityGroups* entities) {
+  if (entities == nullptr) return 0;
+  const auto it = entities->find(entity_key(block.dimension, block.entity));
+  if (it == entities->end()) {
+    s.fail_at(block.at, "element block on entity " + std::to_string(block.entity) + " of dimension " +
+                            std::to_string(block.dimension) + ", which $Entities does not define");
+  }
+  return it->second;
+}
+
+/// The block's elements, each with `needed` nodes; added to `b` when they have a `type` (not
+/// points).
+void read_block_elements(Scanner& s, MeshBuilder& b, const ElementBlock& block, std::optional<mesh::ElementType> type,
+                         std::size_t needed, std::uint32_t set) {
+  std::array<mesh::NodeId, mesh::kMaxElementNodes> nodes{};
+  std::array<std::uint64_t, 1 + mesh::kMaxElementNodes> record{};
+  if (s.binary()) s.checked_count(block.count, 8 * (1 + needed), block.at, "number of elements in the block");
+  for (std::size_t j = 0; j < block.count; ++j) {
+    std::size_t element_at = 0;
+    std::int64_t tag = 0;
+    if (s.binary()) {
+      element_at = s.position();
+      s.binary_values(record.data(), 1 + needed, "element");
+      for (std::size_t k = 0; k <= needed; ++k) {
+        if (record[k] > kMaxTag) s.fail_at(element_at, "element or node tag out of range");
+      }
+      tag = static_cast<std::int64_t>(record[0]);
+      for (std::size_t k = 0; k < needed; ++k) nodes[k] = b.node(static_cast<std::int64_t>(record[k + 1]), element_at);
+    } else {
+      s.skip_blank();
+      element_at = s.position();
+      tag = s.integer("element tag");
+      for (std::size_t k = 0; k < needed; ++k) {
+        if (!s.more_on_line()) wrong_node_count(s, element_at, tag, block.gmsh_type, k, needed);
+        nodes[k] = b.node(s.integer("node tag"), element_at);
+      }
+      if (s.more_on_line()) wrong_node_count(s, element_at, tag, block.gmsh_type, needed + 1, needed);
+      s.end_line("the element");
+    }
+    if (type) b.add_element(*type, tag, std::span(nodes.data(), needed), set, element_at);
+  }
+}
+
+}  // namespace
+
 void read_elements_v4(Scanner& s, MeshBuilder& b, const EntityGroups* entities) {
-  const bool binary = s.binary();
   std::size_t blocks = 0, total = 0;
-  if (binary) {
+  if (s.binary()) {
     blocks = binary_count(s, "number of element blocks", 20);
     total = binary_count(s, "number of elements", 16);
     binary_tag(s, "smallest element tag");
@@ -187,68 +260,19 @@ void read_elements_v4(Scanner& s, MeshBuilder& b, const EntityGroups* entities) 
     s.end_line("the element counts");
   }
   std::size_t done = 0;
-  std::array<mesh::NodeId, mesh::kMaxElementNodes> nodes{};
-  std::array<std::uint64_t, 1 + mesh::kMaxElementNodes> record{};
-  for (std::size_t block = 0; block < blocks; ++block) {
-    const std::size_t at = s.position();
-    int dimension = 0, entity = 0, gmsh_type = 0;
-    std::size_t n = 0;
-    if (binary) {
-      dimension = binary_int(s, "entity dimension", 0, 3);
-      entity = binary_int(s, "entity tag", kMinInt, kMaxInt);
-      gmsh_type = binary_int(s, "element type", kMinInt, kMaxInt);
-      n = binary_count(s, "number of elements in the block", 16);
-    } else {
-      s.skip_blank();
-      dimension = s.small_integer("entity dimension", 0, 3);
-      entity = s.small_integer("entity tag", kMinInt, kMaxInt);
-      gmsh_type = s.small_integer("element type", kMinInt, kMaxInt);
-      n = s.count("number of elements in the block", 4);
-      s.end_line("the element block header");
+  for (std::size_t i = 0; i < blocks; ++i) {
+    const ElementBlock block = read_element_block_header(s);
+    if (block.count > total - done) {
+      s.fail_at(block.at, "element block of " + std::to_string(block.count) +
+                              " elements, but the section header announces " + std::to_string(total) +
+                              " elements in all and " + std::to_string(done) + " came before");
     }
-    if (n > total - done) {
-      s.fail_at(at, "element block of " + std::to_string(n) + " elements, but the section header announces " +
-                        std::to_string(total) + " elements in all and " + std::to_string(done) + " came before");
-    }
-    const auto type = element_type(gmsh_type);
-    if (!type && gmsh_type != kPointType) s.fail_at(at, unsupported_type_message(gmsh_type));
+    const auto type = element_type(block.gmsh_type);
+    if (!type && block.gmsh_type != kPointType) s.fail_at(block.at, unsupported_type_message(block.gmsh_type));
     const std::size_t needed = type ? static_cast<std::size_t>(mesh::node_count(*type)) : 1;
-    std::uint32_t set = 0;
-    if (entities != nullptr && type) {
-      const auto it = entities->find(entity_key(dimension, entity));
-      if (it == entities->end()) {
-        s.fail_at(at, "element block on entity " + std::to_string(entity) + " of dimension " +
-                          std::to_string(dimension) + ", which $Entities does not define");
-      }
-      set = it->second;
-    }
-    if (binary) s.checked_count(n, 8 * (1 + needed), at, "number of elements in the block");
-    for (std::size_t j = 0; j < n; ++j) {
-      std::size_t element_at = 0;
-      std::int64_t tag = 0;
-      if (binary) {
-        element_at = s.position();
-        s.binary_values(record.data(), 1 + needed, "element");
-        for (std::size_t k = 0; k <= needed; ++k) {
-          if (record[k] > kMaxTag) s.fail_at(element_at, "element or node tag out of range");
-        }
-        tag = static_cast<std::int64_t>(record[0]);
-        for (std::size_t k = 0; k < needed; ++k)
-          nodes[k] = b.node(static_cast<std::int64_t>(record[k + 1]), element_at);
-      } else {
-        s.skip_blank();
-        element_at = s.position();
-        tag = s.integer("element tag");
-        for (std::size_t k = 0; k < needed; ++k) {
-          if (!s.more_on_line()) wrong_node_count(s, element_at, tag, gmsh_type, k, needed);
-          nodes[k] = b.node(s.integer("node tag"), element_at);
-        }
-        if (s.more_on_line()) wrong_node_count(s, element_at, tag, gmsh_type, needed + 1, needed);
-        s.end_line("the element");
-      }
-      if (type) b.add_element(*type, tag, std::span(nodes.data(), needed), set, element_at);
-    }
-    done += n;
+    const std::uint32_t set = type ? entity_set(s, block, entities) : 0;
+    read_block_elements(s, b, block, type, needed, set);
+    done += block.count;
   }
   if (done != total) {
     s.fail("the $Elements header announces " + std::to_string(total) + " elements, its blocks hold " +
