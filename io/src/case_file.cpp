@@ -433,9 +433,16 @@ class CaseParser {
   /// Each periodic pair is declared on one side (partner + angle_deg); the other side names
   /// no partner or the first one, and gives no angle. Every periodic patch is in one pair.
   void check_periodic_pairs() {
+    std::vector<std::vector<std::string>> pairs(c_.patches.size());  // partners of each patch
+    std::vector<bool> reported(c_.patches.size(), false);            // a problem of its pairing was reported
+    pair_periodic_patches(pairs, reported);
+    require_one_partner_each(pairs, reported);
+  }
+
+  /// Each pair declared by `partner:` and `angle_deg:` on one side, into the partners of both
+  /// sides; every problem of a declaration reported at its key.
+  void pair_periodic_patches(std::vector<std::vector<std::string>>& pairs, std::vector<bool>& reported) {
     const std::size_t n = c_.patches.size();
-    std::vector<std::vector<std::string>> pairs(n);  // partners of each patch
-    std::vector<bool> reported(n, false);            // a problem of its pairing was reported
     std::vector<std::string> periodic_names;
     for (std::size_t i = 0; i < n; ++i) {
       if (periodic(i)) periodic_names.push_back(c_.patches[i].name);
@@ -501,7 +508,11 @@ class CaseParser {
         reported[i] = reported[*j] = true;
       }
     }
-    for (std::size_t i = 0; i < n; ++i) {
+  }
+
+  /// Every periodic patch in exactly one pair; the side without angle_deg learns its partner.
+  void require_one_partner_each(const std::vector<std::vector<std::string>>& pairs, const std::vector<bool>& reported) {
+    for (std::size_t i = 0; i < c_.patches.size(); ++i) {
       if (!periodic(i)) continue;
       PatchSpec& p = c_.patches[i];
       const std::string key = "patches." + p.name;
