@@ -1,8 +1,6 @@
 // hotmesh deform: the choice of linear solver, and the Newton norm its solves may stop on.
 #include "linear_solver.hpp"
 
-#include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 

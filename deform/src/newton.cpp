@@ -11,7 +11,6 @@
 namespace hotmesh::deform::detail {
 
 void ResidualPass::add(std::span<const NodeId> nodes, std::span<const double> ke) const {
-  const std::size_t d = nodes.size() == 8 ? 3 : 2;  // hex8 or quad4, the solver's cells
   if (d == 3) {
     add_element_product<24, 3>(nodes, ke.data(), u, r);
   } else {
@@ -39,7 +38,7 @@ void newton_residual(const ConstrainedSystem& s, StiffnessOperator* stored, Elem
   } else {
     if (!assembler) throw std::invalid_argument("newton_residual: neither stored element matrices nor a solver that computes them");
     std::fill(r.begin(), r.end(), 0.0);
-    assembler->assemble(s, {u, r, node_stiffness});
+    assembler->assemble(s, {u, r, node_stiffness, static_cast<std::size_t>(s.kernel.dofs_per_node())});
     ranks.sum(r);  // each rank added its cells' part
     ranks.sum(node_stiffness);
     s.periodic.fold_nodal(node_stiffness);

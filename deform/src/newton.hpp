@@ -3,6 +3,7 @@
 // the current geometry, and the tolerance of each inner linear solve (inexact Newton).
 #pragma once
 
+#include <cstddef>
 #include <span>
 
 #include "hotmesh/deform/solver_options.hpp"
@@ -18,6 +19,7 @@ struct ResidualPass {
   std::span<const double> u;
   std::span<double> r;
   std::span<double> node_stiffness;
+  std::size_t d = 3;  ///< dofs per node: 2 (quad4 cells) or 3 (hex8)
   /// Adds K_e u_e (element_product) and the corners' stiffness of the cell with `nodes`.
   void add(std::span<const NodeId> nodes, std::span<const double> ke) const;
 };
