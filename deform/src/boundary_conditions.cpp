@@ -186,6 +186,7 @@ void refuse_free_rigid_motions(const Mesh& mesh, const BoundarySetup& setup, con
 Vec3 prescribed_position(const PrescribedNode& p, const Vec3& original, double lambda) {
   const Vec3 moved = p.shape->at(p.parameter, lambda, original).point;
   const Vec3 start = p.shape->at(p.parameter, 0.0, original).point;
+  if (p.reaches_shape) return moved + (1.0 - lambda) * (original - start);
   return original + (moved - start);
 }
 
@@ -199,7 +200,7 @@ Placement place_sliding_node(SlidingNode& node, const Vec3& p, double lambda, st
     out.normal_count = 0;
     for (int s = 0; s < node.shape_count; ++s) {
       const auto i = static_cast<std::size_t>(s);
-      const geometry::ShapePoint q = node.shapes[i]->project(out.point, lambda, node.hints[i]);
+      const geometry::ShapePoint q = node.shapes[i]->project(out.point, lambda, node.hints[i], node.segments[i]);
       node.hints[i] = q.parameter;
       out.point = q.point;
       out.normals[static_cast<std::size_t>(out.normal_count++)] = q.normal;
@@ -230,6 +231,7 @@ class BoundaryBuilder {
                {},
                {},
                PeriodicCoupling(static_cast<std::size_t>(mesh.dimension)),
+               {},
                std::vector<NodeRoleCode>(mesh.node_count(), 0),
                {}},
         x0_(setup_.reference),
@@ -405,6 +407,46 @@ class BoundaryBuilder {
     }
   }
 
+  /// The corners of each sliding wall (wall_features.hpp): the nodes given one become
+  /// prescribed nodes that reach it; the other sliding nodes keep to their segments.
+  void hold_wall_corners() {
+    std::vector<char> holds(mesh_.node_count(), 0);
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      const PatchMotion& m = *motion_of_[p];
+      const Patch& patch = mesh_.patches[p];
+      if (m.role != BoundaryRole::sliding || !m.features.enabled || patch.nodes.empty()) continue;
+      const auto is_free = [&](NodeId n) {
+        const int i = sliding_index_[static_cast<std::size_t>(n)];
+        if (i < 0 || holds[static_cast<std::size_t>(n)]) return false;
+        const SlidingNode& s = setup_.sliding[static_cast<std::size_t>(i)];
+        return s.shape_count == 1 && s.plane_count == 0;
+      };
+      WallFeaturePlan plan = plan_wall_features(mesh_, x0_, patch, *m.shape, m.features.angle, is_free);
+      for (std::size_t k = 0; k < patch.nodes.size() && !plan.features.empty(); ++k) {
+        const int i = sliding_index_[static_cast<std::size_t>(patch.nodes[k])];
+        if (i < 0) continue;
+        SlidingNode& s = setup_.sliding[static_cast<std::size_t>(i)];
+        const auto j = static_cast<std::size_t>(std::find(s.shapes.begin(), s.shapes.end(), m.shape.get()) - s.shapes.begin());
+        if (j < s.segments.size()) s.segments[j] = plan.segments[k];
+      }
+      for (HeldFeature& held : plan.features) {
+        for (NodeId n : held.nodes) {
+          holds[static_cast<std::size_t>(n)] = 1;
+          setup_.prescribed.push_back({n, held.feature.parameter, m.shape.get(), true});
+          setup_.constraints.fix(n);
+        }
+        if (!held.note.empty()) setup_.notes.push_back(held.note);
+        setup_.corners.push_back({patch.name, m.shape.get(), x0_[static_cast<std::size_t>(patch.nodes.front())], std::move(held)});
+      }
+    }
+    // The nodes given corners slide no more.
+    std::erase_if(setup_.sliding, [&](const SlidingNode& s) { return holds[static_cast<std::size_t>(s.node)] != 0; });
+    std::fill(sliding_index_.begin(), sliding_index_.end(), -1);
+    for (std::size_t k = 0; k < setup_.sliding.size(); ++k) {
+      sliding_index_[static_cast<std::size_t>(setup_.sliding[k].node)] = static_cast<int>(k);
+    }
+  }
+
   /// x_F: where each sliding node's material point moves, plus (restart) the slide already
   /// made (section 4.3); a restarted run keeps the material parameters of the previous runs
   /// (SlidingOrigin). Nodes where walls meet in a point are fixed, the others tracked.
@@ -548,6 +590,7 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
   builder.constrain_fixed_and_prescribed_nodes();
   builder.collect_sliding_nodes();
   builder.hold_sliding_rims_on_passive_surfaces();
+  builder.hold_wall_corners();
   builder.set_sliding_targets();
   builder.solve_passive_surfaces();
   builder.note_overruled_deflections();

@@ -19,14 +19,18 @@
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "passive.hpp"
 #include "periodic.hpp"
+#include "wall_features.hpp"
 
 namespace hotmesh::deform::detail {
 
-/// A node that follows a deflected shape: x(lambda) = x0 + at(t, lambda) - at(t, 0).
+/// A node that follows a deflected shape: x(lambda) = x0 + at(t, lambda) - at(t, 0). A node
+/// that holds a corner of a sliding wall reaches it: its offset from the corner at stage 0
+/// fades over the increments, x(lambda) = at(t, lambda) + (1 - lambda) (x0 - at(t, 0)).
 struct PrescribedNode {
   NodeId node = 0;
   double parameter = 0.0;
   const geometry::BoundaryShape* shape = nullptr;
+  bool reaches_shape = false;
 };
 
 /// The plane a slip patch keeps its nodes on (u . n = 0, eq. 11).
@@ -47,6 +51,8 @@ struct SlidingNode {
   int plane_count = 0;
   Vec3 target;  ///< x_F: where the node is to end on the fully deflected boundary (section 4.3)
   double origin = 0.0;  ///< t0: its material parameter on shapes[0] (SlidingOrigin)
+  /// The part of each shape it slides on: between the corners on either side of it.
+  std::array<geometry::ParameterRange, kMaxShapes> segments{};
 };
 
 /// A node of a passive surface: moves by `displacement` times the stage (unless its surface
@@ -64,6 +70,14 @@ struct FollowingSurface {
   std::vector<std::pair<std::size_t, NodeId>> nodes;  ///< the nodes it moves: index in the patch, node
 };
 
+/// A corner of a sliding wall with the nodes that hold it (wall_features.hpp).
+struct WallCorner {
+  std::string patch;
+  const geometry::BoundaryShape* shape = nullptr;
+  Vec3 reference;  ///< a node of the wall: its meridional plane is where the corner is reported
+  HeldFeature held;
+};
+
 struct BoundarySetup {
   /// Positions the shapes' stage 0 refers to: the mesh's, or those a restarted run starts from.
   std::vector<Vec3> reference;
@@ -76,6 +90,7 @@ struct BoundarySetup {
   /// nodes of their rims.
   std::vector<SlipPlane> slip_planes;
   PeriodicCoupling periodic;
+  std::vector<WallCorner> corners;
   std::vector<NodeRoleCode> roles;
   std::vector<std::string> notes;
 };

@@ -2,6 +2,7 @@
 // splitting, and the state a run hands out after each accepted step to be resumed from.
 #include "hotmesh/deform/move_mesh.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -95,6 +97,7 @@ class Motion {
     result_.summary = summarize_quality(result_.quality);
     result_.length_scale = size_;
     result_.max_periodic_mismatch = setup_.periodic.mismatch(result_.points);
+    report_corners();
     result_.timings.quality += seconds_since(q);
     result_.timings.total = seconds_since(start) + setup_seconds_ + earlier_seconds_;
     return std::move(result_);
@@ -107,6 +110,22 @@ class Motion {
 
  private:
   int increments() const { return std::max(solver_.increments, 1); }
+
+  /// The corners of the sliding walls, and how far their nodes are from them at the end.
+  void report_corners() {
+    for (const detail::WallCorner& c : setup_.corners) {
+      WallFeature f{c.patch, c.held.feature.parameter, c.held.feature.angle, {}, c.held.nodes, c.held.nodes.size(),
+                    c.held.largest_offset, 0.0, c.held.unheld_edges};
+      f.nodes.insert(f.nodes.end(), c.held.held_by_role.begin(), c.held.held_by_role.end());
+      for (NodeId n : f.nodes) {
+        const Vec3& x = result_.points[static_cast<std::size_t>(n)];
+        f.distance = std::max(f.distance, distance(x, c.shape->at(f.parameter, result_.lambda_reached, x).point));
+      }
+      const Vec3& reference = f.nodes.empty() ? c.reference : result_.points[static_cast<std::size_t>(f.nodes.front())];
+      f.point = c.shape->at(f.parameter, result_.lambda_reached, reference).point;
+      result_.features.push_back(std::move(f));
+    }
+  }
 
   /// The run's maxima over every Newton step of its accepted attempts, from their records (so
   /// a resumed run, which holds the interrupted run's records, finds the same).
@@ -372,13 +391,118 @@ class Motion {
 
 }  // namespace
 
+namespace {
+
+/// Increments of the corner pass: its nodes move at most half a wall edge along their walls.
+constexpr int kCornerPassIncrements = 2;
+
+/// A wall at its fully deflected stage for every lambda: the walls of the corner pass, which
+/// starts where the motion ended and moves nothing but the nodes given corners.
+class FinalStage final : public geometry::BoundaryShape {
+ public:
+  explicit FinalStage(std::shared_ptr<const geometry::BoundaryShape> shape) : shape_(std::move(shape)) {}
+  geometry::ShapePoint project(const Vec3& p, double /*lambda*/, double hint,
+                               const geometry::ParameterRange& range) const override {
+    return shape_->project(p, 1.0, hint, range);
+  }
+  geometry::ShapePoint at(double t, double /*lambda*/, const Vec3& reference) const override {
+    return shape_->at(t, 1.0, reference);
+  }
+  std::vector<geometry::ShapeFeature> features(double min_angle) const override { return shape_->features(min_angle); }
+
+ private:
+  std::shared_ptr<const geometry::BoundaryShape> shape_;
+};
+
+/// Whether a sliding wall has corners for nodes to hold.
+bool has_corners(std::span<const PatchMotion> patches) {
+  return std::any_of(patches.begin(), patches.end(), [](const PatchMotion& m) {
+    return m.role == BoundaryRole::sliding && m.features.enabled && m.shape && !m.shape->features(m.features.angle).empty();
+  });
+}
+
+/// The corner pass after a successful motion `moved` (issue 20, beyond the paper): each corner
+/// of a sliding wall is given the node nearest it, which moves onto it; the other sliding
+/// nodes keep to their segments between corners. Run after the motion, not through it, so
+/// that nodes still gather where the wall needs them (on a ramp, across its corners): corners
+/// held from the start would freeze the number of nodes between them. If the pass fails, the
+/// mesh of the motion stands, with a note.
+MotionResult hold_corners(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
+                          const SolverOptions& solver, const MotionObservers& observers,
+                          const parallel::RankExchange& ranks, MotionResult moved) {
+  std::vector<PatchMotion> final_walls(patches.begin(), patches.end());
+  for (PatchMotion& m : final_walls) {
+    if (m.shape) m.shape = std::make_shared<const FinalStage>(m.shape);
+  }
+  const int n = std::max(solver.increments, 1);
+  SolverOptions pass_options = solver;
+  pass_options.increments = kCornerPassIncrements;
+  // Its increments follow the motion's, N + 1 ..., at stage 1; no checkpoints (a resumed run
+  // repeats the pass from the motion's last checkpoint).
+  const auto as_corner_pass = [n](IncrementRecord r) {
+    r.increment += n;
+    r.lambda_begin = r.lambda_end = 1.0;
+    r.corner_pass = true;
+    return r;
+  };
+  MotionObservers pass_observers;
+  if (observers.increment) {
+    pass_observers.increment = [&](const IncrementRecord& r) { observers.increment(as_corner_pass(r)); };
+  }
+  if (observers.newton) {
+    pass_observers.newton = [&](NewtonProgress p) {
+      p.step.increment += n;
+      p.step.lambda_begin = p.step.lambda_end = 1.0;
+      p.increments = n + kCornerPassIncrements;
+      observers.newton(p);
+    };
+  }
+  const MotionStart from{moved.points, moved.sliding_origins};
+  const auto begin = Clock::now();
+  Motion motion(mesh, final_walls, material, pass_options, pass_observers, &from, ranks);
+  motion.set_setup_time(seconds_since(begin));
+  MotionResult pass = motion.run(nullptr);
+
+  for (const IncrementRecord& r : pass.increments) moved.increments.push_back(as_corner_pass(r));
+  MotionTimings& t = moved.timings;
+  t.setup += pass.timings.setup;
+  t.assembly += pass.timings.assembly;
+  t.preconditioner += pass.timings.preconditioner;
+  t.solve += pass.timings.solve;
+  t.projection += pass.timings.projection;
+  t.quality += pass.timings.quality;
+  t.total += pass.timings.total;
+  if (!pass.success) {
+    moved.notes.push_back("the corners of the sliding walls could not be given nodes (" + pass.message +
+                          "); the mesh is the one the motion gave, whose walls may cut them");
+    return moved;
+  }
+  moved.notes.insert(moved.notes.end(), pass.notes.begin(), pass.notes.end());
+  moved.restart_points = std::exchange(moved.points, std::move(pass.points));
+  moved.quality = std::move(pass.quality);
+  moved.summary = pass.summary;
+  moved.features = std::move(pass.features);
+  moved.max_periodic_mismatch = pass.max_periodic_mismatch;
+  moved.max_projection_distance = std::max(moved.max_projection_distance, pass.max_projection_distance);
+  moved.final_projection_distance = pass.final_projection_distance;
+  moved.max_normal_slip = std::max(moved.max_normal_slip, pass.max_normal_slip);
+  return moved;
+}
+
+}  // namespace
+
 MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
                        const SolverOptions& solver, const MotionObservers& observers, const MotionStart* start,
                        const MotionCheckpoint* resume, const parallel::RankExchange& ranks) {
   const auto begin = Clock::now();
-  Motion motion(mesh, patches, material, solver, observers, start, ranks);
+  const bool corners = has_corners(patches);
+  std::vector<PatchMotion> sliding_freely(patches.begin(), patches.end());
+  for (PatchMotion& m : sliding_freely) m.features.enabled = false;
+  Motion motion(mesh, sliding_freely, material, solver, observers, start, ranks);
   motion.set_setup_time(seconds_since(begin));
-  return motion.run(resume);
+  MotionResult result = motion.run(resume);
+  if (!corners || !result.success) return result;
+  return hold_corners(mesh, patches, material, solver, observers, ranks, std::move(result));
 }
 
 }  // namespace hotmesh::deform

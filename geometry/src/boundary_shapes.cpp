@@ -7,14 +7,18 @@
 
 namespace hotmesh::geometry {
 
-ShapePoint PlanarCurveShape::project(const Vec3& p, double lambda, double hint) const {
-  const CurveProjection q = projector_.project({p.x, p.y}, lambda, hint);
+ShapePoint PlanarCurveShape::project(const Vec3& p, double lambda, double hint, const ParameterRange& range) const {
+  const CurveProjection q = projector_.project({p.x, p.y}, lambda, hint, range);
   return {{q.point.x, q.point.y, p.z}, {q.normal.x, q.normal.y, 0.0}, q.parameter, q.distance};
 }
 
 ShapePoint PlanarCurveShape::at(double t, double lambda, const Vec3& reference) const {
   const CurveProjection q = projector_.at(t, lambda);
   return {{q.point.x, q.point.y, reference.z}, {q.normal.x, q.normal.y, 0.0}, q.parameter, 0.0};
+}
+
+std::vector<ShapeFeature> PlanarCurveShape::features(double min_angle) const {
+  return projector_.curve().corners(min_angle);
 }
 
 ShapePoint RevolvedShape::to_cartesian(const CurveProjection& q, double theta) const {
@@ -24,13 +28,17 @@ ShapePoint RevolvedShape::to_cartesian(const CurveProjection& q, double theta) c
 
 // Fig. 4-b: P' = (r + dr, theta + dtheta, z + dz) is projected in its meridional plane onto the
 // meridional curve, giving (r_F, z_F); P_F = (r_F, theta + dtheta, z_F).
-ShapePoint RevolvedShape::project(const Vec3& p, double lambda, double hint) const {
+ShapePoint RevolvedShape::project(const Vec3& p, double lambda, double hint, const ParameterRange& range) const {
   const Cylindrical c = axis_.to_cylindrical(p);
-  return to_cartesian(projector_.project({c.r, c.z}, lambda, hint), c.theta);
+  return to_cartesian(projector_.project({c.r, c.z}, lambda, hint, range), c.theta);
 }
 
 ShapePoint RevolvedShape::at(double t, double lambda, const Vec3& reference) const {
   return to_cartesian(projector_.at(t, lambda), axis_.to_cylindrical(reference).theta);
+}
+
+std::vector<ShapeFeature> RevolvedShape::features(double min_angle) const {
+  return projector_.curve().corners(min_angle);
 }
 
 PlaneShape::PlaneShape(const Vec3& origin, const Vec3& normal) : origin_(origin) {
@@ -41,7 +49,8 @@ PlaneShape::PlaneShape(const Vec3& origin, const Vec3& normal) : origin_(origin)
   normal_ = normal / length;
 }
 
-ShapePoint PlaneShape::project(const Vec3& p, double /*lambda*/, double /*hint*/) const {
+ShapePoint PlaneShape::project(const Vec3& p, double /*lambda*/, double /*hint*/,
+                               const ParameterRange& /*range*/) const {
   const double height = dot(p - origin_, normal_);
   return {p - height * normal_, normal_, 0.0, std::abs(height)};
 }

@@ -83,8 +83,10 @@ void CurveProjector::sample_pieces() {
   double worst = 0.0;
   samples_.clear();
   segment_piece_.clear();
+  piece_segment_.clear();
   for (std::size_t k = 0; k < pieces.size(); ++k) {
     const auto& piece = pieces[k];
+    piece_segment_.push_back(samples_.size());
     const auto sample = [&](double t) {
       return Sample{t, curve_.derivatives(t, 0.0, piece).point, curve_.derivatives(t, 1.0, piece).point};
     };
@@ -120,6 +122,7 @@ void CurveProjector::sample_pieces() {
   const auto& last = pieces.back();
   samples_.push_back({last.end, curve_.derivatives(last.end, 0.0, last).point,
                       curve_.derivatives(last.end, 1.0, last).point});
+  piece_segment_.push_back(samples_.size() - 1);
 
   lo = {kInfinity, kInfinity};
   hi = {-kInfinity, -kInfinity};
@@ -157,8 +160,10 @@ void CurveProjector::build_tree() {
 // f' = (c - p).c', f'' = c'.c' + (c - p).c'' (Gauss-Newton c'.c' where f'' is not clearly
 // positive), halved until f decreases. A step that leaves the piece stops at its end; from
 // there the search continues in the neighbouring piece unless f grows on both sides, which is
-// a minimum at a corner of the curve (C0 knots: degree-1 curves, joined faces).
-CurveProjector::Local CurveProjector::newton(const Vec2& p, double lambda, double t, std::size_t k) const {
+// a minimum at a corner of the curve (C0 knots: degree-1 curves, joined faces). The search
+// stays on the pieces `searched`: their outer ends are ends of the curve for it.
+CurveProjector::Local CurveProjector::newton(const Vec2& p, double lambda, double t, std::size_t k,
+                                             const Pieces& searched) const {
   const auto& pieces = curve_.pieces();
   CurveDerivatives2d e = curve_.derivatives(t, lambda, pieces[k]);
   double f = squared(e.point - p);
@@ -189,7 +194,7 @@ CurveProjector::Local CurveProjector::newton(const Vec2& p, double lambda, doubl
         step = edge - t;  // go to the end of the piece first
         clipped = true;
       } else {
-        const bool last = left ? k == 0 : k + 1 == pieces.size();
+        const bool last = left ? k == searched.first : k == searched.last;
         if (last) {
           converged = true;  // minimum at an end of the curve
           break;
@@ -278,9 +283,16 @@ double CurveProjector::segment_squared_distance(std::size_t i, const Vec2& p, do
   return squared(a + u * ab - p);
 }
 
+bool CurveProjector::overlaps(std::size_t node, std::size_t first, std::size_t end) const {
+  const auto depth = static_cast<std::size_t>(std::bit_width(node)) - 1;
+  const std::size_t span = leaves_ >> depth;
+  const std::size_t begin = node * span - leaves_;
+  return begin < end && first < begin + span;
+}
+
 // 1. Distance to the nearest segment of the sample polyline (branch and bound).
-double CurveProjector::nearest_segment_squared_distance(const Vec2& p, double lambda) const {
-  const std::size_t segments = samples_.size() - 1;
+double CurveProjector::nearest_segment_squared_distance(const Vec2& p, double lambda, const Pieces& searched) const {
+  const std::size_t segments = searched.end_segment;
   const auto box_distance = [&](std::size_t node) { return box_squared_distance(tree_[node].lo, tree_[node].hi, p); };
   std::size_t stack[128];
   std::size_t top = 0;
@@ -288,7 +300,7 @@ double CurveProjector::nearest_segment_squared_distance(const Vec2& p, double la
   stack[top++] = 1;
   while (top > 0) {
     const std::size_t node = stack[--top];
-    if (box_distance(node) >= best) continue;
+    if (box_distance(node) >= best || !overlaps(node, searched.first_segment, searched.end_segment)) continue;
     if (node >= leaves_) {
       double t = 0.0;
       if (node - leaves_ < segments) best = std::min(best, segment_squared_distance(node - leaves_, p, lambda, t));
@@ -302,8 +314,9 @@ double CurveProjector::nearest_segment_squared_distance(const Vec2& p, double la
 }
 
 // 2. Runs of consecutive segments within the threshold, in increasing order of segments.
-int CurveProjector::runs_within(const Vec2& p, double lambda, double threshold, Run (&runs)[kMaxRuns]) const {
-  const std::size_t segments = samples_.size() - 1;
+int CurveProjector::runs_within(const Vec2& p, double lambda, double threshold, const Pieces& searched,
+                                Run (&runs)[kMaxRuns]) const {
+  const std::size_t segments = searched.end_segment;
   int run_count = 0;
   int current = -1;
   std::size_t stack[128];
@@ -311,7 +324,10 @@ int CurveProjector::runs_within(const Vec2& p, double lambda, double threshold, 
   stack[top++] = 1;
   while (top > 0) {
     const std::size_t node = stack[--top];
-    if (box_squared_distance(tree_[node].lo, tree_[node].hi, p) > threshold) continue;
+    if (box_squared_distance(tree_[node].lo, tree_[node].hi, p) > threshold ||
+        !overlaps(node, searched.first_segment, searched.end_segment)) {
+      continue;
+    }
     if (node < leaves_) {
       stack[top++] = 2 * node + 1;  // left child first: segments in increasing order
       stack[top++] = 2 * node;
@@ -346,31 +362,47 @@ int CurveProjector::runs_within(const Vec2& p, double lambda, double threshold, 
   return run_count;
 }
 
-CurveProjection CurveProjector::global_search(const Vec2& p, double lambda) const {
-  const double best = nearest_segment_squared_distance(p, lambda);
+CurveProjection CurveProjector::global_search(const Vec2& p, double lambda, const Pieces& searched) const {
+  const double best = nearest_segment_squared_distance(p, lambda, searched);
   // The curve's closest point lies next to a run of segments within twice the sampling
   // deviation of the nearest segment's distance.
   const double reach = std::sqrt(best) + 2.0 * deviation_;
   Run runs[kMaxRuns];
-  const int run_count = runs_within(p, lambda, reach * reach, runs);
+  const int run_count = runs_within(p, lambda, reach * reach, searched, runs);
   // 3. Newton from the best point of each run; the closest result wins.
   Local winner{};
   winner.squared_distance = kInfinity;
   for (int i = 0; i < run_count; ++i) {
-    const Local local = newton(p, lambda, runs[i].t, segment_piece_[runs[i].segment]);
+    const Local local = newton(p, lambda, runs[i].t, segment_piece_[runs[i].segment], searched);
     if (local.squared_distance < winner.squared_distance) winner = local;
   }
   return finish(p, lambda, winner);
 }
 
-CurveProjection CurveProjector::project(const Vec2& p, double lambda, double hint) const {
+CurveProjector::Pieces CurveProjector::pieces_in(const ParameterRange& range) const {
+  const auto& pieces = curve_.pieces();
+  std::size_t first = 0;
+  std::size_t last = pieces.size() - 1;
+  if (range.first > pieces.front().begin) first = std::min(curve_.piece_at(range.first), last);  // at a piece end: the next
+  if (range.last < pieces.back().end) {
+    last = curve_.piece_at(range.last);
+    if (last > first && !(pieces[last].begin < range.last)) --last;  // at a piece end: the one before
+  }
+  last = std::max(last, first);
+  return {first, last, piece_segment_[first], piece_segment_[last + 1]};
+}
+
+CurveProjection CurveProjector::project(const Vec2& p, double lambda, double hint, const ParameterRange& range) const {
   const double l = std::clamp(lambda, 0.0, 1.0);
+  const Pieces searched = pieces_in(range);
   if (std::isfinite(hint)) {
-    const double t = std::clamp(hint, curve_.first_parameter(), curve_.last_parameter());
-    const Local local = newton(p, l, t, curve_.piece_at(t));
+    const auto& pieces = curve_.pieces();
+    const double t = std::clamp(hint, pieces[searched.first].begin, pieces[searched.last].end);
+    const std::size_t k = std::clamp(curve_.piece_at(t), searched.first, searched.last);
+    const Local local = newton(p, l, t, k, searched);
     if (local.converged) return finish(p, l, local);
   }
-  return global_search(p, l);
+  return global_search(p, l, searched);
 }
 
 CurveProjection CurveProjector::at(double t, double lambda) const {

@@ -4,6 +4,7 @@
 #include "hotmesh/geometry/deflected_curve.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "bezier_pieces.hpp"
@@ -95,6 +96,35 @@ CurveDerivatives2d DeflectedCurve::derivatives(double t, double lambda, const Pi
   }
   const double mu = 1.0 - lambda;
   return {mu * r.point + lambda * i.point, mu * r.first + lambda * i.first, mu * r.second + lambda * i.second};
+}
+
+namespace {
+
+/// The direction of a curve at a point: its first derivative, or where that vanishes (a cusp
+/// of the parametrisation) its second. Zero if both vanish.
+Vec2 direction(const CurveDerivatives2d& d) {
+  for (const Vec2& v : {d.first, d.second}) {
+    const double length = norm(v);
+    if (length > 0.0 && std::isfinite(length)) return v / length;
+  }
+  return {0.0, 0.0};
+}
+
+}  // namespace
+
+std::vector<ShapeFeature> DeflectedCurve::corners(double min_angle) const {
+  std::vector<ShapeFeature> found;
+  for (std::size_t k = 0; k + 1 < pieces_.size(); ++k) {
+    const double t = pieces_[k].end;
+    double angle = 0.0;
+    for (const double lambda : {0.0, 1.0}) {
+      const Vec2 before = direction(derivatives(t, lambda, pieces_[k]));
+      const Vec2 after = direction(derivatives(t, lambda, pieces_[k + 1]));
+      angle = std::max(angle, std::atan2(std::abs(cross(before, after)), dot(before, after)));
+    }
+    if (angle >= min_angle) found.push_back({t, angle});
+  }
+  return found;
 }
 
 BSplineCurve2d DeflectedCurve::stage(double lambda) const {

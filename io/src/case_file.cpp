@@ -15,6 +15,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <span>
 #include <stdexcept>
 #include <system_error>
@@ -42,7 +43,9 @@ constexpr std::array<std::string_view, 11> kSolverKeys{
     "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
     "max_increment_splits", "linear", "amg", "amg_reuse", "forcing"};
 constexpr std::array<std::string_view, 4> kMaterialKeys{"law", "alpha_s", "alpha_v", "drop_jacobian"};
-constexpr std::array<std::string_view, 4> kPatchKeys{"role", "deflection", "partner", "angle_deg"};
+constexpr std::array<std::string_view, 5> kPatchKeys{"role", "deflection", "partner", "angle_deg", "features"};
+constexpr std::array<std::string_view, 1> kFeatureKeys{"angle"};
+constexpr std::string_view kFeaturesExample = "`features: {angle: 25}` (degrees) or `features: off`";
 constexpr std::array<std::string_view, 4> kDeflectionKeys{"file", "degree", "faces", "form"};
 constexpr std::string_view kRoleList = "fixed, prescribed, slip, sliding, passive, periodic";
 constexpr std::string_view kAxisExample = "axis: {origin: [0, 0, 0], direction: [0, 0, 1]}";
@@ -323,6 +326,15 @@ class CaseParser {
       reader_.error(e.line, e.sub("deflection"), "missing; a prescribed patch needs `deflection: {file: <table.csv>}`");
     }
 
+    if (const Entry* features = m.find("features")) {
+      if (known && spec.role != PatchRole::sliding) {
+        reader_.error(*features, cat("only sliding patches have features (this patch is ", role_name,
+                                     "): the corners of a wall that sliding nodes hold"));
+      } else {
+        read_features(*features, spec.features);
+      }
+    }
+
     for (const std::string_view key : {std::string_view("partner"), std::string_view("angle_deg")}) {
       const Entry* item = m.find(key);
       if (item == nullptr) continue;
@@ -340,6 +352,22 @@ class CaseParser {
       }
     }
     c_.patches.push_back(std::move(spec));
+  }
+
+  /// `features: off | on | {angle: A}`: which corners of a sliding wall its nodes hold.
+  void read_features(const Entry& e, deform::FeatureOptions& features) {
+    if (e.value.IsScalar()) {
+      if (const auto on = reader_.boolean(e)) features.enabled = *on;
+      return;
+    }
+    if (!reader_.map_or_empty(e, cat("on, off or a map {angle: <degrees>}, e.g. ", kFeaturesExample))) return;
+    const MapEntries m = reader_.keys(e, kFeatureKeys);
+    if (const Entry* angle = m.find("angle")) {
+      const auto valid = [](double a) { return a > 0.0 && a < 180.0; };
+      if (const auto degrees = reader_.number_where(*angle, valid, "an angle in degrees between 0 and 180")) {
+        features.angle = *degrees * std::numbers::pi / 180.0;
+      }
+    }
   }
 
   std::optional<DeflectionSpec> read_deflection(const Entry& e, const PatchSpec& patch) {

@@ -205,6 +205,7 @@ CaseSetup set_up_case(const Case& c, const mesh::Mesh& mesh, const RestartState*
   CurveBuilder builder(c, mesh, cad);
   for (const PatchSpec& spec : c.patches) {
     deform::PatchMotion motion{spec.name, spec.role, nullptr};
+    motion.features = spec.features;
     if (spec.role == PatchRole::periodic && spec.angle_deg != 0.0) {  // the side that declares the pair
       motion.partner = spec.partner;
       motion.angle = spec.angle_deg * std::numbers::pi / 180.0;

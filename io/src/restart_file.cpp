@@ -83,7 +83,7 @@ std::uint64_t mesh_fingerprint(const mesh::Mesh& mesh) {
 RestartState restart_state(const Case& c, const mesh::Mesh& mesh, const deform::MotionResult& result) {
   RestartState s;
   s.mesh_fingerprint = mesh_fingerprint(mesh);
-  s.points = result.points;
+  s.points = result.restart_points.empty() ? result.points : result.restart_points;
   s.sliding = result.sliding_origins;
   s.case_file = c.file.string();
   for (const PatchSpec& p : c.patches) s.patches.push_back({p.name, p.role, p.deflection});

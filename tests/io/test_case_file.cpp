@@ -331,7 +331,7 @@ TEST_F(CaseFile, RejectsUnknownSolverKey) {
 
 TEST_F(CaseFile, RejectsUnknownPatchKey) {
   EXPECT_EQ(error_with("  inlet: {role: passive, colour: red}\n"),
-            at(4) + "patches.inlet.colour: unknown key; allowed in patches.inlet: role, deflection, partner, angle_deg");
+            at(4) + "patches.inlet.colour: unknown key; allowed in patches.inlet: role, deflection, partner, angle_deg, features");
 }
 
 TEST_F(CaseFile, RejectsUnknownDeflectionKey) {

@@ -30,7 +30,7 @@ class TestCurveShape final : public geometry::BoundaryShape {
 
   TestCurveShape(std::vector<Vec3> vertices, Motion motion) : vertices_(std::move(vertices)), motion_(std::move(motion)) {}
 
-  ShapePoint project(const Vec3& p, double lambda, double /*hint*/) const override {
+  ShapePoint project(const Vec3& p, double lambda, double /*hint*/, const geometry::ParameterRange& /*range*/ = {}) const override {
     ShapePoint best;
     best.distance = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i + 1 < vertices_.size(); ++i) {
@@ -68,7 +68,7 @@ class TestCurveShape final : public geometry::BoundaryShape {
 class AffineShape final : public geometry::BoundaryShape {
  public:
   AffineShape(std::array<Vec3, 3> g, Vec3 shift) : g_(g), shift_(shift) {}
-  ShapePoint project(const Vec3& p, double, double) const override { return {p, {1, 0, 0}, 0.0, 0.0}; }
+  ShapePoint project(const Vec3& p, double, double, const geometry::ParameterRange&) const override { return {p, {1, 0, 0}, 0.0, 0.0}; }
   ShapePoint at(double t, double lambda, const Vec3& x) const override {
     const Vec3 gx{dot(g_[0], x), dot(g_[1], x), dot(g_[2], x)};
     return {x + lambda * (gx + shift_), {1, 0, 0}, t, 0.0};

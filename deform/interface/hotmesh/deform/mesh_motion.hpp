@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <numbers>
 #include <span>
 #include <string>
 #include <string_view>
@@ -38,6 +39,16 @@ inline constexpr EnumNames<BoundaryRole, 6> kBoundaryRoleNames{{{{BoundaryRole::
                                                                 {BoundaryRole::periodic, "periodic"}}}};
 constexpr std::string_view to_string(BoundaryRole role) { return kBoundaryRoleNames.name(role); }
 
+/// The default of FeatureOptions::angle: 25 degrees, in radians.
+inline constexpr double kDefaultFeatureAngle = 25.0 * std::numbers::pi / 180.0;
+
+/// Which corners of a sliding patch's shape mesh nodes hold (beyond the paper, whose sliding
+/// rounds them): the case file's `features: {angle: 25}` or `features: off`.
+struct FeatureOptions {
+  bool enabled = true;
+  double angle = kDefaultFeatureAngle;  ///< radians: corners turning by at least this are held
+};
+
 /// What one mesh patch does during the motion.
 struct PatchMotion {
   std::string patch;  ///< name of a patch of the mesh
@@ -50,6 +61,25 @@ struct PatchMotion {
   std::string partner;
   double angle = 0.0;
   geometry::Axis axis;
+  /// sliding: the corners of `shape` that nodes hold.
+  FeatureOptions features;
+};
+
+/// A corner of a sliding wall and the nodes that hold it, for reports.
+struct WallFeature {
+  std::string patch;
+  double parameter = 0.0;  ///< on the shape
+  double angle = 0.0;      ///< radians the undeformed or the deflected wall turns by there
+  /// On the shape at the stage reached (for a surface of revolution: in the meridional plane
+  /// of its first node; the corner is the circle through it).
+  Vec3 point;
+  /// The nodes that hold it: sliding nodes given the corner (in 3D, one per meridional row of
+  /// wall faces), then nodes of other roles that lie on it. Empty if none could.
+  std::vector<NodeId> nodes;
+  std::size_t given_nodes = 0;   ///< how many of `nodes` are sliding nodes given the corner
+  double largest_offset = 0.0;   ///< farthest a given node was from the corner before the motion
+  double distance = 0.0;         ///< farthest a holding node is from the corner at the end
+  std::size_t unheld_edges = 0;  ///< wall edges across it with no node on it (the wall cuts the corner)
 };
 
 /// Node roles as stored per node for output: 0 for interior nodes, 1 + BoundaryRole.
@@ -80,6 +110,9 @@ struct IncrementRecord {
   double max_normal_slip = 0.0;     ///< largest |p . n| of a Newton step at a sliding node (eq. 19)
   double seconds = 0.0;
   std::string failure;        ///< why it was not accepted
+  /// An increment of the corner pass: after the motion, the nodes nearest the corners of the
+  /// sliding walls move onto them (its stages are those of the pass; the walls stay at 1).
+  bool corner_pass = false;
 };
 
 struct MotionTimings {
@@ -140,6 +173,11 @@ struct MotionResult {
   /// Largest |p . n| of a Newton step p at a sliding node with normal n (eq. 19).
   double max_normal_slip = 0.0;
   std::vector<SlidingOrigin> sliding_origins;  ///< for restarting from this result
+  /// Where a run restarted from this one starts (MotionStart::points): the mesh before the
+  /// corner pass, so that a chain of restarted runs makes the moves of one straight run (eq.
+  /// 22) and each ends with its own pass. Empty when there was no pass: then `points`.
+  std::vector<Vec3> restart_points;
+  std::vector<WallFeature> features;           ///< the corners of the sliding walls, by patch
   std::vector<std::string> notes;      ///< things worth a warning (set-up conflicts, ...)
   MotionTimings timings;
 };

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <limits>
+#include <vector>
 
 #include "hotmesh/geometry/vec3.hpp"
 
@@ -29,6 +30,24 @@ struct ShapePoint {
 
 inline constexpr double kNoHint = std::numeric_limits<double>::quiet_NaN();
 
+/// A parameter interval [first, last] of a shape: the part of it between two of its features,
+/// which a sliding node may not leave (it would slide across a corner). The default is the
+/// whole shape.
+struct ParameterRange {
+  double first = -std::numeric_limits<double>::infinity();
+  double last = std::numeric_limits<double>::infinity();
+  bool contains(double t) const { return first <= t && t <= last; }
+};
+
+/// A corner of the shape that every stage keeps at one parameter: a C0 point of the deflected
+/// curve (a kink of the FEM table, a CAD vertex where edges meet at an angle, a knot of full
+/// multiplicity). For a surface of revolution it is a circle about the axis.
+struct ShapeFeature {
+  double parameter = 0.0;
+  /// The largest angle (radians) by which the undeformed or the fully deflected shape turns
+  /// there, between the tangents on either side.
+  double angle = 0.0;
+};
 class BoundaryShape {
  public:
   virtual ~BoundaryShape() = default;
@@ -39,11 +58,17 @@ class BoundaryShape {
   /// Even with a hint the result is the global closest point, except where a point moved by
   /// much more than its distance to a near branch of the curve since the hint was computed.
   /// Const and thread-safe: called from parallel loops over nodes.
-  virtual ShapePoint project(const Vec3& p, double lambda, double hint = kNoHint) const = 0;
+  /// `range` restricts the search to a part of the shape (shapes without a parameter ignore it).
+  virtual ShapePoint project(const Vec3& p, double lambda, double hint = kNoHint,
+                             const ParameterRange& range = {}) const = 0;
 
   /// The point of the stage-lambda shape at parameter t. For axisymmetric shapes it lies in
   /// the meridional plane through `reference` (any point off the axis).
   virtual ShapePoint at(double t, double lambda, const Vec3& reference) const = 0;
+
+  /// The shape's corners that turn by at least `min_angle` (radians) on the undeformed or the
+  /// fully deflected stage, in increasing parameter; none for smooth shapes and planes.
+  virtual std::vector<ShapeFeature> features(double /*min_angle*/) const { return {}; }
 };
 
 }  // namespace hotmesh::geometry

@@ -47,8 +47,10 @@ class CurveProjector {
   /// Bound on the distance between the sample polyline and the curve, for every stage.
   double sampling_deviation() const { return deviation_; }
 
-  /// Closest point to p on c_lambda (lambda clamped to [0, 1]); with kNoHint, global.
-  CurveProjection project(const Vec2& p, double lambda, double hint = kNoHint) const;
+  /// Closest point to p on c_lambda (lambda clamped to [0, 1]); with kNoHint, global. With a
+  /// range, the closest point of the part of c_lambda with t in it (its ends are clamped to
+  /// the parameter range and taken to the nearest piece ends: corners are piece ends).
+  CurveProjection project(const Vec2& p, double lambda, double hint = kNoHint, const ParameterRange& range = {}) const;
   /// The point of c_lambda at parameter t (clamped to the range), with tangent and normal.
   CurveProjection at(double t, double lambda) const;
 
@@ -80,21 +82,34 @@ class CurveProjector {
   };
   static constexpr int kMaxRuns = 16;  // the nearest runs kept by a global search
 
+  /// The pieces [first, last] and their polyline segments [first_segment, end_segment) that a
+  /// projection searches.
+  struct Pieces {
+    std::size_t first;
+    std::size_t last;
+    std::size_t first_segment;
+    std::size_t end_segment;
+  };
+
   void sample_pieces();
   void build_tree();
-  Local newton(const Vec2& p, double lambda, double t, std::size_t piece) const;
-  CurveProjection global_search(const Vec2& p, double lambda) const;
+  Pieces pieces_in(const ParameterRange& range) const;
+  Local newton(const Vec2& p, double lambda, double t, std::size_t piece, const Pieces& searched) const;
+  CurveProjection global_search(const Vec2& p, double lambda, const Pieces& searched) const;
   /// Squared distance from p to segment i of the sample polyline of c_lambda; t its parameter.
   double segment_squared_distance(std::size_t i, const Vec2& p, double lambda, double& t) const;
-  double nearest_segment_squared_distance(const Vec2& p, double lambda) const;
+  double nearest_segment_squared_distance(const Vec2& p, double lambda, const Pieces& searched) const;
   /// The runs of segments within squared distance `threshold` of p (at most kMaxRuns, the
   /// nearest), into `runs`; returns their count.
-  int runs_within(const Vec2& p, double lambda, double threshold, Run (&runs)[kMaxRuns]) const;
+  int runs_within(const Vec2& p, double lambda, double threshold, const Pieces& searched, Run (&runs)[kMaxRuns]) const;
+  /// Whether tree node `node` holds a segment of [first, end).
+  bool overlaps(std::size_t node, std::size_t first, std::size_t end) const;
   CurveProjection finish(const Vec2& p, double lambda, const Local& local) const;
 
   DeflectedCurve curve_;
   std::vector<Sample> samples_;
   std::vector<std::uint32_t> segment_piece_;  // piece of the segment from sample i to i + 1
+  std::vector<std::size_t> piece_segment_;    // first segment of each piece, then the segment count
   std::vector<Box> tree_;                     // implicit binary tree, leaves from index leaves_
   std::size_t leaves_ = 1;
   double scale_ = 1.0;

@@ -15,6 +15,7 @@
 #include <optional>
 #include <vector>
 
+#include "hotmesh/geometry/boundary_shape.hpp"
 #include "hotmesh/geometry/bspline_curve.hpp"
 #include "hotmesh/geometry/enum_names.hpp"
 
@@ -70,6 +71,12 @@ class DeflectedCurve {
   CurveDerivatives2d derivatives(double t, double lambda) const;
   /// Same, on a given piece (one-sided at its ends); for the hot path. No clamping.
   CurveDerivatives2d derivatives(double t, double lambda, const Piece& piece) const;
+
+  /// The corners: the piece ends where c_0 or c_1 turns by at least `min_angle` (radians)
+  /// between its one-sided tangents. Every C0 point of any stage is a piece end (a knot of r
+  /// or of the interpolant, or an end of the FEM range), and c_lambda is affine in lambda, so
+  /// these are the kinks of the FEM table, the CAD vertices and the full-multiplicity knots.
+  std::vector<ShapeFeature> corners(double min_angle) const;
 
   /// c_lambda as one exact B-spline over the whole parameter range, C0 at the piece ends.
   /// Rational if r is; its degree is max(p, q) for a polynomial r of degree p and p + q for

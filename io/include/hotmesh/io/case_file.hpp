@@ -48,6 +48,7 @@ struct PatchSpec {
   std::string partner;                       ///< periodic: the other patch of the pair (set on both sides)
   double angle_deg = 0.0;                    ///< periodic: rotation from this patch to partner;
                                              ///< non-zero only on the side that declares the pair
+  deform::FeatureOptions features;           ///< sliding: the corners of the wall its nodes hold
   std::size_t line = 0;                      ///< line of this patch in the case file
 };
 
