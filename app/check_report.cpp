@@ -62,13 +62,20 @@ std::string part_lines(const PatchCheck& p, const CheckResult& result, const std
   return text;
 }
 
+nlohmann::json wall_check_json(const DistanceCheck& p) {
+  if (!p.wall) return nullptr;
+  nlohmann::json wall = wall_json(*p.wall);
+  wall["passed"] = p.wall->passed;
+  return wall;
+}
+
 nlohmann::json distances_json(const DistanceCheck& p) {
   return {{"reference", p.reference},
           {"nodes", p.nodes},
           {"max_distance", p.max_distance},
           {"mean_distance", p.mean_distance},
           {"worst_node", {{"id", p.worst_node}, {"point", {p.worst_point.x, p.worst_point.y, p.worst_point.z}}}},
-          {"wall", p.wall ? wall_json(*p.wall) : nlohmann::json(nullptr)},
+          {"wall", wall_check_json(p)},
           {"passed", p.passed}};
 }
 
