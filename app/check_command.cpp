@@ -442,7 +442,9 @@ int run_check(const Options& o) {
 Command add_check_command(CLI::App& parent) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = parent.add_subcommand(
-      "check", "Distance of mesh boundary nodes to their CAD faces or to the deflected shape; exit code 1 above --tol");
+      "check",
+      "Distance of mesh boundary nodes, and of their faces both ways, to their CAD faces or to the deflected shape; "
+      "exit code 1 above --tol (or --wall-tol)");
   cmd->add_option("mesh,--mesh", options->mesh,
                   "Mesh (.msh) to check: undeformed, or deformed when tables are given; with --case, default: the "
                   "case's own mesh")
