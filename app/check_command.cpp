@@ -2,7 +2,10 @@
 // boundary patch to its reference shape (its CAD faces, or the deflected shape reconstructed
 // from FEM deflections for a deformed mesh), reports per patch the maximum, the mean and the
 // worst node as text, JSON or JUnit XML, and exits with code 1 when a patch is above the
-// tolerance. The patches and their shapes come from options (--map, --deflection) or from a
+// tolerance. Nodes on the shape do not make a wall on it (an edge between two nodes cuts a
+// corner of the shape no node lands on), so it also measures the patch's faces against the
+// shape both ways (the Hausdorff distance, wall_deviation_report.hpp) and names where it is
+// worst; that decides too when --wall-tol is given. The patches and their shapes come from options (--map, --deflection) or from a
 // case file (--case): a mesh deformed by `hotmesh deform` against the case's deflected walls,
 // or the case's own mesh against its undeformed walls. A check that cannot be made still
 // writes its JUnit report (a test case in error) before exiting with the error's code.
@@ -46,6 +49,7 @@ struct Options {
   std::vector<std::string> deflections;
   std::vector<double> axis;
   double tolerance = 0.0;
+  double wall_tolerance = 0.0;  ///< 0: none
   std::string unit = "m";
   int degree = 1;
   std::string form = "curve";
@@ -156,9 +160,47 @@ class DistanceTally {
   double worst_ = -1.0;
 };
 
-/// The nodes of `patch` measured against its reference; each node against the nearest part.
+/// The two-sided distance of the faces of `patch` to each part of its reference: for one part
+/// all faces, else each face against the part nearest to its centroid.
+std::vector<std::optional<WallCheck>> part_walls(const mesh::Patch& patch, const mesh::Mesh& mesh,
+                                                 PatchReference& reference) {
+  const std::size_t parts = reference.parts.size();
+  if (parts == 1) return {reference.parts[0]->wall(mesh, wall_faces(patch))};
+  std::vector<std::size_t> nearest(patch.faces.size(), 0);
+  for (std::size_t f = 0; f < patch.faces.size(); ++f) {
+    geometry::Vec3 centroid{0, 0, 0};
+    const auto corners = patch.faces.nodes(f);
+    for (const mesh::NodeId n : corners) centroid = centroid + mesh.points[static_cast<std::size_t>(n)];
+    centroid = centroid * (1.0 / static_cast<double>(corners.size()));
+    double best = reference.parts[0]->distance(centroid);
+    for (std::size_t k = 1; k < parts; ++k) {
+      const double d = reference.parts[k]->distance(centroid);
+      if (d < best) {
+        best = d;
+        nearest[f] = k;
+      }
+    }
+  }
+  std::vector<std::optional<WallCheck>> walls;
+  for (std::size_t k = 0; k < parts; ++k) {
+    std::vector<std::uint8_t> selected(patch.faces.size());
+    for (std::size_t f = 0; f < selected.size(); ++f) selected[f] = nearest[f] == k ? 1 : 0;
+    walls.push_back(reference.parts[k]->wall(mesh, wall_faces(patch, selected)));
+  }
+  return walls;
+}
+
+/// Sets `check.wall` and folds the wall tolerance into `check.passed`.
+void put_wall(DistanceCheck& check, std::optional<WallCheck> wall, const std::optional<double>& wall_tolerance) {
+  if (wall && wall_tolerance) wall->passed = wall->hausdorff <= *wall_tolerance;  // false for NaN too
+  check.wall = std::move(wall);
+  if (check.wall && !check.wall->passed) check.passed = false;
+}
+
+/// The nodes of `patch` measured against its reference, each node against the nearest part;
+/// then its faces, both ways.
 PatchCheck check_patch(const mesh::Patch& patch, const mesh::Mesh& mesh, PatchReference& reference,
-                       double tolerance) {
+                       double tolerance, const std::optional<double>& wall_tolerance) {
   const auto start = std::chrono::steady_clock::now();
   DistanceTally whole(reference.description);
   std::vector<DistanceTally> parts;
@@ -180,16 +222,36 @@ PatchCheck check_patch(const mesh::Patch& patch, const mesh::Mesh& mesh, PatchRe
   PatchCheck check;
   static_cast<DistanceCheck&>(check) = whole.result(tolerance);
   check.patch = patch.name;
+  std::vector<std::optional<WallCheck>> walls = part_walls(patch, mesh, reference);
   if (parts.size() > 1) {
-    for (const DistanceTally& part : parts) check.parts.push_back(part.result(tolerance));
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      check.parts.push_back(parts[k].result(tolerance));
+      put_wall(check.parts.back(), walls[k], wall_tolerance);
+    }
   }
+  // The patch's: the largest of its parts' (a part not measured leaves the patch unmeasured).
+  std::optional<WallCheck> worst = walls[0];
+  for (std::size_t k = 1; k < walls.size() && worst; ++k) {
+    if (!walls[k]) {
+      worst.reset();
+    } else if (walls[k]->hausdorff > worst->hausdorff || std::isnan(walls[k]->hausdorff)) {
+      worst = walls[k];
+    }
+  }
+  put_wall(check, std::move(worst), wall_tolerance);
   check.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return check;
 }
 
 void log_patch(const PatchCheck& p) {
-  spdlog::info("{}: {} nodes, max distance {:.3e} at node {}, mean {:.3e} ({})", p.patch, p.nodes, p.max_distance,
-               p.worst_node, p.mean_distance, p.passed ? "pass" : "FAIL");
+  spdlog::info("{}: {} nodes, max distance {:.3e} at node {}, mean {:.3e}; faces {} ({})", p.patch, p.nodes,
+               p.max_distance, p.worst_node, p.mean_distance,
+               p.wall ? fmt::format("{:.3e} both ways", p.wall->hausdorff) : std::string("not measured"),
+               p.passed ? "pass" : "FAIL");
+}
+
+std::optional<double> wall_tolerance(const Options& o) {
+  return o.wall_tolerance > 0.0 ? std::optional<double>(o.wall_tolerance) : std::nullopt;
 }
 
 /// The check the options describe (--map, --deflection, --cad, --axis, ...).
@@ -224,9 +286,11 @@ CheckResult check_with_options(const Options& o, const std::vector<std::filesyst
   result.cad = o.cad;
   result.unit = geometry::to_string(options.unit);
   result.tolerance = o.tolerance > 0.0 ? o.tolerance : default_tolerance(mesh);
+  result.wall_tolerance = wall_tolerance(o);
   for (const PatchCheckSpec& spec : specs) {
     PatchReference reference = make_patch_reference(spec, cad ? &*cad : nullptr, mesh, options);
-    result.patches.push_back(check_patch(*mesh.find_patch(spec.patch), mesh, reference, result.tolerance));
+    result.patches.push_back(
+        check_patch(*mesh.find_patch(spec.patch), mesh, reference, result.tolerance, result.wall_tolerance));
     log_patch(result.patches.back());
   }
   return result;
@@ -285,6 +349,7 @@ CheckResult check_with_case(const Options& o, std::vector<std::filesystem::path>
   result.cad = c.cad ? c.cad->string() : std::string();
   result.unit = geometry::to_string(c.length_unit);
   result.tolerance = o.tolerance > 0.0 ? o.tolerance : default_tolerance(mesh);
+  result.wall_tolerance = wall_tolerance(o);
   for (CasePatchReference& r : references) {
     const mesh::Patch* patch = mesh.find_patch(r.patch);
     const mesh::Patch* original = case_mesh.mesh.find_patch(r.patch);
@@ -293,7 +358,7 @@ CheckResult check_with_case(const Options& o, std::vector<std::filesystem::path>
                            fmt::format("patch '{}' {} in the case's mesh {}: give a mesh the case was deformed into",
                                        r.patch, patch ? "has other nodes than" : "is missing; it is", c.mesh.string()));
     }
-    result.patches.push_back(check_patch(*patch, mesh, r.reference, result.tolerance));
+    result.patches.push_back(check_patch(*patch, mesh, r.reference, result.tolerance, result.wall_tolerance));
     log_patch(result.patches.back());
   }
   return result;
@@ -377,7 +442,9 @@ int run_check(const Options& o) {
 Command add_check_command(CLI::App& parent) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = parent.add_subcommand(
-      "check", "Distance of mesh boundary nodes to their CAD faces or to the deflected shape; exit code 1 above --tol");
+      "check",
+      "Distance of mesh boundary nodes, and of their faces both ways, to their CAD faces or to the deflected shape; "
+      "exit code 1 above --tol (or --wall-tol)");
   cmd->add_option("mesh,--mesh", options->mesh,
                   "Mesh (.msh) to check: undeformed, or deformed when tables are given; with --case, default: the "
                   "case's own mesh")
@@ -395,6 +462,10 @@ Command add_check_command(CLI::App& parent) {
       ->delimiter(',');
   cmd->add_option("--tol", options->tolerance,
                   "Largest distance allowed, in the length unit (default: 1e-6 of the mesh's size)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--wall-tol", options->wall_tolerance,
+                  "Largest two-sided distance allowed between a patch's faces and its shape, in the length unit "
+                  "(default: none, the distance is reported only)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--unit", options->unit, "Length unit of the mesh, tables and CAD import: m, mm, cm, um, in, ft")
       ->capture_default_str();

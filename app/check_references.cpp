@@ -35,6 +35,9 @@ class ShapeReference final : public ReferenceShape {
       : shape_(std::move(shape)), stage_(stage), description_(std::move(description)) {}
   double distance(const geometry::Vec3& p) override { return shape_->project(p, stage_).distance; }
   std::string description() const override { return description_; }
+  std::optional<WallCheck> wall(const mesh::Mesh& mesh, const geometry::WallFaces& faces) override {
+    return measure_wall(*shape_, stage_, mesh, mesh.points, faces);
+  }
 
  private:
   std::shared_ptr<const geometry::BoundaryShape> shape_;

@@ -7,6 +7,8 @@
 // reconstructed through the FEM nodes (section 4.2, eq. 21), on the CAD curve or, without
 // faces, on the curve the nodes define; the mesh is then the deformed one. With a case file the
 // shapes are those hotmesh deform builds for the case (io::set_up_case), undeformed or deflected.
+// Shapes that are curves (in the x-y plane, or meridional curves of surfaces of revolution)
+// also measure the patch's faces, both ways (wall_deviation_report.hpp).
 #pragma once
 
 #include <filesystem>
@@ -19,6 +21,7 @@
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/case_file.hpp"
+#include "wall_deviation_report.hpp"
 
 namespace hotmesh::app {
 
@@ -30,6 +33,13 @@ class ReferenceShape {
   virtual double distance(const geometry::Vec3& p) = 0;
   /// What the shape is, for reports: "CAD faces 1, 2: their meridional curve about ...".
   virtual std::string description() const = 0;
+  /// The two-sided distance between `faces` of `mesh` and the shape (wall_deviation_report.hpp);
+  /// nothing for a shape it is not defined for (CAD faces that are no surfaces of revolution).
+  virtual std::optional<WallCheck> wall(const mesh::Mesh& mesh, const geometry::WallFaces& faces) {
+    (void)mesh;
+    (void)faces;
+    return std::nullopt;
+  }
 };
 
 /// What one patch is measured against: one shape, or one per separate part.

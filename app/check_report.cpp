@@ -15,8 +15,17 @@ std::string point_text(const geometry::Vec3& p) { return fmt::format("({:.9g}, {
 
 std::string verdict(const DistanceCheck& p, double tolerance) {
   return fmt::format("max distance {:.3e} at node {} {} {} the tolerance {:.3e}; mean {:.3e} over {} nodes",
-                     p.max_distance, p.worst_node, point_text(p.worst_point), p.passed ? "within" : "ABOVE",
-                     tolerance, p.mean_distance, p.nodes);
+                     p.max_distance, p.worst_node, point_text(p.worst_point),
+                     p.max_distance <= tolerance ? "within" : "ABOVE", tolerance, p.mean_distance, p.nodes);
+}
+
+/// The faces' two-sided distance, and how it compares with the wall tolerance if there is one.
+std::string wall_verdict(const DistanceCheck& p, const std::optional<double>& wall_tolerance) {
+  if (!p.wall) return "faces: not measured (the reference is no curve nor surface of revolution)";
+  const std::string against = wall_tolerance ? fmt::format(", {} the wall tolerance {:.3e}",
+                                                           p.wall->passed ? "within" : "ABOVE", *wall_tolerance)
+                                             : std::string(" (no --wall-tol: reported only)");
+  return "faces: " + wall_text(*p.wall) + against;
 }
 
 /// Text escaped for XML attributes and content.
@@ -42,14 +51,22 @@ std::string xml(const std::string& text) {
 }
 
 /// The verdicts of the parts of a patch, one line each, indented.
-std::string part_lines(const PatchCheck& p, double tolerance, const std::string& indent) {
+std::string part_lines(const PatchCheck& p, const CheckResult& result, const std::string& indent) {
   std::string text;
   for (std::size_t k = 0; k < p.parts.size(); ++k) {
     const DistanceCheck& part = p.parts[k];
-    text += fmt::format("{}part {} {}: {}\n{}    against {}\n", indent, k + 1, part.passed ? "pass" : "FAIL",
-                        verdict(part, tolerance), indent, part.reference);
+    text += fmt::format("{}part {} {}: {}\n{}    {}\n{}    against {}\n", indent, k + 1, part.passed ? "pass" : "FAIL",
+                        verdict(part, result.tolerance), indent, wall_verdict(part, result.wall_tolerance), indent,
+                        part.reference);
   }
   return text;
+}
+
+nlohmann::json wall_check_json(const DistanceCheck& p) {
+  if (!p.wall) return nullptr;
+  nlohmann::json wall = wall_json(*p.wall);
+  wall["passed"] = p.wall->passed;
+  return wall;
 }
 
 nlohmann::json distances_json(const DistanceCheck& p) {
@@ -58,6 +75,7 @@ nlohmann::json distances_json(const DistanceCheck& p) {
           {"max_distance", p.max_distance},
           {"mean_distance", p.mean_distance},
           {"worst_node", {{"id", p.worst_node}, {"point", {p.worst_point.x, p.worst_point.y, p.worst_point.z}}}},
+          {"wall", wall_check_json(p)},
           {"passed", p.passed}};
 }
 
@@ -77,13 +95,15 @@ std::size_t failures(const CheckResult& result) {
 bool CheckResult::passed() const { return failures(*this) == 0; }
 
 std::string check_text(const CheckResult& result) {
-  std::string text = fmt::format("hotmesh check: {}{}{}, tolerance {:.3e} {}\n", result.mesh,
+  std::string text = fmt::format("hotmesh check: {}{}{}, tolerance {:.3e} {}{}\n", result.mesh,
                                  result.case_file.empty() ? "" : " against the case " + result.case_file,
-                                 result.cad.empty() ? "" : " and " + result.cad, result.tolerance, result.unit);
+                                 result.cad.empty() ? "" : " and " + result.cad, result.tolerance, result.unit,
+                                 result.wall_tolerance ? fmt::format(", wall tolerance {:.3e}", *result.wall_tolerance)
+                                                       : std::string());
   for (const PatchCheck& p : result.patches) {
-    text += fmt::format("  {} {}: {}\n      against {}\n", p.passed ? "pass" : "FAIL", p.patch, verdict(p, result.tolerance),
-                        p.reference);
-    text += part_lines(p, result.tolerance, "      ");
+    text += fmt::format("  {} {}: {}\n      {}\n      against {}\n", p.passed ? "pass" : "FAIL", p.patch,
+                        verdict(p, result.tolerance), wall_verdict(p, result.wall_tolerance), p.reference);
+    text += part_lines(p, result, "      ");
   }
   text += fmt::format("{} of {} patches within the tolerance\n", result.patches.size() - failures(result),
                       result.patches.size());
@@ -109,6 +129,8 @@ std::string check_json(const CheckResult& result) {
                                {"case", optional_text(result.case_file)},
                                {"cad", optional_text(result.cad)},
                                {"tolerance", result.tolerance},
+                               {"wall_tolerance", result.wall_tolerance ? nlohmann::json(*result.wall_tolerance)
+                                                                        : nlohmann::json(nullptr)},
                                {"unit", result.unit},
                                {"passed", result.passed()},
                                {"patches", patches}};
@@ -130,16 +152,25 @@ std::string check_junit(const CheckResult& result) {
   }
   if (!result.cad.empty()) x += fmt::format("      <property name=\"cad\" value=\"{}\"/>\n", xml(result.cad));
   x += fmt::format("      <property name=\"tolerance\" value=\"{:.6e}\"/>\n", result.tolerance);
+  if (result.wall_tolerance) {
+    x += fmt::format("      <property name=\"wall_tolerance\" value=\"{:.6e}\"/>\n", *result.wall_tolerance);
+  }
   x += fmt::format("      <property name=\"unit\" value=\"{}\"/>\n", xml(result.unit));
   x += "    </properties>\n";
   for (const PatchCheck& p : result.patches) {
     x += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">\n", xml(classname), xml(p.patch), p.seconds);
-    const std::string details =
-        xml(verdict(p, result.tolerance) + "; against " + p.reference + "\n" + part_lines(p, result.tolerance, ""));
-    if (!p.passed) {
+    const std::string details = xml(verdict(p, result.tolerance) + "; " + wall_verdict(p, result.wall_tolerance) +
+                                    "; against " + p.reference + "\n" + part_lines(p, result, ""));
+    if (!(p.max_distance <= result.tolerance)) {
       x += fmt::format("      <failure type=\"tolerance\" message=\"node {} is {:.3e} from the reference shape, above the "
                        "tolerance {:.3e}\">{}</failure>\n",
                        p.worst_node, p.max_distance, result.tolerance, details);
+    } else if (!p.passed && p.wall) {
+      const WallSide& w = p.wall->worst_side();
+      x += fmt::format("      <failure type=\"wall tolerance\" message=\"the faces are {:.3e} from the reference shape at {} "
+                       "({}, face edge of nodes {}-{}), above the wall tolerance {:.3e}\">{}</failure>\n",
+                       p.wall->hausdorff, point_text(w.point),
+                       p.wall->worst, w.edge_nodes[0], w.edge_nodes[1], result.wall_tolerance.value_or(0.0), details);
     }
     x += fmt::format("      <system-out>{}</system-out>\n", details);
     x += "    </testcase>\n";

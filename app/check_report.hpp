@@ -1,15 +1,17 @@
 // hotmesh app: the result of `hotmesh check` (distance of each mapped patch's nodes to its
-// reference shape) and its three forms: text for people, JSON for scripts, JUnit XML for CI
+// reference shape, and the two-sided distance of its faces) and its three forms: text for people, JSON for scripts, JUnit XML for CI
 // systems (one test case per patch; a patch above the tolerance fails naming its worst node).
 // A check that cannot be made (bad input) still gives CI a JUnit report: one test case in
 // error, carrying the message.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "hotmesh/geometry/vec3.hpp"
+#include "wall_deviation_report.hpp"
 
 namespace hotmesh::app {
 
@@ -21,7 +23,10 @@ struct DistanceCheck {
   double mean_distance = 0.0;
   std::int64_t worst_node = 0;  ///< node id in the mesh file
   geometry::Vec3 worst_point;
-  bool passed = true;           ///< max_distance <= tolerance
+  /// The two-sided distance between the faces and the reference shape; nothing for a shape it
+  /// is not defined for (CAD faces that are no surfaces of revolution).
+  std::optional<WallCheck> wall;
+  bool passed = true;           ///< max_distance <= tolerance, and the wall's within the wall tolerance
 };
 
 struct PatchCheck : DistanceCheck {
@@ -37,6 +42,8 @@ struct CheckResult {
   std::string cad;        ///< empty without CAD
   std::string case_file;  ///< empty without --case
   double tolerance = 0.0;
+  /// The largest two-sided distance allowed for the faces (--wall-tol); none: reported only.
+  std::optional<double> wall_tolerance;
   std::string unit;
   std::vector<PatchCheck> patches;
 

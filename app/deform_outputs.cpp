@@ -14,6 +14,7 @@
 #include "hotmesh/io/mesh_picture.hpp"
 #include "hotmesh/io/vtu.hpp"
 #include "mesh_summary.hpp"
+#include "wall_deviation_report.hpp"
 
 namespace hotmesh::app {
 namespace {
@@ -247,6 +248,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["solver"] = solver_json(c.solver);
   put_increments(j, result);
   put_motion(j, loaded.mesh, result);
+  j["wall_deviations"] = wall_deviations_json(loaded.mesh, result.points, setup, result.lambda_reached, result.length_scale);
   if (c.restart) j["restarted_from"] = c.restart->string();
   if (resumed) {
     j["resumed_from"] = {{"checkpoint", (folder / io::kCheckpointName).string()},

@@ -4,7 +4,9 @@
 // to STEP (undeformed against the CAD faces, deformed against the deflected cylinder) and for
 // the stator-well sample's casing, whose two faces lie on either side of the blade row; checks
 // driven by a case file (--case: the ramp2d sliding case deformed, the stator-well case's own
-// mesh); the JSON and JUnit reports, also of a check that cannot be made; user errors.
+// mesh); the faces' two-sided distance, which sees the corner of the prescribed ramp that an
+// edge cuts (--wall-tol); the JSON and JUnit reports, also of a check that cannot be made; user
+// errors.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -107,6 +109,61 @@ TEST(CheckCommand, RampSampleDeformedMeshLiesOnTheDeflectedWallAndAMovedNodeIsFo
   EXPECT_THAT(junit.output, HasSubstr("<failure type=\"tolerance\" message=\"node " + std::to_string(mesh.node_id(moved))));
 }
 
+/// The node of `mesh` whose number in the mesh file is `id`.
+const geometry::Vec3& node_point(const mesh::Mesh& mesh, std::int64_t id) {
+  for (std::size_t n = 0; n < mesh.points.size(); ++n) {
+    if (mesh.node_id(static_cast<mesh::NodeId>(n)) == id) return mesh.points[n];
+  }
+  throw std::runtime_error("no node " + std::to_string(id));
+}
+
+// Issue 20: the prescribed ramp's nodes lie on the deflected ramp (node distances at round-off)
+// but no node lands on its corner A (0.975, 0), so the edge between the nodes on either side
+// cuts it by about 0.025 h. The faces' two-sided distance sees it and names the corner and the
+// edge; it is reported only, unless --wall-tol is given, which then fails the patch.
+TEST(CheckCommand, CornerCutByAnEdgeOfTheRampIsSeenByTheFacesNotByTheNodes) {
+  test::TempDir dir;
+  const std::filesystem::path case_file = kSamples / "ramp2d/ramp2d.yaml";
+  const auto deformed = hotmesh("-q deform " + q(case_file) + " -o " + q(dir / "out"));
+  ASSERT_EQ(deformed.exit_code, 0) << deformed.output;
+  const std::string check = q(dir / "out/deformed.msh") + " --case " + q(case_file);
+
+  const auto [code, report] = check_json(check);
+  ASSERT_EQ(code, 0) << report.dump(2);
+  EXPECT_TRUE(report["wall_tolerance"].is_null());
+  ASSERT_EQ(report["patches"].size(), 1u);
+  const Json& patch = report["patches"][0];
+  EXPECT_LT(patch["max_distance"].get<double>(), 1e-12);
+  const Json& wall = patch["wall"];
+  EXPECT_EQ(wall["edges"], 57);
+  EXPECT_NEAR(wall["hausdorff"].get<double>(), 0.025, 5e-4);
+  EXPECT_EQ(wall["worst"], "shape_to_mesh");
+  EXPECT_NEAR(wall["worst_point"][0].get<double>(), 0.975, 1e-9);
+  EXPECT_NEAR(wall["worst_point"][1].get<double>(), 0.0, 1e-9);
+  EXPECT_EQ(wall["passed"], true);
+  const mesh::Mesh mesh = io::read_gmsh(dir / "out/deformed.msh");
+  const geometry::Vec3& a = node_point(mesh, wall["shape_to_mesh"]["edge_nodes"][0].get<std::int64_t>());
+  const geometry::Vec3& b = node_point(mesh, wall["shape_to_mesh"]["edge_nodes"][1].get<std::int64_t>());
+  EXPECT_LT(std::min(a.x, b.x), 0.975);  // the edge across the corner
+  EXPECT_GT(std::max(a.x, b.x), 0.975);
+  EXPECT_LT(wall["mesh_to_shape"]["distance"].get<double>(), wall["hausdorff"].get<double>());
+  EXPECT_THAT(hotmesh("-q check " + check).output, HasSubstr("faces: two-sided distance 2.50"));
+
+  const auto [tight_code, tight] = check_json(check + " --wall-tol 1e-3");
+  EXPECT_EQ(tight_code, 1) << tight.dump(2);
+  EXPECT_EQ(tight["wall_tolerance"], 1e-3);
+  EXPECT_EQ(tight["patches"][0]["passed"], false);
+  EXPECT_EQ(tight["patches"][0]["wall"]["passed"], false);
+  EXPECT_EQ(hotmesh("-q check " + check + " --wall-tol 0.03").exit_code, 0);
+  const auto junit = hotmesh("-q check " + check + " --wall-tol 1e-3 --format junit -o " + q(dir / "check.xml"));
+  EXPECT_EQ(junit.exit_code, 1);
+  const auto parsed = parse_junit(dir / "check.xml");
+  ASSERT_EQ(parsed.exit_code, 0) << parsed.output;
+  EXPECT_THAT(parsed.output, HasSubstr("1 1 0 [('bottom', 'failure')]"));
+  EXPECT_THAT(parsed.output, HasSubstr("from the reference shape at (0.975, 0, 0) (shape_to_mesh, face edge of nodes"));
+  EXPECT_THAT(parsed.output, HasSubstr("above the wall tolerance 1.000e-03"));
+}
+
 /// A 30-degree sector of the annulus 0.5 < r < 0.7, 0 < z < 1 about the z axis, as hexes:
 /// patch "inner" on the cylinder r = 0.5, "bottom" on the plane z = 0.
 mesh::Mesh annulus_sector() {
@@ -163,6 +220,9 @@ TEST(CheckCommand, RevolvedMeshAgainstCadFacesAndTheDeflectedCylinder) {
   EXPECT_THAT(pass["patches"][0]["reference"].get<std::string>(), HasSubstr("meridional curve"));
   EXPECT_LT(pass["patches"][1]["max_distance"].get<double>(), 1e-12);
   EXPECT_THAT(pass["patches"][1]["reference"].get<std::string>(), HasSubstr("their surfaces"));
+  // The faces in the meridional plane: the quads' chords across theta are not counted.
+  EXPECT_LT(pass["patches"][0]["wall"]["hausdorff"].get<double>(), 1e-9);
+  EXPECT_TRUE(pass["patches"][1]["wall"].is_null());  // a plane's surface, no curve: not measured
 
   // One node of the inner wall 0.2 mm outwards, one of the bottom 0.3 mm down.
   mesh::Mesh perturbed = mesh;
@@ -200,6 +260,7 @@ TEST(CheckCommand, RevolvedMeshAgainstCadFacesAndTheDeflectedCylinder) {
   const auto [moved_code, moved] = check_json(deflected + q(dir / "deformed.msh"));
   EXPECT_EQ(moved_code, 0) << moved.dump(2);
   EXPECT_LT(moved["patches"][0]["max_distance"].get<double>(), 1e-9);
+  EXPECT_LT(moved["patches"][0]["wall"]["hausdorff"].get<double>(), 1e-9);
   EXPECT_THAT(moved["patches"][0]["reference"].get<std::string>(), HasSubstr("deflected by"));
   const auto [still_code, still] = check_json(deflected + q(dir / "sector.msh"));  // the undeformed mesh
   EXPECT_EQ(still_code, 1);
@@ -367,10 +428,16 @@ TEST(CheckCommand, CaseFileGivesTheWallsADeformedMeshIsCheckedAgainst) {
   for (const Json& patch : hot["patches"]) {
     EXPECT_EQ(patch["nodes"], 58);
     EXPECT_LT(patch["max_distance"].get<double>(), 1e-12) << patch["patch"];
+    EXPECT_EQ(patch["wall"]["passed"], true) << patch["patch"];  // no --wall-tol: reported only
     EXPECT_THAT(patch["reference"].get<std::string>(), HasSubstr("the deflected wall of the case (sliding)"));
   }
   EXPECT_THAT(hot["patches"][1]["reference"].get<std::string>(),
               HasSubstr("the curve through the FEM nodes of ramp.csv, deflected by them (eq. 21, curve form, degree 1)"));
+  // The upper wall slid along its straight self; the lower one's nodes gathered on the ramp,
+  // leaving corner A, at the ramp's foot, to one long edge.
+  EXPECT_LT(hot["patches"][0]["wall"]["hausdorff"].get<double>(), 1e-12);
+  EXPECT_GT(hot["patches"][1]["wall"]["hausdorff"].get<double>(), 0.02);
+  EXPECT_NEAR(hot["patches"][1]["wall"]["worst_point"][0].get<double>(), 0.975, 1e-9);
 
   // A node of the flat part of the deflected wall 10 um up (the cells there are thin: the
   // sliding nodes gathered on the ramp): found.

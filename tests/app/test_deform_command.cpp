@@ -64,6 +64,29 @@ TEST(DeformCommand, RampSampleCompletesWithEveryOutputAndReport) {
   }
   const auto q = mesh::summarize_quality(mesh::scaled_jacobians(moved.cells, moved.points));
   EXPECT_EQ(q.inverted_cells, 0u);
+
+  // ... but its faces do not: no node lands on corner A (0.975, 0), and the edge between the
+  // last node before it and the first after it cuts it (issue 20). The report names the corner.
+  ASSERT_EQ(report["wall_deviations"].size(), 1u);
+  const auto& wall = report["wall_deviations"][0];
+  EXPECT_EQ(wall["patch"], "bottom");
+  EXPECT_EQ(wall["role"], "prescribed");
+  EXPECT_EQ(wall["stage"], 1.0);
+  EXPECT_EQ(wall["edges"], 57);
+  std::vector<geometry::Vec3> wall_nodes;
+  for (mesh::NodeId n : moved.find_patch("bottom")->nodes) wall_nodes.push_back(moved.points[static_cast<std::size_t>(n)]);
+  std::sort(wall_nodes.begin(), wall_nodes.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
+  const auto after = std::find_if(wall_nodes.begin(), wall_nodes.end(), [](const auto& p) { return p.x > 0.975; });
+  const geometry::Vec3 a = *(after - 1), b = *after, corner{0.975, 0.0, 0.0};
+  const double cut = std::abs((b.x - a.x) * (corner.y - a.y) - (b.y - a.y) * (corner.x - a.x)) / distance(a, b);
+  EXPECT_NEAR(wall["hausdorff"].get<double>(), cut, 1e-9);
+  EXPECT_GT(cut, 0.02);
+  EXPECT_EQ(wall["worst"], "shape_to_mesh");
+  EXPECT_NEAR(wall["worst_point"][0].get<double>(), 0.975, 1e-9);
+  EXPECT_NEAR(wall["worst_point"][1].get<double>(), 0.0, 1e-9);
+  EXPECT_EQ(wall["shape_to_mesh"]["distance"], wall["hausdorff"]);
+  EXPECT_LT(wall["mesh_to_shape"]["distance"].get<double>(), cut);
+  EXPECT_EQ(wall["hausdorff_relative"].get<double>(), wall["hausdorff"].get<double>() / report["length_scale"].get<double>());
 }
 
 /// `linear: amg` runs PETSc inside the process, without mpirun, and leaves no MPI session
