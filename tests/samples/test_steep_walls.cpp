@@ -3,9 +3,10 @@
 // between mesh nodes) and the paper's ramp (samples/ramp2d). Without features no mesh node is
 // made to sit on a corner, so every corner is cut; the bounds below are today's distances with
 // some margin. The distance is the Hausdorff distance of wall_distance.hpp, the one
-// samples/tools/wall_metrics gives the results pages. Issue 20 holds the corners with nodes (`features:` on a sliding patch); its
-// target, wall within 0.002 h of the exact wall with no loss of cell quality, is written here
-// as DISABLED_ tests, to be enabled when the case file accepts `features:`.
+// samples/tools/wall_metrics gives the results pages. Issue 20 holds the corners with nodes
+// (`features:` on a sliding patch); its target, wall within 0.002 h of the exact wall with no
+// loss of cell quality, is written here as DISABLED_ tests, to be enabled when the case file
+// accepts `features:`.
 #include <gtest/gtest.h>
 #include <omp.h>
 
