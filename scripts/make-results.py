@@ -4,7 +4,8 @@
 Runs each sample case with the built hotmesh, measures the walls with wall_metrics, copies the
 pictures to docs/results/img/ and rewrites the table between the markers
 <!-- results:<sample>:begin --> and <!-- results:<sample>:end --> of docs/results/<sample>.md.
-Usage: scripts/make-results.sh (builds first), or scripts/make-results.py BUILD_DIR.
+Usage: scripts/make-results.sh (builds first), or scripts/make-results.py BUILD_DIR [SAMPLE...]
+(only the samples named, e.g. step2d; all of them without).
 """
 import json
 import os
@@ -27,7 +28,19 @@ SAMPLES = {
         ("without sliding", "shear2d.yaml", "top", "top.csv", None),
         ("with sliding", "shear2d-sliding.yaml", "top", "top.csv", None),
     ],
+    "step2d": [
+        ("without sliding", "step2d.yaml", "bottom", "bump.csv", (1.2, 1.8)),
+        ("with sliding", "step2d-sliding.yaml", "bottom", "bump.csv", (1.2, 1.8)),
+        ("with sliding, features off", "step2d-sliding-nofeatures.yaml", "bottom", "bump.csv", (1.2, 1.8)),
+    ],
 }
+
+# What the region (xmin, xmax) of a sample is, for the column of wall nodes in it.
+REGION_NAMES = {"ramp2d": "ramp", "step2d": "bump"}
+
+# Cases written for a case-file key hotmesh may not accept yet (`features:`, issue 20): if
+# hotmesh rejects the case file (exit code 2), its row says so instead of ending the script.
+NEWER_KEYS = {"step2d-sliding-nofeatures.yaml"}
 
 
 def machine():
@@ -47,8 +60,16 @@ def run_case(build, sample, label, case, wall, table, region, out_root):
     stem = os.path.splitext(case)[0]
     out = os.path.join(out_root, stem)
     env = dict(os.environ, OMP_WAIT_POLICY="PASSIVE")
-    subprocess.run([os.path.join(build, "app", "hotmesh"), "-q", "deform", os.path.join(sample_dir, case), "-o", out],
-                   check=True, env=env)
+    command = [os.path.join(build, "app", "hotmesh"), "-q", "deform", os.path.join(sample_dir, case), "-o", out]
+    if case in NEWER_KEYS:
+        done = subprocess.run(command, env=env, capture_output=True, text=True)
+        if done.returncode == 2:
+            print(f"{case}: not run, hotmesh rejects it: {done.stderr.strip()}", file=sys.stderr)
+            return {"label": label, "case": case, "report": None, "metrics": None, "pictures": []}
+        sys.stderr.write(done.stderr)
+        done.check_returncode()
+    else:
+        subprocess.run(command, check=True, env=env)
     report = json.load(open(os.path.join(out, "report.json")))
     args = [os.path.join(build, "samples", "tools", "wall_metrics"), os.path.join(out, "deformed.msh"), wall,
             os.path.join(sample_dir, table)]
@@ -70,13 +91,19 @@ def table(sample, runs):
     base = runs[0]["report"]["seconds"]["motion"]
     has_region = SAMPLES[sample][0][4] is not None
     lines = [
-        "| run | min scaled Jacobian | inverted cells | " + ("wall nodes on the ramp | " if has_region else "") +
+        "| run | min scaled Jacobian | inverted cells | " +
+        (f"wall nodes on the {REGION_NAMES[sample]} | " if has_region else "") +
         "max distance wall–exact | sliding nodes | increments (attempts) | Newton iterations | PCG iterations | "
         "time of the motion (s) | ratio to without sliding |",
         "|---|---|---|" + ("---|" if has_region else "") + "---|---|---|---|---|---|---|",
     ]
     for run in runs:
         r, m = run["report"], run["metrics"]
+        if r is None:
+            empty_columns = 9 if has_region else 8
+            lines.append(f"| {run['label']} (`{run['case']}`) | not run: this hotmesh rejects the case file |" +
+                         " |" * empty_columns)
+            continue
         seconds = r["seconds"]["motion"]
         lines.append(
             f"| {run['label']} (`{run['case']}`) | {r['min_scaled_jacobian']:.3f} | {r['inverted_cells']} | " +
@@ -91,7 +118,13 @@ def main():
     build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build")
     out_root = os.path.join(build, "results")
     header = f"Measured on {date.today().isoformat()}: {machine()}."
+    chosen = sys.argv[2:] or list(SAMPLES)
+    for sample in chosen:
+        if sample not in SAMPLES:
+            sys.exit(f"no sample {sample}; samples: {', '.join(SAMPLES)}")
     for sample, cases in SAMPLES.items():
+        if sample not in chosen:
+            continue
         runs = [run_case(build, sample, *c, os.path.join(out_root, sample)) for c in cases]
         page = os.path.join(ROOT, "docs", "results", f"{sample}.md")
         text = open(page).read()
