@@ -69,6 +69,13 @@ std::string counted(int count, const char* noun) { return fmt::format("{} {}{}",
 std::string piece_of(int split_depth) { return split_depth > 0 ? fmt::format(" (1/{} piece)", 1 << split_depth) : ""; }
 
 void log_increment(const deform::IncrementRecord& r, int increments) {
+  if (r.corner_pass) {
+    spdlog::info("corner pass {}: nodes onto the corners of the sliding walls, {} Newton iterations, min scaled "
+                 "Jacobian {:.3f}{}",
+                 r.increment - increments, r.newton.size() - 1, r.min_scaled_jacobian,
+                 r.accepted ? "" : fmt::format(", rejected: {}", r.failure));
+    return;
+  }
   std::string pcg;
   for (std::size_t i = 0; i + 1 < r.newton.size(); ++i) pcg += fmt::format("{}{}", i ? "+" : "", r.newton[i].pcg_iterations);
   const std::string piece = piece_of(r.split_depth);

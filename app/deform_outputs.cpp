@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <fstream>
+#include <numbers>
 
 #include <nlohmann/json.hpp>
 
@@ -166,6 +167,7 @@ json attempt_json(const deform::IncrementRecord& r, const deform::MotionResult& 
     }
   }
   json attempt{{"increment", r.increment},
+               {"corner_pass", r.corner_pass},
                {"stage", {r.lambda_begin, r.lambda_end}},
                {"split_depth", r.split_depth},
                {"accepted", r.accepted},
@@ -200,6 +202,26 @@ void put_increments(json& j, const deform::MotionResult& result) {
   j["pcg_iterations"] = pcg_total;
 }
 
+/// The corners of the sliding walls and the nodes that hold them (the corner pass).
+json features_json(const mesh::Mesh& mesh, const deform::MotionResult& result) {
+  json features = json::array();
+  for (const deform::WallFeature& f : result.features) {
+    json nodes = json::array();
+    for (const mesh::NodeId n : f.nodes) nodes.push_back(mesh.node_id(n));
+    json feature{{"patch", f.patch},
+                 {"parameter", f.parameter},
+                 {"angle_deg", f.angle * 180.0 / std::numbers::pi},
+                 {"point", {f.point.x, f.point.y, f.point.z}},
+                 {"nodes", nodes},
+                 {"given_nodes", f.given_nodes},
+                 {"unheld_edges", f.unheld_edges}};
+    put_length(feature, "largest_offset", f.largest_offset, result.length_scale);
+    put_length(feature, "distance", f.distance, result.length_scale);
+    features.push_back(std::move(feature));
+  }
+  return features;
+}
+
 /// The motion's results: stage, node counts, memory, the lengths and the quality.
 void put_motion(json& j, const mesh::Mesh& mesh, const deform::MotionResult& result) {
   const double scale = result.length_scale;
@@ -220,6 +242,7 @@ void put_motion(json& j, const mesh::Mesh& mesh, const deform::MotionResult& res
   j["inverted_cells"] = result.summary.inverted_cells;
   j["quality"] = quality_json(mesh, result.summary);
   j["notes"] = result.notes;
+  j["features"] = features_json(mesh, result);
 }
 
 json seconds_json(const RunTimings& timings, const deform::MotionTimings& m) {

@@ -22,7 +22,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SAMPLES = {
     "ramp2d": [
         ("without sliding", "ramp2d.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
-        ("with sliding", "ramp2d-sliding.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
+        ("sliding, features off (the paper's)", "ramp2d-sliding-nofeatures.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
+        ("sliding with features", "ramp2d-sliding.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
     ],
     "shear2d": [
         ("without sliding", "shear2d.yaml", "top", "top.csv", None),
@@ -30,8 +31,8 @@ SAMPLES = {
     ],
     "step2d": [
         ("without sliding", "step2d.yaml", "bottom", "bump.csv", (1.2, 1.8)),
-        ("with sliding", "step2d-sliding.yaml", "bottom", "bump.csv", (1.2, 1.8)),
-        ("with sliding, features off", "step2d-sliding-nofeatures.yaml", "bottom", "bump.csv", (1.2, 1.8)),
+        ("sliding, features off (the paper's)", "step2d-sliding-nofeatures.yaml", "bottom", "bump.csv", (1.2, 1.8)),
+        ("sliding with features", "step2d-sliding.yaml", "bottom", "bump.csv", (1.2, 1.8)),
     ],
 }
 
