@@ -415,13 +415,18 @@ class BoundaryBuilder {
       const PatchMotion& m = *motion_of_[p];
       const Patch& patch = mesh_.patches[p];
       if (m.role != BoundaryRole::sliding || !m.features.enabled || patch.nodes.empty()) continue;
-      const auto is_free = [&](NodeId n) {
+      const double on_plane = 1e-9 * bounding_diagonal(mesh_.points, patch.nodes);
+      const auto can_hold = [&](NodeId n, const Vec3& q) {
         const int i = sliding_index_[static_cast<std::size_t>(n)];
         if (i < 0 || holds[static_cast<std::size_t>(n)]) return false;
         const SlidingNode& s = setup_.sliding[static_cast<std::size_t>(i)];
-        return s.shape_count == 1 && s.plane_count == 0;
+        const auto planes = std::span(s.planes).first(static_cast<std::size_t>(s.plane_count));
+        return s.shape_count == 1 && std::all_of(planes.begin(), planes.end(), [&](int k) {
+                 const SlipPlane& plane = setup_.slip_planes[static_cast<std::size_t>(k)];
+                 return std::abs(dot(q - plane.origin, plane.normal)) <= on_plane;
+               });
       };
-      WallFeaturePlan plan = plan_wall_features(mesh_, x0_, patch, *m.shape, m.features.angle, is_free);
+      WallFeaturePlan plan = plan_wall_features(mesh_, x0_, patch, *m.shape, m.features.angle, can_hold);
       for (std::size_t k = 0; k < patch.nodes.size() && !plan.features.empty(); ++k) {
         const int i = sliding_index_[static_cast<std::size_t>(patch.nodes[k])];
         if (i < 0) continue;

@@ -47,8 +47,7 @@ std::vector<std::pair<std::size_t, std::size_t>> wall_edges(const Patch& patch,
 }  // namespace
 
 WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
-                                   const geometry::BoundaryShape& shape, double min_angle,
-                                   const std::function<bool(NodeId)>& is_free) {
+                                   const geometry::BoundaryShape& shape, double min_angle, const CanHold& can_hold) {
   WallFeaturePlan plan;
   const std::vector<geometry::ShapeFeature> corners = shape.features(min_angle);
   const std::size_t count = patch.nodes.size();
@@ -121,7 +120,7 @@ WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, c
       const NodeId n = patch.nodes[k];
       const Vec3 q = corner_at(c.feature, k);
       const double offset = distance(x(k), q);
-      if (!is_free(n)) {
+      if (!can_hold(n, q)) {
         if (offset > on_corner) continue;
         held.held_by_role.push_back(n);  // a node of another role already on the corner
       } else if (holds[k] >= 0 || !keeps_edges(k, q)) {

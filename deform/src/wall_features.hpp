@@ -4,7 +4,8 @@
 // Each corner (a feature of the wall's shape, BoundaryShape::features) is crossed by wall
 // edges: edges whose ends lie on either side of its parameter. One end of every crossing edge
 // is given the corner, the nearer one unless it is taken (it holds another corner, or lies
-// where the wall meets another patch); that node then follows the corner exactly. In 2D a
+// where the wall meets another patch, except a slip plane through the corner: the side of a
+// sector); that node then follows the corner exactly. In 2D a
 // corner is crossed by one edge and held by one node; on a surface of revolution the corner is
 // a circle, crossed by one edge per meridional row of wall faces, and held by one node per row.
 // A node is not given a corner if that would shrink one of its wall edges below a quarter of
@@ -40,11 +41,13 @@ struct WallFeaturePlan {
   std::vector<geometry::ParameterRange> segments;
 };
 
+/// Whether node n may be given the corner whose point (in its meridional plane) is q.
+using CanHold = std::function<bool(NodeId n, const Vec3& q)>;
+
 /// The corners of `shape` (of at least `min_angle`) on one sliding patch, and the nodes that
-/// hold them. `is_free(n)`: whether node n is a sliding node of this wall only (it may then be
-/// given a corner). `x0` the positions of stage 0.
+/// hold them. `can_hold`: a sliding node of this wall only, free or held on planes through the
+/// corner (a slip side of a sector). `x0` the positions of stage 0.
 WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
-                                   const geometry::BoundaryShape& shape, double min_angle,
-                                   const std::function<bool(NodeId)>& is_free);
+                                   const geometry::BoundaryShape& shape, double min_angle, const CanHold& can_hold);
 
 }  // namespace hotmesh::deform::detail

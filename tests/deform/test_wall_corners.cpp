@@ -1,0 +1,165 @@
+// The corners of sliding walls held by mesh nodes (wall_features.hpp and the corner pass of
+// move_mesh): a wall that an FEM table folds into a trapezoidal bump, whose four corners lie
+// between mesh nodes, in 2D and on a surface of revolution (a 10-degree sector about z).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "hotmesh/deform/move_mesh.hpp"
+#include "hotmesh/geometry/boundary_shapes.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
+
+namespace hotmesh::deform {
+namespace {
+
+using geometry::BSplineCurve2d;
+using geometry::DeflectedCurve;
+using geometry::DeflectionForm;
+using geometry::Vec2;
+
+constexpr double kBump = 0.2;  ///< height of the bump
+/// The corners' parameters (t = r - 1, or x - 1): feet at 0.3 and 0.7, shoulders at 0.35 and 0.65.
+const std::vector<double> kCorners{0.3, 0.35, 0.65, 0.7};
+
+/// The wall from (1, 0) to (2, 0) in its plane, deflected by a trapezoidal bump of kBump.
+DeflectedCurve bump_wall() {
+  const std::vector<double> ends{0.0, 1.0};
+  const std::vector<Vec2> wall{{1.0, 0.0}, {2.0, 0.0}};
+  const std::vector<double> t{0.0, 0.3, 0.35, 0.65, 0.7, 1.0};
+  const std::vector<Vec2> d{{0, 0}, {0, 0}, {0, kBump}, {0, kBump}, {0, 0}, {0, 0}};
+  return {BSplineCurve2d::polyline(ends, wall), BSplineCurve2d::polyline(t, d), DeflectionForm::displacement};
+}
+
+/// Where the deflected wall is at parameter t, in its plane.
+Vec2 exact(double t) { return bump_wall().point(t, 1.0); }
+
+/// 12 cells along the wall (none of the corners on a node; feet and shoulders in neighbouring
+/// cells), 10 across, growing from 0.03 at the wall.
+std::vector<double> along() { return mesh::uniform_line(1.0, 2.0, 12); }
+std::vector<double> across() { return mesh::stretched_line(0.0, 1.0, 10, 0.03); }
+
+std::vector<PatchMotion> motions(std::shared_ptr<const geometry::BoundaryShape> wall, bool features,
+                                 std::vector<std::string> slips) {
+  std::vector<PatchMotion> m{{"left", BoundaryRole::fixed, nullptr},
+                             {"right", BoundaryRole::fixed, nullptr},
+                             {"top", BoundaryRole::fixed, nullptr},
+                             {"bottom", BoundaryRole::sliding, std::move(wall)}};
+  m.back().features.enabled = features;
+  for (auto& s : slips) m.push_back({s, BoundaryRole::slip, nullptr});
+  return m;
+}
+
+/// Largest distance of a corner from the wall's nodes in (its plane's) coordinates `plane`.
+template <class Plane>
+double largest_corner_gap(const mesh::Mesh& mesh, const MotionResult& r, Plane plane) {
+  double largest = 0.0;
+  for (const double t : kCorners) {
+    const Vec2 c = exact(t);
+    double nearest = 1e300;
+    for (mesh::NodeId n : mesh.find_patch("bottom")->nodes) {
+      nearest = std::min(nearest, norm(plane(r.points[static_cast<std::size_t>(n)]) - c));
+    }
+    largest = std::max(largest, nearest);
+  }
+  return largest;
+}
+
+TEST(WallCorners, EveryCornerOfAPlanarWallGetsANodeOnIt) {
+  const mesh::Mesh mesh = mesh::structured_quads(along(), across(), {"left", "right", "bottom", "top"});
+  const auto wall = std::make_shared<geometry::PlanarCurveShape>(bump_wall());
+  const auto xy = [](const Vec3& p) { return Vec2{p.x, p.y}; };
+
+  const MotionResult free = move_mesh(mesh, motions(wall, false, {}), {}, {});
+  ASSERT_TRUE(free.success) << free.message;
+  EXPECT_TRUE(free.features.empty());
+  EXPECT_GT(largest_corner_gap(mesh, free, xy), 0.01);  // the paper's sliding cuts corners
+
+  const MotionResult held = move_mesh(mesh, motions(wall, true, {}), {}, {});
+  ASSERT_TRUE(held.success) << held.message;
+  EXPECT_EQ(held.summary.inverted_cells, 0u);
+  ASSERT_EQ(held.features.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const WallFeature& f = held.features[k];
+    EXPECT_DOUBLE_EQ(f.parameter, kCorners[k]);
+    EXPECT_EQ(f.given_nodes, 1u);
+    EXPECT_EQ(f.unheld_edges, 0u);
+    EXPECT_LT(f.distance, 1e-12);
+    EXPECT_NEAR(f.point.x, exact(f.parameter).x, 1e-12);
+    EXPECT_NEAR(f.point.y, exact(f.parameter).y, 1e-12);
+  }
+  EXPECT_LT(largest_corner_gap(mesh, held, xy), 1e-12);
+  // Four nodes, four corners: no node holds two.
+  std::vector<mesh::NodeId> holders;
+  for (const WallFeature& f : held.features) holders.push_back(f.nodes.front());
+  std::sort(holders.begin(), holders.end());
+  EXPECT_EQ(std::unique(holders.begin(), holders.end()), holders.end());
+  // The corner pass follows the motion's increments, and a restart would continue from the
+  // mesh before it: the motion's own.
+  EXPECT_TRUE(held.increments.back().corner_pass);
+  EXPECT_FALSE(held.increments.front().corner_pass);
+  ASSERT_EQ(held.restart_points.size(), mesh.node_count());
+  double same = 0.0;
+  for (std::size_t n = 0; n < mesh.node_count(); ++n) same = std::max(same, distance(held.restart_points[n], free.points[n]));
+  EXPECT_EQ(same, 0.0);
+  // Every wall node lies on the deflected wall, none beyond a corner it may not cross: the
+  // wall's nodes stay in order along it.
+  const auto& bottom = mesh.find_patch("bottom")->nodes;
+  std::vector<double> xs;
+  for (mesh::NodeId n : bottom) xs.push_back(held.points[static_cast<std::size_t>(n)].x);
+  std::vector<double> sorted = xs;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
+}
+
+TEST(WallCorners, TwoCornersWithinOneCellAreReportedNotSquashed) {
+  // 4 cells along the wall: the feet and shoulders of the bump pair up inside single cells.
+  const mesh::Mesh mesh =
+      mesh::structured_quads(mesh::uniform_line(1.0, 2.0, 4), across(), {"left", "right", "bottom", "top"});
+  const auto wall = std::make_shared<geometry::PlanarCurveShape>(bump_wall());
+  const MotionResult r = move_mesh(mesh, motions(wall, true, {}), {}, {});
+  ASSERT_TRUE(r.success) << r.message;
+  ASSERT_EQ(r.features.size(), 4u);
+  std::size_t unheld = 0;
+  for (const WallFeature& f : r.features) unheld += f.unheld_edges;
+  EXPECT_GT(unheld, 0u);
+  bool noted = false;
+  for (const std::string& note : r.notes) noted = noted || note.find("two corners within one cell") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
+TEST(WallCorners, OnASurfaceOfRevolutionEveryMeridionalRowHoldsEachCornerCircle) {
+  // The same wall as the meridional curve (r, z) of a 10-degree sector about z, 3 cells in
+  // theta; its sides are slip planes, whose wall nodes hold the corners too (the corner circle
+  // crosses them in their own meridional planes).
+  const double sector = 10.0 * std::numbers::pi / 180.0;
+  mesh::Mesh mesh = mesh::structured_hexes(along(), mesh::uniform_line(0.0, sector, 3), across(),
+                                           {"left", "right", "side0", "side1", "bottom", "top"});
+  for (Vec3& p : mesh.points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), p.z};
+  const geometry::Axis axis({0, 0, 0}, {0, 0, 1});
+  const auto wall = std::make_shared<geometry::RevolvedShape>(bump_wall(), axis);
+  const auto rz = [&](const Vec3& p) {
+    const auto c = axis.to_cylindrical(p);
+    return Vec2{c.r, c.z};
+  };
+  const MotionResult r = move_mesh(mesh, motions(wall, true, {"side0", "side1"}), {}, {});
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_EQ(r.summary.inverted_cells, 0u);
+  ASSERT_EQ(r.features.size(), 4u);
+  for (const WallFeature& f : r.features) {
+    EXPECT_EQ(f.given_nodes, 4u) << f.parameter;  // one per row of nodes in theta
+    EXPECT_EQ(f.unheld_edges, 0u);
+    EXPECT_LT(f.distance, 1e-12);
+    std::vector<double> thetas;
+    for (mesh::NodeId n : f.nodes) thetas.push_back(axis.to_cylindrical(r.points[static_cast<std::size_t>(n)]).theta);
+    std::sort(thetas.begin(), thetas.end());
+    EXPECT_NEAR(thetas.front(), 0.0, 1e-12);
+    EXPECT_NEAR(thetas.back(), sector, 1e-12);
+  }
+  EXPECT_LT(largest_corner_gap(mesh, r, rz), 1e-12);
+}
+
+}  // namespace
+}  // namespace hotmesh::deform
