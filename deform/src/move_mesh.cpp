@@ -421,6 +421,8 @@ bool has_corners(std::span<const PatchMotion> patches) {
   });
 }
 
+MotionResult with_corner_pass(MotionResult moved, MotionResult pass);
+
 /// The corner pass after a successful motion `moved` (issue 20, beyond the paper): each corner
 /// of a sliding wall is given the node nearest it, which moves onto it; the other sliding
 /// nodes keep to their segments between corners. Run after the motion, not through it, so
@@ -464,6 +466,12 @@ MotionResult hold_corners(const Mesh& mesh, std::span<const PatchMotion> patches
   MotionResult pass = motion.run(nullptr);
 
   for (const IncrementRecord& r : pass.increments) moved.increments.push_back(as_corner_pass(r));
+  return with_corner_pass(std::move(moved), std::move(pass));
+}
+
+/// The motion's result `moved` with the corner pass's `pass` after it: its times added, and,
+/// if it succeeded, its mesh, quality and corners.
+MotionResult with_corner_pass(MotionResult moved, MotionResult pass) {
   MotionTimings& t = moved.timings;
   t.setup += pass.timings.setup;
   t.assembly += pass.timings.assembly;

@@ -46,116 +46,153 @@ std::vector<std::pair<std::size_t, std::size_t>> wall_edges(const Patch& patch,
 
 }  // namespace
 
-WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
-                                   const geometry::BoundaryShape& shape, double min_angle, const CanHold& can_hold) {
-  WallFeaturePlan plan;
-  const std::vector<geometry::ShapeFeature> corners = shape.features(min_angle);
-  const std::size_t count = patch.nodes.size();
-  plan.segments.assign(count, {});
-  if (corners.empty() || count == 0) return plan;
-  for (const auto& c : corners) plan.features.push_back({c, {}, {}, 0.0, 0, {}});
+namespace {
 
-  // Where each node of the wall lies on the shape before the motion.
-  plan.parameters.resize(count);
-  mesh::LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
-#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(count) >= mesh::kParallelProjections)
-  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(count); ++i) {
-    errors.run([&] {
-      const auto k = static_cast<std::size_t>(i);
-      plan.parameters[k] = shape.project(x0[static_cast<std::size_t>(patch.nodes[k])], 0.0).parameter;
-    });
-  }
-  errors.rethrow();
-
-  std::unordered_map<NodeId, std::size_t> index;
-  for (std::size_t k = 0; k < count; ++k) index[patch.nodes[k]] = k;
-  const auto edges = wall_edges(patch, index);
-  std::vector<std::vector<std::size_t>> neighbours(count);
-  for (const auto& [a, b] : edges) {
-    neighbours[a].push_back(b);
-    neighbours[b].push_back(a);
+/// plan_wall_features, phase by phase; each phase reads what the ones before it decided.
+class CornerPlanner {
+ public:
+  CornerPlanner(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch, const geometry::BoundaryShape& shape,
+                std::vector<geometry::ShapeFeature> corners)
+      : mesh_(mesh), x0_(x0), patch_(patch), shape_(shape), count_(patch.nodes.size()) {
+    for (const auto& c : corners) {
+      plan_.features.push_back({c, {}, {}, 0.0, 0, {}});
+      corner_parameters_.push_back(c.parameter);
+    }
+    plan_.segments.assign(count_, {});
+    holds_.assign(count_, -1);
+    moved_.resize(count_);
   }
 
-  const auto x = [&](std::size_t k) { return x0[static_cast<std::size_t>(patch.nodes[k])]; };
-  // The corner's point in the meridional plane of node k (in 2D: the point).
-  const auto corner_at = [&](std::size_t f, std::size_t k) {
-    return shape.at(plan.features[f].feature.parameter, 0.0, x(k)).point;
-  };
-  std::vector<double> corner_parameters;
-  for (const auto& c : corners) corner_parameters.push_back(c.parameter);
+  /// Where each node of the wall lies on the shape before the motion.
+  void locate_nodes() {
+    plan_.parameters.resize(count_);
+    mesh::LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
+#pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(count_) >= mesh::kParallelProjections)
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(count_); ++i) {
+      errors.run([&] {
+        const auto k = static_cast<std::size_t>(i);
+        plan_.parameters[k] = shape_.project(x(k), 0.0).parameter;
+      });
+    }
+    errors.rethrow();
+  }
 
-  std::vector<Crossing> crossings;
-  for (const auto& [a, b] : edges) {
-    const double lo = std::min(plan.parameters[a], plan.parameters[b]);
-    const double hi = std::max(plan.parameters[a], plan.parameters[b]);
-    auto it = std::lower_bound(corner_parameters.begin(), corner_parameters.end(), lo);
-    for (; it != corner_parameters.end() && *it <= hi; ++it) {
-      const auto f = static_cast<std::size_t>(it - corner_parameters.begin());
-      crossings.push_back({f, a, b, std::min(distance(x(a), corner_at(f, a)), distance(x(b), corner_at(f, b)))});
+  /// The wall's edges, and those that cross a corner, nearest first.
+  void find_crossings() {
+    std::unordered_map<NodeId, std::size_t> index;
+    for (std::size_t k = 0; k < count_; ++k) index[patch_.nodes[k]] = k;
+    const auto edges = wall_edges(patch_, index);
+    neighbours_.assign(count_, {});
+    for (const auto& [a, b] : edges) {
+      neighbours_[a].push_back(b);
+      neighbours_[b].push_back(a);
+      const double lo = std::min(plan_.parameters[a], plan_.parameters[b]);
+      const double hi = std::max(plan_.parameters[a], plan_.parameters[b]);
+      auto it = std::lower_bound(corner_parameters_.begin(), corner_parameters_.end(), lo);
+      for (; it != corner_parameters_.end() && *it <= hi; ++it) {
+        const auto f = static_cast<std::size_t>(it - corner_parameters_.begin());
+        crossings_.push_back({f, a, b, std::min(offset(f, a), offset(f, b))});
+      }
+    }
+    std::stable_sort(crossings_.begin(), crossings_.end(),
+                     [](const Crossing& l, const Crossing& r) { return l.nearest < r.nearest; });
+  }
+
+  /// One end of every crossing edge gets its corner: the nearer one if it can take it.
+  void give_corners(const CanHold& can_hold) {
+    const double on_corner = 1e-6 * bounding_diagonal(mesh_.points, patch_.nodes);
+    for (const Crossing& c : crossings_) {
+      HeldFeature& held = plan_.features[c.feature];
+      const auto f = static_cast<int>(c.feature);
+      if (holds_[c.a] == f || holds_[c.b] == f) continue;
+      std::array<std::size_t, 2> ends{c.a, c.b};
+      if (offset(c.feature, c.b) < offset(c.feature, c.a)) std::swap(ends[0], ends[1]);
+      bool done = false;
+      for (const std::size_t k : ends) {
+        const NodeId n = patch_.nodes[k];
+        const Vec3 q = corner_at(c.feature, k);
+        if (!can_hold(n, q)) {
+          if (distance(x(k), q) > on_corner) continue;
+          held.held_by_role.push_back(n);  // a node of another role already on the corner
+        } else if (holds_[k] >= 0 || !keeps_edges(k, q)) {
+          continue;
+        } else {
+          held.nodes.push_back(n);
+          held.largest_offset = std::max(held.largest_offset, distance(x(k), q));
+          moved_[k] = q;
+        }
+        holds_[k] = f;
+        done = true;
+        break;
+      }
+      if (!done) ++held.unheld_edges;
     }
   }
-  std::stable_sort(crossings.begin(), crossings.end(),
-                   [](const Crossing& l, const Crossing& r) { return l.nearest < r.nearest; });
 
-  const double on_corner = 1e-6 * bounding_diagonal(mesh.points, patch.nodes);
-  std::vector<int> holds(count, -1);  // the corner each node holds
-  std::vector<Vec3> moved(count);     // where a node holding a corner goes at stage 0
-  const auto position = [&](std::size_t k) { return holds[k] >= 0 ? moved[k] : x(k); };
-  // Giving node k the corner point q shrinks none of its wall edges below kMinEdgeShare.
-  const auto keeps_edges = [&](std::size_t k, const Vec3& q) {
-    return std::all_of(neighbours[k].begin(), neighbours[k].end(), [&](std::size_t j) {
+  /// Where a corner kept edges without a node on it, say so.
+  void note_unheld_corners() {
+    for (HeldFeature& held : plan_.features) {
+      if (held.unheld_edges == 0) continue;
+      const Vec3 p = shape_.at(held.feature.parameter, 1.0, x(0)).point;
+      held.note = fmt::format(
+          "patch '{}': the corner at ({:.6g}, {:.6g}, {:.6g}) (turning {:.1f} degrees) has no node on {} of the wall "
+          "edges that cross it: their ends hold other corners, lie on other patches, or would squash a wall cell "
+          "(two corners within one cell); the wall cuts the corner there",
+          patch_.name, p.x, p.y, p.z, held.feature.angle * 180.0 / std::numbers::pi, held.unheld_edges);
+    }
+  }
+
+  /// Each node's segment: the parameter interval between the corners on either side of it.
+  WallFeaturePlan segments() && {
+    for (std::size_t k = 0; k < count_; ++k) {
+      const auto after = std::upper_bound(corner_parameters_.begin(), corner_parameters_.end(), plan_.parameters[k]);
+      geometry::ParameterRange& segment = plan_.segments[k];
+      if (after != corner_parameters_.begin()) segment.first = *(after - 1);
+      if (after != corner_parameters_.end()) segment.last = *after;
+    }
+    return std::move(plan_);
+  }
+
+ private:
+  const Vec3& x(std::size_t k) const { return x0_[static_cast<std::size_t>(patch_.nodes[k])]; }
+  /// Corner f's point in the meridional plane of node k (in 2D: the point).
+  Vec3 corner_at(std::size_t f, std::size_t k) const {
+    return shape_.at(plan_.features[f].feature.parameter, 0.0, x(k)).point;
+  }
+  double offset(std::size_t f, std::size_t k) const { return distance(x(k), corner_at(f, k)); }
+  Vec3 position(std::size_t k) const { return holds_[k] >= 0 ? moved_[k] : x(k); }
+  /// Giving node k the corner point q shrinks none of its wall edges below kMinEdgeShare.
+  bool keeps_edges(std::size_t k, const Vec3& q) const {
+    return std::all_of(neighbours_[k].begin(), neighbours_[k].end(), [&](std::size_t j) {
       return distance(q, position(j)) >= kMinEdgeShare * distance(x(k), position(j));
     });
-  };
-  for (const Crossing& c : crossings) {
-    HeldFeature& held = plan.features[c.feature];
-    const auto f = static_cast<int>(c.feature);
-    if (holds[c.a] == f || holds[c.b] == f) continue;
-    std::array<std::size_t, 2> ends{c.a, c.b};
-    if (distance(x(c.b), corner_at(c.feature, c.b)) < distance(x(c.a), corner_at(c.feature, c.a))) {
-      std::swap(ends[0], ends[1]);
-    }
-    bool done = false;
-    for (const std::size_t k : ends) {
-      const NodeId n = patch.nodes[k];
-      const Vec3 q = corner_at(c.feature, k);
-      const double offset = distance(x(k), q);
-      if (!can_hold(n, q)) {
-        if (offset > on_corner) continue;
-        held.held_by_role.push_back(n);  // a node of another role already on the corner
-      } else if (holds[k] >= 0 || !keeps_edges(k, q)) {
-        continue;
-      } else {
-        held.nodes.push_back(n);
-        held.largest_offset = std::max(held.largest_offset, offset);
-        moved[k] = q;
-      }
-      holds[k] = f;
-      done = true;
-      break;
-    }
-    if (!done) ++held.unheld_edges;
   }
 
-  for (HeldFeature& held : plan.features) {
-    if (held.unheld_edges == 0) continue;
-    const Vec3 p = shape.at(held.feature.parameter, 1.0, x(0)).point;
-    held.note = fmt::format(
-        "patch '{}': the corner at ({:.6g}, {:.6g}, {:.6g}) (turning {:.1f} degrees) has no node on {} of the wall "
-        "edges that cross it: their ends hold other corners, lie on other patches, or would squash a wall cell (two "
-        "corners within one cell); the wall cuts the corner there",
-        patch.name, p.x, p.y, p.z, held.feature.angle * 180.0 / std::numbers::pi, held.unheld_edges);
-  }
+  const Mesh& mesh_;
+  std::span<const Vec3> x0_;
+  const Patch& patch_;
+  const geometry::BoundaryShape& shape_;
+  std::size_t count_;
+  WallFeaturePlan plan_;
+  std::vector<double> corner_parameters_;
+  std::vector<std::vector<std::size_t>> neighbours_;  ///< per node (index in the patch): its wall neighbours
+  std::vector<Crossing> crossings_;
+  std::vector<int> holds_;    ///< per node: the corner it holds, or -1
+  std::vector<Vec3> moved_;   ///< per node holding a corner: where it goes at stage 0
+};
 
-  // Segments: the parameter interval between the corners on either side of each node.
-  for (std::size_t k = 0; k < count; ++k) {
-    const double t = plan.parameters[k];
-    const auto after = std::upper_bound(corner_parameters.begin(), corner_parameters.end(), t);
-    geometry::ParameterRange& segment = plan.segments[k];
-    if (after != corner_parameters.begin()) segment.first = *(after - 1);
-    if (after != corner_parameters.end()) segment.last = *after;
-  }
-  return plan;
+}  // namespace
+
+WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
+                                   const geometry::BoundaryShape& shape, double min_angle, const CanHold& can_hold) {
+  std::vector<geometry::ShapeFeature> corners = shape.features(min_angle);
+  if (corners.empty() || patch.nodes.empty()) return {{}, {}, std::vector<geometry::ParameterRange>(patch.nodes.size())};
+  CornerPlanner planner(mesh, x0, patch, shape, std::move(corners));
+  planner.locate_nodes();
+  planner.find_crossings();
+  planner.give_corners(can_hold);
+  planner.note_unheld_corners();
+  return std::move(planner).segments();
 }
 
 }  // namespace hotmesh::deform::detail
