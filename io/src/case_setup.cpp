@@ -63,11 +63,18 @@ std::vector<mesh::NodeId> chain_patch(const mesh::Patch& patch, const mesh::Mesh
   return chain;
 }
 
+/// The fully deflected curve as a polyline, for pictures.
 std::vector<geometry::Vec2> outline(const DeflectedCurve& curve) {
   constexpr int kSamples = 2000;
-  std::vector<geometry::Vec2> points;
   const double a = curve.first_parameter(), b = curve.last_parameter();
-  for (int i = 0; i <= kSamples; ++i) points.push_back(curve.point(a + (b - a) * i / kSamples, 1.0));
+  // Evenly spaced, and every piece end: the corners of the curve are drawn as corners.
+  std::vector<double> parameters;
+  for (int i = 0; i <= kSamples; ++i) parameters.push_back(a + (b - a) * i / kSamples);
+  for (const DeflectedCurve::Piece& piece : curve.pieces()) parameters.push_back(piece.end);
+  std::sort(parameters.begin(), parameters.end());
+  parameters.erase(std::unique(parameters.begin(), parameters.end()), parameters.end());
+  std::vector<geometry::Vec2> points;
+  for (const double t : parameters) points.push_back(curve.point(t, 1.0));
   return points;
 }
 
