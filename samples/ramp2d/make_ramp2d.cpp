@@ -9,9 +9,7 @@
 // Run:   build/samples/ramp2d/make_ramp2d [OUTPUT_FOLDER]   (default: the current folder)
 // Writes ramp2d.msh (the undeformed mesh, Gmsh 4.1) and ramp.csv (the FEM deflection table
 // of the lower wall). The committed copies in samples/ramp2d/ are this program's output.
-#include <algorithm>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -21,6 +19,7 @@
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
+#include "sample_generator.hpp"
 
 namespace {
 
@@ -53,30 +52,21 @@ std::string deflection_table() {
   for (int i = 0; i <= 200; ++i) xs.push_back(0.01 * i * kHeight);
   xs.push_back(kRampStart);
   xs.push_back(kRampStart + kRampWidth);
-  std::sort(xs.begin(), xs.end());
-  std::string csv =
+  return hotmesh::samples::lower_wall_table(
       "# hotmesh sample ramp2d: deflection of the lower wall (paper's Fig. 6)\n"
-      "# a ramp of height h/2 rising over 0.05 h in the middle of a 2h x h channel, h = 1\n"
-      "x,y,dx,dy\n";
-  for (double x : xs) csv += fmt::format("{},0,0,{}\n", x, ramp_deflection(x));
-  return csv;
+      "# a ramp of height h/2 rising over 0.05 h in the middle of a 2h x h channel, h = 1\n",
+      xs, ramp_deflection);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
-    std::filesystem::create_directories(folder);
+  return hotmesh::samples::run_generator("make_ramp2d", argc, argv, [](const std::filesystem::path& folder) {
     const auto xs = hotmesh::mesh::uniform_line(0.0, kLength, kCellsX);
     const auto ys = hotmesh::mesh::stretched_line(0.0, kHeight, kCellsY, kFirstCellY);
     const auto mesh = hotmesh::mesh::structured_quads(xs, ys, {"left", "right", "bottom", "top"});
     hotmesh::io::write_gmsh(folder / "ramp2d.msh", mesh);
     hotmesh::io::write_file_atomically(folder / "ramp.csv", deflection_table());
     std::printf("wrote %s and %s\n", (folder / "ramp2d.msh").c_str(), (folder / "ramp.csv").c_str());
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "make_ramp2d: %s\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -11,7 +11,6 @@
 // wall), inlet.csv and outlet.csv (the channel's ends, sheared linearly between the walls).
 // The committed copies in samples/shear2d/ are this program's output.
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -21,6 +20,7 @@
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
+#include "sample_generator.hpp"
 
 namespace {
 
@@ -59,9 +59,7 @@ std::string end_table(double x) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
-    std::filesystem::create_directories(folder);
+  return hotmesh::samples::run_generator("make_shear2d", argc, argv, [](const std::filesystem::path& folder) {
     const auto xs = hotmesh::mesh::uniform_line(0.0, kLength, kCellsX);
     const auto mesh = hotmesh::mesh::structured_quads(xs, clustered_height(), {"inlet", "outlet", "bottom", "top"});
     hotmesh::io::write_gmsh(folder / "shear2d.msh", mesh);
@@ -69,9 +67,5 @@ int main(int argc, char** argv) {
     hotmesh::io::write_file_atomically(folder / "inlet.csv", end_table(0.0));
     hotmesh::io::write_file_atomically(folder / "outlet.csv", end_table(kLength));
     std::printf("wrote shear2d.msh, top.csv, inlet.csv and outlet.csv in %s\n", folder.c_str());
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "make_shear2d: %s\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -16,7 +16,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,6 +25,7 @@
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
+#include "sample_generator.hpp"
 
 namespace {
 
@@ -72,31 +72,22 @@ std::string deflection_table() {
       xs.push_back(x);
     }
   }
-  std::sort(xs.begin(), xs.end());
-  std::string csv =
+  return hotmesh::samples::lower_wall_table(
       "# hotmesh sample step2d: deflection of the lower wall\n"
       "# a trapezoidal bump of height 0.3 h in the middle of a 3h x h channel, h = 1: feet at\n"
-      "# x = 1.2 h and 1.8 h, shoulders at 1.3 h and 1.7 h; the polyline of x + dx, y + dy is exact\n"
-      "x,y,dx,dy\n";
-  for (double x : xs) csv += fmt::format("{},0,0,{}\n", x, bump_deflection(x));
-  return csv;
+      "# x = 1.2 h and 1.8 h, shoulders at 1.3 h and 1.7 h; the polyline of x + dx, y + dy is exact\n",
+      xs, bump_deflection);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
-    std::filesystem::create_directories(folder);
+  return hotmesh::samples::run_generator("make_step2d", argc, argv, [](const std::filesystem::path& folder) {
     const auto xs = hotmesh::mesh::uniform_line(0.0, kLength, kCellsX);
     const auto ys = hotmesh::mesh::stretched_line(0.0, kHeight, kCellsY, kFirstCellY);
     const auto mesh = hotmesh::mesh::structured_quads(xs, ys, {"left", "right", "bottom", "top"});
     hotmesh::io::write_gmsh(folder / "step2d.msh", mesh);
     hotmesh::io::write_file_atomically(folder / "bump.csv", deflection_table());
     std::printf("wrote %s and %s\n", (folder / "step2d.msh").c_str(), (folder / "bump.csv").c_str());
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "make_step2d: %s\n", e.what());
-    return 1;
-  }
+  });
 }
