@@ -40,7 +40,9 @@ static_assert(std::tuple_size_v<decltype(SlidingState::hints)> == detail::Slidin
 
 class Motion {
  public:
-  Motion(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
+  /// `kernel`: the K_e of the mesh's cells (eq. 35 and the Q1 element), shared with the
+  /// corner pass.
+  Motion(const Mesh& mesh, std::span<const PatchMotion> patches, std::shared_ptr<const StiffnessKernel> kernel,
          const SolverOptions& solver, const MotionObservers& observers, const MotionStart* start,
          const parallel::RankExchange& ranks)
       : mesh_(mesh),
@@ -49,7 +51,7 @@ class Motion {
         setup_(detail::set_up_boundaries(mesh, patches, start)),
         sliding_(setup_, static_cast<std::size_t>(mesh.dimension), ranks),
         ranks_(ranks),
-        kernel_(std::make_shared<const StiffnessKernel>(mesh, element_lame(mesh, material), material.drop_jacobian)),
+        kernel_(std::move(kernel)),
         stored_(detail::stores_element_matrices(solver) ? std::optional<StiffnessOperator>(kernel_) : std::nullopt),
         linear_(detail::make_linear_solver(solver, ranks, stored_ ? &*stored_ : nullptr)),
         dim_(static_cast<std::size_t>(mesh.dimension)),
@@ -429,7 +431,8 @@ MotionResult with_corner_pass(MotionResult moved, MotionResult pass);
 /// that nodes still gather where the wall needs them (on a ramp, across its corners): corners
 /// held from the start would freeze the number of nodes between them. If the pass fails, the
 /// mesh of the motion stands, with a note.
-MotionResult hold_corners(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
+MotionResult hold_corners(const Mesh& mesh, std::span<const PatchMotion> patches,
+                          std::shared_ptr<const StiffnessKernel> kernel,
                           const SolverOptions& solver, const MotionObservers& observers,
                           const parallel::RankExchange& ranks, MotionResult moved) {
   std::vector<PatchMotion> final_walls(patches.begin(), patches.end());
@@ -461,7 +464,7 @@ MotionResult hold_corners(const Mesh& mesh, std::span<const PatchMotion> patches
   }
   const MotionStart from{moved.points, moved.sliding_origins};
   const auto begin = Clock::now();
-  Motion motion(mesh, final_walls, material, pass_options, pass_observers, &from, ranks);
+  Motion motion(mesh, final_walls, std::move(kernel), pass_options, pass_observers, &from, ranks);
   motion.set_setup_time(seconds_since(begin));
   MotionResult pass = motion.run(nullptr);
 
@@ -506,11 +509,12 @@ MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, c
   const bool corners = has_corners(patches);
   std::vector<PatchMotion> sliding_freely(patches.begin(), patches.end());
   for (PatchMotion& m : sliding_freely) m.features.enabled = false;
-  Motion motion(mesh, sliding_freely, material, solver, observers, start, ranks);
+  auto kernel = std::make_shared<const StiffnessKernel>(mesh, element_lame(mesh, material), material.drop_jacobian);
+  Motion motion(mesh, sliding_freely, kernel, solver, observers, start, ranks);
   motion.set_setup_time(seconds_since(begin));
   MotionResult result = motion.run(resume);
   if (!corners || !result.success) return result;
-  return hold_corners(mesh, patches, material, solver, observers, ranks, std::move(result));
+  return hold_corners(mesh, patches, std::move(kernel), solver, observers, ranks, std::move(result));
 }
 
 }  // namespace hotmesh::deform
