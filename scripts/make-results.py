@@ -39,11 +39,6 @@ SAMPLES = {
 # What the region (xmin, xmax) of a sample is, for the column of wall nodes in it.
 REGION_NAMES = {"ramp2d": "ramp", "step2d": "bump"}
 
-# Cases written for a case-file key hotmesh may not accept yet (`features:`, issue 20): if
-# hotmesh rejects the case file (exit code 2), its row says so instead of ending the script.
-NEWER_KEYS = {"step2d-sliding-nofeatures.yaml"}
-
-
 def machine():
     model = "unknown CPU"
     try:
@@ -62,15 +57,7 @@ def run_case(build, sample, label, case, wall, table, region, out_root):
     out = os.path.join(out_root, stem)
     env = dict(os.environ, OMP_WAIT_POLICY="PASSIVE")
     command = [os.path.join(build, "app", "hotmesh"), "-q", "deform", os.path.join(sample_dir, case), "-o", out]
-    if case in NEWER_KEYS:
-        done = subprocess.run(command, env=env, capture_output=True, text=True)
-        if done.returncode == 2:
-            print(f"{case}: not run, hotmesh rejects it: {done.stderr.strip()}", file=sys.stderr)
-            return {"label": label, "case": case, "report": None, "metrics": None, "pictures": []}
-        sys.stderr.write(done.stderr)
-        done.check_returncode()
-    else:
-        subprocess.run(command, check=True, env=env)
+    subprocess.run(command, check=True, env=env)
     report = json.load(open(os.path.join(out, "report.json")))
     args = [os.path.join(build, "samples", "tools", "wall_metrics"), os.path.join(out, "deformed.msh"), wall,
             os.path.join(sample_dir, table)]
@@ -100,11 +87,6 @@ def table(sample, runs):
     ]
     for run in runs:
         r, m = run["report"], run["metrics"]
-        if r is None:
-            empty_columns = 9 if has_region else 8
-            lines.append(f"| {run['label']} (`{run['case']}`) | not run: this hotmesh rejects the case file |" +
-                         " |" * empty_columns)
-            continue
         seconds = r["seconds"]["motion"]
         lines.append(
             f"| {run['label']} (`{run['case']}`) | {r['min_scaled_jacobian']:.3f} | {r['inverted_cells']} | " +
