@@ -40,9 +40,13 @@ ElementShape element_shape(ElementType type, const ElementPoints& element) {
 }
 
 std::vector<Lame> element_lame(const Mesh& mesh, const MaterialOptions& options) {
+  return element_lame(mesh, mesh.points, options);
+}
+
+std::vector<Lame> element_lame(const Mesh& mesh, std::span<const Vec3> points, const MaterialOptions& options) {
   const std::size_t n = mesh.cell_count();
   std::vector<ElementShape> shapes(n);
-  for (std::size_t c = 0; c < n; ++c) shapes[c] = element_shape(mesh.cells.type(c), gather(mesh.cells.nodes(c), mesh.points));
+  for (std::size_t c = 0; c < n; ++c) shapes[c] = element_shape(mesh.cells.type(c), gather(mesh.cells.nodes(c), points));
 
   std::vector<double> volumes(n);
   std::transform(shapes.begin(), shapes.end(), volumes.begin(), [](const ElementShape& s) { return s.volume; });

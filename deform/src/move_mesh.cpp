@@ -431,8 +431,13 @@ MotionResult with_corner_pass(MotionResult moved, MotionResult pass);
 /// that nodes still gather where the wall needs them (on a ramp, across its corners): corners
 /// held from the start would freeze the number of nodes between them. If the pass fails, the
 /// mesh of the motion stands, with a note.
+///
+/// The pass is an elastic problem of its own whose original mesh is the motion's result, so
+/// eq. (35)'s measures |phi_s|, |phi_v| are taken there (`motion_kernel` with new Lamé
+/// parameters): the cells the motion sheared stiffen and take less of the corners' moves
+/// (ramp: worst cell 0.512 against 0.496 with the measures of the undeformed mesh).
 MotionResult hold_corners(const Mesh& mesh, std::span<const PatchMotion> patches,
-                          std::shared_ptr<const StiffnessKernel> kernel,
+                          const StiffnessKernel& motion_kernel, const MaterialOptions& material,
                           const SolverOptions& solver, const MotionObservers& observers,
                           const parallel::RankExchange& ranks, MotionResult moved) {
   std::vector<PatchMotion> final_walls(patches.begin(), patches.end());
@@ -464,6 +469,7 @@ MotionResult hold_corners(const Mesh& mesh, std::span<const PatchMotion> patches
   }
   const MotionStart from{moved.points, moved.sliding_origins};
   const auto begin = Clock::now();
+  auto kernel = std::make_shared<const StiffnessKernel>(motion_kernel.with_lame(element_lame(mesh, moved.points, material)));
   Motion motion(mesh, final_walls, std::move(kernel), pass_options, pass_observers, &from, ranks);
   motion.set_setup_time(seconds_since(begin));
   MotionResult pass = motion.run(nullptr);
@@ -514,7 +520,7 @@ MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, c
   motion.set_setup_time(seconds_since(begin));
   MotionResult result = motion.run(resume);
   if (!corners || !result.success) return result;
-  return hold_corners(mesh, patches, std::move(kernel), solver, observers, ranks, std::move(result));
+  return hold_corners(mesh, patches, *kernel, material, solver, observers, ranks, std::move(result));
 }
 
 }  // namespace hotmesh::deform

@@ -70,6 +70,13 @@ StiffnessKernel::StiffnessKernel(const Mesh& mesh, std::vector<Lame> lame, bool 
   coloring_ = color_cells(mesh.cells, nodes_);
 }
 
+StiffnessKernel StiffnessKernel::with_lame(std::vector<Lame> lame) const {
+  if (lame.size() != lame_.size()) throw std::invalid_argument("StiffnessKernel::with_lame: one Lame per cell");
+  StiffnessKernel other = *this;
+  other.lame_ = std::move(lame);
+  return other;
+}
+
 void StiffnessKernel::element_matrix(CellId c, std::span<const Vec3> points, std::span<double> k) const {
   const auto i = static_cast<std::size_t>(c);
   element_stiffness(cells_->type(i), gather(cells_->nodes(i), points), lame_[i], drop_jacobian_, k);

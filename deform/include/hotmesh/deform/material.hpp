@@ -33,7 +33,11 @@ struct ElementShape {
 };
 ElementShape element_shape(ElementType type, const ElementPoints& element);
 
-/// Lamé parameters of every cell of `mesh` (at its original coordinates) for the law.
+/// Lamé parameters of every cell of `mesh` for the law, measured at `points` (eq. 35's
+/// "original mesh": the mesh's own coordinates for a motion, the motion's result for the
+/// corner pass that follows it).
+std::vector<Lame> element_lame(const Mesh& mesh, std::span<const Vec3> points, const MaterialOptions& options);
+/// The same at the mesh's own coordinates.
 std::vector<Lame> element_lame(const Mesh& mesh, const MaterialOptions& options);
 
 }  // namespace hotmesh::deform

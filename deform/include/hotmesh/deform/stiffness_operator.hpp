@@ -40,6 +40,8 @@ class StiffnessKernel {
   /// The mesh must have only quad4 (2D) or only hex8 (3D) cells; `lame` has one entry per
   /// cell. Throws hotmesh::InputError otherwise. Keeps a reference to mesh.cells.
   StiffnessKernel(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian);
+  /// The same cells (and colouring) with other Lamé parameters, one per cell.
+  StiffnessKernel with_lame(std::vector<Lame> lame) const;
 
   /// K_e of cell c at `points`, row-major into k (element_size()^2 values).
   void element_matrix(CellId c, std::span<const Vec3> points, std::span<double> k) const;
