@@ -119,12 +119,12 @@ void report_out_of_memory(const RunState& state) {
 
 /// Makes the output folder ready (`folder`); with --resume, reads the checkpoint in it and
 /// checks it against this run's inputs (`fingerprints`).
-std::optional<io::Checkpoint> prepare_output(const Options& options, const io::Case& c, const mesh::Mesh& mesh,
+std::optional<io::Checkpoint> prepare_output(const Options& options, const io::Case& c, const io::LoadedMesh& loaded,
                                              const std::filesystem::path& output,
                                              std::span<const io::InputFingerprint> fingerprints,
                                              io::OutputFolder& folder) {
   const auto inputs = c.inputs();
-  const auto names = output_names(c, mesh);
+  const auto names = output_names(c, loaded);
   std::optional<io::Checkpoint> resumed;
   if (options.resume) {
     // The folder was accepted by the run that wrote the checkpoint: no check for inputs in it
@@ -136,7 +136,7 @@ std::optional<io::Checkpoint> prepare_output(const Options& options, const io::C
                                                         "interrupted run to continue; run without --resume to start",
                                                         io::kCheckpointName));
     }
-    resumed = io::read_checkpoint(path, mesh, fingerprints);
+    resumed = io::read_checkpoint(path, loaded.mesh, fingerprints);
     if (resumed->info.hotmesh_version != HOTMESH_VERSION) {
       spdlog::warn("the checkpoint was written by hotmesh {}, this is {}: the result may differ slightly from an "
                    "uninterrupted run", resumed->info.hotmesh_version, HOTMESH_VERSION);
@@ -198,7 +198,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
   in.output = options.output.empty() ? c.output : std::filesystem::path(options.output);
   state.phase = "checking the inputs";
   in.fingerprints = io::input_fingerprints(c);
-  in.resumed = prepare_output(options, c, mesh, in.output, in.fingerprints, in.folder);
+  in.resumed = prepare_output(options, c, in.loaded, in.output, in.fingerprints, in.folder);
   if (c.restart) {
     in.previous = io::read_restart(*c.restart, mesh);
     in.restart = deform::MotionStart{in.previous->points, in.previous->sliding};
@@ -256,7 +256,7 @@ int write_run_outputs(const RunInputs& in, const io::CaseSetup& setup, const def
   const mesh::Mesh& mesh = in.loaded.mesh;
   const std::filesystem::path& output = in.output;
   const auto t = Clock::now();
-  RunOutputs outputs = write_outputs(output, c, mesh, setup, result, options.binary);
+  RunOutputs outputs = write_outputs(output, c, in.loaded, setup, result, options.binary, {});
   if (result.success) {  // the state the next coupling iteration restarts from
     io::write_restart(output / "restart.hmr", io::restart_state(c, mesh, result));
     outputs.files.push_back(output / "restart.hmr");

@@ -62,9 +62,13 @@ std::uint64_t peak_memory_bytes() {
   return 0;
 }
 
-std::vector<std::string> output_names(const io::Case& c, const mesh::Mesh& mesh) {
+std::vector<std::string> output_names(const io::Case& c, const io::LoadedMesh& loaded) {
+  const mesh::Mesh& mesh = loaded.mesh;
   std::vector<std::string> names{"deformed.msh", "deformed.vtu", "failed.vtu", "report.json", "restart.hmr",
                                  std::string(io::kCheckpointName)};
+  if (loaded.write_back) {
+    for (std::string& name : loaded.write_back->output_names()) names.push_back(std::move(name));
+  }
   if (mesh.dimension == 2) {
     names.push_back("deformed.png");
     names.push_back("failed.png");
@@ -73,13 +77,18 @@ std::vector<std::string> output_names(const io::Case& c, const mesh::Mesh& mesh)
   return names;
 }
 
-RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const mesh::Mesh& mesh,
-                         const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh) {
+RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
+                         const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh,
+                         const io::WriteBackOptions& write_back) {
   RunOutputs out;
+  const mesh::Mesh& mesh = loaded.mesh;
   mesh::Mesh moved = mesh;
   moved.points = result.points;
   io::write_gmsh(folder / "deformed.msh", moved, {.binary = binary_msh});
   out.files.push_back(folder / "deformed.msh");
+  if (loaded.write_back) {
+    for (auto& path : loaded.write_back->write(folder, result.points, write_back)) out.files.push_back(std::move(path));
+  }
   io::write_vtu(folder / "deformed.vtu", mesh, result.points, deform_fields(mesh, result.points, result));
   out.files.push_back(folder / "deformed.vtu");
   if (!result.success) {

@@ -30,11 +30,15 @@ struct RunOutputs {
   std::vector<std::filesystem::path> files;
 };
 
-/// The names of every file a run may write (to check none would replace an input).
-std::vector<std::string> output_names(const io::Case& c, const mesh::Mesh& mesh);
+/// The names of every file a run may write (to check none would replace an input), relative
+/// to the output folder.
+std::vector<std::string> output_names(const io::Case& c, const io::LoadedMesh& loaded);
 
-RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const mesh::Mesh& mesh,
-                         const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh);
+/// deformed.msh, deformed.vtu, the pictures and, for a mesh read from another solver's format,
+/// the mesh written back in it (`write_back`).
+RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
+                         const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh,
+                         const io::WriteBackOptions& write_back);
 
 /// report.json: status, increments with Newton and PCG iterations, quality, times per phase;
 /// for a resumed run (`resumed`: the checkpoint it continued from) every increment, those of

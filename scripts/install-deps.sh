@@ -22,9 +22,14 @@ packages=(
   libcpp-httplib-dev
   # pictures (PNG and SVG)
   libcairo2-dev
+  # engine CFD meshes: CGNS (HDF5 and ADF files) and gzipped OpenFOAM polyMesh files
+  libcgns-dev zlib1g-dev
   # tests: GoogleTest, plus real external tools that check our files
   # (gmsh writes every .msh flavour we read; VTK's XML reader is the one ParaView uses)
   libgtest-dev libgmock-dev gmsh python3 python3-vtk9 python3-numpy
+  # (cgnscheck checks the CGNS files hotmesh writes; OpenFOAM's blockMesh makes polyMesh
+  # folders and its checkMesh checks the ones hotmesh moves)
+  cgns-convert openfoam
   # the browser test of hotmesh serve's page: Debian's Chromium, driven by playwright-core
   chromium
   # the fuzz targets (scripts/fuzz.sh): clang 14 with libFuzzer and the sanitizers'

@@ -26,6 +26,7 @@
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
+#include "hotmesh/io/mesh_files.hpp"
 #include "yaml_checks.hpp"
 
 namespace hotmesh::io {
@@ -87,7 +88,7 @@ class CaseParser {
   void read_top(const Entry& root) {
     const MapEntries top = reader_.keys(root, kTopKeys);
     if (const Entry* e = top.find("mesh")) {
-      if (auto path = input_file(*e, "the mesh file name")) c_.mesh = *path;
+      if (auto path = input_file(*e, "the mesh file name", Folders::accepted)) c_.mesh = *path;
     } else {
       reader_.error(root.line, "mesh", "missing; give the mesh file, e.g. `mesh: mesh.msh`");
     }
@@ -120,13 +121,18 @@ class CaseParser {
   }
 
   /// A path that must name an existing file.
-  std::optional<fs::path> input_file(const Entry& e, std::string_view what) {
+  /// Whether an input may be a folder (a mesh in a folder of files, as OpenFOAM's polyMesh).
+  enum class Folders { refused, accepted };
+
+  std::optional<fs::path> input_file(const Entry& e, std::string_view what, Folders folders = Folders::refused) {
     const auto text = reader_.text(e, what);
     if (!text) return std::nullopt;
     const fs::path path = resolve(*text);
     std::error_code ec;
     if (!fs::exists(path, ec)) {
       reader_.error(e, cat("file not found: ", path.string(), " (relative paths start from the case file's folder)"));
+    } else if (folders == Folders::accepted && fs::is_directory(path, ec)) {
+      return path;  // its reader checks what is in it
     } else if (const std::string problem = input_file_problem(path); !problem.empty()) {
       reader_.error(e, cat(path.string(), " ", problem));
     } else {
@@ -593,7 +599,9 @@ const PatchSpec* Case::find_patch(std::string_view name) const {
 }
 
 std::vector<std::filesystem::path> Case::inputs() const {
-  std::vector<std::filesystem::path> files{file, mesh};
+  std::vector<std::filesystem::path> files{file};
+  const std::vector<std::filesystem::path> mesh_files = mesh_input_files(mesh);
+  files.insert(files.end(), mesh_files.begin(), mesh_files.end());
   if (cad) files.push_back(*cad);
   if (restart) files.push_back(*restart);
   for (const PatchSpec& p : patches) {

@@ -34,6 +34,18 @@ LoadedMesh read_mesh(const std::filesystem::path& path) {
   return loaded;
 }
 
+std::vector<std::filesystem::path> mesh_input_files(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) return {path};
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(path, ec)) {
+    if (e.is_regular_file(ec)) files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 void write_mesh(const std::filesystem::path& path, const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
                 const VtuFields& fields) {
   switch (mesh_format(path)) {

@@ -1,10 +1,15 @@
 // hotmesh io: mesh files by extension, read and validated in one step.
 //   .msh  Gmsh 2.2 / 4.1 (read), 4.1 (write)
 //   .vtu  VTK XML unstructured grid (write only: for ParaView)
+// A mesh read from another solver's format keeps what it needs to be written back in that
+// format (MeshWriteBack), with only the coordinates of its nodes changed.
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/mesh/validate.hpp"
@@ -17,10 +22,31 @@ enum class MeshFormat { gmsh, vtu };
 /// The format a path names by its extension. Throws hotmesh::InputError for others.
 MeshFormat mesh_format(const std::filesystem::path& path);
 
+/// How a run writes its moved mesh back in the format the mesh came from, beside
+/// deformed.msh: everything of the input kept, only the nodes' coordinates replaced.
+struct WriteBackOptions {};
+
+class MeshWriteBack {
+ public:
+  virtual ~MeshWriteBack() = default;
+  /// The files and folders write() creates in an output folder (to check none is an input).
+  virtual std::vector<std::string> output_names() const = 0;
+  /// Writes the mesh with its nodes at `points` (one per node of the mesh read) into `folder`,
+  /// each file atomically; returns the paths written.
+  virtual std::vector<std::filesystem::path> write(const std::filesystem::path& folder,
+                                                   std::span<const geometry::Vec3> points,
+                                                   const WriteBackOptions& options) const = 0;
+};
+
 struct LoadedMesh {
   mesh::Mesh mesh;
   mesh::ValidationReport validation;
+  std::shared_ptr<const MeshWriteBack> write_back;  ///< null for Gmsh files (deformed.msh is theirs)
 };
+
+/// The files a mesh input is made of, for fingerprints: the file itself, or the files of a
+/// mesh folder.
+std::vector<std::filesystem::path> mesh_input_files(const std::filesystem::path& path);
 
 /// Reads and validates a mesh; every error names the file.
 LoadedMesh read_mesh(const std::filesystem::path& path);
