@@ -7,24 +7,39 @@
 #include <spdlog/spdlog.h>
 
 #include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/gmsh.hpp"
 
 namespace hotmesh::io {
 
 MeshFormat mesh_format(const std::filesystem::path& path) {
+  if (is_foam_path(path)) return MeshFormat::foam;
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".msh") return MeshFormat::gmsh;
   if (ext == ".vtu") return MeshFormat::vtu;
   throw InputError::in(path.string(), "unknown mesh format '" + ext +
-                                          "': hotmesh reads Gmsh .msh files and writes .msh and .vtu");
+                                          "': hotmesh reads Gmsh .msh files and OpenFOAM polyMesh folders and writes .msh and .vtu");
 }
 
-LoadedMesh read_mesh(const std::filesystem::path& path) {
-  if (mesh_format(path) != MeshFormat::gmsh) {
-    throw InputError::in(path.string(), "hotmesh reads meshes from Gmsh .msh files only");
+namespace {
+
+LoadedMesh load(const std::filesystem::path& path) {
+  switch (mesh_format(path)) {
+    case MeshFormat::gmsh: return {read_gmsh(path), {}, nullptr};
+    case MeshFormat::foam: {
+      FoamMesh foam = read_foam(path);
+      return {std::move(foam.mesh), {}, std::move(foam.write_back)};
+    }
+    case MeshFormat::vtu: break;
   }
-  LoadedMesh loaded{read_gmsh(path), {}};
+  throw InputError::in(path.string(), "hotmesh reads meshes from Gmsh .msh files and OpenFOAM polyMesh folders only");
+}
+
+}  // namespace
+
+LoadedMesh read_mesh(const std::filesystem::path& path) {
+  LoadedMesh loaded = load(path);
   try {
     loaded.validation = mesh::validate_mesh(loaded.mesh);
   } catch (const InputError& e) {
@@ -38,8 +53,10 @@ std::vector<std::filesystem::path> mesh_input_files(const std::filesystem::path&
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_directory(path, ec)) return {path};
+  // The polyMesh folder's files: those read and those the write-back copies.
+  const fs::path folder = foam_mesh_folder(path);
   std::vector<fs::path> files;
-  for (const fs::directory_entry& e : fs::directory_iterator(path, ec)) {
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
     if (e.is_regular_file(ec)) files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());
@@ -60,7 +77,9 @@ void write_mesh(const std::filesystem::path& path, const mesh::Mesh& mesh, std::
       return;
     }
     case MeshFormat::vtu: write_vtu(path, mesh, points, fields); return;
+    case MeshFormat::foam: break;
   }
+  throw InputError::in(path.string(), "hotmesh writes OpenFOAM meshes only as the moved points of a mesh it read");
 }
 
 }  // namespace hotmesh::io

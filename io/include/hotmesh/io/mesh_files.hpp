@@ -1,12 +1,14 @@
 // hotmesh io: mesh files by extension, read and validated in one step.
 //   .msh  Gmsh 2.2 / 4.1 (read), 4.1 (write)
 //   .vtu  VTK XML unstructured grid (write only: for ParaView)
+//   a folder: an OpenFOAM polyMesh folder or case (read, and written back: foam.hpp)
 // A mesh read from another solver's format keeps what it needs to be written back in that
 // format (MeshWriteBack), with only the coordinates of its nodes changed.
 #pragma once
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -17,14 +19,18 @@
 
 namespace hotmesh::io {
 
-enum class MeshFormat { gmsh, vtu };
+enum class MeshFormat { gmsh, vtu, foam };
 
-/// The format a path names by its extension. Throws hotmesh::InputError for others.
+/// The format a path names by its extension (foam for a folder). Throws hotmesh::InputError
+/// for others.
 MeshFormat mesh_format(const std::filesystem::path& path);
 
 /// How a run writes its moved mesh back in the format the mesh came from, beside
 /// deformed.msh: everything of the input kept, only the nodes' coordinates replaced.
-struct WriteBackOptions {};
+struct WriteBackOptions {
+  /// OpenFOAM: also write the moved points into the case's time folder <case>/<foam_time>/polyMesh.
+  std::optional<std::string> foam_time;
+};
 
 class MeshWriteBack {
  public:
