@@ -198,7 +198,7 @@ inline std::string check_mesh_command() {
   return dir ? "checkMesh" : "WM_PROJECT_DIR=/usr/share/openfoam checkMesh";
 }
 
-/// A case folder with system/controlDict and system/blockMeshDict (`dict`: the part after the
+/// A case folder with system/controlDict, fvSchemes, fvSolution and blockMeshDict (`dict`: the part after the
 /// header); writeFormat ascii with 17 digits or binary.
 inline void write_block_mesh_case(const std::filesystem::path& folder, const std::string& dict, bool binary = false) {
   std::filesystem::create_directories(folder / "system");
@@ -209,6 +209,14 @@ inline void write_block_mesh_case(const std::filesystem::path& folder, const std
                          "deltaT 1; writeControl timeStep; writeInterval 1; writeFormat {};\n"
                          "writePrecision 17; writeCompression off; timeFormat general; timePrecision 6;\n",
                          binary ? "binary" : "ascii"));
+  // What checkMesh reads besides the mesh.
+  write_text(folder / "system" / "fvSchemes",
+             "FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }\n"
+             "ddtSchemes { default Euler; } gradSchemes { default Gauss linear; } divSchemes { default none; }\n"
+             "laplacianSchemes { default Gauss linear corrected; } interpolationSchemes { default linear; }\n"
+             "snGradSchemes { default corrected; }\n");
+  write_text(folder / "system" / "fvSolution",
+             "FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }\nsolvers { }\n");
   write_text(folder / "system" / "blockMeshDict",
              "FoamFile { version 2.0; format ascii; class dictionary; object blockMeshDict; }\n" + dict);
 }
