@@ -8,7 +8,6 @@
 #include <cmath>
 #include <numbers>
 #include <regex>
-#include <sstream>
 
 #include "foam_fixtures.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -93,18 +92,6 @@ std::filesystem::path block_mesh(const test::TempDir& dir, const std::string& na
   return folder;
 }
 
-/// The points of an ASCII points file, parsed here independently of hotmesh's reader.
-std::vector<Vec3> ascii_points(const std::filesystem::path& file) {
-  std::istringstream in(test::read_text(file));
-  const std::regex point(R"(^\(([^ ]+) ([^ ]+) ([^ ]+)\)$)");
-  std::vector<Vec3> points;
-  for (std::string line; std::getline(in, line);) {
-    std::smatch m;
-    if (std::regex_match(line, m, point)) points.push_back({std::stod(m[1]), std::stod(m[2]), std::stod(m[3])});
-  }
-  return points;
-}
-
 bool all_cells_valid(const mesh::Mesh& m) {
   const auto q = mesh::scaled_jacobians(m.cells, m.points);
   return std::all_of(q.begin(), q.end(), [](double v) { return v > 0.0; });
@@ -122,7 +109,7 @@ TEST(FoamBlockMesh, Graded3dBlockReadsTheSameInAsciiAndBinary) {
   EXPECT_EQ(a.mesh.cell_count(), 24u);
   EXPECT_EQ(a.validation.reoriented_cells, 0u);
   EXPECT_TRUE(all_cells_valid(a.mesh));
-  EXPECT_EQ(a.mesh.points, ascii_points(ascii / "constant" / "polyMesh" / "points"));
+  EXPECT_EQ(a.mesh.points, tf::ascii_points(ascii / "constant" / "polyMesh" / "points"));
   ASSERT_EQ(a.mesh.patches.size(), 3u);
   EXPECT_EQ(a.mesh.find_patch("walls")->faces.size(), 2u * (4 * 2 + 4 * 3 + 3 * 2) - 2u * 3 * 2);
   EXPECT_EQ(read_mesh(binary).mesh, a.mesh);
@@ -143,7 +130,7 @@ TEST(FoamBlockMesh, EmptyCaseIsTheQuadMeshOfItsBackPlane) {
   for (const auto& p : m.patches) names.push_back(p.name);
   EXPECT_THAT(names, ::testing::ElementsAre("left", "right", "bottom", "top"));  // frontAndBack dropped
   EXPECT_EQ(m.find_patch("bottom")->faces.size(), 4u);
-  const auto foam = ascii_points(folder / "constant" / "polyMesh" / "points");
+  const auto foam = tf::ascii_points(folder / "constant" / "polyMesh" / "points");
   for (std::size_t n = 0; n < m.node_count(); ++n) {
     const Vec3& p = foam[static_cast<std::size_t>(m.node_id(static_cast<mesh::NodeId>(n)) - 1)];
     EXPECT_NEAR(p.z, -0.1, 1e-15);  // blockMesh's -0.1 may be an ulp off
@@ -170,8 +157,8 @@ TEST(FoamBlockMesh, EmptyCaseWrittenBackKeepsBothPlanesAndPassesCheckMesh) {
   std::vector<Vec3> moved = loaded.mesh.points;
   for (Vec3& p : moved) p = {p.x + 0.05 * std::sin(3.0 * p.y), p.y * (1.0 + 0.1 * p.x), 0.0};
   loaded.write_back->write(dir / "out", moved, {});
-  const auto before = ascii_points(folder / "constant" / "polyMesh" / "points");
-  const auto after = ascii_points(dir / "out" / "polyMesh" / "points");
+  const auto before = tf::ascii_points(folder / "constant" / "polyMesh" / "points");
+  const auto after = tf::ascii_points(dir / "out" / "polyMesh" / "points");
   ASSERT_EQ(after.size(), 30u);
   // blockMesh numbers the back plane's points first, then the front's in the same order. Each
   // plane is exactly flat afterwards, at the extreme z its points had.
@@ -207,7 +194,7 @@ TEST(FoamBlockMesh, WedgeCaseIsTheMeridionalMeshAndWritesBackOntoBothWedgePlanes
   EXPECT_EQ(loaded.validation.reoriented_cells, 0u);
   EXPECT_TRUE(all_cells_valid(m));
   EXPECT_EQ(m.patches.size(), 4u);
-  const auto foam = ascii_points(folder / "constant" / "polyMesh" / "points");
+  const auto foam = tf::ascii_points(folder / "constant" / "polyMesh" / "points");
   for (std::size_t n = 0; n < m.node_count(); ++n) {  // x axial, y the radius
     const Vec3& p = foam[static_cast<std::size_t>(m.node_id(static_cast<mesh::NodeId>(n)) - 1)];
     EXPECT_NEAR(m.points[n].x, p.x, 1e-14);
@@ -217,7 +204,7 @@ TEST(FoamBlockMesh, WedgeCaseIsTheMeridionalMeshAndWritesBackOntoBothWedgePlanes
   std::vector<Vec3> moved = m.points;
   for (Vec3& p : moved) p = {p.x + 0.1 * p.y, 1.1 * p.y, 0.0};
   loaded.write_back->write(dir / "out", moved, {});
-  const auto after = ascii_points(dir / "out" / "polyMesh" / "points");
+  const auto after = tf::ascii_points(dir / "out" / "polyMesh" / "points");
   ASSERT_EQ(after.size(), foam.size());
   const double tan_a = std::tan(2.5 * std::numbers::pi / 180.0);
   std::size_t on_back = 0;

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -224,6 +226,18 @@ inline void write_block_mesh_case(const std::filesystem::path& folder, const std
 /// Runs blockMesh on a case folder; the output if it failed.
 inline CommandResult run_block_mesh(const std::filesystem::path& folder) {
   return run_command(block_mesh_command() + " -case " + shell_quote(folder.string()));
+}
+
+/// The points of an ASCII points file, parsed here independently of hotmesh's reader.
+inline std::vector<geometry::Vec3> ascii_points(const std::filesystem::path& file) {
+  std::istringstream in(test::read_text(file));
+  const std::regex point(R"(^\(([^ ]+) ([^ ]+) ([^ ]+)\)$)");
+  std::vector<geometry::Vec3> points;
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (std::regex_match(line, m, point)) points.push_back({std::stod(m[1]), std::stod(m[2]), std::stod(m[3])});
+  }
+  return points;
 }
 
 }  // namespace hotmesh::test::foam
