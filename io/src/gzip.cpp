@@ -49,6 +49,9 @@ std::string gunzip(std::string_view compressed, std::string_view source) {
 }
 
 std::string gzip(std::string_view content) {
+  if (content.size() > std::numeric_limits<uInt>::max()) {
+    throw std::runtime_error("gzip: a file of 4 GB or more is not compressed in one piece");
+  }
   z_stream z{};
   if (deflateInit2(&z, Z_DEFAULT_COMPRESSION, Z_DEFLATED, kGzip, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
     throw std::runtime_error("zlib: deflateInit2 failed");

@@ -19,6 +19,7 @@ namespace hotmesh::app {
 namespace {
 
 using geometry::Vec3;
+using ::testing::Eq;
 using ::testing::HasSubstr;
 using test::hotmesh;
 using test::shell_quote;
@@ -55,18 +56,35 @@ std::map<std::string, std::string> snapshot(const fs::path& folder) {
   return files;
 }
 
+/// The ramp channel case by blockMesh in `dir`/cfd, with the sample's ramp.csv and foam.yaml.
+/// `binary_gz`: blockMesh writes binary, and every polyMesh file is then gzipped.
 struct RampFoamCase {
   test::TempDir dir;
   fs::path cfd = dir / "cfd";
-  RampFoamCase() {
-    tf::write_block_mesh_case(cfd, kRampChannel);
+  explicit RampFoamCase(bool binary_gz = false) {
+    tf::write_block_mesh_case(cfd, kRampChannel, binary_gz);
     const auto r = tf::run_block_mesh(cfd);
     EXPECT_EQ(r.exit_code, 0) << r.output;
+    if (binary_gz) {
+      for (const char* name : {"points", "faces", "owner", "neighbour", "boundary"}) {
+        const auto file = cfd / "constant" / "polyMesh" / name;
+        test::write_text(fs::path(file.string() + ".gz"), tf::gzipped(test::read_text(file)));
+        fs::remove(file);
+      }
+    }
     fs::copy_file(test::kSample / "ramp.csv", dir / "ramp.csv");
     test::write_text(dir / "foam.yaml", ramp_case("cfd"));
   }
   std::string case_file() const { return shell_quote((dir / "foam.yaml").string()); }
 };
+
+/// checkMesh's verdict on a polyMesh folder, in a case of its own beside the case `cfd`.
+test::CommandResult check_mesh(const fs::path& cfd, const fs::path& polymesh, const fs::path& check) {
+  fs::create_directories(check / "constant");
+  fs::copy(cfd / "system", check / "system", fs::copy_options::recursive);
+  fs::copy(polymesh, check / "constant" / "polyMesh");
+  return test::run_command(tf::check_mesh_command() + " -case " + shell_quote(check.string()));
+}
 
 #define SKIP_WITHOUT_BLOCKMESH()                                                        \
   if (tf::block_mesh_command().empty()) GTEST_SKIP() << "blockMesh is not installed: " \
@@ -124,15 +142,30 @@ TEST(DeformFoam, RampChannelMovesAsItsGmshTwinAndTheWrittenMeshPassesCheckMesh) 
   EXPECT_EQ(after, before);
 
   // checkMesh on the written polyMesh in a case of its own, and on the case at time 1.
-  const auto check = c.dir / "check";
-  fs::create_directories(check / "constant");
-  fs::copy(c.cfd / "system", check / "system", fs::copy_options::recursive);
-  fs::copy(out / "polyMesh", check / "constant" / "polyMesh");
-  for (const std::string& arguments : {" -case " + shell_quote(check.string()), " -case " + shell_quote(c.cfd.string()) + " -time 1"}) {
-    const auto k = test::run_command(tf::check_mesh_command() + arguments);
+  for (const auto& k : {check_mesh(c.cfd, out / "polyMesh", c.dir / "check"),
+                        test::run_command(tf::check_mesh_command() + " -case " + shell_quote(c.cfd.string()) + " -time 1")}) {
     EXPECT_EQ(k.exit_code, 0) << k.output;
     EXPECT_THAT(k.output, HasSubstr("Mesh OK.")) << k.output;
   }
+}
+
+TEST(DeformFoam, BinaryGzippedCaseIsWrittenBackBinaryGzippedWithTheSamePoints) {
+  SKIP_WITHOUT_BLOCKMESH();
+  RampFoamCase ascii, binary(true);
+  for (const RampFoamCase* c : {&ascii, &binary}) {
+    const auto r = hotmesh("deform " + c->case_file() + " -o " + shell_quote((c->dir / "out").string()) + " --threads 1");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  const auto written = binary.dir / "out" / "polyMesh";
+  EXPECT_THAT(test::read_text(written / "owner.gz"), Eq(test::read_text(binary.cfd / "constant" / "polyMesh" / "owner.gz")));
+  ASSERT_TRUE(fs::exists(written / "points.gz"));
+  EXPECT_FALSE(fs::exists(written / "points"));
+  EXPECT_THAT(tf::gunzipped(test::read_text(written / "points.gz")), HasSubstr("format      binary;"));
+  // Binary doubles and shortest round-trip text hold the same points.
+  EXPECT_EQ(io::read_mesh(written).mesh.points, io::read_mesh(ascii.dir / "out" / "polyMesh").mesh.points);
+  const auto k = check_mesh(binary.cfd, written, binary.dir / "check");
+  EXPECT_EQ(k.exit_code, 0) << k.output;
+  EXPECT_THAT(k.output, HasSubstr("Mesh OK.")) << k.output;
 }
 
 TEST(DeformFoam, BadFoamTimesAndNonHexMeshesExitWithCode2BeforeAnyWork) {

@@ -163,6 +163,20 @@ inline std::string gzipped(const std::string& text) {
   return out;
 }
 
+inline std::string gunzipped(const std::string& data) {
+  std::string out(64 * data.size() + 1024, '\0');
+  z_stream z{};
+  inflateInit2(&z, 15 + 32);
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  z.avail_in = static_cast<uInt>(data.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = static_cast<uInt>(out.size());
+  inflate(&z, Z_FINISH);
+  out.resize(out.size() - z.avail_out);
+  inflateEnd(&z);
+  return out;
+}
+
 inline void write_foam_file(const std::filesystem::path& folder, const std::string& name, const std::string& text,
                             const Layout& layout) {
   if (layout.gzip) {
