@@ -39,6 +39,7 @@ std::string shape_of(const OutwardFaces& cell) {
   }
   const std::size_t n = cell.faces.size();
   std::string shape;
+  if (n == 0) return "no faces";
   if (n == 4 && triangles == 4) shape = "a tetrahedron";
   else if (n == 5 && triangles == 2 && quads == 3) shape = "a prism";
   else if (n == 5 && triangles == 4 && quads == 1) shape = "a pyramid";

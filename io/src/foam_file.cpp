@@ -270,8 +270,8 @@ std::vector<T> read_list(FoamCursor& in, std::string_view what, std::size_t min_
   }
   in.expect('(', fmt::format("the start of the list of {}", what));
   if (n > in.remaining() / min_size) {
-    in.fail_at(at, fmt::format("{} {} cannot fit in the {} bytes left in the file: is it truncated?", what, n,
-                               in.remaining()));
+    in.fail_at(at, fmt::format("the list of {} should hold {} entries, but only {} bytes are left in the file: is it "
+                               "truncated?", what, n, in.remaining()));
   }
   values.reserve(n);
   for (std::size_t i = 0; i < n; ++i) values.push_back(read_one(in));

@@ -159,6 +159,28 @@ TEST(FoamReaderErrors, ABadHeaderNamesTheLine) {
   EXPECT_THAT(read_error(dir / "p"), HasSubstr("big-endian"));
 }
 
+TEST(FoamReaderErrors, ACutListNamesTheLineOrTheByteOffset) {
+  test::TempDir dir;
+  write_poly_mesh(dir / "ascii", block_2x1x1());
+  std::string text = test::read_text(dir / "ascii" / "owner");
+  test::write_text(dir / "ascii" / "owner", text.substr(0, text.find("\n1\n0\n1\n0\n1\n)")));
+  EXPECT_THAT(read_error(dir / "ascii"), HasSubstr("owner:15: the list of owner cells should hold 11 entries, but only 12 "
+                                                   "bytes are left in the file: is it truncated?"));
+  const std::size_t close = text.rfind(')');  // all 11 owners, no ')'
+  test::write_text(dir / "ascii" / "owner", text.substr(0, close));
+  const auto last_line = std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(close), '\n') + 1;
+  EXPECT_THAT(read_error(dir / "ascii"), HasSubstr(fmt::format("owner:{}: the file ends where ')' was expected (the end "
+                                                               "of the list of owner cells (11 read, as its count says))",
+                                                               last_line)));
+  write_poly_mesh(dir / "binary", block_2x1x1(), {.binary = true});
+  text = test::read_text(dir / "binary" / "points");
+  const std::size_t data = text.find("12\n(") + 4;
+  test::write_text(dir / "binary" / "points", text.substr(0, data + 100));  // 4 points and a bit
+  EXPECT_THAT(read_error(dir / "binary"), HasSubstr(fmt::format("points: byte {}: the list of points should hold 12 "
+                                                                "entries, but only 100 bytes are left in the file: is it "
+                                                                "truncated?", data - 4)));
+}
+
 /// Every file of the block cut at many places, ASCII and binary, plain and gzipped: always an
 /// InputError naming that file.
 TEST(FoamReaderErrors, TruncatedFilesGiveAnErrorNamingTheFile) {
