@@ -78,14 +78,6 @@ struct RampFoamCase {
   std::string case_file() const { return shell_quote((dir / "foam.yaml").string()); }
 };
 
-/// checkMesh's verdict on a polyMesh folder, in a case of its own beside the case `cfd`.
-test::CommandResult check_mesh(const fs::path& cfd, const fs::path& polymesh, const fs::path& check) {
-  fs::create_directories(check / "constant");
-  fs::copy(cfd / "system", check / "system", fs::copy_options::recursive);
-  fs::copy(polymesh, check / "constant" / "polyMesh");
-  return test::run_command(tf::check_mesh_command() + " -case " + shell_quote(check.string()));
-}
-
 #define SKIP_WITHOUT_BLOCKMESH()                                                        \
   if (tf::block_mesh_command().empty()) GTEST_SKIP() << "blockMesh is not installed: " \
                                                         "run scripts/install-deps.sh (Debian's openfoam)"
@@ -142,7 +134,7 @@ TEST(DeformFoam, RampChannelMovesAsItsGmshTwinAndTheWrittenMeshPassesCheckMesh) 
   EXPECT_EQ(after, before);
 
   // checkMesh on the written polyMesh in a case of its own, and on the case at time 1.
-  for (const auto& k : {check_mesh(c.cfd, out / "polyMesh", c.dir / "check"),
+  for (const auto& k : {tf::check_mesh(c.cfd, out / "polyMesh", c.dir / "check"),
                         test::run_command(tf::check_mesh_command() + " -case " + shell_quote(c.cfd.string()) + " -time 1")}) {
     EXPECT_EQ(k.exit_code, 0) << k.output;
     EXPECT_THAT(k.output, HasSubstr("Mesh OK.")) << k.output;
@@ -163,7 +155,7 @@ TEST(DeformFoam, BinaryGzippedCaseIsWrittenBackBinaryGzippedWithTheSamePoints) {
   EXPECT_THAT(tf::gunzipped(test::read_text(written / "points.gz")), HasSubstr("format      binary;"));
   // Binary doubles and shortest round-trip text hold the same points.
   EXPECT_EQ(io::read_mesh(written).mesh.points, io::read_mesh(ascii.dir / "out" / "polyMesh").mesh.points);
-  const auto k = check_mesh(binary.cfd, written, binary.dir / "check");
+  const auto k = tf::check_mesh(binary.cfd, written, binary.dir / "check");
   EXPECT_EQ(k.exit_code, 0) << k.output;
   EXPECT_THAT(k.output, HasSubstr("Mesh OK.")) << k.output;
 }

@@ -242,6 +242,15 @@ inline CommandResult run_block_mesh(const std::filesystem::path& folder) {
   return run_command(block_mesh_command() + " -case " + shell_quote(folder.string()));
 }
 
+/// checkMesh on `polymesh`, copied with the system folder of the case `cfd` into a new case `check`.
+inline CommandResult check_mesh(const std::filesystem::path& cfd, const std::filesystem::path& polymesh,
+                                const std::filesystem::path& check) {
+  std::filesystem::create_directories(check / "constant");
+  std::filesystem::copy(cfd / "system", check / "system", std::filesystem::copy_options::recursive);
+  std::filesystem::copy(polymesh, check / "constant" / "polyMesh");
+  return run_command(check_mesh_command() + " -case " + shell_quote(check.string()));
+}
+
 /// The points of an ASCII points file, parsed here independently of hotmesh's reader.
 inline std::vector<geometry::Vec3> ascii_points(const std::filesystem::path& file) {
   std::istringstream in(test::read_text(file));
