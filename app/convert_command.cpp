@@ -21,7 +21,9 @@ Command add_convert_command(CLI::App& parent) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = parent.add_subcommand(
       "convert", "Convert a mesh: Gmsh 2.2/4.1 (.msh) to Gmsh 4.1 (.msh) or ParaView (.vtu with cell quality)");
-  cmd->add_option("IN", options->input, "Input mesh (.msh)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("IN", options->input, "Input mesh (.msh, or an OpenFOAM case / polyMesh folder)")
+      ->required()
+      ->check(CLI::ExistingPath);
   cmd->add_option("OUT", options->output, "Output mesh (.msh or .vtu); never the input")->required();
   cmd->add_flag("--binary", options->binary, "Write .msh in binary (smaller, faster for large meshes)");
   return [options] {

@@ -21,6 +21,7 @@ namespace {
 using geometry::Vec3;
 using ::testing::Eq;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using test::hotmesh;
 using test::shell_quote;
 namespace fs = std::filesystem;
@@ -158,6 +159,28 @@ TEST(DeformFoam, BinaryGzippedCaseIsWrittenBackBinaryGzippedWithTheSamePoints) {
   const auto k = tf::check_mesh(binary.cfd, written, binary.dir / "check");
   EXPECT_EQ(k.exit_code, 0) << k.output;
   EXPECT_THAT(k.output, HasSubstr("Mesh OK.")) << k.output;
+}
+
+TEST(DeformFoam, InfoShowsTheCasesPatchesAndConvertWritesItsMeshAsMsh) {
+  SKIP_WITHOUT_BLOCKMESH();
+  RampFoamCase c;
+  const auto info = hotmesh("info " + shell_quote(c.cfd.string()));
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_THAT(info.output, HasSubstr("dimension   2D"));
+  EXPECT_THAT(info.output, HasSubstr("cells       252 (252 quad4)"));
+  EXPECT_THAT(info.output, Not(HasSubstr("frontAndBack")));
+  const auto msh = c.dir / "ramp.msh";
+  const auto convert = hotmesh("convert " + shell_quote((c.cfd / "constant" / "polyMesh").string()) + " " + shell_quote(msh.string()));
+  ASSERT_EQ(convert.exit_code, 0) << convert.output;
+  const mesh::Mesh converted = io::read_gmsh(msh), read = io::read_mesh(c.cfd).mesh;
+  EXPECT_EQ(converted.points, read.points);
+  EXPECT_EQ(converted.node_ids, read.node_ids);  // OpenFOAM labels + 1
+  EXPECT_EQ(converted.cells, read.cells);
+  ASSERT_EQ(converted.patches.size(), read.patches.size());
+  for (std::size_t i = 0; i < read.patches.size(); ++i) {
+    EXPECT_EQ(converted.patches[i].name, read.patches[i].name);
+    EXPECT_EQ(converted.patches[i].faces, read.patches[i].faces);
+  }
 }
 
 TEST(DeformFoam, BadFoamTimesAndNonHexMeshesExitWithCode2BeforeAnyWork) {
