@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <regex>
 
@@ -60,13 +61,15 @@ boundary (
 std::string vec(double x, double y, double z) { return fmt::format("({} {} {})", x, y, z); }
 
 /// An annular channel x in [0, 3], r in [1, 2] as a 5-degree wedge about the x axis
-/// (planes at -2.5 and +2.5 degrees from the x-y plane), 6 x 4 cells.
-std::string wedge_2d() {
+/// (planes at -2.5 and +2.5 degrees from the x-y plane), 6 x 4 cells; `place` moves each
+/// vertex (the identity: as described).
+std::string wedge_2d(const std::function<Vec3(const Vec3&)>& place = [](const Vec3& p) { return p; }) {
   const double a = 2.5 * std::numbers::pi / 180.0;
   std::string vertices;
   for (const double side : {-1.0, 1.0}) {
     for (const auto& [x, r] : {std::pair{0.0, 1.0}, {3.0, 1.0}, {3.0, 2.0}, {0.0, 2.0}}) {
-      vertices += fmt::format("({} {:.17g} {:.17g}) ", x, r * std::cos(a), side * r * std::sin(a));
+      const Vec3 p = place({x, r * std::cos(a), side * r * std::sin(a)});
+      vertices += fmt::format("({:.17g} {:.17g} {:.17g}) ", p.x, p.y, p.z);
     }
   }
   return "vertices (" + vertices + R"();
@@ -224,6 +227,27 @@ TEST(FoamBlockMesh, WedgeCaseIsTheMeridionalMeshAndWritesBackOntoBothWedgePlanes
   const auto r = tf::check_mesh(folder, dir / "out" / "polyMesh", dir / "check");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("Mesh OK.")) << r.output;
+}
+
+TEST(FoamBlockMesh, WedgeAboutAnyAxisGivesTheSameMeridionalMesh) {
+  SKIP_WITHOUT_BLOCKMESH();
+  // Rotated by 40 degrees about (1, 1, 1) and moved off the origin across the new axis: the
+  // axial coordinate is measured from the axis point nearest the origin, so nothing changes.
+  const Vec3 k = Vec3{1, 1, 1} / std::sqrt(3.0);
+  const double c = std::cos(0.7), s = std::sin(0.7);
+  const auto rotate = [&](const Vec3& p) { return c * p + s * geometry::cross(k, p) + (1 - c) * geometry::dot(k, p) * k; };
+  const Vec3 axis = rotate({1, 0, 0});
+  const Vec3 shift = geometry::cross(axis, Vec3{0.3, -1.2, 2.0});  // normal to the axis
+  test::TempDir dir;
+  const mesh::Mesh plain = read_mesh(block_mesh(dir, "plain", wedge_2d())).mesh;
+  const mesh::Mesh turned = read_mesh(block_mesh(dir, "turned", wedge_2d([&](const Vec3& p) { return rotate(p) + shift; }))).mesh;
+  ASSERT_EQ(turned.node_count(), plain.node_count());
+  EXPECT_GT(axis.x, std::max(std::abs(axis.y), std::abs(axis.z)));  // x stays the axial direction's sign
+  for (std::size_t n = 0; n < plain.node_count(); ++n) {
+    EXPECT_NEAR(turned.points[n].x, plain.points[n].x, 1e-12) << n;
+    EXPECT_NEAR(turned.points[n].y, plain.points[n].y, 1e-12) << n;
+  }
+  EXPECT_EQ(turned.cells, plain.cells);
 }
 
 TEST(FoamBlockMesh, CellsThatAreNotHexahedraAreCountedInTheError) {
