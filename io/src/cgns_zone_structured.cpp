@@ -1,0 +1,170 @@
+// hotmesh io: structured CGNS zones. Cell (i, j[, k]) is the quad / hex of the nodes
+// (i..i+1, j..j+1[, k..k+1]), numbered i fastest as CGNS stores them; a left-handed zone
+// (first corner Jacobians negative) has its cells renumbered so that every cell is positively
+// oriented. Boundary conditions become node sets (a face-centred range covers the nodes of
+// its faces); cgns_assemble.cpp keeps the zone's boundary faces whose nodes are all in it.
+#include <fmt/format.h>
+
+#include "cgns_reader.hpp"
+#include "hotmesh/geometry/input_error.hpp"
+
+namespace hotmesh::io::cgns {
+namespace {
+
+/// The sum of the signs of the corner-0 Jacobians of the zone's cells: negative for a
+/// left-handed zone.
+long handedness(const RawMesh& raw, const ZoneRecord& zone) {
+  long sum = 0;
+  for (std::size_t c = zone.first_cell; c < zone.first_cell + zone.cell_count; ++c) {
+    const auto n = raw.cells.nodes(c);
+    const auto at = [&](std::size_t i) { return raw.points[static_cast<std::size_t>(n[i])]; };
+    const geometry::Vec3 a = at(1) - at(0), b = at(3) - at(0);
+    double det = a.x * b.y - a.y * b.x;
+    if (raw.dimension == 3) {
+      const geometry::Vec3 c4 = at(4) - at(0);
+      det = a.x * (b.y * c4.z - b.z * c4.y) - a.y * (b.x * c4.z - b.z * c4.x) + a.z * (b.x * c4.y - b.y * c4.x);
+    }
+    sum += det > 0 ? 1 : (det < 0 ? -1 : 0);
+  }
+  return sum;
+}
+
+void add_cells(RawMesh& raw, const ZoneRecord& zone, bool mirrored) {
+  const auto ni = zone.vertices[0], nj = zone.vertices[1], nk = raw.dimension == 3 ? zone.vertices[2] : 2;
+  const auto node = [&](cgsize_t i, cgsize_t j, cgsize_t k) {
+    return zone.first_node + static_cast<NodeId>(i + ni * (j + nj * k));
+  };
+  for (cgsize_t k = 0; k + 1 < nk; ++k) {
+    for (cgsize_t j = 0; j + 1 < nj; ++j) {
+      for (cgsize_t i = 0; i + 1 < ni; ++i) {
+        // Mirrored: i and j swap roles, which reverses the orientation.
+        if (raw.dimension == 2) {
+          if (mirrored) raw.cells.add(mesh::ElementType::quad4, {node(i, j, 0), node(i, j + 1, 0), node(i + 1, j + 1, 0), node(i + 1, j, 0)});
+          else raw.cells.add(mesh::ElementType::quad4, {node(i, j, 0), node(i + 1, j, 0), node(i + 1, j + 1, 0), node(i, j + 1, 0)});
+          continue;
+        }
+        if (mirrored) {
+          raw.cells.add(mesh::ElementType::hex8, {node(i, j, k), node(i, j + 1, k), node(i + 1, j + 1, k), node(i + 1, j, k),
+                                                   node(i, j, k + 1), node(i, j + 1, k + 1), node(i + 1, j + 1, k + 1),
+                                                   node(i + 1, j, k + 1)});
+        } else {
+          raw.cells.add(mesh::ElementType::hex8, {node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
+                                                   node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1),
+                                                   node(i, j + 1, k + 1)});
+        }
+      }
+    }
+  }
+}
+
+/// The structured direction a face-centred point set lies across: the one in which all its
+/// points sit at the same side of the zone (location IFaceCenter.. names it).
+int fixed_direction(const RawMesh& raw, const ZoneRecord& zone, CGNS_ENUMT(GridLocation_t) location,
+                    const std::vector<cgsize_t>& points) {
+  if (location == CGNS_ENUMV(IFaceCenter)) return 0;
+  if (location == CGNS_ENUMV(JFaceCenter)) return 1;
+  if (location == CGNS_ENUMV(KFaceCenter)) return 2;
+  const auto d = static_cast<std::size_t>(raw.dimension);
+  if (points.size() < d) return -1;
+  for (std::size_t a = 0; a < d; ++a) {
+    const cgsize_t side = points[a];
+    if (side != 1 && side != zone.vertices[a]) continue;
+    bool all = true;
+    for (std::size_t p = a; p < points.size() && all; p += d) all = points[p] == side;
+    if (all) return static_cast<int>(a);
+  }
+  return -1;
+}
+
+/// The nodes of the faces a face-centred point set names (each face: its index point and
+/// the next vertices along the other directions).
+std::vector<cgsize_t> face_vertices(const RawMesh& raw, const std::vector<cgsize_t>& faces, int fixed) {
+  const auto d = static_cast<std::size_t>(raw.dimension);
+  std::vector<cgsize_t> vertices;
+  for (std::size_t f = 0; f + d <= faces.size(); f += d) {
+    const std::size_t corners = std::size_t{1} << (d - 1);
+    for (std::size_t c = 0; c < corners; ++c) {
+      std::size_t bit = 0;
+      for (std::size_t a = 0; a < d; ++a) {
+        cgsize_t v = faces[f + a];
+        if (static_cast<int>(a) != fixed) v += static_cast<cgsize_t>((c >> bit++) & 1u);
+        vertices.push_back(v);
+      }
+    }
+  }
+  return vertices;
+}
+
+void read_bc(const File& file, RawMesh& raw, std::size_t z, int b) {
+  const ZoneRecord& zone = raw.zones[z];
+  Label name{};
+  CGNS_ENUMT(BCType_t) type{};
+  CGNS_ENUMT(PointSetType_t) set{};
+  cgsize_t count = 0, normal_size = 0;
+  std::array<int, 3> normal_index{};
+  CGNS_ENUMT(DataType_t) normal_type{};
+  int datasets = 0;
+  file.check(cg_boco_info(file.fn(), raw.base, zone.index, b, name, &type, &set, &count, normal_index.data(),
+                          &normal_size, &normal_type, &datasets),
+             fmt::format("zone '{}': reading BC {}", zone.name, b));
+  CGNS_ENUMT(GridLocation_t) location = CGNS_ENUMV(Vertex);
+  file.check(cg_boco_gridlocation_read(file.fn(), raw.base, zone.index, b, &location),
+             fmt::format("zone '{}' BC '{}': reading its GridLocation", zone.name, name));
+  const int dims = raw.dimension;
+  std::vector<cgsize_t> data(static_cast<std::size_t>(count) * static_cast<std::size_t>(dims));
+  std::vector<double> normals(static_cast<std::size_t>(normal_size) * 3 + 1);
+  file.check(cg_boco_read(file.fn(), raw.base, zone.index, b, data.data(), normals.data()),
+             fmt::format("zone '{}' BC '{}': reading its points", zone.name, name));
+  RawBc bc;
+  bc.where = fmt::format("zone '{}' BC '{}'", zone.name, name);
+  bc.patch = bc_family(file, raw.base, zone.index, b);
+  if (bc.patch.empty()) bc.patch = name;
+  bc.zone = z;
+  bc.by_points = true;
+  std::vector<cgsize_t> points = expand_point_set(set, data, dims);
+  if (location != CGNS_ENUMV(Vertex)) {
+    const int fixed = fixed_direction(raw, zone, location, points);
+    if (fixed < 0) {
+      throw InputError::in(file.name(), fmt::format("{}: its {} points lie on no side of the zone", bc.where,
+                                                    cg_GridLocationName(location)));
+    }
+    points = face_vertices(raw, points, fixed);
+  }
+  for (std::size_t p = 0; p + static_cast<std::size_t>(dims) <= points.size(); p += static_cast<std::size_t>(dims)) {
+    for (int a = 0; a < dims; ++a) {
+      if (points[p + static_cast<std::size_t>(a)] < 1 || points[p + static_cast<std::size_t>(a)] > zone.vertices[static_cast<std::size_t>(a)]) {
+        throw InputError::in(file.name(), fmt::format("{} reaches beyond the zone's {} x {} x {} nodes", bc.where,
+                                                      zone.vertices[0], zone.vertices[1], zone.vertices[2]));
+      }
+    }
+    bc.nodes.push_back(raw_node(zone, points.data() + p, dims));
+  }
+  raw.bcs.push_back(std::move(bc));
+}
+
+}  // namespace
+
+void read_structured_zone(const File& file, RawMesh& raw, std::size_t z) {
+  ZoneRecord& zone = raw.zones[z];
+  for (int d = 0; d < raw.dimension; ++d) {
+    if (zone.vertices[static_cast<std::size_t>(d)] < 2) {
+      throw InputError::in(file.name(), fmt::format("structured zone '{}' has {} nodes along direction {}: a zone of "
+                                                    "cells needs at least 2",
+                                                    zone.name, zone.vertices[static_cast<std::size_t>(d)], "ijk"[d]));
+    }
+  }
+  const std::size_t first = raw.cells.size();
+  add_cells(raw, zone, false);
+  zone.cell_count = raw.cells.size() - first;
+  if (handedness(raw, zone) < 0) {
+    mesh::ElementList kept;
+    for (std::size_t c = 0; c < first; ++c) kept.add(raw.cells.type(c), raw.cells.nodes(c));
+    raw.cells = std::move(kept);
+    add_cells(raw, zone, true);
+  }
+  int bcs = 0;
+  file.check(cg_nbocos(file.fn(), raw.base, zone.index, &bcs), fmt::format("zone '{}': reading its BCs", zone.name));
+  for (int b = 1; b <= bcs; ++b) read_bc(file, raw, z, b);
+}
+
+}  // namespace hotmesh::io::cgns
