@@ -74,15 +74,20 @@ struct SectionReader {
     file.check(cg_ElementDataSize(file.fn(), raw.base, zone.index, s, &size),
                fmt::format("zone '{}' section '{}': reading its size", zone.name, section));
     std::vector<cgsize_t> data(static_cast<std::size_t>(size));
-    file.check(cg_elements_read(file.fn(), raw.base, zone.index, s, data.data(), nullptr),
-               fmt::format("zone '{}' section '{}': reading its elements", zone.name, section));
+    const bool variable = type == CGNS_ENUMV(MIXED) || type == CGNS_ENUMV(NGON_n) || type == CGNS_ENUMV(NFACE_n);
+    std::vector<cgsize_t> offsets(variable ? static_cast<std::size_t>(end - start + 2) : 0);
+    const std::string what = fmt::format("zone '{}' section '{}': reading its elements", zone.name, section);
+    if (variable) {
+      file.check(cg_poly_elements_read(file.fn(), raw.base, zone.index, s, data.data(), offsets.data(), nullptr), what);
+    } else {
+      file.check(cg_elements_read(file.fn(), raw.base, zone.index, s, data.data(), nullptr), what);
+    }
     others.clear();
     if (type == CGNS_ENUMV(MIXED)) {
       read_mixed(data, start, end);
     } else {
       int npe = 0;
-      cg_npe(type, &npe);
-      if (npe <= 0 || npe > 8) {
+      if (variable || cg_npe(type, &npe) != CG_OK || npe <= 0 || npe > 8) {
         others[cg_ElementTypeName(type)] += static_cast<std::size_t>(end - start + 1);
       } else {
         for (cgsize_t e = start; e <= end; ++e) add(type, e, data.data() + (e - start) * npe, npe);
