@@ -105,6 +105,29 @@ std::vector<cgsize_t> expand_point_set(CGNS_ENUMT(PointSetType_t) type, const st
   return points;
 }
 
+BcPoints read_bc_points(const File& file, const RawMesh& raw, const ZoneRecord& zone, int b) {
+  Label name{};
+  BcPoints bc;
+  CGNS_ENUMT(BCType_t) type{};
+  cgsize_t count = 0, normal_size = 0;
+  std::array<int, 3> normal_index{};
+  CGNS_ENUMT(DataType_t) normal_type{};
+  int datasets = 0;
+  file.check(cg_boco_info(file.fn(), raw.base, zone.index, b, name, &type, &bc.set, &count, normal_index.data(),
+                          &normal_size, &normal_type, &datasets),
+             fmt::format("zone '{}': reading BC {}", zone.name, b));
+  bc.where = fmt::format("zone '{}' BC '{}'", zone.name, name);
+  file.check(cg_boco_gridlocation_read(file.fn(), raw.base, zone.index, b, &bc.location),
+             fmt::format("{}: reading its GridLocation", bc.where));
+  bc.data.resize(static_cast<std::size_t>(count) * static_cast<std::size_t>(index_dimension(raw, zone)));
+  std::vector<double> normals(static_cast<std::size_t>(normal_size) * 3 + 1);
+  file.check(cg_boco_read(file.fn(), raw.base, zone.index, b, bc.data.data(), normals.data()),
+             fmt::format("{}: reading its points", bc.where));
+  bc.patch = bc_family(file, raw.base, zone.index, b);
+  if (bc.patch.empty()) bc.patch = name;
+  return bc;
+}
+
 void read_coordinates(const File& file, RawMesh& raw, ZoneRecord& zone) {
   Label name{};
   std::array<cgsize_t, 9> size{};

@@ -75,6 +75,16 @@ int index_dimension(const RawMesh& raw, const ZoneRecord& zone);
 std::vector<cgsize_t> expand_point_set(CGNS_ENUMT(PointSetType_t) type, const std::vector<cgsize_t>& data,
                                        int index_dimension);
 
+/// A BC_t of a zone as the file gives it: where it is, its point set, the patch it names.
+struct BcPoints {
+  std::string where;  ///< "zone 'Z' BC 'B'"
+  std::string patch;  ///< its FamilyName, else its name
+  CGNS_ENUMT(PointSetType_t) set{};
+  CGNS_ENUMT(GridLocation_t) location = CGNS_ENUMV(Vertex);
+  std::vector<cgsize_t> data;  ///< the point set's entries, index_dimension per point
+};
+BcPoints read_bc_points(const File& file, const RawMesh& raw, const ZoneRecord& zone, int bc);
+
 /// The mesh the zones make together (nodes joined, patches named); global_of_raw gets the
 /// mesh node of every raw node.
 mesh::Mesh assemble(const RawMesh& raw, std::vector<NodeId>& global_of_raw);

@@ -97,47 +97,30 @@ std::vector<cgsize_t> face_vertices(const RawMesh& raw, const std::vector<cgsize
 
 void read_bc(const File& file, RawMesh& raw, std::size_t z, int b) {
   const ZoneRecord& zone = raw.zones[z];
-  Label name{};
-  CGNS_ENUMT(BCType_t) type{};
-  CGNS_ENUMT(PointSetType_t) set{};
-  cgsize_t count = 0, normal_size = 0;
-  std::array<int, 3> normal_index{};
-  CGNS_ENUMT(DataType_t) normal_type{};
-  int datasets = 0;
-  file.check(cg_boco_info(file.fn(), raw.base, zone.index, b, name, &type, &set, &count, normal_index.data(),
-                          &normal_size, &normal_type, &datasets),
-             fmt::format("zone '{}': reading BC {}", zone.name, b));
-  CGNS_ENUMT(GridLocation_t) location = CGNS_ENUMV(Vertex);
-  file.check(cg_boco_gridlocation_read(file.fn(), raw.base, zone.index, b, &location),
-             fmt::format("zone '{}' BC '{}': reading its GridLocation", zone.name, name));
-  const int dims = raw.dimension;
-  std::vector<cgsize_t> data(static_cast<std::size_t>(count) * static_cast<std::size_t>(dims));
-  std::vector<double> normals(static_cast<std::size_t>(normal_size) * 3 + 1);
-  file.check(cg_boco_read(file.fn(), raw.base, zone.index, b, data.data(), normals.data()),
-             fmt::format("zone '{}' BC '{}': reading its points", zone.name, name));
+  const BcPoints given = read_bc_points(file, raw, zone, b);
   RawBc bc;
-  bc.where = fmt::format("zone '{}' BC '{}'", zone.name, name);
-  bc.patch = bc_family(file, raw.base, zone.index, b);
-  if (bc.patch.empty()) bc.patch = name;
+  bc.where = given.where;
+  bc.patch = given.patch;
   bc.zone = z;
   bc.by_points = true;
-  std::vector<cgsize_t> points = expand_point_set(set, data, dims);
-  if (location != CGNS_ENUMV(Vertex)) {
-    const int fixed = fixed_direction(raw, zone, location, points);
+  const auto dims = static_cast<std::size_t>(raw.dimension);
+  std::vector<cgsize_t> points = expand_point_set(given.set, given.data, raw.dimension);
+  if (given.location != CGNS_ENUMV(Vertex)) {
+    const int fixed = fixed_direction(raw, zone, given.location, points);
     if (fixed < 0) {
       throw InputError::in(file.name(), fmt::format("{}: its {} points lie on no side of the zone", bc.where,
-                                                    cg_GridLocationName(location)));
+                                                    cg_GridLocationName(given.location)));
     }
     points = face_vertices(raw, points, fixed);
   }
-  for (std::size_t p = 0; p + static_cast<std::size_t>(dims) <= points.size(); p += static_cast<std::size_t>(dims)) {
-    for (int a = 0; a < dims; ++a) {
-      if (points[p + static_cast<std::size_t>(a)] < 1 || points[p + static_cast<std::size_t>(a)] > zone.vertices[static_cast<std::size_t>(a)]) {
-        throw InputError::in(file.name(), fmt::format("{} reaches beyond the zone's {} x {} x {} nodes", bc.where,
-                                                      zone.vertices[0], zone.vertices[1], zone.vertices[2]));
+  for (std::size_t p = 0; p + dims <= points.size(); p += dims) {
+    for (std::size_t a = 0; a < dims; ++a) {
+      if (points[p + a] < 1 || points[p + a] > zone.vertices[a]) {
+        throw InputError::in(file.name(), fmt::format("{} reaches node index {} along {}, but the zone has {}", bc.where,
+                                                      points[p + a], "ijk"[a], zone.vertices[a]));
       }
     }
-    bc.nodes.push_back(raw_node(zone, points.data() + p, dims));
+    bc.nodes.push_back(raw_node(zone, points.data() + p, raw.dimension));
   }
   raw.bcs.push_back(std::move(bc));
 }

@@ -144,34 +144,17 @@ bool by_elements(CGNS_ENUMT(PointSetType_t) set, CGNS_ENUMT(GridLocation_t) loca
 
 void read_bc(const File& file, RawMesh& raw, std::size_t z, ZoneFaces& faces, int b) {
   const ZoneRecord& zone = raw.zones[z];
-  Label name{};
-  CGNS_ENUMT(BCType_t) type{};
-  CGNS_ENUMT(PointSetType_t) set{};
-  cgsize_t count = 0, normal_size = 0;
-  std::array<int, 3> normal_index{};
-  CGNS_ENUMT(DataType_t) normal_type{};
-  int datasets = 0;
-  file.check(cg_boco_info(file.fn(), raw.base, zone.index, b, name, &type, &set, &count, normal_index.data(),
-                          &normal_size, &normal_type, &datasets),
-             fmt::format("zone '{}': reading BC {}", zone.name, b));
-  CGNS_ENUMT(GridLocation_t) location = CGNS_ENUMV(Vertex);
-  file.check(cg_boco_gridlocation_read(file.fn(), raw.base, zone.index, b, &location),
-             fmt::format("zone '{}' BC '{}': reading its GridLocation", zone.name, name));
-  std::vector<cgsize_t> data(static_cast<std::size_t>(count));
-  std::vector<double> normals(static_cast<std::size_t>(normal_size) * 3 + 1);
-  file.check(cg_boco_read(file.fn(), raw.base, zone.index, b, data.data(), normals.data()),
-             fmt::format("zone '{}' BC '{}': reading its points", zone.name, name));
+  const BcPoints points = read_bc_points(file, raw, zone, b);
   RawBc bc;
-  bc.where = fmt::format("zone '{}' BC '{}'", zone.name, name);
-  bc.patch = bc_family(file, raw.base, zone.index, b);
-  if (bc.patch.empty()) bc.patch = name;
+  bc.where = points.where;
+  bc.patch = points.patch;
   bc.zone = z;
-  const std::vector<cgsize_t> points = expand_point_set(set, data, 1);
-  if (by_elements(set, location)) {
-    faces_of_elements(file, faces, points, bc);
+  const std::vector<cgsize_t> entries = expand_point_set(points.set, points.data, 1);
+  if (by_elements(points.set, points.location)) {
+    faces_of_elements(file, faces, entries, bc);
   } else {
     bc.by_points = true;
-    for (const cgsize_t p : points) {
+    for (const cgsize_t p : entries) {
       if (p < 1 || static_cast<std::size_t>(p) > zone.node_count) {
         throw InputError::in(file.name(), fmt::format("{} names node {}, but the zone has {} nodes", bc.where, p,
                                                       zone.node_count));

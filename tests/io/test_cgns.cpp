@@ -84,6 +84,27 @@ TEST(CgnsRead, Structured3dZonesWithCoincidentInterfaceNodesAreMerged) {
   expect_positive_cells(m);
 }
 
+TEST(CgnsRead, UnstructuredZonesJoinedThroughAbuttingOneToOnePointLists) {
+  test::TempDir dir;
+  test::write_unstructured_two_zones(dir / "u2z.cgns", true);
+  const LoadedMesh loaded = read_mesh(dir / "u2z.cgns");
+  EXPECT_EQ(loaded.mesh.node_count(), 21u);  // 12 + 12 - 3 on x = 3
+  EXPECT_EQ(loaded.mesh.cell_count(), 12u);
+  const std::map<std::string, std::size_t> expected{{"left", 2}, {"Walls", 12}, {"right", 2}};
+  EXPECT_EQ(patch_faces(loaded.mesh), expected);
+  EXPECT_EQ(loaded.validation.boundary_faces, 16u);
+}
+
+TEST(CgnsRead, UnstructuredZonesWithoutConnectivityJoinAtCoincidentBoundaryNodes) {
+  test::TempDir dir;
+  test::write_unstructured_two_zones(dir / "u2z.cgns", false);
+  const LoadedMesh loaded = read_mesh(dir / "u2z.cgns");
+  EXPECT_EQ(loaded.mesh.node_count(), 21u);
+  EXPECT_EQ(loaded.validation.boundary_faces, 16u);
+  const std::map<std::string, std::size_t> expected{{"left", 2}, {"Walls", 12}, {"right", 2}};
+  EXPECT_EQ(patch_faces(loaded.mesh), expected);
+}
+
 TEST(CgnsRead, SummaryListsZonesSectionsBcsConnectionsAndFamilies) {
   test::TempDir dir;
   test::write_structured_2d(dir / "s2.cgns");

@@ -117,6 +117,12 @@ TEST(CgnsWriteBack, Unstructured3dMixed) {
   check_write_back(dir / "u3.cgns", false);
 }
 
+TEST(CgnsWriteBack, UnstructuredZonesJoinedByConnectivity) {
+  test::TempDir dir;
+  test::write_unstructured_two_zones(dir / "u2z.cgns", true);
+  check_write_back(dir / "u2z.cgns", false);
+}
+
 TEST(CgnsWriteBack, LeavesNoTemporaryFileAndTheInputUntouched) {
   test::TempDir dir;
   test::write_structured_2d(dir / "s2.cgns");

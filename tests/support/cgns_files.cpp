@@ -230,6 +230,31 @@ void write_structured_3d(const std::filesystem::path& path) {
   }
 }
 
+void write_unstructured_two_zones(const std::filesystem::path& path, bool connectivity) {
+  Out out(path, 2, 2);
+  out.family("Walls");
+  std::vector<double> right = grid(4, 3, 1, 3.0, 1.0);
+  if (!connectivity) {
+    for (const std::size_t n : {0u, 4u, 8u}) right[3 * n] += 1e-7;
+  }
+  const std::array<std::vector<double>, 2> xyz{grid(4, 3, 1, 0.0, 1.0), right};
+  const std::array<const char*, 2> names{"Left", "Right"};
+  const std::array<std::vector<cgsize_t>, 2> interface{std::vector<cgsize_t>{4, 8, 12}, std::vector<cgsize_t>{1, 5, 9}};
+  for (std::size_t z = 0; z < 2; ++z) {
+    const int zone = out.unstructured(names[z], 12, 6);
+    out.coordinates(zone, xyz[z], 2, false);
+    out.section(zone, "Cells", CGNS_ENUMV(QUAD_4), 1, 6, quads_2d(4, 3, false));
+    out.bc(zone, z == 0 ? "left" : "right", CGNS_ENUMV(PointList), z == 0 ? std::vector<cgsize_t>{1, 5, 9} : std::vector<cgsize_t>{4, 8, 12}, 1);
+    out.bc(zone, "bottom", CGNS_ENUMV(PointList), {1, 2, 3, 4}, 1, CGNS_ENUMV(Vertex), "Walls");
+    out.bc(zone, "top", CGNS_ENUMV(PointList), {9, 10, 11, 12}, 1, CGNS_ENUMV(Vertex), "Walls");
+    if (!connectivity) continue;
+    int c = 0;
+    ok(cg_conn_write(out.fn, out.base, zone, "interface", CGNS_ENUMV(Vertex), CGNS_ENUMV(Abutting1to1),
+                     CGNS_ENUMV(PointList), 3, interface[z].data(), names[1 - z], CGNS_ENUMV(Unstructured),
+                     CGNS_ENUMV(PointListDonor), CGNS_ENUMV(Integer), 3, interface[1 - z].data(), &c));
+  }
+}
+
 void write_with_triangles(const std::filesystem::path& path) {
   Out out(path, 2, 2);
   const int z = out.unstructured("Fluid", 4, 2);

@@ -36,6 +36,14 @@ void write_structured_2d(const std::filesystem::path& path);
 /// Mesh: 45 nodes, 16 cells; patches xmin 4, xmax 4, ymin 8, ymax 8, zmin 8, zmax 8.
 void write_structured_3d(const std::filesystem::path& path);
 
+/// 2D unstructured, two zones of 3 x 2 quads: "Left" on [0,3] x [0,2], "Right" on [3,6] x
+/// [0,2]. With `connectivity`, joined by GridConnectivity Abutting1to1 PointList /
+/// PointListDonor at x = 3 (both ways); without, Right's interface nodes are 1e-7 off Left's
+/// and only coincidence joins them. BCs by PointList: "left" (x = 0), "right" (x = 6), and
+/// "bottom" / "top" of each zone in family "Walls".
+/// Mesh: 21 nodes, 12 cells; patches left 2, Walls 12, right 2.
+void write_unstructured_two_zones(const std::filesystem::path& path, bool connectivity);
+
 /// Variants for error cases.
 void write_with_triangles(const std::filesystem::path& path);   ///< 2D, section "Tris" of 2 TRI_3
 void write_bc_without_faces(const std::filesystem::path& path); ///< 2D, BC "lonely" of 1 node
