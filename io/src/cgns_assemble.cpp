@@ -1,6 +1,6 @@
 // hotmesh io: the zones of a CGNS base joined into one conforming mesh.
 // Nodes: the pairs the connectivity declares one are merged (union-find); a base without any
-// connectivity has its zones' coincident boundary nodes merged instead, within 1e-4 of the
+// node-matching connectivity has its zones' coincident boundary nodes merged instead, within 1e-4 of the
 // shortest boundary edge. Each set of merged nodes becomes one mesh node, numbered in the
 // order of its first raw node. Patches: one per name (a BC's family, else its name), in the
 // order the names first appear; a BC given by points gets the boundary faces of its zone's

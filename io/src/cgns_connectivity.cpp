@@ -3,7 +3,9 @@
 // point T (I - begin) + donor_begin, T the transform matrix (column a: +-e_|t_a|).
 // GridConnectivity_t of type Abutting1to1 at vertices: point k of the zone's point set is
 // point k of the donor's. Other connectivity (overset, non-matching abutting) is not a node
-// match: it is reported and left alone.
+// match: it is reported and left alone. A periodic connection (GridConnectivityProperty with
+// Periodic: a rotation or translation) joins no nodes either: its side of the zone becomes a
+// patch named as the connection, for a periodic role in the case file.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -25,8 +27,23 @@ void check_inside(const RawMesh& raw, const ZoneRecord& zone, const cgsize_t* po
   }
 }
 
+/// The nodes of a periodic connection's side as a patch named after it.
+void add_periodic_side(RawMesh& raw, std::size_t z, const std::string& name, const std::vector<cgsize_t>& points,
+                       int dims) {
+  RawBc bc;
+  bc.patch = name;
+  bc.where = fmt::format("zone '{}' periodic connection '{}'", raw.zones[z].name, name);
+  bc.zone = z;
+  bc.by_points = true;
+  for (std::size_t p = 0; p < points.size(); p += static_cast<std::size_t>(dims)) {
+    check_inside(raw, raw.zones[z], points.data() + p, dims, bc.where);
+    bc.nodes.push_back(raw_node(raw.zones[z], points.data() + p, dims));
+  }
+  raw.bcs.push_back(std::move(bc));
+}
+
 void read_one_to_one(const File& file, RawMesh& raw, std::size_t z, int c) {
-  const ZoneRecord& zone = raw.zones[z];
+  ZoneRecord& zone = raw.zones[z];
   Label name{}, donor_name{};
   std::array<cgsize_t, 6> range{}, donor_range{};
   std::array<int, 3> transform{};
@@ -41,6 +58,12 @@ void read_one_to_one(const File& file, RawMesh& raw, std::size_t z, int c) {
     if (t < 1 || t > d) throw InputError::in(raw.file, fmt::format("{} has transform entry {}", where, transform[static_cast<std::size_t>(a)]));
   }
   const std::vector<cgsize_t> points = expand_point_set(CGNS_ENUMV(PointRange), {range.begin(), range.begin() + 2 * d}, d);
+  std::array<float, 3> center{}, angle{}, translation{};
+  if (cg_1to1_periodic_read(file.fn(), raw.base, zone.index, c, center.data(), angle.data(), translation.data()) == CG_OK) {
+    add_periodic_side(raw, z, name, points, d);
+    return;
+  }
+  zone.has_connectivity = true;
   for (std::size_t p = 0; p < points.size(); p += static_cast<std::size_t>(d)) {
     std::array<cgsize_t, 3> q{1, 1, 1};
     for (int a = 0; a < d; ++a) {
@@ -55,7 +78,7 @@ void read_one_to_one(const File& file, RawMesh& raw, std::size_t z, int c) {
 }
 
 void read_general(const File& file, RawMesh& raw, std::size_t z, int c) {
-  const ZoneRecord& zone = raw.zones[z];
+  ZoneRecord& zone = raw.zones[z];
   Label name{}, donor_name{};
   CGNS_ENUMT(GridLocation_t) location{};
   CGNS_ENUMT(GridConnectivityType_t) type{};
@@ -80,6 +103,12 @@ void read_general(const File& file, RawMesh& raw, std::size_t z, int c) {
   const auto points = expand_point_set(set, data, d);
   const auto donors = expand_point_set(donor_set == CGNS_ENUMV(PointRangeDonor) ? CGNS_ENUMV(PointRange) : donor_set,
                                        donor_data, dd);
+  std::array<float, 3> center{}, angle{}, translation{};
+  if (cg_conn_periodic_read(file.fn(), raw.base, zone.index, c, center.data(), angle.data(), translation.data()) == CG_OK) {
+    add_periodic_side(raw, z, name, points, d);
+    return;
+  }
+  zone.has_connectivity = true;
   const std::size_t n = points.size() / static_cast<std::size_t>(d);
   if (donors.size() / static_cast<std::size_t>(dd) != n) {
     throw InputError::in(raw.file, fmt::format("{} lists {} points and {} donor points", where, n,
@@ -100,7 +129,6 @@ void read_connectivity(const File& file, RawMesh& raw, std::size_t z) {
   int one_to_one = 0, general = 0;
   file.check(cg_n1to1(file.fn(), raw.base, zone.index, &one_to_one), fmt::format("zone '{}': reading its 1-to-1 connections", zone.name));
   file.check(cg_nconns(file.fn(), raw.base, zone.index, &general), fmt::format("zone '{}': reading its connections", zone.name));
-  zone.has_connectivity = one_to_one + general > 0;
   for (int c = 1; c <= one_to_one; ++c) read_one_to_one(file, raw, z, c);
   for (int c = 1; c <= general; ++c) read_general(file, raw, z, c);
 }

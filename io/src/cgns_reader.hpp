@@ -32,7 +32,7 @@ struct ZoneRecord {
   std::size_t first_cell = 0, cell_count = 0;
   std::vector<std::string> coordinate_names;  ///< CoordinateX, CoordinateY [, CoordinateZ]
   std::vector<CGNS_ENUMT(DataType_t)> coordinate_types;
-  bool has_connectivity = false;
+  bool has_connectivity = false;  ///< some connection of it matches nodes (periodic ones do not)
 };
 
 /// A boundary condition (or an unreferenced boundary face section) of one zone.

@@ -1,6 +1,6 @@
 // hotmesh io: structured CGNS zones. Cell (i, j[, k]) is the quad / hex of the nodes
 // (i..i+1, j..j+1[, k..k+1]), numbered i fastest as CGNS stores them; a left-handed zone
-// (first corner Jacobians negative) has its cells renumbered so that every cell is positively
+// (the corner Jacobians of most cells negative) has its cells renumbered so that every cell is positively
 // oriented. Boundary conditions become node sets (a face-centred range covers the nodes of
 // its faces); cgns_assemble.cpp keeps the zone's boundary faces whose nodes are all in it.
 #include <fmt/format.h>
@@ -11,29 +11,38 @@
 namespace hotmesh::io::cgns {
 namespace {
 
-/// The sum of the signs of the corner-0 Jacobians of the zone's cells: negative for a
-/// left-handed zone.
+/// The raw node (i, j, k) of a structured zone (0-based indices).
+NodeId grid_node(const ZoneRecord& zone, cgsize_t i, cgsize_t j, cgsize_t k) {
+  return zone.first_node + static_cast<NodeId>(i + zone.vertices[0] * (j + zone.vertices[1] * k));
+}
+
+/// The sum over the zone's cells of the sign of the Jacobian at their corner (i, j, k) with
+/// the i, j, k numbering: negative for a left-handed zone.
 long handedness(const RawMesh& raw, const ZoneRecord& zone) {
+  const cgsize_t nk = raw.dimension == 3 ? zone.vertices[2] : 2;
+  const auto at = [&](cgsize_t i, cgsize_t j, cgsize_t k) {
+    return raw.points[static_cast<std::size_t>(grid_node(zone, i, j, k))];
+  };
   long sum = 0;
-  for (std::size_t c = zone.first_cell; c < zone.first_cell + zone.cell_count; ++c) {
-    const auto n = raw.cells.nodes(c);
-    const auto at = [&](std::size_t i) { return raw.points[static_cast<std::size_t>(n[i])]; };
-    const geometry::Vec3 a = at(1) - at(0), b = at(3) - at(0);
-    double det = a.x * b.y - a.y * b.x;
-    if (raw.dimension == 3) {
-      const geometry::Vec3 c4 = at(4) - at(0);
-      det = a.x * (b.y * c4.z - b.z * c4.y) - a.y * (b.x * c4.z - b.z * c4.x) + a.z * (b.x * c4.y - b.y * c4.x);
+  for (cgsize_t k = 0; k + 1 < nk; ++k) {
+    for (cgsize_t j = 0; j + 1 < zone.vertices[1]; ++j) {
+      for (cgsize_t i = 0; i + 1 < zone.vertices[0]; ++i) {
+        const geometry::Vec3 o = at(i, j, k), a = at(i + 1, j, k) - o, b = at(i, j + 1, k) - o;
+        double det = a.x * b.y - a.y * b.x;
+        if (raw.dimension == 3) {
+          const geometry::Vec3 c = at(i, j, k + 1) - o;
+          det = a.x * (b.y * c.z - b.z * c.y) - a.y * (b.x * c.z - b.z * c.x) + a.z * (b.x * c.y - b.y * c.x);
+        }
+        sum += det > 0 ? 1 : (det < 0 ? -1 : 0);
+      }
     }
-    sum += det > 0 ? 1 : (det < 0 ? -1 : 0);
   }
   return sum;
 }
 
 void add_cells(RawMesh& raw, const ZoneRecord& zone, bool mirrored) {
   const auto ni = zone.vertices[0], nj = zone.vertices[1], nk = raw.dimension == 3 ? zone.vertices[2] : 2;
-  const auto node = [&](cgsize_t i, cgsize_t j, cgsize_t k) {
-    return zone.first_node + static_cast<NodeId>(i + ni * (j + nj * k));
-  };
+  const auto node = [&](cgsize_t i, cgsize_t j, cgsize_t k) { return grid_node(zone, i, j, k); };
   for (cgsize_t k = 0; k + 1 < nk; ++k) {
     for (cgsize_t j = 0; j + 1 < nj; ++j) {
       for (cgsize_t i = 0; i + 1 < ni; ++i) {
@@ -136,15 +145,7 @@ void read_structured_zone(const File& file, RawMesh& raw, std::size_t z) {
                                                     zone.name, zone.vertices[static_cast<std::size_t>(d)], "ijk"[d]));
     }
   }
-  const std::size_t first = raw.cells.size();
-  add_cells(raw, zone, false);
-  zone.cell_count = raw.cells.size() - first;
-  if (handedness(raw, zone) < 0) {
-    mesh::ElementList kept;
-    for (std::size_t c = 0; c < first; ++c) kept.add(raw.cells.type(c), raw.cells.nodes(c));
-    raw.cells = std::move(kept);
-    add_cells(raw, zone, true);
-  }
+  add_cells(raw, zone, handedness(raw, zone) < 0);
   int bcs = 0;
   file.check(cg_nbocos(file.fn(), raw.base, zone.index, &bcs), fmt::format("zone '{}': reading its BCs", zone.name));
   for (int b = 1; b <= bcs; ++b) read_bc(file, raw, z, b);

@@ -1,8 +1,11 @@
 // hotmesh io: the sections and boundary conditions of an unstructured CGNS zone.
 // Cells: QUAD_4 (2D) or HEXA_8 (3D), in their own sections or in MIXED ones. Faces: BAR_2
 // (2D) or QUAD_4 (3D) sections, kept by element number for the BCs that name elements; a
-// face section no BC refers to becomes a patch of its own, named as the section.
+// face section no BC refers to becomes a patch of its own, named as the section. Elements of
+// a lower dimension (NODE; BAR_2 in 3D: the curves some generators export) are skipped, as
+// the Gmsh reader skips them.
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <unordered_map>
 
@@ -31,12 +34,16 @@ struct SectionReader {
   ZoneFaces& faces;
   std::string section;
   std::unordered_map<std::string, std::size_t> others;  ///< unsupported element types, counted
+  std::size_t skipped = 0;                               ///< lower-dimensional elements
 
   bool is_cell(CGNS_ENUMT(ElementType_t) t) const {
     return raw.dimension == 2 ? t == CGNS_ENUMV(QUAD_4) : t == CGNS_ENUMV(HEXA_8);
   }
   bool is_face(CGNS_ENUMT(ElementType_t) t) const {
     return raw.dimension == 2 ? t == CGNS_ENUMV(BAR_2) : t == CGNS_ENUMV(QUAD_4);
+  }
+  bool is_lower(CGNS_ENUMT(ElementType_t) t) const {
+    return t == CGNS_ENUMV(NODE) || (raw.dimension == 3 && t == CGNS_ENUMV(BAR_2));
   }
 
   void add(CGNS_ENUMT(ElementType_t) type, cgsize_t element, const cgsize_t* nodes, int count) {
@@ -56,6 +63,8 @@ struct SectionReader {
       faces.by_element[element] = static_cast<std::int32_t>(faces.faces.size());
       faces.faces.add(raw.dimension == 2 ? mesh::ElementType::line2 : mesh::ElementType::quad4, view);
       faces.section_of.push_back(static_cast<int>(faces.sections.size()) - 1);
+    } else if (is_lower(type)) {
+      ++skipped;
     } else {
       ++others[cg_ElementTypeName(type)];
     }
@@ -83,6 +92,7 @@ struct SectionReader {
       file.check(cg_elements_read(file.fn(), raw.base, zone.index, s, data.data(), nullptr), what);
     }
     others.clear();
+    skipped = 0;
     if (type == CGNS_ENUMV(MIXED)) {
       read_mixed(data, start, end);
     } else {
@@ -94,6 +104,10 @@ struct SectionReader {
       }
     }
     if (!others.empty()) unsupported();
+    if (skipped > 0) {
+      spdlog::warn("{}: zone '{}' section '{}': {} elements of lower dimension (NODE, BAR_2) skipped", file.name(),
+                   zone.name, section, skipped);
+    }
   }
 
   void read_mixed(const std::vector<cgsize_t>& data, cgsize_t start, cgsize_t end) {

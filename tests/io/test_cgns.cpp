@@ -105,6 +105,16 @@ TEST(CgnsRead, UnstructuredZonesWithoutConnectivityJoinAtCoincidentBoundaryNodes
   EXPECT_EQ(patch_faces(loaded.mesh), expected);
 }
 
+TEST(CgnsRead, PeriodicConnectionsJoinNoNodesAndBecomePatches) {
+  test::TempDir dir;
+  test::write_structured_periodic_2d(dir / "p.cgns");
+  const LoadedMesh loaded = read_mesh(dir / "p.cgns");
+  EXPECT_EQ(loaded.mesh.node_count(), 12u);
+  EXPECT_EQ(loaded.mesh.cell_count(), 6u);
+  const std::map<std::string, std::size_t> expected{{"inlet", 2}, {"outlet", 2}, {"per_lo", 3}, {"per_hi", 3}};
+  EXPECT_EQ(patch_faces(loaded.mesh), expected);
+}
+
 TEST(CgnsRead, SummaryListsZonesSectionsBcsConnectionsAndFamilies) {
   test::TempDir dir;
   test::write_structured_2d(dir / "s2.cgns");

@@ -123,6 +123,17 @@ TEST(CgnsWriteBack, UnstructuredZonesJoinedByConnectivity) {
   check_write_back(dir / "u2z.cgns", false);
 }
 
+TEST(CgnsWriteBack, AdfFileStaysAdf) {
+  test::TempDir dir;
+  test::write_structured_2d(dir / "s2.cgns");
+  const auto converted = test::run_command(std::string(HOTMESH_HDF2ADF) + " " + test::shell_quote((dir / "s2.cgns").string()) +
+                                           " " + test::shell_quote((dir / "s2.adf").string()));
+  ASSERT_EQ(converted.exit_code, 0) << converted.output;
+  EXPECT_EQ(describe_cgns(dir / "s2.adf").file_type, "ADF");
+  check_write_back(dir / "s2.adf", true);
+  EXPECT_EQ(describe_cgns(dir / "out" / "deformed.cgns").file_type, "ADF");
+}
+
 TEST(CgnsWriteBack, LeavesNoTemporaryFileAndTheInputUntouched) {
   test::TempDir dir;
   test::write_structured_2d(dir / "s2.cgns");

@@ -255,6 +255,26 @@ void write_unstructured_two_zones(const std::filesystem::path& path, bool connec
   }
 }
 
+void write_structured_periodic_2d(const std::filesystem::path& path) {
+  Out out(path, 2, 2);
+  const int z = out.structured("Passage", {4, 3});
+  std::vector<double> xyz;
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 4; ++i) xyz.insert(xyz.end(), {i / 3.0, j / 2.0, 0.0});
+  }
+  out.coordinates(z, xyz, 2, false);
+  std::array<cgsize_t, 4> low{1, 1, 4, 1}, high{1, 3, 4, 3};
+  std::array<int, 2> transform{1, 2};
+  const std::array<float, 2> center{0, 0}, angle{0, 0}, up{0, 1}, down{0, -1};
+  int c = 0;
+  ok(cg_1to1_write(out.fn, out.base, z, "per_lo", "Passage", low.data(), high.data(), transform.data(), &c));
+  ok(cg_1to1_periodic_write(out.fn, out.base, z, c, center.data(), angle.data(), up.data()));
+  ok(cg_1to1_write(out.fn, out.base, z, "per_hi", "Passage", high.data(), low.data(), transform.data(), &c));
+  ok(cg_1to1_periodic_write(out.fn, out.base, z, c, center.data(), angle.data(), down.data()));
+  out.bc(z, "inlet", CGNS_ENUMV(PointRange), {1, 1, 1, 3}, 2);
+  out.bc(z, "outlet", CGNS_ENUMV(PointRange), {4, 1, 4, 3}, 2);
+}
+
 void write_with_triangles(const std::filesystem::path& path) {
   Out out(path, 2, 2);
   const int z = out.unstructured("Fluid", 4, 2);

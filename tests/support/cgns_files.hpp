@@ -44,6 +44,12 @@ void write_structured_3d(const std::filesystem::path& path);
 /// Mesh: 21 nodes, 12 cells; patches left 2, Walls 12, right 2.
 void write_unstructured_two_zones(const std::filesystem::path& path, bool connectivity);
 
+/// 2D structured, one zone of 3 x 2 cells on [0,1] x [0,1], periodic in y: 1-to-1
+/// connections "per_lo" (j = 1 to j = 3) and "per_hi" (back) of the zone with itself, each with
+/// a periodic translation. BCs "inlet" (x = 0) and "outlet" (x = 1).
+/// Mesh: 12 nodes (none merged), 6 cells; patches inlet 2, outlet 2, per_lo 3, per_hi 3.
+void write_structured_periodic_2d(const std::filesystem::path& path);
+
 /// Variants for error cases.
 void write_with_triangles(const std::filesystem::path& path);   ///< 2D, section "Tris" of 2 TRI_3
 void write_bc_without_faces(const std::filesystem::path& path); ///< 2D, BC "lonely" of 1 node
