@@ -8,7 +8,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <set>
 #include <unordered_map>
 
 #include "cgns_reader.hpp"
@@ -156,6 +158,20 @@ struct PatchBuilder {
     }
   }
 
+  /// Drops the faces a patch holds twice (BCs of one family that overlap).
+  static void remove_repeated_faces(mesh::Patch& p) {
+    std::set<std::array<NodeId, mesh::kMaxFaceNodes>> seen;
+    mesh::ElementList unique;
+    for (std::size_t f = 0; f < p.faces.size(); ++f) {
+      std::array<NodeId, mesh::kMaxFaceNodes> key{-1, -1, -1, -1};
+      const auto nodes = p.faces.nodes(f);
+      std::copy_n(nodes.begin(), std::min(nodes.size(), key.size()), key.begin());
+      std::sort(key.begin(), key.end());  // the -1 of a 2-node face sort first
+      if (seen.insert(key).second) unique.add(p.faces.type(f), nodes);
+    }
+    if (unique.size() != p.faces.size()) p.faces = std::move(unique);
+  }
+
   mesh::Patch& patch(const std::string& name) {
     for (mesh::Patch& p : mesh.patches) {
       if (p.name == name) return p;
@@ -227,6 +243,7 @@ mesh::Mesh assemble(const RawMesh& raw, std::vector<NodeId>& global_of_raw) {
   }
   PatchBuilder patches(raw, mesh, global_of_raw);
   for (const RawBc& bc : raw.bcs) patches.add(bc);
+  for (mesh::Patch& p : mesh.patches) PatchBuilder::remove_repeated_faces(p);
   return mesh;
 }
 

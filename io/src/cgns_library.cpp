@@ -7,7 +7,12 @@
 
 namespace hotmesh::io::cgns {
 
-File::File(const std::filesystem::path& path, int mode) : name_(path.string()) {
+namespace {
+std::recursive_mutex library_mutex;
+}  // namespace
+
+File::File(const std::filesystem::path& path, int mode) : lock_(library_mutex), name_(path.string()) {
+  if (mode == CG_MODE_WRITE) cg_set_file_type(CG_FILE_HDF5);
   if (mode == CG_MODE_READ || mode == CG_MODE_MODIFY) {
     require_input_file(path);
     int file_type = CG_FILE_NONE;

@@ -2,11 +2,14 @@
 // file that closes itself, and checks that turn the library's error codes into
 // hotmesh::InputError naming the file and what was being read. Only io/src/cgns_*.cpp
 // include this header; cgnslib.h stays out of hotmesh's public headers.
+// The library keeps global state (open files, the last error, the file type to write): an
+// open File holds a process-wide lock, so threads use it one at a time.
 #pragma once
 
 #include <cgnslib.h>
 
 #include <filesystem>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,8 +19,8 @@ namespace hotmesh::io::cgns {
 /// An open CGNS file (HDF5 or ADF, as the library finds it); closed by the destructor.
 class File {
  public:
-  /// Opens `path` in `mode` (CG_MODE_READ or CG_MODE_MODIFY / CG_MODE_WRITE); an InputError
-  /// names the file if the library cannot open it as CGNS.
+  /// Opens `path` in `mode` (CG_MODE_READ, CG_MODE_MODIFY, or CG_MODE_WRITE: a new HDF5
+  /// file); an InputError names the file if the library cannot open it as CGNS.
   File(const std::filesystem::path& path, int mode);
   ~File();
   File(const File&) = delete;
@@ -31,6 +34,7 @@ class File {
   void close();
 
  private:
+  std::unique_lock<std::recursive_mutex> lock_;
   std::string name_;
   int fn_ = -1;
 };

@@ -29,6 +29,18 @@ void read_base(const File& file, RawMesh& raw) {
   }
 }
 
+/// An unstructured zone's declared cell count against the cells its sections hold.
+void check_cell_count(const File& file, const RawMesh& raw, const ZoneRecord& zone) {
+  if (zone.structured) return;
+  Label name{};
+  std::array<cgsize_t, 9> size{};
+  file.check(cg_zone_read(file.fn(), raw.base, zone.index, name, size.data()), fmt::format("reading zone '{}'", zone.name));
+  if (static_cast<std::size_t>(size[1]) != zone.cell_count) {
+    spdlog::warn("{}: zone '{}' declares {} cells, its sections hold {} {} cells", file.name(), zone.name, size[1],
+                 zone.cell_count, raw.dimension == 2 ? "QUAD_4" : "HEXA_8");
+  }
+}
+
 void read_zones(const File& file, RawMesh& raw) {
   int zones = 0;
   file.check(cg_nzones(file.fn(), raw.base, &zones), "reading the number of zones");
@@ -50,6 +62,7 @@ void read_zones(const File& file, RawMesh& raw) {
       read_unstructured_zone(file, raw, z);
     }
     raw.zones[z].cell_count = raw.cells.size() - raw.zones[z].first_cell;
+    check_cell_count(file, raw, raw.zones[z]);
   }
   for (std::size_t z = 0; z < raw.zones.size(); ++z) read_connectivity(file, raw, z);
 }

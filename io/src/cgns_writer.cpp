@@ -73,7 +73,6 @@ namespace hotmesh::io {
 void write_cgns(const std::filesystem::path& path, const mesh::Mesh& mesh, std::span<const geometry::Vec3> points) {
   cgns::check_writable(path.string(), mesh);
   AtomicPath out(path);
-  cg_set_file_type(CG_FILE_HDF5);
   cgns::File file(out.temporary(), CG_MODE_WRITE);
   const bool planar = std::all_of(points.begin(), points.end(), [](const geometry::Vec3& p) { return p.z == 0.0; });
   const int physical = mesh.dimension == 2 && planar ? 2 : 3;
