@@ -4,6 +4,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "cgns_files.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -85,6 +90,45 @@ TEST(CgnsCommands, DeformFromCgnsMovesLikeGmshAndWritesDeformedCgns) {
   const auto check = cgnscheck(dir / "out_cgns" / "deformed.cgns");
   EXPECT_EQ(check.exit_code, 0) << check.output;
   EXPECT_THAT(check.output, ::testing::Not(HasSubstr("ERROR")));
+}
+
+TEST(CgnsCommands, StructuredZonesMoveAsOneAndTheirInterfaceStaysShared) {
+  test::TempDir dir;
+  test::write_structured_2d(dir / "s2.cgns");
+  std::string table = "x,y,dx,dy\n";
+  for (int i = 0; i <= 20; ++i) {
+    const double x = 0.1 * i;
+    table += fmt::format("{},0,0,{}\n", x, 0.05 * std::sin(M_PI * x / 2.0));
+  }
+  test::write_text(dir / "bump.csv", table);
+  test::write_text(dir / "case.yaml", "mesh: s2.cgns\nsolver:\n  increments: 2\npatches:\n  inlet: {role: fixed}\n"
+                                      "  outlet: {role: fixed}\n  top: {role: fixed}\n"
+                                      "  Walls: {role: prescribed, deflection: {file: bump.csv, degree: 1}}\n");
+  const auto run = hotmesh("deform " + shell_quote((dir / "case.yaml").string()) + " -o " + shell_quote((dir / "out").string()));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto zones = test::read_zone_coordinates(dir / "out" / "deformed.cgns");
+  ASSERT_EQ(zones.size(), 2u);
+  // A's nodes (4, j) are B's nodes (j, 1): the same values, moved.
+  for (std::size_t j = 0; j < 3; ++j) {
+    const std::size_t a = 3 + 4 * j, b = j;
+    EXPECT_EQ(zones[0].xyz[3 * a], zones[1].xyz[3 * b]) << j;
+    EXPECT_EQ(zones[0].xyz[3 * a + 1], zones[1].xyz[3 * b + 1]) << j;
+  }
+  EXPECT_GT(zones[0].xyz[3 * 3 + 1], 0.04);  // the wall node at x = 1 rose with the bump
+  const auto check = cgnscheck(dir / "out" / "deformed.cgns");
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+}
+
+TEST(CgnsCommands, UnsupportedCellsAndBcsWithoutFacesExitWithCodeTwo) {
+  test::TempDir dir;
+  test::write_with_triangles(dir / "tri.cgns");
+  const auto tri = hotmesh("info " + shell_quote((dir / "tri.cgns").string()));
+  EXPECT_EQ(tri.exit_code, 2);
+  EXPECT_THAT(tri.output, HasSubstr((dir / "tri.cgns").string() + ": zone 'Fluid' section 'Tris' holds 2 TRI_3"));
+  test::write_bc_without_faces(dir / "lonely.cgns");
+  const auto lonely = hotmesh("info " + shell_quote((dir / "lonely.cgns").string()));
+  EXPECT_EQ(lonely.exit_code, 2);
+  EXPECT_THAT(lonely.output, HasSubstr("zone 'Fluid' BC 'lonely' names 1 nodes"));
 }
 
 TEST(CgnsCommands, FilesThatAreNotCgnsMeshesExitWithCodeTwo) {
