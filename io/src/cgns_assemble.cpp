@@ -1,15 +1,16 @@
 // hotmesh io: the zones of a CGNS base joined into one conforming mesh.
 // Nodes: the pairs the connectivity declares one are merged (union-find); a base without any
-// node-matching connectivity has its zones' coincident boundary nodes merged instead, within 1e-4 of the
-// shortest boundary edge. Each set of merged nodes becomes one mesh node, numbered in the
-// order of its first raw node. Patches: one per name (a BC's family, else its name), in the
-// order the names first appear; a BC given by points gets the boundary faces of its zone's
-// cells whose nodes are all in its set.
+// node-matching connectivity has its zones' coincident boundary nodes merged instead
+// (merge_tolerance(): 1e-4 of the shortest boundary edge, more for single precision). Each set
+// of merged nodes becomes one mesh node, numbered in the order of its first raw node.
+// Patches: one per name (a BC's family, else its name), in the order the names first appear;
+// a BC given by points gets the boundary faces of its zone's cells whose nodes are all in it.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <unordered_map>
 
@@ -55,6 +56,23 @@ std::vector<std::size_t> zone_of_nodes(const RawMesh& raw) {
   return zone;
 }
 
+/// How close two boundary nodes of different zones must be to be one: 1e-4 of the shortest
+/// boundary edge, or a few roundings of single precision coordinates if a zone has them, but
+/// never above a tenth of the shortest edge.
+double merge_tolerance(const RawMesh& raw, double shortest) {
+  double tolerance = 1e-4 * shortest;
+  const bool single = std::any_of(raw.zones.begin(), raw.zones.end(), [](const ZoneRecord& z) {
+    return std::find(z.coordinate_types.begin(), z.coordinate_types.end(), CGNS_ENUMV(RealSingle)) !=
+           z.coordinate_types.end();
+  });
+  if (single) {
+    double largest = 0;
+    for (const geometry::Vec3& p : raw.points) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    tolerance = std::max(tolerance, 8.0 * static_cast<double>(std::numeric_limits<float>::epsilon()) * largest);
+  }
+  return std::min(tolerance, 0.1 * shortest);
+}
+
 /// Merges the coincident boundary nodes of different zones (zones without connectivity).
 void join_coincident(const RawMesh& raw, NodeUnion& nodes) {
   const mesh::FaceIndex index(raw.cells, raw.points.size());
@@ -71,7 +89,7 @@ void join_coincident(const RawMesh& raw, NodeUnion& nodes) {
     }
   }
   if (!(shortest > 0) || !std::isfinite(shortest)) return;
-  const double tolerance = 1e-4 * shortest;
+  const double tolerance = merge_tolerance(raw, shortest);
   const auto key = [&](const geometry::Vec3& p, int dx, int dy, int dz) {
     const auto cell = [&](double v, int d) { return static_cast<std::int64_t>(std::floor(v / tolerance)) + d; };
     const std::uint64_t h = static_cast<std::uint64_t>(cell(p.x, dx)) * 73856093u ^
