@@ -39,6 +39,14 @@ TEST(CgnsErrors, BcNamingNoBoundaryFace) {
                     HasSubstr("no boundary face")));
 }
 
+TEST(CgnsErrors, OneToOneInterfaceWhoseTransformJoinsNodesApart) {
+  test::TempDir dir;
+  test::write_structured_2d(dir / "wrong.cgns", true);
+  EXPECT_THAT(read_error(dir / "wrong.cgns"),
+              AllOf(HasSubstr((dir / "wrong.cgns").string()), HasSubstr("the connectivity of zone 'A'"),
+                    HasSubstr("does not match point to point")));
+}
+
 TEST(CgnsErrors, MissingFile) {
   test::TempDir dir;
   EXPECT_THAT(read_error(dir / "none.cgns"), AllOf(HasSubstr((dir / "none.cgns").string()), HasSubstr("no such file")));

@@ -184,7 +184,7 @@ void write_unstructured_3d(const std::filesystem::path& path) {
   out.bc(z, "top", CGNS_ENUMV(PointList), side([](int, int, int k) { return k == 2; }), 1);
 }
 
-void write_structured_2d(const std::filesystem::path& path) {
+void write_structured_2d(const std::filesystem::path& path, bool wrong_interface) {
   Out out(path, 2, 2);
   out.family("Walls");
   const int a = out.structured("A", {4, 3});
@@ -200,9 +200,10 @@ void write_structured_2d(const std::filesystem::path& path) {
   }
   out.coordinates(b, xyz_b, 2, true);
   int c = 0;
-  std::array<cgsize_t, 4> range_a{4, 1, 4, 3}, range_b{1, 1, 3, 1};
-  std::array<int, 2> transform{2, 1};
-  ok(cg_1to1_write(out.fn, out.base, a, "A_to_B", "B", range_a.data(), range_b.data(), transform.data(), &c));
+  std::array<cgsize_t, 4> range_a{4, 1, 4, 3}, range_b{1, 1, 3, 1}, reversed_b{3, 1, 1, 1};
+  std::array<int, 2> transform{2, 1}, wrong{2, -1};
+  ok(cg_1to1_write(out.fn, out.base, a, "A_to_B", "B", range_a.data(), wrong_interface ? reversed_b.data() : range_b.data(),
+                   wrong_interface ? wrong.data() : transform.data(), &c));
   ok(cg_1to1_write(out.fn, out.base, b, "B_to_A", "A", range_b.data(), range_a.data(), transform.data(), &c));
   out.bc(a, "inlet", CGNS_ENUMV(PointRange), {1, 1, 1, 3}, 2);
   out.bc(a, "wall_a", CGNS_ENUMV(PointRange), {1, 1, 4, 1}, 2, CGNS_ENUMV(Vertex), "Walls");

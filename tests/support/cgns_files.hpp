@@ -28,7 +28,9 @@ void write_unstructured_3d(const std::filesystem::path& path);
 /// "wall_b" (y = 0) both in family "Walls", A "top" (y = 1, EdgeCenter range) and B "top"
 /// (y = 1, vertex range), B "outlet" (x = 2). FlowSolution "Flow" with "Pressure" in each zone.
 /// Mesh: 21 nodes, 12 cells; patches inlet 2, Walls 6, top 6, outlet 2.
-void write_structured_2d(const std::filesystem::path& path);
+/// With `wrong_interface`, A's side of the interface maps A's j = 1..3 to B's i = 3..1 (a
+/// transform the library accepts, joining nodes that are apart).
+void write_structured_2d(const std::filesystem::path& path, bool wrong_interface = false);
 
 /// 3D structured, two zones of 2 x 2 x 2 cells: "A" on [0,1]^3, "B" on [1,2] x [0,1]^2,
 /// sharing the face x = 1 point for point with no connectivity records. BCs by vertex point
