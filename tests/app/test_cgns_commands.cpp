@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 
@@ -49,6 +50,11 @@ TEST(CgnsCommands, ConvertInfoAndBackToGmsh) {
   EXPECT_EQ(info.exit_code, 0) << info.output;
   EXPECT_THAT(info.output, HasSubstr("zone Zone (Unstructured, size 2378 2280 0)"));
   EXPECT_THAT(info.output, HasSubstr("section bottom"));
+  const auto json = hotmesh("info --json " + shell_quote((dir / "ramp.cgns").string()));
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  const auto summary = nlohmann::json::parse(json.output);
+  EXPECT_EQ(summary["cgns"]["bases"][0]["zones"][0]["bcs"].size(), 4u);
+  EXPECT_EQ(summary["cgns"]["bases"][0]["zones"][0]["sections"][0]["type"], "QUAD_4");
   const auto back = hotmesh("convert " + shell_quote((dir / "ramp.cgns").string()) + " " +
                             shell_quote((dir / "back.msh").string()));
   ASSERT_EQ(back.exit_code, 0) << back.output;
