@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/io/cgns.hpp"
 #include "hotmesh/io/gmsh.hpp"
 
 namespace hotmesh::io {
@@ -16,15 +17,24 @@ MeshFormat mesh_format(const std::filesystem::path& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".msh") return MeshFormat::gmsh;
   if (ext == ".vtu") return MeshFormat::vtu;
+  if (ext == ".cgns" || ext == ".hdf" || ext == ".adf") return MeshFormat::cgns;
   throw InputError::in(path.string(), "unknown mesh format '" + ext +
-                                          "': hotmesh reads Gmsh .msh files and writes .msh and .vtu");
+                                          "': hotmesh reads Gmsh .msh and CGNS .cgns files and writes .msh, .cgns and "
+                                          ".vtu");
 }
 
 LoadedMesh read_mesh(const std::filesystem::path& path) {
-  if (mesh_format(path) != MeshFormat::gmsh) {
-    throw InputError::in(path.string(), "hotmesh reads meshes from Gmsh .msh files only");
+  LoadedMesh loaded;
+  switch (mesh_format(path)) {
+    case MeshFormat::gmsh: loaded.mesh = read_gmsh(path); break;
+    case MeshFormat::cgns: {
+      CgnsMesh cgns = read_cgns(path);
+      loaded.mesh = std::move(cgns.mesh);
+      loaded.write_back = std::move(cgns.write_back);
+      break;
+    }
+    case MeshFormat::vtu: throw InputError::in(path.string(), "hotmesh writes .vtu files but does not read them");
   }
-  LoadedMesh loaded{read_gmsh(path), {}};
   try {
     loaded.validation = mesh::validate_mesh(loaded.mesh);
   } catch (const InputError& e) {
@@ -60,6 +70,7 @@ void write_mesh(const std::filesystem::path& path, const mesh::Mesh& mesh, std::
       return;
     }
     case MeshFormat::vtu: write_vtu(path, mesh, points, fields); return;
+    case MeshFormat::cgns: write_cgns(path, mesh, points); return;
   }
 }
 

@@ -1,6 +1,8 @@
 // hotmesh io: mesh files by extension, read and validated in one step.
 //   .msh  Gmsh 2.2 / 4.1 (read), 4.1 (write)
 //   .vtu  VTK XML unstructured grid (write only: for ParaView)
+//   .cgns CGNS, HDF5 or ADF (also .hdf, .adf): read, written back (deformed.cgns), and
+//         written new by convert (docs/cgns.md)
 // A mesh read from another solver's format keeps what it needs to be written back in that
 // format (MeshWriteBack), with only the coordinates of its nodes changed.
 #pragma once
@@ -17,7 +19,7 @@
 
 namespace hotmesh::io {
 
-enum class MeshFormat { gmsh, vtu };
+enum class MeshFormat { gmsh, vtu, cgns };
 
 /// The format a path names by its extension. Throws hotmesh::InputError for others.
 MeshFormat mesh_format(const std::filesystem::path& path);
