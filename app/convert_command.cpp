@@ -1,4 +1,5 @@
-// hotmesh convert IN OUT: re-write a mesh in another format (.msh -> .msh 4.1 or .vtu).
+// hotmesh convert IN OUT: re-write a mesh in another format (.msh, .cgns or an OpenFOAM folder ->
+// .msh 4.1, .cgns or .vtu).
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -20,11 +21,13 @@ Command add_convert_command(CLI::App& parent) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = parent.add_subcommand(
-      "convert", "Convert a mesh: Gmsh 2.2/4.1 (.msh) to Gmsh 4.1 (.msh) or ParaView (.vtu with cell quality)");
-  cmd->add_option("IN", options->input, "Input mesh (.msh, or an OpenFOAM case / polyMesh folder)")
+      "convert",
+      "Convert a mesh: Gmsh 2.2/4.1 (.msh), CGNS (.cgns) or OpenFOAM (a case or polyMesh folder) to Gmsh 4.1 (.msh), "
+      "CGNS (.cgns: one unstructured zone) or ParaView (.vtu with cell quality)");
+  cmd->add_option("IN", options->input, "Input mesh (.msh, .cgns, or an OpenFOAM case / polyMesh folder)")
       ->required()
       ->check(CLI::ExistingPath);
-  cmd->add_option("OUT", options->output, "Output mesh (.msh or .vtu); never the input")->required();
+  cmd->add_option("OUT", options->output, "Output mesh (.msh, .cgns or .vtu); never the input")->required();
   cmd->add_flag("--binary", options->binary, "Write .msh in binary (smaller, faster for large meshes)");
   return [options] {
     const std::array<std::filesystem::path, 1> inputs{options->input};

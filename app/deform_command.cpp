@@ -23,6 +23,7 @@
 #include "commands.hpp"
 #include "deform_checkpoint.hpp"
 #include "deform_outputs.hpp"
+#include "series_outputs.hpp"
 #include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
@@ -55,6 +56,7 @@ struct Options {
   bool binary = false;
   bool resume = false;
   bool progress = false;
+  bool series = false;     ///< --series: as the case's `output: {series: true}`
   std::string foam_time;  ///< empty: no time folder written into the OpenFOAM case
 };
 
@@ -226,7 +228,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
 
 /// 3. The motion, increment by increment, with a checkpoint after each.
 deform::MotionResult move_the_mesh(const Options& options, RunState& state, const RunInputs& in, const io::CaseSetup& setup,
-                                   CheckpointWriter& checkpoints, Clock::time_point start) {
+                                   CheckpointWriter& checkpoints, SeriesWriter* series, Clock::time_point start) {
   const io::Case& c = in.c;
   const mesh::Mesh& mesh = in.loaded.mesh;
   const parallel::Processes job = parallel::processes();
@@ -253,6 +255,8 @@ deform::MotionResult move_the_mesh(const Options& options, RunState& state, cons
     log_newton_step(p, newton_level, sliding, seconds_since(start));
   };
   observers.checkpoint = [&](const deform::MotionCheckpoint& k) {
+    // The series step first: a run that stops after its checkpoint has it too.
+    if (series) series->add(k.lambda * increments, k.lambda, k.points);
     if (job.root()) checkpoints.write(k);  // before rank 0 joins the others in the next step
     state.checkpoint_increments = k.finished_increments;
   };
@@ -323,7 +327,23 @@ int run_deform(const Options& options, RunState& state) {
   CheckpointWriter checkpoints(in.output / io::kCheckpointName, in.c, in.loaded.mesh, std::move(in.fingerprints));
   state.checkpoint = checkpoints.path();
   if (in.resumed) state.checkpoint_increments = in.resumed->info.finished_increments;
-  const deform::MotionResult result = move_the_mesh(options, state, in, setup, checkpoints, start);
+  std::optional<SeriesWriter> series;
+  if ((options.series || in.c.series) && parallel::processes().root()) {
+    const int n = in.c.solver.increments;
+    if (in.resumed) {
+      series.emplace(in.output, in.loaded.mesh, setup.motions, in.resumed->state.lambda * n);
+    } else {
+      series.emplace(in.output, in.loaded.mesh, setup.motions);
+      series->add(0.0, 0.0, in.restart ? std::span<const geometry::Vec3>(in.restart->points) : in.loaded.mesh.points);
+    }
+  }
+  const deform::MotionResult result =
+      move_the_mesh(options, state, in, setup, checkpoints, series ? &*series : nullptr, start);
+  if (series && result.success && std::any_of(result.increments.begin(), result.increments.end(), [](const auto& r) {
+        return r.corner_pass && r.accepted;
+      })) {
+    series->add(in.c.solver.increments + 1.0, 1.0, result.points);  // after the corner pass
+  }
   const std::optional<io::CheckpointInfo> resumed_from = in.resumed ? std::optional(in.resumed->info) : std::nullopt;
   in.resumed.reset();  // its copy of the mesh is no longer needed
   for (const auto& note : result.notes) spdlog::warn("{}", note);
@@ -346,6 +366,8 @@ Command add_deform_command(CLI::App& parent) {
   cmd->add_option("-o,--output", options->output, "Output folder (default: the case's `output`)");
   cmd->add_option("--threads", options->threads, "OpenMP threads (default: the case's solver.threads; 0: all cores)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--series", options->series,
+                "Write the mesh and the walls after every increment as ParaView time series (deformed.pvd, walls.pvd)");
   cmd->add_flag("--force", options->force,
                 "Write into the output folder even if it holds input files or the checkpoint of an interrupted run");
   cmd->add_flag("--binary", options->binary, "Write deformed.msh in binary (smaller, faster for large meshes)");

@@ -1,4 +1,5 @@
 #include "deform_outputs.hpp"
+#include "series_outputs.hpp"
 
 #include "hotmesh/parallel/processes.hpp"
 
@@ -69,6 +70,7 @@ std::vector<std::string> output_names(const io::Case& c, const io::LoadedMesh& l
   if (loaded.write_back) {
     for (std::string& name : loaded.write_back->output_names()) names.push_back(std::move(name));
   }
+  for (std::string& name : SeriesWriter::output_names()) names.push_back(std::move(name));
   if (mesh.dimension == 2) {
     names.push_back("deformed.png");
     names.push_back("failed.png");

@@ -232,6 +232,7 @@ class BoundaryBuilder {
                {},
                PeriodicCoupling(static_cast<std::size_t>(mesh.dimension)),
                {},
+               {},
                std::vector<NodeRoleCode>(mesh.node_count(), 0),
                {}},
         x0_(setup_.reference),
@@ -409,6 +410,25 @@ class BoundaryBuilder {
 
   /// The corners of each sliding wall (wall_features.hpp): the nodes given one become
   /// prescribed nodes that reach it; the other sliding nodes keep to their segments.
+  /// How a node holds a corner (hold_wall_corners).
+  static constexpr char kPrescribedOntoCorner = 1;
+  static constexpr char kSlidesAlongCorner = 2;
+
+  /// Sliding node n, given the corner line at `corner` of `wall`, slides on the two paths that
+  /// take it onto that line (CornerPath): in the line's cross-section it is led onto the line,
+  /// along the line it is free.
+  void follow_corner_line(NodeId n, const geometry::BoundaryShape& wall, double corner) {
+    SlidingNode& s = setup_.sliding[static_cast<std::size_t>(sliding_index_[static_cast<std::size_t>(n)])];
+    for (std::size_t d = 0; d < 2; ++d) {
+      auto path = std::make_shared<const CornerPath>(wall, corner, x0_[static_cast<std::size_t>(n)], static_cast<int>(d));
+      s.shapes[d] = path.get();
+      s.segments[d] = {};
+      s.hints[d] = corner;
+      setup_.corner_paths.push_back(std::move(path));
+    }
+    s.shape_count = 2;
+  }
+
   void hold_wall_corners() {
     std::vector<char> holds(mesh_.node_count(), 0);
     for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
@@ -436,16 +456,22 @@ class BoundaryBuilder {
       }
       for (HeldFeature& held : plan.features) {
         for (NodeId n : held.nodes) {
-          holds[static_cast<std::size_t>(n)] = 1;
-          setup_.prescribed.push_back({n, held.feature.parameter, m.shape.get(), true});
-          setup_.constraints.fix(n);
+          if (mesh_.dimension == 3) {  // a corner line: the node goes onto it and slides along it
+            holds[static_cast<std::size_t>(n)] = kSlidesAlongCorner;
+            follow_corner_line(n, *m.shape, held.feature.parameter);
+          } else {  // a corner point: the node is prescribed onto it
+            holds[static_cast<std::size_t>(n)] = kPrescribedOntoCorner;
+            setup_.prescribed.push_back({n, held.feature.parameter, m.shape.get(), true});
+            setup_.constraints.fix(n);
+          }
         }
         if (!held.note.empty()) setup_.notes.push_back(held.note);
         setup_.corners.push_back({patch.name, m.shape.get(), x0_[static_cast<std::size_t>(patch.nodes.front())], std::move(held)});
       }
     }
-    // The nodes given corners slide no more.
-    std::erase_if(setup_.sliding, [&](const SlidingNode& s) { return holds[static_cast<std::size_t>(s.node)] != 0; });
+    // The nodes prescribed onto corners slide no more.
+    std::erase_if(setup_.sliding,
+                  [&](const SlidingNode& s) { return holds[static_cast<std::size_t>(s.node)] == kPrescribedOntoCorner; });
     std::fill(sliding_index_.begin(), sliding_index_.end(), -1);
     for (std::size_t k = 0; k < setup_.sliding.size(); ++k) {
       sliding_index_[static_cast<std::size_t>(setup_.sliding[k].node)] = static_cast<int>(k);

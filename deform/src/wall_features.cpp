@@ -195,4 +195,45 @@ WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, c
   return std::move(planner).segments();
 }
 
+namespace {
+/// How far from a corner (relative to its parameter) the wall's one-sided normals are taken.
+constexpr double kOneSided = 1e-9;
+}  // namespace
+
+CornerPath::CornerPath(const geometry::BoundaryShape& wall, double corner, const Vec3& start, int direction)
+    : wall_(wall), corner_(corner), direction_(direction) {
+  const Section s = section(start);
+  for (std::size_t i = 0; i < 2; ++i) offset_[i] = dot(start - s.corner, s.axes[i]);
+}
+
+CornerPath::Section CornerPath::section(const Vec3& p) const {
+  Section s;
+  s.corner = wall_.at(corner_, 1.0, p).point;
+  // The wall's normals on either side of the corner span its cross-section (they differ by
+  // the corner's angle); Gram-Schmidt makes them an orthonormal pair.
+  const double step = kOneSided * (1.0 + std::abs(corner_));
+  const Vec3 a = wall_.at(corner_ - step, 1.0, p).normal;
+  const Vec3 b = wall_.at(corner_ + step, 1.0, p).normal;
+  s.axes[0] = a / norm(a);
+  const Vec3 c = b - dot(b, s.axes[0]) * s.axes[0];
+  s.axes[1] = c / norm(c);
+  return s;
+}
+
+geometry::ShapePoint CornerPath::project(const Vec3& p, double lambda, double /*hint*/,
+                                         const geometry::ParameterRange& /*range*/) const {
+  const Section s = section(p);
+  const double fade = 1.0 - lambda;
+  geometry::ShapePoint q;
+  q.point = s.corner + fade * (offset_[0] * s.axes[0] + offset_[1] * s.axes[1]);
+  q.distance = distance(p, q.point);
+  q.normal = s.axes[static_cast<std::size_t>(direction_)];
+  q.parameter = corner_;
+  return q;
+}
+
+geometry::ShapePoint CornerPath::at(double /*t*/, double lambda, const Vec3& reference) const {
+  return project(reference, lambda);
+}
+
 }  // namespace hotmesh::deform::detail

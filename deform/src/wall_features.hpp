@@ -14,6 +14,7 @@
 // the corners on either side of them.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <span>
 #include <string>
@@ -39,6 +40,36 @@ struct WallFeaturePlan {
   /// stage 0, and the segment it keeps to.
   std::vector<double> parameters;
   std::vector<geometry::ParameterRange> segments;
+};
+
+/// The way a node given a corner line (a circle of a surface of revolution) goes onto it in
+/// the corner pass: in the corner's cross-section (the meridional plane through the node) it
+/// moves from where it starts, `start`, straight onto the corner as the stage goes from 0 to 1;
+/// along the line it is free. Seen as a shape, it constrains one direction of that
+/// cross-section (`direction` 0 or 1, of an orthonormal pair spanning it): a node sliding on
+/// both directions' paths slides along the corner line only. `wall` is the wall at its final
+/// stage (the pass's walls), `corner` the corner's parameter.
+class CornerPath final : public geometry::BoundaryShape {
+ public:
+  CornerPath(const geometry::BoundaryShape& wall, double corner, const Vec3& start, int direction);
+
+  geometry::ShapePoint project(const Vec3& p, double lambda, double hint = geometry::kNoHint,
+                               const geometry::ParameterRange& range = {}) const override;
+  geometry::ShapePoint at(double t, double lambda, const Vec3& reference) const override;
+
+ private:
+  /// The corner's point in the cross-section through p, and an orthonormal pair spanning
+  /// that cross-section (from the wall's normals on either side of the corner).
+  struct Section {
+    Vec3 corner;
+    std::array<Vec3, 2> axes;
+  };
+  Section section(const Vec3& p) const;
+
+  const geometry::BoundaryShape& wall_;
+  double corner_;
+  std::array<double, 2> offset_{};  ///< of `start` from the corner, along the section's axes
+  int direction_;
 };
 
 /// Whether node n may be given the corner whose point (in its meridional plane) is q.

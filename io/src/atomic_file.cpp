@@ -61,6 +61,23 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
+AtomicPath::AtomicPath(std::filesystem::path target)
+    : target_(std::move(target)), temporary_(temporary_beside(target_)) {}
+
+AtomicPath::~AtomicPath() {
+  if (committed_) return;
+  std::error_code ignored;
+  std::filesystem::remove(temporary_, ignored);
+}
+
+void AtomicPath::commit() {
+  sync_to_disk(temporary_);
+  std::error_code ec;
+  std::filesystem::rename(temporary_, target_, ec);
+  if (ec) throw InputError::in(target_.string(), "cannot replace the output file: " + ec.message());
+  committed_ = true;
+}
+
 void write_file_atomically(const std::filesystem::path& target, std::string_view content) {
   AtomicFile file(target);
   file.stream().write(content.data(), static_cast<std::streamsize>(content.size()));

@@ -46,6 +46,7 @@ constexpr std::array<std::string_view, 11> kSolverKeys{
 constexpr std::array<std::string_view, 4> kMaterialKeys{"law", "alpha_s", "alpha_v", "drop_jacobian"};
 constexpr std::array<std::string_view, 5> kPatchKeys{"role", "deflection", "partner", "angle_deg", "features"};
 constexpr std::array<std::string_view, 1> kFeatureKeys{"angle"};
+constexpr std::array<std::string_view, 2> kOutputKeys{"folder", "series"};
 constexpr std::string_view kFeaturesExample = "`features: {angle: 25}` (degrees) or `features: off`";
 constexpr std::array<std::string_view, 4> kDeflectionKeys{"file", "degree", "faces", "form"};
 constexpr std::string_view kRoleList = "fixed, prescribed, slip, sliding, passive, periodic";
@@ -153,7 +154,18 @@ class CaseParser {
     c_.cad = *path;
   }
 
+  /// `output: FOLDER` or `output: {folder: FOLDER, series: true}`.
   void read_output(const Entry& e) {
+    if (e.value.IsMap()) {
+      const MapEntries m = reader_.keys(e, kOutputKeys);
+      if (const Entry* folder = m.find("folder")) read_output_folder(*folder);
+      if (const Entry* series = m.find("series")) c_.series = reader_.boolean(*series).value_or(false);
+      return;
+    }
+    read_output_folder(e);
+  }
+
+  void read_output_folder(const Entry& e) {
     const auto text = reader_.text(e, "the output folder name");
     if (!text) return;
     const fs::path path = resolve(*text);

@@ -13,6 +13,7 @@
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
 #include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/io/deflected_walls.hpp"
 
 namespace hotmesh::io {
 namespace {
@@ -61,21 +62,6 @@ std::vector<mesh::NodeId> chain_patch(const mesh::Patch& patch, const mesh::Mesh
                                  patch.name));
   }
   return chain;
-}
-
-/// The fully deflected curve as a polyline, for pictures.
-std::vector<geometry::Vec2> outline(const DeflectedCurve& curve) {
-  constexpr int kSamples = 2000;
-  const double a = curve.first_parameter(), b = curve.last_parameter();
-  // Evenly spaced, and every piece end: the corners of the curve are drawn as corners.
-  std::vector<double> parameters;
-  for (int i = 0; i <= kSamples; ++i) parameters.push_back(a + (b - a) * i / kSamples);
-  for (const DeflectedCurve::Piece& piece : curve.pieces()) parameters.push_back(piece.end);
-  std::sort(parameters.begin(), parameters.end());
-  parameters.erase(std::unique(parameters.begin(), parameters.end()), parameters.end());
-  std::vector<geometry::Vec2> points;
-  for (const double t : parameters) points.push_back(curve.point(t, 1.0));
-  return points;
 }
 
 /// Builds the curves of a case's patches: undeformed from CAD, FEM nodes or the patch itself,
@@ -224,7 +210,7 @@ CaseSetup set_up_case(const Case& c, const mesh::Mesh& mesh, const RestartState*
       try {
         Curve curve = before && before->deflection ? builder.rebased(spec, *before->deflection, spec.deflection)
                                                    : builder.curve(spec, spec.deflection);
-        if (spec.deflection) setup.shapes.push_back({spec.name, curve.report, outline(curve.curve)});
+        if (spec.deflection) setup.shapes.push_back({spec.name, curve.report, curve_outline(curve.curve, 1.0)});
         motion.shape = builder.shape(std::move(curve.curve));
       } catch (const InputError& e) {  // the message names the file at fault, if one is
         throw InputError::at(c.file.string(), spec.line, fmt::format("patches.{}: {}", spec.name, e.what()));

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/io/cgns.hpp"
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/gmsh.hpp"
 
@@ -18,28 +19,30 @@ MeshFormat mesh_format(const std::filesystem::path& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".msh") return MeshFormat::gmsh;
   if (ext == ".vtu") return MeshFormat::vtu;
+  if (ext == ".cgns" || ext == ".hdf" || ext == ".adf") return MeshFormat::cgns;
   throw InputError::in(path.string(), "unknown mesh format '" + ext +
-                                          "': hotmesh reads Gmsh .msh files and OpenFOAM polyMesh folders and writes .msh and .vtu");
+                                          "': hotmesh reads Gmsh .msh and CGNS .cgns files and OpenFOAM polyMesh "
+                                          "folders, and writes .msh, .cgns and .vtu");
 }
-
-namespace {
-
-LoadedMesh load(const std::filesystem::path& path) {
-  switch (mesh_format(path)) {
-    case MeshFormat::gmsh: return {read_gmsh(path), {}, nullptr};
-    case MeshFormat::foam: {
-      FoamMesh foam = read_foam(path);
-      return {std::move(foam.mesh), {}, std::move(foam.write_back)};
-    }
-    case MeshFormat::vtu: break;
-  }
-  throw InputError::in(path.string(), "hotmesh reads meshes from Gmsh .msh files and OpenFOAM polyMesh folders only");
-}
-
-}  // namespace
 
 LoadedMesh read_mesh(const std::filesystem::path& path) {
-  LoadedMesh loaded = load(path);
+  LoadedMesh loaded;
+  switch (mesh_format(path)) {
+    case MeshFormat::gmsh: loaded.mesh = read_gmsh(path); break;
+    case MeshFormat::cgns: {
+      CgnsMesh cgns = read_cgns(path);
+      loaded.mesh = std::move(cgns.mesh);
+      loaded.write_back = std::move(cgns.write_back);
+      break;
+    }
+    case MeshFormat::foam: {
+      FoamMesh foam = read_foam(path);
+      loaded.mesh = std::move(foam.mesh);
+      loaded.write_back = std::move(foam.write_back);
+      break;
+    }
+    case MeshFormat::vtu: throw InputError::in(path.string(), "hotmesh writes .vtu files but does not read them");
+  }
   try {
     loaded.validation = mesh::validate_mesh(loaded.mesh);
   } catch (const InputError& e) {
@@ -77,6 +80,7 @@ void write_mesh(const std::filesystem::path& path, const mesh::Mesh& mesh, std::
       return;
     }
     case MeshFormat::vtu: write_vtu(path, mesh, points, fields); return;
+    case MeshFormat::cgns: write_cgns(path, mesh, points); return;
     case MeshFormat::foam: break;
   }
   throw InputError::in(path.string(), "hotmesh writes OpenFOAM meshes only as the moved points of a mesh it read");

@@ -1,10 +1,12 @@
-// hotmesh io: VTK XML UnstructuredGrid writer (binary appended, raw encoding, UInt64 headers).
+// hotmesh io: VTK XML UnstructuredGrid and PolyData writers (binary appended, raw encoding,
+// UInt64 headers).
 #include "hotmesh/io/vtu.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <ostream>
 #include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -48,6 +50,56 @@ Block array_block(const VtuArray& a, std::size_t count, const char* where) {
       a.values);
 }
 
+/// The declarations of a VTK XML file's arrays, in order, and their bytes in one appended
+/// section at the end.
+class AppendedArrays {
+ public:
+  explicit AppendedArrays(std::ostream& out) : out_(out) {}
+  void declare(const Block& b) {
+    out_ << "        " << b.xml_open << offset_ << "\"/>\n";
+    offset_ += sizeof(std::uint64_t) + b.bytes;
+    order_.push_back(&b);
+  }
+  /// After the closing tag of the data set: the appended section and the file's end.
+  void finish() {
+    out_ << "  <AppendedData encoding=\"raw\">\n   _";
+    for (const Block* b : order_) {
+      out_.write(reinterpret_cast<const char*>(&b->bytes), sizeof(b->bytes));
+      out_.write(b->data, static_cast<std::streamsize>(b->bytes));
+    }
+    out_ << "\n  </AppendedData>\n</VTKFile>\n";
+  }
+
+ private:
+  std::ostream& out_;
+  std::vector<const Block*> order_;  // appended data follows declaration order
+  std::uint64_t offset_ = 0;
+};
+
+std::vector<double> flat_coordinates(std::span<const geometry::Vec3> points) {
+  std::vector<double> coordinates(3 * points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    coordinates[3 * i] = points[i].x;
+    coordinates[3 * i + 1] = points[i].y;
+    coordinates[3 * i + 2] = points[i].z;
+  }
+  return coordinates;
+}
+
+/// VTK's cell arrays of `cells` (lists of point indices): connectivity and end offsets.
+struct CellArrays {
+  std::vector<std::int64_t> connectivity;
+  std::vector<std::int64_t> offsets;
+};
+CellArrays cell_arrays(const std::vector<std::vector<std::int64_t>>& cells) {
+  CellArrays a;
+  for (const auto& c : cells) {
+    a.connectivity.insert(a.connectivity.end(), c.begin(), c.end());
+    a.offsets.push_back(static_cast<std::int64_t>(a.connectivity.size()));
+  }
+  return a;
+}
+
 }  // namespace
 
 std::uint8_t vtk_cell_type(mesh::ElementType type) {
@@ -68,12 +120,7 @@ void write_vtu(std::ostream& out, const mesh::Mesh& mesh, std::span<const geomet
                const VtuFields& fields) {
   if (points.size() != mesh.node_count()) throw std::invalid_argument("write_vtu: one point per mesh node expected");
   const auto& cells = mesh.cells;
-  std::vector<double> coordinates(3 * points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    coordinates[3 * i] = points[i].x;
-    coordinates[3 * i + 1] = points[i].y;
-    coordinates[3 * i + 2] = points[i].z;
-  }
+  const std::vector<double> coordinates = flat_coordinates(points);
   std::vector<std::int64_t> connectivity(cells.all_nodes().begin(), cells.all_nodes().end());
   std::vector<std::int64_t> offsets(cells.size());
   std::vector<std::uint8_t> types(cells.size());
@@ -91,13 +138,8 @@ void write_vtu(std::ostream& out, const mesh::Mesh& mesh, std::span<const geomet
   const Block cell_arrays[] = {block("Int64", "connectivity", 1, connectivity), block("Int64", "offsets", 1, offsets),
                                block("UInt8", "types", 1, types)};
 
-  std::vector<const Block*> order;  // appended data follows declaration order
-  std::uint64_t offset = 0;
-  auto declare = [&](const Block& b) {
-    out << "        " << b.xml_open << offset << "\"/>\n";
-    offset += sizeof(std::uint64_t) + b.bytes;
-    order.push_back(&b);
-  };
+  AppendedArrays appended(out);
+  const auto declare = [&](const Block& b) { appended.declare(b); };
 
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
@@ -111,12 +153,52 @@ void write_vtu(std::ostream& out, const mesh::Mesh& mesh, std::span<const geomet
   declare(points_block);
   out << "      </Points>\n      <Cells>\n";
   for (const auto& b : cell_arrays) declare(b);
-  out << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
-  for (const Block* b : order) {
-    out.write(reinterpret_cast<const char*>(&b->bytes), sizeof(b->bytes));
-    out.write(b->data, static_cast<std::streamsize>(b->bytes));
+  out << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n";
+  appended.finish();
+}
+
+void write_vtp(std::ostream& out, const PolyData& data) {
+  const std::size_t cells = data.lines.size() + data.polygons.size();
+  for (const auto* kind : {&data.lines, &data.polygons}) {
+    for (const auto& c : *kind) {
+      if (std::any_of(c.begin(), c.end(), [&](std::int64_t i) { return i < 0 || std::cmp_greater_equal(i, data.points.size()); })) {
+        throw std::invalid_argument("write_vtp: point index out of range");
+      }
+    }
   }
-  out << "\n  </AppendedData>\n</VTKFile>\n";
+  const std::vector<double> coordinates = flat_coordinates(data.points);
+  const CellArrays lines = cell_arrays(data.lines);
+  const CellArrays polygons = cell_arrays(data.polygons);
+  std::vector<Block> cell_blocks;
+  for (const auto& a : data.cell_data) cell_blocks.push_back(array_block(a, cells, "cell"));
+  const Block points_block = block("Float64", "Points", 3, coordinates);
+  const Block line_blocks[] = {block("Int64", "connectivity", 1, lines.connectivity),
+                               block("Int64", "offsets", 1, lines.offsets)};
+  const Block polygon_blocks[] = {block("Int64", "connectivity", 1, polygons.connectivity),
+                                  block("Int64", "offsets", 1, polygons.offsets)};
+
+  AppendedArrays appended(out);
+  out << "<?xml version=\"1.0\"?>\n"
+         "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+         "  <PolyData>\n";
+  out << "    <Piece NumberOfPoints=\"" << data.points.size() << "\" NumberOfVerts=\"0\" NumberOfLines=\""
+      << data.lines.size() << "\" NumberOfStrips=\"0\" NumberOfPolys=\"" << data.polygons.size() << "\">\n";
+  out << "      <CellData>\n";
+  for (const auto& b : cell_blocks) appended.declare(b);
+  out << "      </CellData>\n      <Points>\n";
+  appended.declare(points_block);
+  out << "      </Points>\n      <Lines>\n";
+  for (const auto& b : line_blocks) appended.declare(b);
+  out << "      </Lines>\n      <Polys>\n";
+  for (const auto& b : polygon_blocks) appended.declare(b);
+  out << "      </Polys>\n    </Piece>\n  </PolyData>\n";
+  appended.finish();
+}
+
+void write_vtp(const std::filesystem::path& path, const PolyData& data) {
+  AtomicFile file(path);
+  write_vtp(file.stream(), data);
+  file.commit();
 }
 
 VtuFields quality_fields(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points) {

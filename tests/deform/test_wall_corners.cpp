@@ -161,5 +161,39 @@ TEST(WallCorners, OnASurfaceOfRevolutionEveryMeridionalRowHoldsEachCornerCircle)
   EXPECT_LT(largest_corner_gap(mesh, r, rz), 1e-12);
 }
 
+TEST(WallCorners, OnASurfaceOfRevolutionTheHoldingNodesSlideAlongTheCornerCircle) {
+  // The sector above with the wall's inner rows of nodes turned by a quarter cell in theta, so
+  // that the mesh pulls wall nodes round the axis. Nodes given a corner circle end on it, and
+  // are free along it: in the corner pass they move in theta too (a node prescribed onto the
+  // corner would keep the theta it had).
+  const double sector = 10.0 * std::numbers::pi / 180.0;
+  mesh::Mesh mesh = mesh::structured_hexes(along(), mesh::uniform_line(0.0, sector, 3), across(),
+                                           {"left", "right", "side0", "side1", "bottom", "top"});
+  for (Vec3& p : mesh.points) {
+    const bool inner_wall_row = p.z == 0.0 && p.y > 0.1 * sector && p.y < 0.9 * sector;
+    const double theta = p.y + (inner_wall_row ? 0.25 * sector / 3.0 : 0.0);
+    p = {p.x * std::cos(theta), p.x * std::sin(theta), p.z};
+  }
+  const geometry::Axis axis({0, 0, 0}, {0, 0, 1});
+  const auto wall = std::make_shared<geometry::RevolvedShape>(bump_wall(), axis);
+  const MotionResult r = move_mesh(mesh, motions(wall, true, {"side0", "side1"}), {}, {});
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_EQ(r.summary.inverted_cells, 0u);
+  ASSERT_EQ(r.restart_points.size(), r.points.size()) << "the corner pass ran";
+  double turned = 0.0;
+  for (const WallFeature& f : r.features) {
+    EXPECT_LT(f.distance, 1e-12);
+    for (mesh::NodeId n : f.nodes) {
+      const auto i = static_cast<std::size_t>(n);
+      const double before = axis.to_cylindrical(r.restart_points[i]).theta;
+      const double after = axis.to_cylindrical(r.points[i]).theta;
+      turned = std::max(turned, std::abs(after - before));
+      const auto c = axis.to_cylindrical(r.points[i]);
+      EXPECT_LT(norm(Vec2{c.r, c.z} - exact(f.parameter)), 1e-12);
+    }
+  }
+  EXPECT_GT(turned, 1e-7) << "the nodes holding the corner circles did not move along them";
+}
+
 }  // namespace
 }  // namespace hotmesh::deform

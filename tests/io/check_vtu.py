@@ -1,11 +1,14 @@
 #!/usr/bin/python3
-"""Reads a .vtu with VTK's XML reader (the reader ParaView uses) and prints what it found as
-JSON: counts, cell types, and every point/cell array with its components and values.
+"""Reads a .vtu or .vtp with VTK's XML readers (the readers ParaView uses), or every file a
+ParaView collection (.pvd) lists, and prints what it found as JSON: points, cells, cell types,
+and every point/cell array with its components and values.
 Used by hotmesh's tests to check our VTU files against an independent implementation."""
 import json
+import os
 import sys
+import xml.etree.ElementTree as ET
 
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLUnstructuredGridReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 
@@ -21,26 +24,51 @@ def arrays(data):
     return out
 
 
-def main(path):
-    reader = vtkXMLUnstructuredGridReader()
+def cells_of(data):
+    cells = []
+    for c in range(data.GetNumberOfCells()):
+        ids = data.GetCell(c).GetPointIds()
+        cells.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
+    return cells
+
+
+def read(path):
+    """What VTK's reader of the file's kind finds in it, as a dict."""
+    if path.endswith(".vtp"):
+        reader = vtkXMLPolyDataReader()
+    else:
+        reader = vtkXMLUnstructuredGridReader()
     reader.SetFileName(path)
     reader.Update()
     if reader.GetErrorCode() != 0:
-        print(json.dumps({"error": reader.GetErrorCode()}))
-        return 1
-    grid = reader.GetOutput()
-    cells = []
-    for c in range(grid.GetNumberOfCells()):
-        ids = grid.GetCell(c).GetPointIds()
-        cells.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
-    print(json.dumps({
-        "points": vtk_to_numpy(grid.GetPoints().GetData()).ravel().tolist(),
-        "cell_types": [grid.GetCellType(c) for c in range(grid.GetNumberOfCells())],
-        "cells": cells,
-        "point_data": arrays(grid.GetPointData()),
-        "cell_data": arrays(grid.GetCellData()),
-    }))
-    return 0
+        return {"error": reader.GetErrorCode()}
+    data = reader.GetOutput()
+    points = data.GetPoints()
+    return {
+        "points": vtk_to_numpy(points.GetData()).ravel().tolist() if points else [],
+        "cell_types": [data.GetCellType(c) for c in range(data.GetNumberOfCells())],
+        "cells": cells_of(data),
+        "point_data": arrays(data.GetPointData()),
+        "cell_data": arrays(data.GetCellData()),
+    }
+
+
+def read_collection(path):
+    """A ParaView .pvd: every data set it lists, with its time, read by VTK."""
+    folder = os.path.dirname(path)
+    steps = []
+    for dataset in ET.parse(path).getroot().iter("DataSet"):
+        step = read(os.path.join(folder, dataset.get("file")))
+        step["time"] = float(dataset.get("timestep"))
+        step["file"] = dataset.get("file")
+        steps.append(step)
+    return {"steps": steps}
+
+
+def main(path):
+    seen = read_collection(path) if path.endswith(".pvd") else read(path)
+    print(json.dumps(seen))
+    return 1 if "error" in seen else 0
 
 
 if __name__ == "__main__":

@@ -188,6 +188,20 @@ TEST_F(CaseFile, AppliesDefaults) {
   EXPECT_THAT(c.inputs(), ElementsAre(case_path(), dir / "mesh.msh"));
 }
 
+TEST_F(CaseFile, ReadsOutputAsFolderOrMapWithSeries) {
+  EXPECT_FALSE(parse(std::string(kBase) + "output: hot\n").series);
+  const Case c = parse(std::string(kBase) + "output: {folder: hot, series: true}\n");
+  EXPECT_EQ(c.output, dir / "hot");
+  EXPECT_TRUE(c.series);
+  const Case d = parse(std::string(kBase) + "output: {series: yes}\n");
+  EXPECT_EQ(d.output, dir / "case-out");
+  EXPECT_TRUE(d.series);
+  const auto lines = lines_of(error_of(std::string(kBase) + "output: {folder: hot, series: often, movie: true}\n"));
+  ASSERT_THAT(lines, SizeIs(2));
+  EXPECT_THAT(lines[0], HasSubstr("movie"));
+  EXPECT_THAT(lines[1], HasSubstr("output.series"));
+}
+
 TEST_F(CaseFile, ReadsStiffnessLawSplitsAndPictures) {
   const Case c = parse(std::string(kBase) +
                        "material: {law: inverse_volume, drop_jacobian: false}\n"

@@ -12,6 +12,7 @@
 #include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/io/vtu.hpp"
 #include "test_support.hpp"
+#include "vtk_reader.hpp"
 
 namespace hotmesh::io {
 namespace {
@@ -19,16 +20,7 @@ namespace {
 using mesh::Mesh;
 using geometry::Vec3;
 
-/// Runs VTK's reader on a file and returns what it saw.
-nlohmann::json read_with_vtk(const std::filesystem::path& vtu) {
-  const std::string command = "/usr/bin/python3 " HOTMESH_SOURCE_DIR "/tests/io/check_vtu.py '" + vtu.string() + "'";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  if (!pipe) throw std::runtime_error("cannot run " + command);
-  std::string out;
-  char buffer[65536];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe.get())) > 0;) out.append(buffer, n);
-  return nlohmann::json::parse(out);
-}
+using test::read_with_vtk;
 
 /// A sheared and displaced copy of the points, so coordinates are not trivially the grid.
 std::vector<Vec3> moved_points(const Mesh& mesh) {
@@ -148,6 +140,41 @@ TEST(WriteVtu, WritesAtomicallyLeavingNoTemporaryFile) {
     ++files;
   }
   EXPECT_EQ(files, 1u);
+}
+
+TEST(WriteVtp, VtkReadsBackPolylinesAndPolygonsExactly) {
+  PolyData data;
+  data.points = {{0, 0, 0}, {1, 0.25, 0}, {2, 1.0 / 3.0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1.5}};
+  data.lines = {{0, 1, 2}, {2, 1}};
+  data.polygons = {{3, 4, 5, 6}, {3, 4, 5}};
+  data.cell_data.push_back({"patch", 1, std::vector<std::int32_t>{7, 8, 9, 10}});
+  test::TempDir dir;
+  write_vtp(dir / "w.vtp", data);
+  const nlohmann::json seen = read_with_vtk(dir / "w.vtp");
+  ASSERT_FALSE(seen.contains("error")) << seen.dump();
+  const auto coords = seen["points"].get<std::vector<double>>();
+  ASSERT_EQ(coords.size(), 3 * data.points.size());
+  for (std::size_t i = 0; i < data.points.size(); ++i) {
+    EXPECT_EQ(coords[3 * i], data.points[i].x);
+    EXPECT_EQ(coords[3 * i + 1], data.points[i].y);
+    EXPECT_EQ(coords[3 * i + 2], data.points[i].z);
+  }
+  // VTK lists a poly data's lines before its polygons, and names each by its point count:
+  // VTK_POLY_LINE 4, VTK_LINE 3, VTK_QUAD 9, VTK_TRIANGLE 5.
+  EXPECT_EQ(seen["cells"], nlohmann::json::parse("[[0, 1, 2], [2, 1], [3, 4, 5, 6], [3, 4, 5]]"));
+  EXPECT_EQ(seen["cell_types"], nlohmann::json::parse("[4, 3, 9, 5]"));
+  EXPECT_EQ(seen["cell_data"]["patch"]["values"], nlohmann::json::parse("[7, 8, 9, 10]"));
+}
+
+TEST(WriteVtp, RejectsIndexOutOfRangeAndArrayOfWrongLength) {
+  PolyData data;
+  data.points = {{0, 0, 0}, {1, 0, 0}};
+  data.lines = {{0, 2}};
+  std::ostringstream out;
+  EXPECT_THROW(write_vtp(out, data), std::invalid_argument);
+  data.lines = {{0, 1}};
+  data.cell_data.push_back({"patch", 1, std::vector<std::int32_t>{1, 2}});
+  EXPECT_THROW(write_vtp(out, data), std::invalid_argument);
 }
 
 }  // namespace

@@ -34,6 +34,26 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+/// The same for a file that a library writes itself by name (the CGNS library): it writes
+/// temporary(); commit() syncs it and renames it over the target. The destructor removes the
+/// temporary file unless commit() succeeded.
+class AtomicPath {
+ public:
+  explicit AtomicPath(std::filesystem::path target);
+  AtomicPath(const AtomicPath&) = delete;
+  AtomicPath& operator=(const AtomicPath&) = delete;
+  ~AtomicPath();
+
+  const std::filesystem::path& temporary() const { return temporary_; }
+  const std::filesystem::path& target() const { return target_; }
+  void commit();
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  bool committed_ = false;
+};
+
 /// Writes `content` to `target` atomically.
 void write_file_atomically(const std::filesystem::path& target, std::string_view content);
 

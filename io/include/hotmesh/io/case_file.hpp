@@ -68,6 +68,9 @@ struct Case {
   /// Unit of the mesh and the deflection tables; the CAD file is converted to it on import.
   geometry::LengthUnit length_unit = geometry::LengthUnit::metre;
   std::filesystem::path output;              ///< default: <case name>-out beside the case file
+  /// Write the mesh and the deflected walls after every increment, as ParaView time series
+  /// (`output: {series: true}`).
+  bool series = false;
   std::optional<geometry::Axis> axis;
   deform::SolverOptions solver;
   /// OpenMP threads of the run, 0: all cores. The case file sets it among the solver's options

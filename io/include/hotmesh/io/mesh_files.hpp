@@ -1,7 +1,10 @@
 // hotmesh io: mesh files by extension, read and validated in one step.
 //   .msh  Gmsh 2.2 / 4.1 (read), 4.1 (write)
 //   .vtu  VTK XML unstructured grid (write only: for ParaView)
-//   a folder: an OpenFOAM polyMesh folder or case (read, and written back: foam.hpp)
+//   .cgns CGNS, HDF5 or ADF (also .hdf, .adf): read, written back (deformed.cgns), and
+//         written new by convert (docs/cgns.md)
+//   a folder: an OpenFOAM polyMesh folder or case (read, and written back: foam.hpp,
+//         docs/openfoam.md)
 // A mesh read from another solver's format keeps what it needs to be written back in that
 // format (MeshWriteBack), with only the coordinates of its nodes changed.
 #pragma once
@@ -19,7 +22,7 @@
 
 namespace hotmesh::io {
 
-enum class MeshFormat { gmsh, vtu, foam };
+enum class MeshFormat { gmsh, vtu, cgns, foam };
 
 /// The format a path names by its extension (foam for a folder). Throws hotmesh::InputError
 /// for others.

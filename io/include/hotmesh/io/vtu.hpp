@@ -1,5 +1,5 @@
-// hotmesh io: VTK XML unstructured grids (.vtu) for ParaView, binary appended raw data with
-// UInt64 headers. Point and cell arrays are passed by the caller (displacement, node role,
+// hotmesh io: VTK XML unstructured grids (.vtu) and poly data (.vtp) for ParaView, binary
+// appended raw data with UInt64 headers. Point and cell arrays are passed by the caller (displacement, node role,
 // scaled Jacobian, inverted flag, ...).
 #pragma once
 
@@ -40,5 +40,19 @@ void write_vtu(std::ostream& out, const mesh::Mesh& mesh, std::span<const geomet
                const VtuFields& fields);
 void write_vtu(const std::filesystem::path& path, const mesh::Mesh& mesh,
                std::span<const geometry::Vec3> points, const VtuFields& fields);
+
+/// Polylines and polygons through points, with one value per cell (lines first, then
+/// polygons) in each cell array: a VTK PolyData (.vtp), e.g. the deflected walls of a case.
+struct PolyData {
+  std::vector<geometry::Vec3> points;
+  std::vector<std::vector<std::int64_t>> lines;     ///< polylines: indices into points
+  std::vector<std::vector<std::int64_t>> polygons;  ///< polygons: indices into points
+  std::vector<VtuArray> cell_data;
+};
+
+/// Writes `data` as a VTK XML PolyData file. Throws std::invalid_argument for an index out of
+/// range or an array of the wrong length.
+void write_vtp(std::ostream& out, const PolyData& data);
+void write_vtp(const std::filesystem::path& path, const PolyData& data);
 
 }  // namespace hotmesh::io
