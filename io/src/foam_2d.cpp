@@ -26,12 +26,14 @@ std::span<const std::int64_t> face_points(const PolyMesh& m, std::size_t f) {
   return {m.faces.nodes.data() + m.faces.offsets[f], m.faces.nodes.data() + m.faces.offsets[f + 1]};
 }
 
+const Vec3& point(const PolyMesh& m, std::int64_t q) { return m.points[static_cast<std::size_t>(q)]; }
+
 /// Newell's area vector of a face (its normal times its area, right-hand).
 Vec3 area_vector(const PolyMesh& m, std::size_t f) {
   const auto p = face_points(m, f);
   Vec3 a;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    a = a + geometry::cross(m.points[static_cast<std::size_t>(p[i])], m.points[static_cast<std::size_t>(p[(i + 1) % p.size()])]);
+    a = a + geometry::cross(point(m, p[i]), point(m, p[(i + 1) % p.size()]));
   }
   return 0.5 * a;
 }
@@ -42,7 +44,7 @@ Vec3 unit(const Vec3& v) { return v / geometry::norm(v); }
 struct Planes {
   std::vector<std::int8_t> plane_of_face;  ///< -1: not on a planar patch
   std::array<PlaneFrame, 2> frames{};
-  std::string kind;                        ///< "empty" or "wedge"
+  std::string kind;  ///< "empty" or "wedge"
 };
 
 std::vector<const BoundaryPatch*> planar_patches(const PolyMesh& m, const std::string& source) {
@@ -62,7 +64,8 @@ std::vector<const BoundaryPatch*> planar_patches(const PolyMesh& m, const std::s
 
 template <class Visit>
 void for_faces(const BoundaryPatch& p, Visit visit) {
-  for (auto f = static_cast<std::size_t>(p.start_face); f < static_cast<std::size_t>(p.start_face + p.face_count); ++f) {
+  for (auto f = static_cast<std::size_t>(p.start_face); f < static_cast<std::size_t>(p.start_face + p.face_count);
+       ++f) {
     visit(f);
   }
 }
@@ -84,8 +87,8 @@ Planes empty_planes(const PolyMesh& m, const std::vector<const BoundaryPatch*>& 
                                                  f, p->name, axis_name[axis], patches.front()->start_face));
       }
       for (const std::int64_t q : face_points(m, f)) {
-        lo = std::min(lo, m.points[static_cast<std::size_t>(q)][axis]);
-        hi = std::max(hi, m.points[static_cast<std::size_t>(q)][axis]);
+        lo = std::min(lo, point(m, q)[axis]);
+        hi = std::max(hi, point(m, q)[axis]);
       }
     });
   }
@@ -97,7 +100,7 @@ Planes empty_planes(const PolyMesh& m, const std::vector<const BoundaryPatch*>& 
     for_faces(*p, [&](std::size_t f) {
       int plane = -1;
       for (const std::int64_t q : face_points(m, f)) {
-        const double c = m.points[static_cast<std::size_t>(q)][axis];
+        const double c = point(m, q)[axis];
         const int here = std::abs(c - lo) <= tolerance ? 0 : std::abs(c - hi) <= tolerance ? 1 : -1;
         if (here < 0 || (plane >= 0 && here != plane)) {
           throw InputError::in(source, fmt::format("face {} of the empty patch '{}' is not in the back ({} = {}) or "
@@ -127,18 +130,21 @@ WedgePlane wedge_plane(const PolyMesh& m, const BoundaryPatch& p, const std::str
   for_faces(p, [&](std::size_t f) {
     area = area + area_vector(m, f);
     for (const std::int64_t q : face_points(m, f)) {
-      sum = sum + m.points[static_cast<std::size_t>(q)];
+      sum = sum + point(m, q);
       ++count;
     }
   });
   WedgePlane plane{unit(area), sum / static_cast<double>(count)};
   for_faces(p, [&](std::size_t f) {
-    for (const std::int64_t q : face_points(m, f)) extent = std::max(extent, geometry::distance(m.points[static_cast<std::size_t>(q)], plane.centroid));
+    for (const std::int64_t q : face_points(m, f)) {
+      extent = std::max(extent, geometry::distance(point(m, q), plane.centroid));
+    }
   });
   for_faces(p, [&](std::size_t f) {
     for (const std::int64_t q : face_points(m, f)) {
-      if (std::abs(geometry::dot(m.points[static_cast<std::size_t>(q)] - plane.centroid, plane.normal)) > 1e-6 * extent) {
-        throw InputError::in(source, fmt::format("the wedge patch '{}' is not planar (point {} is off its plane)", p.name, q));
+      if (std::abs(geometry::dot(point(m, q) - plane.centroid, plane.normal)) > 1e-6 * extent) {
+        throw InputError::in(source,
+                             fmt::format("the wedge patch '{}' is not planar (point {} is off its plane)", p.name, q));
       }
     }
   });
@@ -148,7 +154,8 @@ WedgePlane wedge_plane(const PolyMesh& m, const BoundaryPatch& p, const std::str
 Planes wedge_planes(const PolyMesh& m, const std::vector<const BoundaryPatch*>& patches, const std::string& source) {
   if (patches.size() != 2) {
     throw InputError::in(source, fmt::format("a wedge case needs two wedge patches with faces (back and front), this "
-                                             "one has {}", patches.size()));
+                                             "one has {}",
+                                             patches.size()));
   }
   const WedgePlane back = wedge_plane(m, *patches[0], source), front = wedge_plane(m, *patches[1], source);
   Vec3 axis = geometry::cross(back.normal, front.normal);
@@ -163,7 +170,8 @@ Planes wedge_planes(const PolyMesh& m, const std::vector<const BoundaryPatch*>& 
   }
   if (axis[largest] < 0) axis = -axis;
   // The point of the axis nearest the origin: o = alpha n_b + beta n_f on both planes.
-  const double d_back = geometry::dot(back.normal, back.centroid), d_front = geometry::dot(front.normal, front.centroid);
+  const double d_back = geometry::dot(back.normal, back.centroid),
+               d_front = geometry::dot(front.normal, front.centroid);
   const double c = geometry::dot(back.normal, front.normal), det = 1.0 - c * c;
   const Vec3 origin = ((d_back - c * d_front) / det) * back.normal + ((d_front - c * d_back) / det) * front.normal;
   const auto radial = [&](const WedgePlane& p) {
@@ -174,7 +182,9 @@ Planes wedge_planes(const PolyMesh& m, const std::vector<const BoundaryPatch*>& 
   planes.kind = "wedge";
   planes.frames = {PlaneFrame{origin, axis, radial(back)}, PlaneFrame{origin, axis, radial(front)}};
   planes.plane_of_face.assign(m.faces.size(), -1);
-  for (int i = 0; i < 2; ++i) for_faces(*patches[static_cast<std::size_t>(i)], [&](std::size_t f) { planes.plane_of_face[f] = static_cast<std::int8_t>(i); });
+  for (std::size_t i = 0; i < 2; ++i) {
+    for_faces(*patches[i], [&](std::size_t f) { planes.plane_of_face[f] = static_cast<std::int8_t>(i); });
+  }
   return planes;
 }
 
@@ -247,7 +257,8 @@ std::array<mesh::NodeId, 2> side_edge(const PolyMesh& m, const Pairing& pairing,
   }
   if (ends.size() != 2) {
     throw InputError::in(source, fmt::format("face {} of patch '{}' has {} points on the back plane (a side face of a "
-                                             "one-cell-thick case has 2)", f, patch, ends.size()));
+                                             "one-cell-thick case has 2)",
+                                             f, patch, ends.size()));
   }
   const auto quad = flat.cells.nodes(static_cast<std::size_t>(m.owner[f]));
   for (std::size_t i = 0; i < 4; ++i) {
@@ -265,7 +276,8 @@ bool is_2d(const PolyMesh& mesh) {
 
 FlatMesh flatten(const PolyMesh& m, const CellFaces& cells, const std::string& source) {
   const auto patches = planar_patches(m, source);
-  const Planes planes = patches.front()->type == "empty" ? empty_planes(m, patches, source) : wedge_planes(m, patches, source);
+  const Planes planes =
+      patches.front()->type == "empty" ? empty_planes(m, patches, source) : wedge_planes(m, patches, source);
   const std::vector<std::int64_t> back = back_faces(m, cells, planes, source);
   const std::vector<Hex> hexes = hexahedra(m, cells, back, source);
   const Pairing pairing = pair_points(m, hexes, source);

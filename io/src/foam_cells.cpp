@@ -38,13 +38,17 @@ std::string shape_of(const OutwardFaces& cell) {
     quads += f.size() == 4;
   }
   const std::size_t n = cell.faces.size();
-  std::string shape;
   if (n == 0) return "no faces";
-  if (n == 4 && triangles == 4) shape = "a tetrahedron";
-  else if (n == 5 && triangles == 2 && quads == 3) shape = "a prism";
-  else if (n == 5 && triangles == 4 && quads == 1) shape = "a pyramid";
-  else if (n == 6 && quads == 6) shape = "six quadrilaterals that do not close a hexahedron";
-  else {
+  std::string shape;
+  if (n == 4 && triangles == 4) {
+    shape = "a tetrahedron";
+  } else if (n == 5 && triangles == 2 && quads == 3) {
+    shape = "a prism";
+  } else if (n == 5 && triangles == 4 && quads == 1) {
+    shape = "a pyramid";
+  } else if (n == 6 && quads == 6) {
+    shape = "six quadrilaterals that do not close a hexahedron";
+  } else {
     std::vector<std::size_t> sizes;
     for (const auto& f : cell.faces) sizes.push_back(f.size());
     shape = fmt::format("a polyhedron, faces of {} points", fmt::join(sizes, ", "));

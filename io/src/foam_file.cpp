@@ -40,7 +40,8 @@ void FoamCursor::fail_at(std::size_t position, std::string_view message) const {
   if (header_.binary && position >= data_start_) {
     throw InputError::in(source_, fmt::format("byte {}: {}", position, message));
   }
-  const auto line = static_cast<std::size_t>(std::count(text_.begin(), text_.begin() + static_cast<std::ptrdiff_t>(position), '\n'));
+  const auto line =
+      static_cast<std::size_t>(std::count(text_.begin(), text_.begin() + static_cast<std::ptrdiff_t>(position), '\n'));
   throw InputError::at(source_, line + 1, message);
 }
 
@@ -168,9 +169,13 @@ std::string skip_entry_value(FoamCursor& in, std::string_view key) {
   const std::string what = fmt::format("the value of '{}'", key);
   if (in.accept('{')) {
     for (int depth = 1; depth > 0;) {
-      if (in.accept('{')) ++depth;
-      else if (in.accept('}')) --depth;
-      else if (!in.accept(';') && !in.accept('(') && !in.accept(')') && !in.accept('[') && !in.accept(']')) in.word(what);
+      if (in.accept('{')) {
+        ++depth;
+      } else if (in.accept('}')) {
+        --depth;
+      } else if (!in.accept(';') && !in.accept('(') && !in.accept(')') && !in.accept('[') && !in.accept(']')) {
+        in.word(what);
+      }
     }
     return {};
   }
@@ -214,7 +219,9 @@ void FoamCursor::read_header() {
     }
     const int label = arch_bits(arch->second, "label=");
     const int scalar = arch_bits(arch->second, "scalar=");
-    if (label != 0 && label != 32 && label != 64) fail_at(at, fmt::format("arch: label size {} (expected 32 or 64)", label));
+    if (label != 0 && label != 32 && label != 64) {
+      fail_at(at, fmt::format("arch: label size {} (expected 32 or 64)", label));
+    }
     if (scalar != 0 && scalar != 32 && scalar != 64) {
       fail_at(at, fmt::format("arch: scalar size {} (expected 32 or 64)", scalar));
     }
@@ -271,7 +278,8 @@ std::vector<T> read_list(FoamCursor& in, std::string_view what, std::size_t min_
   in.expect('(', fmt::format("the start of the list of {}", what));
   if (n > in.remaining() / min_size) {
     in.fail_at(at, fmt::format("the list of {} should hold {} entries, but only {} bytes are left in the file: is it "
-                               "truncated?", what, n, in.remaining()));
+                               "truncated?",
+                               what, n, in.remaining()));
   }
   values.reserve(n);
   for (std::size_t i = 0; i < n; ++i) values.push_back(read_one(in));
@@ -283,14 +291,13 @@ std::vector<T> read_list(FoamCursor& in, std::string_view what, std::size_t min_
 
 std::vector<std::int64_t> read_label_list(FoamCursor& in, std::string_view what) {
   const std::size_t size = in.header().binary ? static_cast<std::size_t>(in.header().label_bytes) : 2;  // "0 "
-  return read_list<std::int64_t>(in, what, size,
-                                 [&](FoamCursor& c) { return label_value(c, what); });
+  return read_list<std::int64_t>(in, what, size, [&](FoamCursor& c) { return label_value(c, what); });
 }
 
 std::vector<geometry::Vec3> read_vector_list(FoamCursor& in, std::string_view what) {
-  const std::size_t size = in.header().binary ? 3 * static_cast<std::size_t>(in.header().scalar_bytes) : 8;  // "(0 0 0) "
-  return read_list<geometry::Vec3>(in, what, size,
-                                   [&](FoamCursor& c) { return vector_value(c, what); });
+  const std::size_t size =
+      in.header().binary ? 3 * static_cast<std::size_t>(in.header().scalar_bytes) : 8;  // "(0 0 0) "
+  return read_list<geometry::Vec3>(in, what, size, [&](FoamCursor& c) { return vector_value(c, what); });
 }
 
 namespace {

@@ -37,8 +37,9 @@ fs::path foam_mesh_folder(const fs::path& path) {
   const fs::path in_case = path / "constant" / "polyMesh";
   std::error_code ec;
   if (fs::is_directory(in_case, ec)) return in_case;
-  throw InputError::in(path.string(), "is neither an OpenFOAM polyMesh folder (no points or points.gz in it) nor a "
-                                      "case folder with constant/polyMesh");
+  throw InputError::in(path.string(),
+                       "is neither an OpenFOAM polyMesh folder (no points or points.gz in it) nor a "
+                       "case folder with constant/polyMesh");
 }
 
 namespace foam {
@@ -58,7 +59,8 @@ FoamText read_foam_text(const fs::path& folder, const std::string& name) {
     text.path = folder / (name + ".gz");
     text.gzipped = true;
     if (!is_file(text.path)) {
-      throw InputError::in(folder.string(), fmt::format("the polyMesh folder has no '{}' file (nor {}.gz)", name, name));
+      throw InputError::in(folder.string(),
+                           fmt::format("the polyMesh folder has no '{}' file (nor {}.gz)", name, name));
     }
   }
   text.content = read_file(text.path);
@@ -93,12 +95,15 @@ void read_faces_file(const fs::path& folder, PolyMesh& mesh) {
   const auto points = static_cast<std::int64_t>(mesh.points.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto begin = mesh.faces.offsets[f], end = mesh.faces.offsets[f + 1];
-    if (end - begin < 3) throw InputError::in(in.source(), fmt::format("face {} has {} points (a face needs at least 3)", f, end - begin));
+    if (end - begin < 3) {
+      throw InputError::in(in.source(), fmt::format("face {} has {} points (a face needs at least 3)", f, end - begin));
+    }
     for (auto i = begin; i < end; ++i) {
       const std::int64_t p = mesh.faces.nodes[static_cast<std::size_t>(i)];
       if (p < 0 || p >= points) {
-        throw InputError::in(in.source(), fmt::format("face {} refers to point {}, but the points file has {} points (0 to {})", f, p, points,
-                            points - 1));
+        throw InputError::in(
+            in.source(), fmt::format("face {} refers to point {}, but the points file has {} points (0 to {})", f, p,
+                                     points, points - 1));
       }
     }
   }
@@ -111,14 +116,16 @@ std::vector<std::int64_t> read_cells_of_faces(const fs::path& folder, const std:
   in.read_header();
   std::vector<std::int64_t> cells = read_label_list(in, fmt::format("{} cells", name));
   if (name == "owner" ? cells.size() != faces : cells.size() > faces) {
-    throw InputError::in(in.source(), fmt::format("{} cells are listed for {} faces (the faces file): {}", cells.size(), faces,
-                        name == "owner" ? "there must be one owner per face" : "at most one neighbour per face"));
+    throw InputError::in(
+        in.source(),
+        fmt::format("{} cells are listed for {} faces (the faces file): {}", cells.size(), faces,
+                    name == "owner" ? "there must be one owner per face" : "at most one neighbour per face"));
   }
-  const auto bad = std::find_if(cells.begin(), cells.end(), [](std::int64_t c) {
-    return c < 0 || c >= std::numeric_limits<mesh::CellId>::max();
-  });
+  const auto bad = std::find_if(cells.begin(), cells.end(),
+                                [](std::int64_t c) { return c < 0 || c >= std::numeric_limits<mesh::CellId>::max(); });
   if (bad != cells.end()) {
-    throw InputError::in(in.source(), fmt::format("face {} has {} cell {}, not a cell number", bad - cells.begin(), name, *bad));
+    throw InputError::in(in.source(),
+                         fmt::format("face {} has {} cell {}, not a cell number", bad - cells.begin(), name, *bad));
   }
   return cells;
 }
@@ -173,7 +180,8 @@ mesh::Mesh volume_mesh(PolyMesh& poly, const CellFaces& cells, const std::string
     ++tag;
     if (p.face_count == 0) continue;
     mesh::Patch patch{.name = p.name, .tag = tag, .faces = {}, .nodes = {}};
-    for (auto f = static_cast<std::size_t>(p.start_face); f < static_cast<std::size_t>(p.start_face + p.face_count); ++f) {
+    for (auto f = static_cast<std::size_t>(p.start_face); f < static_cast<std::size_t>(p.start_face + p.face_count);
+         ++f) {
       std::array<mesh::NodeId, 4> nodes{};
       for (std::size_t i = 0; i < 4; ++i) {
         nodes[i] = static_cast<mesh::NodeId>(poly.faces.nodes[static_cast<std::size_t>(poly.faces.offsets[f]) + i]);

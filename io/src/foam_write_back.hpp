@@ -31,17 +31,17 @@ struct PointMap {
 };
 
 struct PointsFile {
-  std::string name;      ///< "points" or "points.gz"
+  std::string name;  ///< "points" or "points.gz"
   bool gzipped = false;
-  std::string content;   ///< uncompressed
+  std::string content;  ///< uncompressed
   FoamHeader header;
   std::size_t list_begin = 0, list_end = 0;  ///< the points list within content
 };
 
 struct FoamWriteBackData {
-  std::filesystem::path polymesh;            ///< the folder read
+  std::filesystem::path polymesh;  ///< the folder read
   PointsFile points;
-  std::vector<std::string> copied_files;     ///< the other files of the folder, copied unchanged
+  std::vector<std::string> copied_files;  ///< the other files of the folder, copied unchanged
   PointMap map;
 };
 

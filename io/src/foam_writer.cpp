@@ -31,15 +31,17 @@ bool is_time_name(std::string_view time) {
 fs::path foam_time_folder(const fs::path& mesh_path, std::string_view time) {
   if (!is_time_name(time)) {
     throw InputError::in("--foam-time", fmt::format("'{}' is not a time folder's name: give a number such as 0.001 "
-                                                    "(the moved points go to <case>/<time>/polyMesh)", time));
+                                                    "(the moved points go to <case>/<time>/polyMesh)",
+                                                    time));
   }
   std::error_code ec;
   const fs::path polymesh = fs::weakly_canonical(foam_mesh_folder(mesh_path), ec);
   const fs::path constant = polymesh.parent_path();
   if (ec || polymesh.filename() != "polyMesh" || constant.filename() != "constant") {
-    throw InputError::in("--foam-time", fmt::format("the mesh {} is not a case's constant/polyMesh, so there is no case "
-                                                    "folder to write a time folder into",
-                                                    mesh_path.string()));
+    throw InputError::in("--foam-time",
+                         fmt::format("the mesh {} is not a case's constant/polyMesh, so there is no case "
+                                     "folder to write a time folder into",
+                                     mesh_path.string()));
   }
   return constant.parent_path() / std::string(time) / "polyMesh";
 }
@@ -114,8 +116,7 @@ class FoamWriteBack final : public MeshWriteBack {
     if (options.foam_time) {
       const fs::path time_folder = foam_time_folder(d_.polymesh, *options.foam_time);
       make_folder(time_folder);
-      write_file_atomically(time_folder / d_.points.name,
-                            points_file(moved, *options.foam_time + "/polyMesh"));
+      write_file_atomically(time_folder / d_.points.name, points_file(moved, *options.foam_time + "/polyMesh"));
       written.push_back(time_folder / d_.points.name);
     }
     return written;

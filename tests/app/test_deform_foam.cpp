@@ -19,11 +19,11 @@ namespace hotmesh::app {
 namespace {
 
 using geometry::Vec3;
+using test::hotmesh;
+using test::shell_quote;
 using ::testing::Eq;
 using ::testing::HasSubstr;
 using ::testing::Not;
-using test::hotmesh;
-using test::shell_quote;
 namespace fs = std::filesystem;
 namespace tf = test::foam;
 
@@ -79,9 +79,10 @@ struct RampFoamCase {
   std::string case_file() const { return shell_quote((dir / "foam.yaml").string()); }
 };
 
-#define SKIP_WITHOUT_BLOCKMESH()                                                        \
-  if (tf::block_mesh_command().empty()) GTEST_SKIP() << "blockMesh is not installed: " \
-                                                        "run scripts/install-deps.sh (Debian's openfoam)"
+#define SKIP_WITHOUT_BLOCKMESH()                 \
+  if (tf::block_mesh_command().empty())          \
+  GTEST_SKIP() << "blockMesh is not installed: " \
+                  "run scripts/install-deps.sh (Debian's openfoam)"
 
 TEST(DeformFoam, RampChannelMovesAsItsGmshTwinAndTheWrittenMeshPassesCheckMesh) {
   SKIP_WITHOUT_BLOCKMESH();
@@ -97,8 +98,8 @@ TEST(DeformFoam, RampChannelMovesAsItsGmshTwinAndTheWrittenMeshPassesCheckMesh) 
   io::write_gmsh(c.dir / "twin.msh", flat);
   test::write_text(c.dir / "twin.yaml", ramp_case("twin.msh"));
   const auto twin_out = c.dir / "twin-out";
-  const auto t = hotmesh("deform " + shell_quote((c.dir / "twin.yaml").string()) + " -o " + shell_quote(twin_out.string()) +
-                         " --threads 1");
+  const auto t = hotmesh("deform " + shell_quote((c.dir / "twin.yaml").string()) + " -o " +
+                         shell_quote(twin_out.string()) + " --threads 1");
   ASSERT_EQ(t.exit_code, 0) << t.output;
   const mesh::Mesh twin = io::read_gmsh(twin_out / "deformed.msh");
   EXPECT_EQ(io::read_gmsh(out / "deformed.msh").points, twin.points);
@@ -135,8 +136,9 @@ TEST(DeformFoam, RampChannelMovesAsItsGmshTwinAndTheWrittenMeshPassesCheckMesh) 
   EXPECT_EQ(after, before);
 
   // checkMesh on the written polyMesh in a case of its own, and on the case at time 1.
-  for (const auto& k : {tf::check_mesh(c.cfd, out / "polyMesh", c.dir / "check"),
-                        test::run_command(tf::check_mesh_command() + " -case " + shell_quote(c.cfd.string()) + " -time 1")}) {
+  for (const auto& k :
+       {tf::check_mesh(c.cfd, out / "polyMesh", c.dir / "check"),
+        test::run_command(tf::check_mesh_command() + " -case " + shell_quote(c.cfd.string()) + " -time 1")}) {
     EXPECT_EQ(k.exit_code, 0) << k.output;
     EXPECT_THAT(k.output, HasSubstr("Mesh OK.")) << k.output;
   }
@@ -146,11 +148,13 @@ TEST(DeformFoam, BinaryGzippedCaseIsWrittenBackBinaryGzippedWithTheSamePoints) {
   SKIP_WITHOUT_BLOCKMESH();
   RampFoamCase ascii, binary(true);
   for (const RampFoamCase* c : {&ascii, &binary}) {
-    const auto r = hotmesh("deform " + c->case_file() + " -o " + shell_quote((c->dir / "out").string()) + " --threads 1");
+    const auto r =
+        hotmesh("deform " + c->case_file() + " -o " + shell_quote((c->dir / "out").string()) + " --threads 1");
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
   const auto written = binary.dir / "out" / "polyMesh";
-  EXPECT_THAT(test::read_text(written / "owner.gz"), Eq(test::read_text(binary.cfd / "constant" / "polyMesh" / "owner.gz")));
+  EXPECT_THAT(test::read_text(written / "owner.gz"),
+              Eq(test::read_text(binary.cfd / "constant" / "polyMesh" / "owner.gz")));
   ASSERT_TRUE(fs::exists(written / "points.gz"));
   EXPECT_FALSE(fs::exists(written / "points"));
   EXPECT_THAT(tf::gunzipped(test::read_text(written / "points.gz")), HasSubstr("format      binary;"));
@@ -170,7 +174,8 @@ TEST(DeformFoam, InfoShowsTheCasesPatchesAndConvertWritesItsMeshAsMsh) {
   EXPECT_THAT(info.output, HasSubstr("cells       252 (252 quad4)"));
   EXPECT_THAT(info.output, Not(HasSubstr("frontAndBack")));
   const auto msh = c.dir / "ramp.msh";
-  const auto convert = hotmesh("convert " + shell_quote((c.cfd / "constant" / "polyMesh").string()) + " " + shell_quote(msh.string()));
+  const auto convert =
+      hotmesh("convert " + shell_quote((c.cfd / "constant" / "polyMesh").string()) + " " + shell_quote(msh.string()));
   ASSERT_EQ(convert.exit_code, 0) << convert.output;
   const mesh::Mesh converted = io::read_gmsh(msh), read = io::read_mesh(c.cfd).mesh;
   EXPECT_EQ(converted.points, read.points);
@@ -196,9 +201,11 @@ TEST(DeformFoam, BadFoamTimesAndNonHexMeshesExitWithCode2BeforeAnyWork) {
   }
   EXPECT_EQ(snapshot(c.cfd), before);
   // --foam-time with a .msh mesh.
-  test::RampCase msh("mesh: ramp2d.msh\npatches: {left: {role: fixed}, right: {role: fixed}, top: {role: fixed}, "
-                     "bottom: {role: fixed}}\n");
-  const auto r = hotmesh("deform " + msh.case_file() + " -o " + shell_quote((c.dir / "msh-out").string()) + " --foam-time 1");
+  test::RampCase msh(
+      "mesh: ramp2d.msh\npatches: {left: {role: fixed}, right: {role: fixed}, top: {role: fixed}, "
+      "bottom: {role: fixed}}\n");
+  const auto r =
+      hotmesh("deform " + msh.case_file() + " -o " + shell_quote((c.dir / "msh-out").string()) + " --foam-time 1");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_THAT(r.output, HasSubstr("is not an OpenFOAM polyMesh"));
   // A prism: named with the count.

@@ -17,10 +17,10 @@
 namespace hotmesh::io {
 namespace {
 
-using ::testing::HasSubstr;
 using test::foam::block_2x1x1;
 using test::foam::Layout;
 using test::foam::write_poly_mesh;
+using ::testing::HasSubstr;
 
 /// The message of the InputError that reading `folder` throws ("" if none).
 std::string read_error(const std::filesystem::path& folder) {
@@ -97,8 +97,10 @@ TEST(FoamReader, ReadsUniformListsCommentsAndTypedLists) {
   m.patches = {{"walls", "wall", 0, 6}};
   write_poly_mesh(dir / "p", m);
   const Layout ascii;
-  test::write_text(dir / "p" / "owner", test::foam::foam_header(ascii, "labelList", "owner") + "/* all */ 6 // six\n{0}\n");
-  test::write_text(dir / "p" / "neighbour", test::foam::foam_header(ascii, "labelList", "neighbour") + "List<label> 0()\n");
+  test::write_text(dir / "p" / "owner",
+                   test::foam::foam_header(ascii, "labelList", "owner") + "/* all */ 6 // six\n{0}\n");
+  test::write_text(dir / "p" / "neighbour",
+                   test::foam::foam_header(ascii, "labelList", "neighbour") + "List<label> 0()\n");
   const LoadedMesh loaded = read_mesh(dir / "p");
   EXPECT_EQ(loaded.mesh.cell_count(), 1u);
   EXPECT_EQ(loaded.validation.reoriented_cells, 0u);
@@ -137,7 +139,8 @@ TEST(FoamReaderErrors, InconsistentOwnersAndPatchesAreNamed) {
   m.patches[2].count = 9;
   write_poly_mesh(dir / "patch", m);
   EXPECT_THAT(read_error(dir / "patch"), HasSubstr("boundary:"));
-  EXPECT_THAT(read_error(dir / "patch"), HasSubstr("patch 'walls' has faces 3 to 11, but the boundary faces are 1 to 10"));
+  EXPECT_THAT(read_error(dir / "patch"),
+              HasSubstr("patch 'walls' has faces 3 to 11, but the boundary faces are 1 to 10"));
 }
 
 TEST(FoamReaderErrors, AMissingFileIsNamed) {
@@ -164,21 +167,25 @@ TEST(FoamReaderErrors, ACutListNamesTheLineOrTheByteOffset) {
   write_poly_mesh(dir / "ascii", block_2x1x1());
   std::string text = test::read_text(dir / "ascii" / "owner");
   test::write_text(dir / "ascii" / "owner", text.substr(0, text.find("\n1\n0\n1\n0\n1\n)")));
-  EXPECT_THAT(read_error(dir / "ascii"), HasSubstr("owner:15: the list of owner cells should hold 11 entries, but only 12 "
-                                                   "bytes are left in the file: is it truncated?"));
+  EXPECT_THAT(read_error(dir / "ascii"),
+              HasSubstr("owner:15: the list of owner cells should hold 11 entries, but only 12 "
+                        "bytes are left in the file: is it truncated?"));
   const std::size_t close = text.rfind(')');  // all 11 owners, no ')'
   test::write_text(dir / "ascii" / "owner", text.substr(0, close));
   const auto last_line = std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(close), '\n') + 1;
-  EXPECT_THAT(read_error(dir / "ascii"), HasSubstr(fmt::format("owner:{}: the file ends where ')' was expected (the end "
-                                                               "of the list of owner cells (11 read, as its count says))",
-                                                               last_line)));
+  EXPECT_THAT(read_error(dir / "ascii"),
+              HasSubstr(fmt::format("owner:{}: the file ends where ')' was expected (the end "
+                                    "of the list of owner cells (11 read, as its count says))",
+                                    last_line)));
   write_poly_mesh(dir / "binary", block_2x1x1(), {.binary = true});
   text = test::read_text(dir / "binary" / "points");
   const std::size_t data = text.find("12\n(") + 4;
   test::write_text(dir / "binary" / "points", text.substr(0, data + 100));  // 4 points and a bit
-  EXPECT_THAT(read_error(dir / "binary"), HasSubstr(fmt::format("points: byte {}: the list of points should hold 12 "
-                                                                "entries, but only 100 bytes are left in the file: is it "
-                                                                "truncated?", data - 4)));
+  EXPECT_THAT(read_error(dir / "binary"),
+              HasSubstr(fmt::format("points: byte {}: the list of points should hold 12 "
+                                    "entries, but only 100 bytes are left in the file: is it "
+                                    "truncated?",
+                                    data - 4)));
 }
 
 /// Every file of the block cut at many places, ASCII and binary, plain and gzipped: always an

@@ -25,9 +25,10 @@ using geometry::Vec3;
 using ::testing::HasSubstr;
 namespace tf = test::foam;
 
-#define SKIP_WITHOUT_BLOCKMESH()                                                        \
-  if (tf::block_mesh_command().empty()) GTEST_SKIP() << "blockMesh is not installed: " \
-                                                        "run scripts/install-deps.sh (Debian's openfoam)"
+#define SKIP_WITHOUT_BLOCKMESH()                 \
+  if (tf::block_mesh_command().empty())          \
+  GTEST_SKIP() << "blockMesh is not installed: " \
+                  "run scripts/install-deps.sh (Debian's openfoam)"
 
 constexpr const char* kBlock3d = R"(
 vertices ((0 0 0) (2 0 0) (2 1 0) (0 1 0) (0 0 1) (2 0 1) (2 1 1) (0 1 1));
@@ -44,7 +45,8 @@ boundary (
 std::string channel_2d(const std::function<std::string(double, double, double)>& vertex) {
   std::string vertices;
   for (const double t : {-0.1, 0.1}) {
-    for (const auto& [x, y] : {std::pair{0.0, 0.0}, {2.0, 0.0}, {2.0, 1.0}, {0.0, 1.0}}) vertices += vertex(x, y, t) + " ";
+    for (const auto& [x, y] : {std::pair{0.0, 0.0}, {2.0, 0.0}, {2.0, 1.0}, {0.0, 1.0}})
+      vertices += vertex(x, y, t) + " ";
   }
   return "vertices (" + vertices + R"();
 blocks (hex (0 1 2 3 4 5 6 7) (4 2 1) simpleGrading (1 3 1));
@@ -235,12 +237,15 @@ TEST(FoamBlockMesh, WedgeAboutAnyAxisGivesTheSameMeridionalMesh) {
   // axial coordinate is measured from the axis point nearest the origin, so nothing changes.
   const Vec3 k = Vec3{1, 1, 1} / std::sqrt(3.0);
   const double c = std::cos(0.7), s = std::sin(0.7);
-  const auto rotate = [&](const Vec3& p) { return c * p + s * geometry::cross(k, p) + (1 - c) * geometry::dot(k, p) * k; };
+  const auto rotate = [&](const Vec3& p) {
+    return c * p + s * geometry::cross(k, p) + (1 - c) * geometry::dot(k, p) * k;
+  };
   const Vec3 axis = rotate({1, 0, 0});
   const Vec3 shift = geometry::cross(axis, Vec3{0.3, -1.2, 2.0});  // normal to the axis
   test::TempDir dir;
   const mesh::Mesh plain = read_mesh(block_mesh(dir, "plain", wedge_2d())).mesh;
-  const mesh::Mesh turned = read_mesh(block_mesh(dir, "turned", wedge_2d([&](const Vec3& p) { return rotate(p) + shift; }))).mesh;
+  const mesh::Mesh turned =
+      read_mesh(block_mesh(dir, "turned", wedge_2d([&](const Vec3& p) { return rotate(p) + shift; }))).mesh;
   ASSERT_EQ(turned.node_count(), plain.node_count());
   EXPECT_GT(axis.x, std::max(std::abs(axis.y), std::abs(axis.z)));  // x stays the axial direction's sign
   for (std::size_t n = 0; n < plain.node_count(); ++n) {
@@ -255,9 +260,11 @@ TEST(FoamBlockMesh, CellsThatAreNotHexahedraAreCountedInTheError) {
   // A wedge that reaches the axis: blockMesh collapses the cells at r = 0 into prisms.
   test::TempDir dir;
   std::string dict = wedge_2d();
-  dict = std::regex_replace(dict, std::regex(R"(\(0 0\.99\d+ -0\.04\d+\) \(3 0\.99\d+ -0\.04\d+\))"), "(0 0 0) (3 0 0)");
+  dict =
+      std::regex_replace(dict, std::regex(R"(\(0 0\.99\d+ -0\.04\d+\) \(3 0\.99\d+ -0\.04\d+\))"), "(0 0 0) (3 0 0)");
   dict = std::regex_replace(dict, std::regex(R"(\(0 0\.99\d+ 0\.04\d+\) \(3 0\.99\d+ 0\.04\d+\))"), "(0 0 0) (3 0 0)");
-  dict = std::regex_replace(dict, std::regex(R"(inner \{type wall; faces \(\(0 1 5 4\)\);\})"), "axis {type empty; faces ((0 1 5 4));}");
+  dict = std::regex_replace(dict, std::regex(R"(inner \{type wall; faces \(\(0 1 5 4\)\);\})"),
+                            "axis {type empty; faces ((0 1 5 4));}");
   const auto folder = block_mesh(dir, "axis", dict);
   try {
     read_mesh(folder);

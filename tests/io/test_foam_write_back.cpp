@@ -13,10 +13,10 @@
 namespace hotmesh::io {
 namespace {
 
-using ::testing::HasSubstr;
 using test::foam::block_2x1x1;
 using test::foam::Layout;
 using test::foam::write_poly_mesh;
+using ::testing::HasSubstr;
 
 std::vector<geometry::Vec3> moved(const mesh::Mesh& m) {
   std::vector<geometry::Vec3> points = m.points;
@@ -39,7 +39,8 @@ TEST(FoamWriteBack, WritesMovedPointsInTheInputsFormAndCopiesTheRest) {
     EXPECT_EQ(again.mesh.points, points) << "binary " << layout.binary << " gzip " << layout.gzip;
     EXPECT_EQ(again.mesh.cells, loaded.mesh.cells);
     for (const char* name : {"faces", "owner", "neighbour", "boundary"}) {
-      EXPECT_EQ(test::read_text(dir / "out" / "polyMesh" / (name + gz)), test::read_text(dir / "in" / (name + gz))) << name;
+      EXPECT_EQ(test::read_text(dir / "out" / "polyMesh" / (name + gz)), test::read_text(dir / "in" / (name + gz)))
+          << name;
     }
     // The input is untouched.
     EXPECT_EQ(read_mesh(dir / "in").mesh.points, loaded.mesh.points);
@@ -71,7 +72,8 @@ TEST(FoamWriteBack, FoamTimeWritesThePointsIntoTheCasesTimeFolder) {
   const std::string in_output = test::read_text(dir / "out" / "polyMesh" / "points");
   EXPECT_EQ(in_output.substr(in_output.find("object")), text.substr(text.find("object")));  // the same but its location
   EXPECT_FALSE(std::filesystem::exists(dir / "case" / "0.5" / "polyMesh" / "faces"));
-  EXPECT_EQ(foam_time_folder(polymesh, "1e-05"), std::filesystem::weakly_canonical(dir / "case") / "1e-05" / "polyMesh");
+  EXPECT_EQ(foam_time_folder(polymesh, "1e-05"),
+            std::filesystem::weakly_canonical(dir / "case") / "1e-05" / "polyMesh");
 }
 
 TEST(FoamWriteBack, FoamTimeRefusesNamesThatAreNoTimesAndMeshesOutsideACase) {

@@ -40,7 +40,7 @@ inline PolyMeshData block_2x1x1() {
   PolyMeshData m;
   m.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0},
               {0, 0, 1}, {1, 0, 1}, {2, 0, 1}, {0, 1, 1}, {1, 1, 1}, {2, 1, 1}};
-  m.faces = {{1, 4, 10, 7}, {0, 6, 9, 3},  {2, 5, 11, 8}, {0, 1, 7, 6},  {1, 2, 8, 7},  {3, 9, 10, 4},
+  m.faces = {{1, 4, 10, 7},  {0, 6, 9, 3}, {2, 5, 11, 8}, {0, 1, 7, 6},  {1, 2, 8, 7},  {3, 9, 10, 4},
              {4, 10, 11, 5}, {0, 3, 4, 1}, {1, 4, 5, 2},  {6, 7, 10, 9}, {7, 8, 11, 10}};
   m.owner = {0, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1};
   m.neighbour = {1};
@@ -141,9 +141,10 @@ inline std::string faces_list(const PolyMeshData& m, const Layout& layout) {
 inline std::string boundary_list(const PolyMeshData& m) {
   std::string out = fmt::format("{}\n(\n", m.patches.size());
   for (const auto& p : m.patches) {
-    out += fmt::format("    {}\n    {{\n        type            {};\n        inGroups        List<word> 1({});\n"
-                       "        nFaces          {};\n        startFace       {};\n    }}\n",
-                       p.name, p.type, p.type, p.count, p.start);
+    out += fmt::format(
+        "    {}\n    {{\n        type            {};\n        inGroups        List<word> 1({});\n"
+        "        nFaces          {};\n        startFace       {};\n    }}\n",
+        p.name, p.type, p.type, p.count, p.start);
   }
   return out + ")\n";
 }
@@ -190,16 +191,20 @@ inline void write_foam_file(const std::filesystem::path& folder, const std::stri
 inline void write_poly_mesh(const std::filesystem::path& folder, const PolyMeshData& m, const Layout& layout = {}) {
   std::filesystem::create_directories(folder);
   const std::string tail = "\n// ************************************************************************* //\n";
-  write_foam_file(folder, "points", foam_header(layout, "vectorField", "points") + points_list(m.points, layout) + tail, layout);
+  write_foam_file(folder, "points", foam_header(layout, "vectorField", "points") + points_list(m.points, layout) + tail,
+                  layout);
   write_foam_file(folder, "faces",
-                  foam_header(layout, layout.compact_faces ? "faceCompactList" : "faceList", "faces") + faces_list(m, layout) + tail,
+                  foam_header(layout, layout.compact_faces ? "faceCompactList" : "faceList", "faces") +
+                      faces_list(m, layout) + tail,
                   layout);
-  write_foam_file(folder, "owner", foam_header(layout, "labelList", "owner") + label_list(m.owner, layout) + tail, layout);
-  write_foam_file(folder, "neighbour", foam_header(layout, "labelList", "neighbour") + label_list(m.neighbour, layout) + tail,
+  write_foam_file(folder, "owner", foam_header(layout, "labelList", "owner") + label_list(m.owner, layout) + tail,
                   layout);
+  write_foam_file(folder, "neighbour",
+                  foam_header(layout, "labelList", "neighbour") + label_list(m.neighbour, layout) + tail, layout);
   Layout ascii = layout;
   ascii.binary = false;  // OpenFOAM writes the boundary dictionary as text in either format
-  write_foam_file(folder, "boundary", foam_header(layout, "polyBoundaryMesh", "boundary") + boundary_list(m) + tail, ascii);
+  write_foam_file(folder, "boundary", foam_header(layout, "polyBoundaryMesh", "boundary") + boundary_list(m) + tail,
+                  ascii);
 }
 
 /// blockMesh (Debian's OpenFOAM), or an empty string if it is not installed.
