@@ -267,6 +267,52 @@ std::array<mesh::NodeId, 2> side_edge(const PolyMesh& m, const Pairing& pairing,
   return {ends[0], ends[1]};
 }
 
+/// The back plane's points as the 2D nodes (in OpenFOAM's order, ids = labels + 1); each
+/// front point mapped to the node of its back point.
+void add_back_points(const PolyMesh& m, const Pairing& pairing, FlatMesh& flat) {
+  const PlaneFrame& frame = flat.map.frames[0];
+  flat.map.node.assign(m.points.size(), -1);
+  for (std::size_t q = 0; q < m.points.size(); ++q) {
+    if (pairing.plane[q] != 0) continue;
+    flat.map.node[q] = static_cast<mesh::NodeId>(flat.mesh.points.size());
+    const Vec3 r = m.points[q] - frame.origin;
+    flat.mesh.points.push_back({geometry::dot(r, frame.u), geometry::dot(r, frame.v), 0.0});
+    flat.mesh.node_ids.push_back(static_cast<std::int64_t>(q) + 1);
+  }
+  for (std::size_t q = 0; q < m.points.size(); ++q) {
+    if (pairing.plane[q] == 1) flat.map.node[q] = flat.map.node[static_cast<std::size_t>(pairing.back_point[q])];
+  }
+}
+
+/// Each cell's back face as a quad, counter-clockwise in the 2D plane.
+void add_quads(const std::vector<Hex>& hexes, FlatMesh& flat) {
+  flat.mesh.cells.reserve(hexes.size(), 4 * hexes.size());
+  for (const Hex& h : hexes) {
+    std::array<mesh::NodeId, 4> quad{};
+    std::array<Vec3, 4> corners{};
+    for (std::size_t i = 0; i < 4; ++i) {
+      quad[i] = flat.map.node[static_cast<std::size_t>(h[i])];
+      corners[i] = flat.mesh.points[static_cast<std::size_t>(quad[i])];
+    }
+    if (signed_area(corners) < 0) std::swap(quad[1], quad[3]);
+    flat.mesh.cells.add(mesh::ElementType::quad4, quad);
+  }
+}
+
+/// The patches other than empty/wedge, their faces as the edges they have on the back plane.
+void add_side_patches(const PolyMesh& m, const Pairing& pairing, FlatMesh& flat, const std::string& source) {
+  int tag = 0;
+  for (const BoundaryPatch& p : m.patches) {
+    ++tag;
+    if (p.face_count == 0 || is_planar_type(p.type)) continue;
+    mesh::Patch patch{.name = p.name, .tag = tag, .faces = {}, .nodes = {}};
+    for_faces(p, [&](std::size_t f) {
+      patch.faces.add(mesh::ElementType::line2, side_edge(m, pairing, flat.map, flat.mesh, f, p.name, source));
+    });
+    flat.mesh.patches.push_back(std::move(patch));
+  }
+}
+
 }  // namespace
 
 bool is_2d(const PolyMesh& mesh) {
@@ -281,46 +327,14 @@ FlatMesh flatten(const PolyMesh& m, const CellFaces& cells, const std::string& s
   const std::vector<std::int64_t> back = back_faces(m, cells, planes, source);
   const std::vector<Hex> hexes = hexahedra(m, cells, back, source);
   const Pairing pairing = pair_points(m, hexes, source);
-
   FlatMesh flat;
+  flat.mesh.dimension = 2;
   flat.map.frames = planes.frames;
   flat.map.plane.assign(pairing.plane.begin(), pairing.plane.end());
-  flat.map.node.assign(m.points.size(), -1);
-  mesh::Mesh& mesh = flat.mesh;
-  mesh.dimension = 2;
-  const PlaneFrame& frame = planes.frames[0];
-  for (std::size_t q = 0; q < m.points.size(); ++q) {
-    if (pairing.plane[q] != 0) continue;
-    flat.map.node[q] = static_cast<mesh::NodeId>(mesh.points.size());
-    const Vec3 r = m.points[q] - frame.origin;
-    mesh.points.push_back({geometry::dot(r, frame.u), geometry::dot(r, frame.v), 0.0});
-    mesh.node_ids.push_back(static_cast<std::int64_t>(q) + 1);
-  }
-  for (std::size_t q = 0; q < m.points.size(); ++q) {
-    if (pairing.plane[q] == 1) flat.map.node[q] = flat.map.node[static_cast<std::size_t>(pairing.back_point[q])];
-  }
-  mesh.cells.reserve(hexes.size(), 4 * hexes.size());
-  for (const Hex& h : hexes) {
-    std::array<mesh::NodeId, 4> quad{};
-    std::array<Vec3, 4> corners{};
-    for (std::size_t i = 0; i < 4; ++i) {
-      quad[i] = flat.map.node[static_cast<std::size_t>(h[i])];
-      corners[i] = mesh.points[static_cast<std::size_t>(quad[i])];
-    }
-    if (signed_area(corners) < 0) std::swap(quad[1], quad[3]);
-    mesh.cells.add(mesh::ElementType::quad4, quad);
-  }
-  int tag = 0;
-  for (const BoundaryPatch& p : m.patches) {
-    ++tag;
-    if (p.face_count == 0 || is_planar_type(p.type)) continue;
-    mesh::Patch patch{.name = p.name, .tag = tag, .faces = {}, .nodes = {}};
-    for_faces(p, [&](std::size_t f) {
-      patch.faces.add(mesh::ElementType::line2, side_edge(m, pairing, flat.map, mesh, f, p.name, source));
-    });
-    mesh.patches.push_back(std::move(patch));
-  }
-  mesh.derive_node_sets();
+  add_back_points(m, pairing, flat);
+  add_quads(hexes, flat);
+  add_side_patches(m, pairing, flat, source);
+  flat.mesh.derive_node_sets();
   return flat;
 }
 

@@ -47,6 +47,21 @@ TEST(FoamWriteBack, WritesMovedPointsInTheInputsFormAndCopiesTheRest) {
   }
 }
 
+TEST(FoamWriteBack, SinglePrecisionPointsAreWrittenAsFloats) {
+  test::TempDir dir;
+  write_poly_mesh(dir / "in", block_2x1x1(), {.binary = true, .scalar_bits = 32});
+  const LoadedMesh loaded = read_mesh(dir / "in");
+  const auto points = moved(loaded.mesh);
+  loaded.write_back->write(dir / "out", points, {});
+  const std::string in = test::read_text(dir / "in" / "points"), out = test::read_text(dir / "out" / "polyMesh" / "points");
+  EXPECT_EQ(out.size(), in.size());  // 12 x 3 floats, as the input
+  const auto again = read_mesh(dir / "out" / "polyMesh").mesh.points;
+  ASSERT_EQ(again.size(), points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(again[i].y, static_cast<double>(static_cast<float>(points[i].y)));
+  }
+}
+
 TEST(FoamWriteBack, UnmovedPointsGiveTheSameFileAndTheHeaderIsKept) {
   test::TempDir dir;
   for (const Layout& layout : {Layout{}, Layout{.binary = true}}) {
