@@ -7,6 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
 
 #include "deform_cases.hpp"
 #include "foam_fixtures.hpp"
@@ -161,6 +165,67 @@ TEST(DeformFoam, BinaryGzippedCaseIsWrittenBackBinaryGzippedWithTheSamePoints) {
   // Binary doubles and shortest round-trip text hold the same points.
   EXPECT_EQ(io::read_mesh(written).mesh.points, io::read_mesh(ascii.dir / "out" / "polyMesh").mesh.points);
   const auto k = tf::check_mesh(binary.cfd, written, binary.dir / "check");
+  EXPECT_EQ(k.exit_code, 0) << k.output;
+  EXPECT_THAT(k.output, HasSubstr("Mesh OK.")) << k.output;
+}
+
+/// The ramp channel as an annulus r in [1, 2] about the x axis: a 5-degree wedge case.
+std::string ramp_wedge() {
+  const double a = 2.5 * std::numbers::pi / 180.0;
+  std::string vertices;
+  for (const double side : {-1.0, 1.0}) {
+    for (const auto& [x, r] : {std::pair{0.0, 1.0}, {2.0, 1.0}, {2.0, 2.0}, {0.0, 2.0}}) {
+      vertices += fmt::format("({} {:.17g} {:.17g}) ", x, r * std::cos(a), side * r * std::sin(a));
+    }
+  }
+  return "vertices (" + vertices + R"();
+blocks (hex (0 1 2 3 4 5 6 7) (21 12 1) simpleGrading (1 20 1));
+boundary (
+  left {type patch; faces ((0 4 7 3));}
+  right {type patch; faces ((1 2 6 5));}
+  bottom {type wall; faces ((0 1 5 4));}
+  top {type wall; faces ((3 7 6 2));}
+  back {type wedge; faces ((0 3 2 1));}
+  front {type wedge; faces ((4 5 6 7));}
+);
+)";
+}
+
+TEST(DeformFoam, RampAsAWedgeCaseMovesInTheMeridionalPlaneAndPassesCheckMesh) {
+  SKIP_WITHOUT_BLOCKMESH();
+  test::TempDir dir;
+  const auto cfd = dir / "cfd";
+  tf::write_block_mesh_case(cfd, ramp_wedge());
+  const auto b = tf::run_block_mesh(cfd);
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  // The sample's table in the meridional plane: the lower wall at radius 1.
+  std::istringstream sample(test::read_text(test::kSample / "ramp.csv"));
+  std::string table;
+  for (std::string line; std::getline(sample, line);) {
+    double x = 0, y = 0, dx = 0, dy = 0;
+    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &x, &y, &dx, &dy) == 4) {
+      table += fmt::format("{},{},{},{}\n", x, y + 1.0, dx, dy);
+    } else {
+      table += line + "\n";
+    }
+  }
+  test::write_text(dir / "ramp.csv", table);
+  test::write_text(dir / "wedge.yaml", ramp_case("cfd"));
+  const auto out = dir / "out";
+  const auto r = hotmesh("deform " + shell_quote((dir / "wedge.yaml").string()) + " -o " + shell_quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto original = tf::ascii_points(cfd / "constant" / "polyMesh" / "points");
+  const auto moved = tf::ascii_points(out / "polyMesh" / "points");
+  ASSERT_EQ(moved.size(), original.size());
+  const double tan_a = std::tan(2.5 * std::numbers::pi / 180.0);
+  double lowest_past_ramp = 9.0;
+  for (std::size_t q = 0; q < moved.size(); ++q) {
+    const Vec3& p = moved[q];
+    EXPECT_NEAR(p.z, (original[q].z < 0 ? -tan_a : tan_a) * p.y, 1e-14) << q;  // on its own wedge plane
+    if (p.x > 1.1) lowest_past_ramp = std::min(lowest_past_ramp, std::hypot(p.y, p.z));
+  }
+  EXPECT_NEAR(lowest_past_ramp, 1.5, 1e-9);  // the inner wall past the ramp, raised by h/2
+  const auto k = tf::check_mesh(cfd, out / "polyMesh", dir / "check");
   EXPECT_EQ(k.exit_code, 0) << k.output;
   EXPECT_THAT(k.output, HasSubstr("Mesh OK.")) << k.output;
 }
