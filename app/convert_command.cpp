@@ -1,4 +1,5 @@
-// hotmesh convert IN OUT: re-write a mesh in another format (.msh or .cgns -> .msh 4.1, .cgns or .vtu).
+// hotmesh convert IN OUT: re-write a mesh in another format (.msh, .cgns or an OpenFOAM folder ->
+// .msh 4.1, .cgns or .vtu).
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -21,9 +22,11 @@ Command add_convert_command(CLI::App& parent) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = parent.add_subcommand(
       "convert",
-      "Convert a mesh: Gmsh 2.2/4.1 (.msh) or CGNS (.cgns) to Gmsh 4.1 (.msh), CGNS (.cgns: one unstructured zone) or "
-      "ParaView (.vtu with cell quality)");
-  cmd->add_option("IN", options->input, "Input mesh (.msh, .cgns)")->required()->check(CLI::ExistingFile);
+      "Convert a mesh: Gmsh 2.2/4.1 (.msh), CGNS (.cgns) or OpenFOAM (a case or polyMesh folder) to Gmsh 4.1 (.msh), "
+      "CGNS (.cgns: one unstructured zone) or ParaView (.vtu with cell quality)");
+  cmd->add_option("IN", options->input, "Input mesh (.msh, .cgns, or an OpenFOAM case / polyMesh folder)")
+      ->required()
+      ->check(CLI::ExistingPath);
   cmd->add_option("OUT", options->output, "Output mesh (.msh, .cgns or .vtu); never the input")->required();
   cmd->add_flag("--binary", options->binary, "Write .msh in binary (smaller, faster for large meshes)");
   return [options] {

@@ -1,11 +1,14 @@
-// hotmesh deform CASE.yaml [-o DIR] [--threads N] [--force] [--binary] [--resume] [--progress]:
+// hotmesh deform CASE.yaml [-o DIR] [--threads N] [--force] [--binary] [--resume] [--progress]
+// [--foam-time T]:
 // the main job. Reads and validates everything first, moves the mesh increment by increment
 // (saving a checkpoint after each), and writes the deformed mesh (.msh, .vtu), pictures for 2D
 // meshes, report.json and restart.hmr (the state the next coupling iteration continues from)
 // to the output folder. If the motion fails it keeps the last valid mesh, writes failed.vtu
 // marking the failed cells and exits with code 1. --resume continues a killed run from its
-// checkpoint. Running out of memory is reported with the phase and exit code 4. Under mpirun
-// every rank runs this command; rank 0 alone logs progress and writes files.
+// checkpoint. An OpenFOAM mesh is also written back as polyMesh/ in the output folder (and
+// with --foam-time into the case's time folder T/polyMesh). Running out of memory is reported
+// with the phase and exit code 4. Under mpirun every rank runs this command; rank 0 alone logs
+// progress and writes files.
 #include <CLI/CLI.hpp>
 #include <omp.h>
 #include <spdlog/spdlog.h>
@@ -27,6 +30,7 @@
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
+#include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/io/output_folder.hpp"
 #include "hotmesh/io/restart_file.hpp"
@@ -52,7 +56,8 @@ struct Options {
   bool binary = false;
   bool resume = false;
   bool progress = false;
-  bool series = false;  ///< --series: as the case's `output: {series: true}`
+  bool series = false;     ///< --series: as the case's `output: {series: true}`
+  std::string foam_time;  ///< empty: no time folder written into the OpenFOAM case
 };
 
 /// Where the run is, for the message if memory runs out (kept outside the run, which the
@@ -157,6 +162,18 @@ std::optional<io::Checkpoint> prepare_output(const Options& options, const io::C
   return resumed;
 }
 
+/// --foam-time T: the mesh must be an OpenFOAM case's, and T/polyMesh/points no input.
+void check_foam_time(const Options& options, const io::Case& c) {
+  if (options.foam_time.empty()) return;
+  if (io::mesh_format(c.mesh) != io::MeshFormat::foam) {
+    throw InputError::in("--foam-time", "writes into an OpenFOAM case, but the case's mesh " + c.mesh.string() +
+                                            " is not an OpenFOAM polyMesh");
+  }
+  const std::filesystem::path folder = io::foam_time_folder(c.mesh, options.foam_time);
+  const auto inputs = c.inputs();
+  for (const char* name : {"points", "points.gz"}) io::refuse_overwriting_input(folder / name, inputs);
+}
+
 /// What a run reads and checks before any work.
 struct RunInputs {
   io::Case c;
@@ -197,6 +214,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
   state.cells = mesh.cell_count();
   spdlog::info("mesh {}: {} nodes, {} cells", c.mesh.string(), mesh.node_count(), mesh.cell_count());
   io::check_case_against_mesh(c, mesh);
+  check_foam_time(options, c);
   in.output = options.output.empty() ? c.output : std::filesystem::path(options.output);
   state.phase = "checking the inputs";
   in.fingerprints = io::input_fingerprints(c);
@@ -260,7 +278,9 @@ int write_run_outputs(const RunInputs& in, const io::CaseSetup& setup, const def
   const mesh::Mesh& mesh = in.loaded.mesh;
   const std::filesystem::path& output = in.output;
   const auto t = Clock::now();
-  RunOutputs outputs = write_outputs(output, c, in.loaded, setup, result, options.binary, {});
+  io::WriteBackOptions write_back;
+  if (!options.foam_time.empty()) write_back.foam_time = options.foam_time;
+  RunOutputs outputs = write_outputs(output, c, in.loaded, setup, result, options.binary, write_back);
   if (result.success) {  // the state the next coupling iteration restarts from
     io::write_restart(output / "restart.hmr", io::restart_state(c, mesh, result));
     outputs.files.push_back(output / "restart.hmr");
@@ -355,6 +375,9 @@ Command add_deform_command(CLI::App& parent) {
                 "Continue an interrupted run from the checkpoint in its output folder (same case and inputs)");
   cmd->add_flag("--progress", options->progress,
                 "Log every Newton step (the default for meshes of 100 000 cells or more; -v shows them too)");
+  cmd->add_option("--foam-time", options->foam_time,
+                  "OpenFOAM meshes: also write the moved points into the case's time folder T/polyMesh (see "
+                  "docs/openfoam.md)");
   return [options] {
     RunState state;
     const parallel::Processes job = parallel::start_processes();  // mpirun: MPI, this process's rank

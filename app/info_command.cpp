@@ -18,7 +18,9 @@ Command add_info_command(CLI::App& parent) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = parent.add_subcommand("info", "Show counts, patches and cell quality of a mesh");
-  cmd->add_option("MESH", options->mesh, "Mesh file (.msh, .cgns)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("MESH", options->mesh, "Mesh file (.msh, .cgns) or OpenFOAM case / polyMesh folder")
+      ->required()
+      ->check(CLI::ExistingPath);
   cmd->add_flag("--json", options->json, "Print the summary as JSON");
   return [options] {
     const io::LoadedMesh loaded = io::read_mesh(options->mesh);

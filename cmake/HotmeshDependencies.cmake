@@ -15,6 +15,7 @@ find_package(spdlog 1.10 REQUIRED CONFIG)
 find_package(nlohmann_json 3.11 REQUIRED CONFIG)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(Cairo REQUIRED IMPORTED_TARGET cairo>=1.16)
+find_package(ZLIB REQUIRED)  # gzipped OpenFOAM mesh files (points.gz, ...)
 # PETSc with Open MPI for the `amg` linear solver (Debian's petsc-dev 3.18). Its PETSc.pc lies
 # under the alternative /usr/lib/petsc; its Cflags force _FORTIFY_SOURCE (a warning without
 # optimisation), so only the include directory and libraries are taken from it.

@@ -84,19 +84,31 @@ void write_file_atomically(const std::filesystem::path& target, std::string_view
   file.commit();
 }
 
+namespace {
+
+/// A temporary file `file` of the output `name` whose writer no longer runs.
+bool stale_temporary_of(const std::string& file, const std::string& name) {
+  const std::string prefix = name + ".tmp-";
+  if (file.rfind(prefix, 0) != 0) return false;
+  const std::string rest = file.substr(prefix.size());
+  const auto dash = rest.find('-');
+  if (dash == 0 || dash > 9 || dash == std::string::npos || rest.find_first_not_of("0123456789-") != std::string::npos) {
+    return false;
+  }
+  const pid_t pid = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
+  const bool alive = pid == ::getpid() || ::kill(pid, 0) == 0 || errno == EPERM;
+  return !alive;
+}
+
+}  // namespace
+
 void remove_stale_temporaries(const std::filesystem::path& folder, std::span<const std::string> names) {
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
-    const std::string file = entry.path().filename().string();
-    for (const auto& name : names) {
-      const std::string prefix = name + ".tmp-";
-      if (file.rfind(prefix, 0) != 0) continue;
-      const std::string rest = file.substr(prefix.size());
-      const auto dash = rest.find('-');
-      if (dash == 0 || dash > 9 || dash == std::string::npos || rest.find_first_not_of("0123456789-") != std::string::npos) continue;
-      const pid_t pid = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
-      const bool alive = pid == ::getpid() || ::kill(pid, 0) == 0 || errno == EPERM;
-      if (alive) continue;
+  for (const auto& name : names) {  // a name may be in a subfolder ("polyMesh/points")
+    const std::filesystem::path output = folder / name;
+    const std::string file_name = output.filename().string();
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(output.parent_path(), ec)) {
+      if (!stale_temporary_of(entry.path().filename().string(), file_name)) continue;
       std::error_code ignored;
       std::filesystem::remove(entry.path(), ignored);
     }

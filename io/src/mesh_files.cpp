@@ -8,19 +8,21 @@
 
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
+#include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/gmsh.hpp"
 
 namespace hotmesh::io {
 
 MeshFormat mesh_format(const std::filesystem::path& path) {
+  if (is_foam_path(path)) return MeshFormat::foam;
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".msh") return MeshFormat::gmsh;
   if (ext == ".vtu") return MeshFormat::vtu;
   if (ext == ".cgns" || ext == ".hdf" || ext == ".adf") return MeshFormat::cgns;
   throw InputError::in(path.string(), "unknown mesh format '" + ext +
-                                          "': hotmesh reads Gmsh .msh and CGNS .cgns files and writes .msh, .cgns and "
-                                          ".vtu");
+                                          "': hotmesh reads Gmsh .msh and CGNS .cgns files and OpenFOAM polyMesh "
+                                          "folders, and writes .msh, .cgns and .vtu");
 }
 
 LoadedMesh read_mesh(const std::filesystem::path& path) {
@@ -31,6 +33,12 @@ LoadedMesh read_mesh(const std::filesystem::path& path) {
       CgnsMesh cgns = read_cgns(path);
       loaded.mesh = std::move(cgns.mesh);
       loaded.write_back = std::move(cgns.write_back);
+      break;
+    }
+    case MeshFormat::foam: {
+      FoamMesh foam = read_foam(path);
+      loaded.mesh = std::move(foam.mesh);
+      loaded.write_back = std::move(foam.write_back);
       break;
     }
     case MeshFormat::vtu: throw InputError::in(path.string(), "hotmesh writes .vtu files but does not read them");
@@ -48,8 +56,10 @@ std::vector<std::filesystem::path> mesh_input_files(const std::filesystem::path&
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_directory(path, ec)) return {path};
+  // The polyMesh folder's files: those read and those the write-back copies.
+  const fs::path folder = foam_mesh_folder(path);
   std::vector<fs::path> files;
-  for (const fs::directory_entry& e : fs::directory_iterator(path, ec)) {
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
     if (e.is_regular_file(ec)) files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());
@@ -71,7 +81,9 @@ void write_mesh(const std::filesystem::path& path, const mesh::Mesh& mesh, std::
     }
     case MeshFormat::vtu: write_vtu(path, mesh, points, fields); return;
     case MeshFormat::cgns: write_cgns(path, mesh, points); return;
+    case MeshFormat::foam: break;
   }
+  throw InputError::in(path.string(), "hotmesh writes OpenFOAM meshes only as the moved points of a mesh it read");
 }
 
 }  // namespace hotmesh::io

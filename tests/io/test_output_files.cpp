@@ -80,10 +80,13 @@ TEST(AtomicFile, StaleTemporariesOfEndedRunsAreRemovedThoseOfLiveOnesKept) {
   const std::string dead = "checkpoint.hmc.tmp-" + std::to_string(ended_process()) + "-0";
   const std::string live = "checkpoint.hmc.tmp-" + std::to_string(::getppid()) + "-3";
   const std::string other = "notes.txt.tmp-" + std::to_string(ended_process()) + "-0";
-  for (const auto& name : {dead, live, other}) test::write_text(dir / name, "x");
-  const std::array<std::string, 2> names{"checkpoint.hmc", "report.json"};
+  const std::string in_subfolder = "polyMesh/points.tmp-" + std::to_string(ended_process()) + "-0";
+  std::filesystem::create_directories(dir / "polyMesh");
+  for (const auto& name : {dead, live, other, in_subfolder}) test::write_text(dir / name, "x");
+  const std::array<std::string, 3> names{"checkpoint.hmc", "report.json", "polyMesh/points"};
   remove_stale_temporaries(dir.path(), names);
   EXPECT_FALSE(std::filesystem::exists(dir / dead));
+  EXPECT_FALSE(std::filesystem::exists(dir / in_subfolder));  // an output in a subfolder (OpenFOAM's polyMesh/)
   EXPECT_TRUE(std::filesystem::exists(dir / live));
   EXPECT_TRUE(std::filesystem::exists(dir / other));  // not one of the outputs
 }

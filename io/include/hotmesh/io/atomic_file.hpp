@@ -59,6 +59,7 @@ void write_file_atomically(const std::filesystem::path& target, std::string_view
 
 /// Removes the temporary files that a killed run left beside the outputs `names` in `folder`
 /// (`<name>.tmp-<pid>-<n>` of a process that no longer runs; those of a live process stay).
+/// A name may lie in a subfolder of `folder` ("polyMesh/points").
 void remove_stale_temporaries(const std::filesystem::path& folder, std::span<const std::string> names);
 
 /// Reads a whole file. Throws hotmesh::InputError naming the file if it cannot be read.

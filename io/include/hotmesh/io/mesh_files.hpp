@@ -3,12 +3,15 @@
 //   .vtu  VTK XML unstructured grid (write only: for ParaView)
 //   .cgns CGNS, HDF5 or ADF (also .hdf, .adf): read, written back (deformed.cgns), and
 //         written new by convert (docs/cgns.md)
+//   a folder: an OpenFOAM polyMesh folder or case (read, and written back: foam.hpp,
+//         docs/openfoam.md)
 // A mesh read from another solver's format keeps what it needs to be written back in that
 // format (MeshWriteBack), with only the coordinates of its nodes changed.
 #pragma once
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -19,14 +22,18 @@
 
 namespace hotmesh::io {
 
-enum class MeshFormat { gmsh, vtu, cgns };
+enum class MeshFormat { gmsh, vtu, cgns, foam };
 
-/// The format a path names by its extension. Throws hotmesh::InputError for others.
+/// The format a path names by its extension (foam for a folder). Throws hotmesh::InputError
+/// for others.
 MeshFormat mesh_format(const std::filesystem::path& path);
 
 /// How a run writes its moved mesh back in the format the mesh came from, beside
 /// deformed.msh: everything of the input kept, only the nodes' coordinates replaced.
-struct WriteBackOptions {};
+struct WriteBackOptions {
+  /// OpenFOAM: also write the moved points into the case's time folder <case>/<foam_time>/polyMesh.
+  std::optional<std::string> foam_time;
+};
 
 class MeshWriteBack {
  public:

@@ -1,0 +1,53 @@
+// hotmesh io: OpenFOAM polyMesh folders (points, faces, owner, neighbour, boundary), ASCII or
+// binary, each file plain or gzipped. Cells must be hexahedra; patches come from `boundary`.
+// One-cell-thick 2D cases (`empty` or `wedge` front and back) are read as 2D quad meshes and
+// written back one cell thick. The write-back (MeshWriteBack) writes the moved points in the
+// input's format beside the other polyMesh files copied unchanged. docs/openfoam.md is the
+// user's reference.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string_view>
+
+#include "hotmesh/io/mesh_files.hpp"
+#include "hotmesh/mesh/mesh.hpp"
+
+namespace hotmesh::io {
+
+/// The polyMesh folder `path` names: `path` itself if it holds a points file, else
+/// `path`/constant/polyMesh if that is a folder (a case folder). Throws hotmesh::InputError
+/// if neither.
+std::filesystem::path foam_mesh_folder(const std::filesystem::path& path);
+
+/// The folder `--foam-time T` writes the moved points into: <case>/T/polyMesh, the case
+/// being the folder holding constant/polyMesh that `mesh_path` names. Throws
+/// hotmesh::InputError if T is not a time name (a non-negative number: `constant` and paths
+/// are refused) or the mesh is not a case's constant/polyMesh.
+std::filesystem::path foam_time_folder(const std::filesystem::path& mesh_path, std::string_view time);
+
+/// True if `path` is a folder (read as an OpenFOAM mesh).
+bool is_foam_path(const std::filesystem::path& path);
+
+struct FoamMesh {
+  mesh::Mesh mesh;  ///< not yet validated (see read_mesh in mesh_files.hpp)
+  std::shared_ptr<const MeshWriteBack> write_back;
+};
+
+/// Reads the polyMesh of `path` (a polyMesh folder or a case folder).
+///
+/// - 3D: every cell must be a hexahedron (six quadrilateral faces, each edge shared by two);
+///   points keep OpenFOAM's order, cells are numbered as OpenFOAM's. Patches with faces
+///   become patches (quad4, outward), in the order of `boundary`; patches without faces are
+///   left out.
+/// - 2D: a mesh with faces on `empty` patches (front and back planes normal to x, y or z) or
+///   on two `wedge` patches is one cell thick: the result is the quad mesh of the back plane
+///   (the lower coordinate for `empty`, the first wedge patch for `wedge`) in the x-y plane:
+///   empty normal to z: (x, y); normal to x: (y, z); normal to y: (z, x); wedge: (axial
+///   coordinate, radius) about the line where the wedge planes meet. Its node ids are the
+///   OpenFOAM point labels + 1. The empty/wedge patches are dropped, the others become line2
+///   patches.
+/// Throws hotmesh::InputError naming the file and line (or byte offset) for every problem.
+FoamMesh read_foam(const std::filesystem::path& path);
+
+}  // namespace hotmesh::io

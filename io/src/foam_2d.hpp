@@ -1,0 +1,26 @@
+// hotmesh io (internal): one-cell-thick OpenFOAM cases as 2D quad meshes. The faces on the
+// `empty` patches (two planes normal to x, y or z) or on the two `wedge` patches (two planes
+// through the symmetry axis) split every cell into a back and a front quad; the back quads,
+// in the 2D frame of the back plane, are the 2D mesh, and each front point follows the back
+// point it is joined to by a cell edge.
+#pragma once
+
+#include "foam_cells.hpp"
+#include "foam_write_back.hpp"
+#include "hotmesh/mesh/mesh.hpp"
+
+namespace hotmesh::io::foam {
+
+/// True if some `empty` or `wedge` patch has faces.
+bool is_2d(const PolyMesh& mesh);
+
+struct FlatMesh {
+  mesh::Mesh mesh;
+  PointMap map;
+};
+
+/// The 2D mesh of a one-cell-thick case. Throws hotmesh::InputError naming `source` if the
+/// mesh is not one (planes, cells with other than one face on each, ...).
+FlatMesh flatten(const PolyMesh& mesh, const CellFaces& cells, const std::string& source);
+
+}  // namespace hotmesh::io::foam

@@ -1,0 +1,158 @@
+// hotmesh io: hexahedra from polyMesh faces (see foam_cells.hpp).
+#include "foam_cells.hpp"
+
+#include <algorithm>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "hotmesh/geometry/input_error.hpp"
+
+namespace hotmesh::io::foam {
+namespace {
+
+using Quad = std::array<std::int64_t, 4>;
+
+/// The faces of one cell, each with its points in outward order.
+struct OutwardFaces {
+  std::vector<std::vector<std::int64_t>> faces;
+};
+
+OutwardFaces outward_faces(const PolyMesh& mesh, const CellFaces& cells, std::size_t c) {
+  OutwardFaces out;
+  for (auto i = cells.offsets[c]; i < cells.offsets[c + 1]; ++i) {
+    const auto f = static_cast<std::size_t>(cells.faces[static_cast<std::size_t>(i)]);
+    std::vector<std::int64_t> points(mesh.faces.nodes.begin() + mesh.faces.offsets[f],
+                                     mesh.faces.nodes.begin() + mesh.faces.offsets[f + 1]);
+    if (!cells.owned[static_cast<std::size_t>(i)]) std::reverse(points.begin(), points.end());
+    out.faces.push_back(std::move(points));
+  }
+  return out;
+}
+
+/// "a prism", "a tetrahedron", ...: what a cell that is not a hexahedron looks like.
+std::string shape_of(const OutwardFaces& cell) {
+  std::size_t triangles = 0, quads = 0;
+  for (const auto& f : cell.faces) {
+    triangles += f.size() == 3;
+    quads += f.size() == 4;
+  }
+  const std::size_t n = cell.faces.size();
+  if (n == 0) return "no faces";
+  std::string shape;
+  if (n == 4 && triangles == 4) {
+    shape = "a tetrahedron";
+  } else if (n == 5 && triangles == 2 && quads == 3) {
+    shape = "a prism";
+  } else if (n == 5 && triangles == 4 && quads == 1) {
+    shape = "a pyramid";
+  } else if (n == 6 && quads == 6) {
+    shape = "six quadrilaterals that do not close a hexahedron";
+  } else {
+    std::vector<std::size_t> sizes;
+    for (const auto& f : cell.faces) sizes.push_back(f.size());
+    shape = fmt::format("a polyhedron, faces of {} points", fmt::join(sizes, ", "));
+  }
+  return fmt::format("{} faces ({})", n, shape);
+}
+
+/// The node joined to `node` by an edge of the cell that is not in `bottom`, if exactly one.
+std::optional<std::int64_t> node_above(const OutwardFaces& cell, std::int64_t node, const Quad& bottom) {
+  std::optional<std::int64_t> above;
+  for (const auto& f : cell.faces) {
+    for (std::size_t i = 0; i < 4; ++i) {
+      if (f[i] != node) continue;
+      for (const std::int64_t other : {f[(i + 1) % 4], f[(i + 3) % 4]}) {
+        if (std::find(bottom.begin(), bottom.end(), other) != bottom.end()) continue;
+        if (above && *above != other) return std::nullopt;
+        above = other;
+      }
+    }
+  }
+  return above;
+}
+
+/// Each of the cell's edges must lie in exactly two of its faces, once in each direction.
+bool edges_close(const OutwardFaces& cell) {
+  std::vector<std::pair<std::int64_t, std::int64_t>> edges;
+  for (const auto& f : cell.faces) {
+    for (std::size_t i = 0; i < 4; ++i) edges.emplace_back(f[i], f[(i + 1) % 4]);
+  }
+  std::sort(edges.begin(), edges.end());
+  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
+  for (const auto& [a, b] : edges) {
+    if (!std::binary_search(edges.begin(), edges.end(), std::pair{b, a})) return false;
+  }
+  return true;
+}
+
+std::optional<Hex> hex_from(const OutwardFaces& cell, std::size_t bottom_face) {
+  if (cell.faces.size() != 6) return std::nullopt;
+  for (const auto& f : cell.faces) {
+    if (f.size() != 4) return std::nullopt;
+  }
+  if (!edges_close(cell)) return std::nullopt;
+  const auto& b = cell.faces[bottom_face];
+  const Quad bottom{b[0], b[3], b[2], b[1]};  // right-hand normal into the cell
+  Hex hex{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto above = node_above(cell, bottom[i], bottom);
+    if (!above) return std::nullopt;
+    hex[i] = bottom[i];
+    hex[i + 4] = *above;
+  }
+  Hex sorted = hex;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return std::nullopt;
+  return hex;
+}
+
+}  // namespace
+
+CellFaces cell_faces(const PolyMesh& mesh) {
+  CellFaces cells;
+  cells.offsets.assign(mesh.cell_count + 1, 0);
+  for (const std::int64_t c : mesh.owner) ++cells.offsets[static_cast<std::size_t>(c) + 1];
+  for (const std::int64_t c : mesh.neighbour) ++cells.offsets[static_cast<std::size_t>(c) + 1];
+  for (std::size_t c = 0; c < mesh.cell_count; ++c) cells.offsets[c + 1] += cells.offsets[c];
+  cells.faces.resize(static_cast<std::size_t>(cells.offsets.back()));
+  cells.owned.resize(cells.faces.size());
+  std::vector<std::int64_t> next(cells.offsets.begin(), cells.offsets.end() - 1);
+  const auto add = [&](std::int64_t cell, std::size_t face, bool owned) {
+    const auto at = static_cast<std::size_t>(next[static_cast<std::size_t>(cell)]++);
+    cells.faces[at] = static_cast<std::int64_t>(face);
+    cells.owned[at] = owned;
+  };
+  for (std::size_t f = 0; f < mesh.owner.size(); ++f) add(mesh.owner[f], f, true);
+  for (std::size_t f = 0; f < mesh.neighbour.size(); ++f) add(mesh.neighbour[f], f, false);
+  return cells;
+}
+
+std::vector<Hex> hexahedra(const PolyMesh& mesh, const CellFaces& cells, std::span<const std::int64_t> bottom_faces,
+                           const std::string& source) {
+  std::vector<Hex> hexes(mesh.cell_count);
+  std::size_t others = 0;
+  std::string first;
+  for (std::size_t c = 0; c < mesh.cell_count; ++c) {
+    const OutwardFaces cell = outward_faces(mesh, cells, c);
+    std::size_t bottom = 0;
+    if (!bottom_faces.empty()) {
+      const auto begin = cells.faces.begin() + cells.offsets[c], end = cells.faces.begin() + cells.offsets[c + 1];
+      bottom = static_cast<std::size_t>(std::find(begin, end, bottom_faces[c]) - begin);
+    }
+    const auto hex = bottom < cell.faces.size() ? hex_from(cell, bottom) : std::nullopt;
+    if (hex) {
+      hexes[c] = *hex;
+    } else if (others++ == 0) {
+      first = fmt::format("cell {} has {}", c, shape_of(cell));
+    }
+  }
+  if (others > 0) {
+    throw InputError::in(source, fmt::format("{}; hotmesh moves hexahedral meshes only (quadrilaterals in 2D), and {} "
+                                             "of the {} cells are not hexahedra",
+                                             first, others, mesh.cell_count));
+  }
+  return hexes;
+}
+
+}  // namespace hotmesh::io::foam
