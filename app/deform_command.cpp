@@ -347,6 +347,10 @@ int run_deform(const Options& options, RunState& state) {
   const std::optional<io::CheckpointInfo> resumed_from = in.resumed ? std::optional(in.resumed->info) : std::nullopt;
   in.resumed.reset();  // its copy of the mesh is no longer needed
   for (const auto& note : result.notes) spdlog::warn("{}", note);
+  if (const auto& repair = result.corner_repair; repair.cells_below > 0) {
+    spdlog::info("corner pass: {} cells below the motion's worst cell; {} interior nodes moved, worst cell {:.3f} -> {:.3f}",
+                 repair.cells_below, repair.nodes_moved, repair.min_before, repair.min_after);
+  }
   const auto& m = result.timings;
   spdlog::info("motion {:.2f} s: assembly {:.2f} s, preconditioner {:.2f} s, solve {:.2f} s, projection {:.2f} s",
                m.total, m.assembly, m.preconditioner, m.solve, m.projection);

@@ -254,6 +254,11 @@ void put_motion(json& j, const mesh::Mesh& mesh, const deform::MotionResult& res
   j["quality"] = quality_json(mesh, result.summary);
   j["notes"] = result.notes;
   j["features"] = features_json(mesh, result);
+  const auto& repair = result.corner_repair;
+  j["corner_repair"] = {{"cells_below", repair.cells_below},
+                        {"nodes_moved", repair.nodes_moved},
+                        {"min_before", repair.min_before},
+                        {"min_after", repair.min_after}};
 }
 
 json seconds_json(const RunTimings& timings, const deform::MotionTimings& m) {

@@ -21,6 +21,7 @@
 #include "hotmesh/mesh/parallel_loops.hpp"
 #include "linear_solver.hpp"
 #include "newton.hpp"
+#include "quality_repair.hpp"
 #include "sliding.hpp"
 
 namespace hotmesh::deform {
@@ -423,7 +424,23 @@ bool has_corners(std::span<const PatchMotion> patches) {
   });
 }
 
-MotionResult with_corner_pass(MotionResult moved, MotionResult pass);
+MotionResult with_corner_pass(const Mesh& mesh, MotionResult moved, MotionResult pass);
+
+/// Sweeps of the repair after the corner pass (quality_repair.hpp), at most.
+constexpr int kRepairSweeps = 50;
+
+/// The pass must not cost quality: where it left cells below the motion's worst cell
+/// (`motion`), the interior nodes of those cells are moved to restore it (quality_repair.hpp).
+void restore_worst_cell(const Mesh& mesh, const QualitySummary& motion, MotionResult& pass) {
+  std::vector<char> interior(pass.node_roles.size());
+  std::transform(pass.node_roles.begin(), pass.node_roles.end(), interior.begin(),
+                 [](NodeRoleCode role) { return role == 0 ? 1 : 0; });
+  const detail::QualityRepair r =
+      detail::repair_cells_below(mesh, pass.points, interior, motion.min_scaled_jacobian, kRepairSweeps);
+  pass.corner_repair = {r.cells_below, r.nodes_moved, r.min_before, r.min_after};
+  pass.quality = scaled_jacobians(mesh.cells, pass.points);
+  pass.summary = summarize_quality(pass.quality);
+}
 
 /// The corner pass after a successful motion `moved` (issue 20, beyond the paper): each corner
 /// of a sliding wall is given the node nearest it, which moves onto it; the other sliding
@@ -475,12 +492,12 @@ MotionResult hold_corners(const Mesh& mesh, std::span<const PatchMotion> patches
   MotionResult pass = motion.run(nullptr);
 
   for (const IncrementRecord& r : pass.increments) moved.increments.push_back(as_corner_pass(r));
-  return with_corner_pass(std::move(moved), std::move(pass));
+  return with_corner_pass(mesh, std::move(moved), std::move(pass));
 }
 
 /// The motion's result `moved` with the corner pass's `pass` after it: its times added, and,
 /// if it succeeded, its mesh, quality and corners.
-MotionResult with_corner_pass(MotionResult moved, MotionResult pass) {
+MotionResult with_corner_pass(const Mesh& mesh, MotionResult moved, MotionResult pass) {
   MotionTimings& t = moved.timings;
   t.setup += pass.timings.setup;
   t.assembly += pass.timings.assembly;
@@ -495,6 +512,8 @@ MotionResult with_corner_pass(MotionResult moved, MotionResult pass) {
     return moved;
   }
   moved.notes.insert(moved.notes.end(), pass.notes.begin(), pass.notes.end());
+  if (pass.summary.min_scaled_jacobian < moved.summary.min_scaled_jacobian) restore_worst_cell(mesh, moved.summary, pass);
+  moved.corner_repair = pass.corner_repair;
   moved.restart_points = std::exchange(moved.points, std::move(pass.points));
   moved.quality = std::move(pass.quality);
   moved.summary = pass.summary;

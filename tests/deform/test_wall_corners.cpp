@@ -195,5 +195,26 @@ TEST(WallCorners, OnASurfaceOfRevolutionTheHoldingNodesSlideAlongTheCornerCircle
   EXPECT_GT(turned, 1e-7) << "the nodes holding the corner circles did not move along them";
 }
 
+TEST(WallCorners, TheCornerPassRunsWithTheAmgSolverToo) {
+  // The sector's corner circles with the assembled solver (nodal frames for the nodes that
+  // slide along a circle): the same corners held as with jacobi-pcg.
+  const double sector = 10.0 * std::numbers::pi / 180.0;
+  mesh::Mesh mesh = mesh::structured_hexes(along(), mesh::uniform_line(0.0, sector, 3), across(),
+                                           {"left", "right", "side0", "side1", "bottom", "top"});
+  for (Vec3& p : mesh.points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), p.z};
+  const geometry::Axis axis({0, 0, 0}, {0, 0, 1});
+  const auto wall = std::make_shared<geometry::RevolvedShape>(bump_wall(), axis);
+  SolverOptions amg;
+  amg.linear = LinearSolverKind::amg;
+  const MotionResult r = move_mesh(mesh, motions(wall, true, {"side0", "side1"}), {}, amg);
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_EQ(r.summary.inverted_cells, 0u);
+  ASSERT_EQ(r.features.size(), 4u);
+  for (const WallFeature& f : r.features) {
+    EXPECT_EQ(f.given_nodes, 4u);
+    EXPECT_LT(f.distance, 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace hotmesh::deform

@@ -99,9 +99,13 @@ TEST(LinearSolvers, AmgAndJacobiPcgGiveTheSameRamp) {
   EXPECT_LT(largest_distance(loose, tight), 3e-5);
 }
 
+// The paper's sliding (features off): with features, the repair after the corner pass
+// (quality_repair.hpp) is a search that stops once the worst cell is restored, so meshes that
+// differ by 1e-7 can end up to 1e-3 apart in the few nodes it moves; both solvers are
+// compared on the motion itself. (The corner pass with amg: WallCorners.*Amg*.)
 TEST(LinearSolvers, AmgAndJacobiPcgGiveTheSameSlidingRamp) {
   if (test::under_sanitizers()) GTEST_SKIP() << "a minute in the Release build; run there";
-  expect_same_mesh(kSamples / "ramp2d" / "ramp2d-sliding.yaml");
+  expect_same_mesh(kSamples / "ramp2d" / "ramp2d-sliding-nofeatures.yaml");
 }
 
 TEST(LinearSolvers, AmgAndJacobiPcgGiveTheSameShear) { expect_same_mesh(kSamples / "shear2d" / "shear2d.yaml"); }

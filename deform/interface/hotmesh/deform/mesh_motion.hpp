@@ -178,6 +178,14 @@ struct MotionResult {
   /// 22) and each ends with its own pass. Empty when there was no pass: then `points`.
   std::vector<Vec3> restart_points;
   std::vector<WallFeature> features;           ///< the corners of the sliding walls, by patch
+  /// Where the corner pass left cells below the motion's worst cell: the interior nodes moved
+  /// to restore it (deform/src/quality_repair.hpp). Zero counts when it did not.
+  struct CornerRepair {
+    std::size_t cells_below = 0;  ///< cells the pass left below the motion's worst cell
+    std::size_t nodes_moved = 0;
+    double min_before = 0.0;      ///< worst scaled Jacobian after the pass, before the repair
+    double min_after = 0.0;
+  } corner_repair;
   std::vector<std::string> notes;      ///< things worth a warning (set-up conflicts, ...)
   MotionTimings timings;
 };
