@@ -1,0 +1,284 @@
+// hotmesh tests: the CalculiX readers (io/src/frd_reader.cpp, inp_reader.cpp,
+// calculix_table.cpp) against files written by the real ccx: its .frd displacements equal its
+// own .dat printout of the same nodes, binary .frd equals ASCII .frd, sets come through
+// *INCLUDE and GENERATE, surfaces of element faces give their nodes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "calculix_runs.hpp"
+#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/io/calculix.hpp"
+
+namespace hotmesh::io {
+namespace {
+
+using geometry::SampleFrame;
+using geometry::Vec3;
+using test::RingDeck;
+using test::TempDir;
+
+double largest(const std::map<std::int64_t, Vec3>& table) {
+  double m = 0.0;
+  for (const auto& [n, u] : table) m = std::max({m, std::abs(u.x), std::abs(u.y), std::abs(u.z)});
+  return m;
+}
+
+/// Every node of `printout` has the same displacement in `block`, to `relative` of the largest.
+void expect_block_equals(const FrdBlock& block, const std::map<std::int64_t, Vec3>& printout, double relative) {
+  ASSERT_EQ(block.nodes.size(), printout.size());
+  const double tolerance = relative * largest(printout);
+  for (std::size_t i = 0; i < block.nodes.size(); ++i) {
+    const Vec3& expected = printout.at(block.nodes[i]);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(block.values[i][k], expected[k], tolerance) << "node " << block.nodes[i] << " component " << k;
+    }
+  }
+}
+
+/// The ring deck solved by ccx in a temporary folder, with ASCII or binary results.
+class SolvedRing : public ::testing::Test {
+ protected:
+  void solve(const std::string& output) {
+    if (!test::have_ccx()) GTEST_SKIP() << "ccx (Debian package calculix-ccx) is not installed; scripts/install-deps.sh installs it";
+    ring.write(dir.path(), output);
+    const test::CommandResult run = test::run_ccx(dir.path(), "ring");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    printouts = test::dat_displacements(test::read_text(dir / "ring.dat"));
+    ASSERT_EQ(printouts.size(), 2u);
+  }
+  CalculixSelection selection(const std::string& set) const { return {dir / "ring.frd", dir / "ring.inp", set, {}}; }
+
+  TempDir dir;
+  RingDeck ring;
+  std::vector<std::map<std::int64_t, Vec3>> printouts;
+};
+
+TEST_F(SolvedRing, AsciiFrdDisplacementsEqualTheDatPrintout) {
+  solve("*NODE FILE");
+  const FrdResults results = read_frd(dir / "ring.frd");
+  EXPECT_FALSE(results.binary);
+  const auto blocks = results.displacements();
+  ASSERT_EQ(blocks.size(), 2u);
+  for (std::size_t s = 0; s < 2; ++s) {
+    EXPECT_EQ(blocks[s]->step, static_cast<int>(s + 1));
+    expect_block_equals(*blocks[s], printouts[s], 1e-5);  // the .frd keeps six digits
+  }
+  EXPECT_EQ(results.nodes.size(), static_cast<std::size_t>((ring.nr + 1) * (ring.nz + 1)));
+}
+
+TEST_F(SolvedRing, BinaryFrdDisplacementsEqualTheDatPrintout) {
+  solve("*NODE OUTPUT");
+  const FrdResults results = read_frd(dir / "ring.frd");
+  EXPECT_TRUE(results.binary);
+  const auto blocks = results.displacements();
+  ASSERT_EQ(blocks.size(), 2u);
+  for (std::size_t s = 0; s < 2; ++s) expect_block_equals(*blocks[s], printouts[s], 1e-6);  // 4-byte floats
+}
+
+TEST_F(SolvedRing, BinaryFrdEqualsAsciiFrd) {
+  solve("*NODE FILE");
+  const FrdResults ascii = read_frd(dir / "ring.frd");
+  ring.write(dir.path(), "*NODE OUTPUT", "ring_binary");
+  ASSERT_EQ(test::run_ccx(dir.path(), "ring_binary").exit_code, 0);
+  const FrdResults binary = read_frd(dir / "ring_binary.frd");
+  ASSERT_TRUE(binary.binary);
+  ASSERT_EQ(ascii.blocks.size(), binary.blocks.size());
+  for (std::size_t b = 0; b < ascii.blocks.size(); ++b) {
+    const FrdBlock& a = ascii.blocks[b];
+    const FrdBlock& c = binary.blocks[b];
+    EXPECT_EQ(a.name, c.name);
+    EXPECT_EQ(a.step, c.step);
+    EXPECT_EQ(a.time, c.time);
+    ASSERT_EQ(a.nodes, c.nodes);
+    double scale = 0.0;
+    for (const Vec3& v : a.values) scale = std::max({scale, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    for (std::size_t i = 0; i < a.values.size(); ++i) {
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(a.values[i][k], c.values[i][k], 1e-5 * scale) << a.name << " node " << a.nodes[i];
+    }
+  }
+  ASSERT_EQ(ascii.nodes.size(), binary.nodes.size());
+  for (const auto& [n, x] : ascii.nodes) EXPECT_NEAR(distance(x, binary.nodes.at(n)), 0.0, 1e-6) << "node " << n;
+}
+
+TEST_F(SolvedRing, AxisymmetricDeckGivesAMeridionalTableOfTheLastStep) {
+  solve("*NODE FILE");
+  const CalculixTable table = read_calculix_table(selection("outer"));
+  EXPECT_EQ(table.kind, ModelKind::axisymmetric);
+  EXPECT_EQ(table.samples.frame, SampleFrame::meridional);
+  EXPECT_EQ(table.step, 2);
+  ASSERT_EQ(table.samples.size(), static_cast<std::size_t>(ring.nz + 1));
+  for (std::size_t j = 0; j < table.samples.size(); ++j) {
+    const int row = static_cast<int>(j);
+    EXPECT_EQ(table.samples.ids[j], ring.node(ring.nr, row));
+    const Vec3 expected = ring.position(ring.nr, row);  // r = x, z = y, as written in the deck
+    EXPECT_EQ(table.samples.points[j].x, expected.x);
+    EXPECT_EQ(table.samples.points[j].y, expected.y);
+    const Vec3 printed = printouts[1].at(ring.node(ring.nr, row));
+    EXPECT_NEAR(table.samples.deflections[j].x, printed.x, 1e-5 * largest(printouts[1]));
+    EXPECT_NEAR(table.samples.deflections[j].y, printed.y, 1e-5 * largest(printouts[1]));
+    EXPECT_EQ(table.samples.deflections[j].z, 0.0);
+  }
+  ASSERT_TRUE(table.max_temperature.has_value());
+  EXPECT_EQ(*table.min_temperature, 200.0);
+  EXPECT_EQ(*table.max_temperature, 200.0);
+  EXPECT_EQ(table.files.size(), 4u);  // .frd, ring.inp and its two *INCLUDEs
+}
+
+TEST_F(SolvedRing, StepOrTimeChoosesTheBlock) {
+  solve("*NODE OUTPUT");
+  CalculixSelection first = selection("BORE");
+  first.choice.step = 1;
+  const CalculixTable table = read_calculix_table(first);
+  EXPECT_EQ(table.step, 1);
+  EXPECT_EQ(*table.max_temperature, 400.0);
+  const Vec3 printed = printouts[0].at(1);
+  EXPECT_NEAR(table.samples.deflections.front().x, printed.x, 1e-6 * largest(printouts[0]));
+
+  CalculixSelection at_time = selection("BORE");
+  at_time.choice.time = 2.0;
+  EXPECT_EQ(read_calculix_table(at_time).step, 2);
+}
+
+TEST_F(SolvedRing, SetsComeThroughIncludeAndGenerate) {
+  solve("*NODE FILE");
+  const InpDeck deck = read_inp(dir / "ring.inp");
+  EXPECT_EQ(deck.files.size(), 3u);
+  std::vector<std::int64_t> bore, top;
+  for (int j = 0; j <= ring.nz; ++j) bore.push_back(ring.node(0, j));
+  for (int i = 0; i <= ring.nr; ++i) top.push_back(ring.node(i, ring.nz));
+  EXPECT_EQ(deck.set_nodes("Bore"), bore);   // names in any case, as in CalculiX
+  EXPECT_EQ(deck.set_nodes("TOP"), top);     // the S3 faces (nodes 3-4) of the top row
+  EXPECT_EQ(deck.set_place("outer").file, dir / "ring_sets.inp");
+  EXPECT_EQ(deck.set_place("outer").line, 4u);
+}
+
+TEST_F(SolvedRing, TruncatedFrdNamesTheFileAndSaysSo) {
+  solve("*NODE FILE");
+  const std::string text = test::read_text(dir / "ring.frd");
+  for (const double fraction : {0.3, 0.6, 0.99}) {
+    const std::string cut = text.substr(0, static_cast<std::size_t>(fraction * static_cast<double>(text.size())));
+    try {
+      parse_frd(cut, "cut.frd");
+      ADD_FAILURE() << "a file cut at " << fraction << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("cut.frd:"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST_F(SolvedRing, TruncatedBinaryFrdSaysSo) {
+  solve("*NODE OUTPUT");
+  const std::string text = test::read_text(dir / "ring.frd");
+  const std::size_t disp = text.find("DISP");
+  const std::string cut = text.substr(0, disp + 400);
+  EXPECT_THROW(
+      {
+        try {
+          parse_frd(cut, "cut.frd");
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      InputError);
+}
+
+TEST_F(SolvedRing, MissingStepListsTheStepsThereAre) {
+  solve("*NODE FILE");
+  CalculixSelection s = selection("BORE");
+  s.choice.step = 3;
+  try {
+    read_calculix_table(s);
+    FAIL() << "step 3 was found";
+  } catch (const InputError& e) {
+    const std::string text = e.what();
+    EXPECT_NE(text.find("ring.frd"), std::string::npos) << text;
+    EXPECT_NE(text.find("no displacements at step 3"), std::string::npos) << text;
+    EXPECT_NE(text.find("step 1 increment 1 (time 1)"), std::string::npos) << text;
+    EXPECT_NE(text.find("step 2 increment 1 (time 2)"), std::string::npos) << text;
+  }
+}
+
+TEST_F(SolvedRing, UnknownSetListsTheSetsOfTheDeck) {
+  solve("*NODE FILE");
+  try {
+    read_calculix_table(selection("RIM"));
+    FAIL() << "set RIM was found";
+  } catch (const InputError& e) {
+    const std::string text = e.what();
+    EXPECT_NE(text.find("ring.inp: no node set or surface 'RIM'"), std::string::npos) << text;
+    EXPECT_NE(text.find("BORE (3 nodes)"), std::string::npos) << text;
+    EXPECT_NE(text.find("OUTER (3 nodes)"), std::string::npos) << text;
+    EXPECT_NE(text.find("its surfaces: TOP (9 nodes)"), std::string::npos) << text;
+  }
+}
+
+// Decks written by hand: element kinds and faces, without ccx.
+
+InpDeck deck_of(const TempDir& dir, const std::string& text) {
+  test::write_text(dir / "deck.inp", text);
+  return read_inp(dir / "deck.inp");
+}
+
+TEST(CalculixInp, HexFacesAndPlaneElementsGiveTheirKinds) {
+  TempDir dir;
+  const InpDeck hex = deck_of(dir,
+                              "*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n"
+                              "*ELEMENT, TYPE=C3D8\n1, 1,2,3,4,5,6,7,8\n*SURFACE, NAME=lid\n1, S2\n"
+                              "*SURFACE, NAME=side\n1, S4\n");
+  EXPECT_EQ(hex.kind(), ModelKind::solid);
+  EXPECT_EQ(hex.set_nodes("LID"), (std::vector<std::int64_t>{5, 6, 7, 8}));
+  EXPECT_EQ(hex.set_nodes("side"), (std::vector<std::int64_t>{2, 3, 6, 7}));
+
+  const InpDeck plane = deck_of(dir, "*NODE\n1,0,0\n2,1,0\n3,1,1\n4,0,1\n*ELEMENT, TYPE=CPS4\n1, 1,2,3,4\n");
+  EXPECT_EQ(plane.kind(), ModelKind::plane);
+}
+
+TEST(CalculixInp, QuadraticFacesAddTheirMidsideNodes) {
+  TempDir dir;
+  // A CAX8 whose element line runs on over two lines, as decks with long elements do.
+  const InpDeck deck = deck_of(dir,
+                               "*NODE\n1,1,0\n2,2,0\n3,2,1\n4,1,1\n5,1.5,0\n6,2,0.5\n7,1.5,1\n8,1,0.5\n"
+                               "*ELEMENT, TYPE=CAX8R, ELSET=E\n1, 1,2,3,4,\n5,6,7,8\n*SURFACE, NAME=S\nE, S2\n");
+  EXPECT_EQ(deck.kind(), ModelKind::axisymmetric);
+  EXPECT_EQ(deck.set_nodes("s"), (std::vector<std::int64_t>{2, 3, 6}));
+}
+
+TEST(CalculixInp, BadLinesNameTheirFileAndLine) {
+  TempDir dir;
+  const auto problem = [&](const std::string& text) {
+    try {
+      deck_of(dir, text);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_NE(problem("*NODE\n1, 0, zero\n").find("deck.inp:2: coordinate 2 of node 1 is not a number"), std::string::npos);
+  EXPECT_NE(problem("*NSET, NSET=A\n1, B\n").find("deck.inp:2: 'B' is neither a node number nor a *NSET"),
+            std::string::npos);
+  EXPECT_NE(problem("*NODE\n1,0,0\n*ELEMENT, TYPE=CPS4\n1, 1,1,1,1\n*SURFACE, NAME=X\n1, S7\n").find("deck.inp:6:"),
+            std::string::npos);
+  EXPECT_NE(problem("*INCLUDE, INPUT=nowhere.inp\n").find("deck.inp:1: *INCLUDE, INPUT=nowhere.inp"), std::string::npos);
+  test::write_text(dir / "loop.inp", "*INCLUDE, INPUT=loop.inp\n");
+  EXPECT_THROW(read_inp(dir / "loop.inp"), InputError);
+}
+
+TEST(CalculixFrd, FileWithoutDisplacementsSaysWhatToAskCcxFor) {
+  const std::string frd =
+      "    1C\n    2C                             1                                     1\n"
+      " -1         1 1.00000E+00 0.00000E+00 0.00000E+00\n -3\n 9999\n";
+  const FrdResults results = parse_frd(frd, "temps.frd");
+  try {
+    choose_displacements(results, {});
+    FAIL() << "a DISP block was found";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("temps.frd: no DISP (displacement) block"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace hotmesh::io
