@@ -51,7 +51,8 @@ inline std::vector<std::map<std::int64_t, geometry::Vec3>> dat_displacements(con
 
 /// A ring of CAX4 elements, r in [0.1, 0.2] m, z in [0, 0.05] m, nr x nz elements, as the
 /// deck `ring.inp` with its nodes in `ring_nodes.inp` and its sets in `ring_sets.inp`
-/// (*INCLUDEs). Sets: BORE and OUTER (GENERATE), NALL; surface TOP (faces S3 of the top row).
+/// (*INCLUDEs). Sets: BORE and OUTER (GENERATE), NALL; surfaces TOP (faces S3 of the top row)
+/// and BOTTOM (faces S1 of the bottom row).
 /// Step 1 heats it to 400 and spins it (CENTRIF, omega^2 = 1e6), step 2 cools it to 200.
 /// `output` is "*NODE FILE" (ASCII .frd) or "*NODE OUTPUT" (binary .frd).
 struct RingDeck {
@@ -77,11 +78,13 @@ struct RingDeck {
                            node(0, nz), nr + 1, node(nr, 0), node(nr, nz), nr + 1));
     std::string elements = "*ELEMENT, TYPE=CAX4, ELSET=EALL\n";
     std::string top = "*ELSET, ELSET=ETOP\n";
+    std::string bottom = "*ELSET, ELSET=EBOTTOM\n";
     for (int j = 0; j < nz; ++j) {
       for (int i = 0; i < nr; ++i) {
         const std::int64_t e = 1 + i + static_cast<std::int64_t>(j) * nr;
         elements += fmt::format("{}, {}, {}, {}, {}\n", e, node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1));
         if (j == nz - 1) top += fmt::format("{},\n", e);
+        if (j == 0) bottom += fmt::format("{},\n", e);
       }
     }
     const auto step = [&](int temperature, const std::string& load) {
@@ -90,8 +93,9 @@ struct RingDeck {
                          temperature, load, output);
     };
     write_text(folder / (job + ".inp"),
-               "*HEADING\nhotmesh test ring\n*INCLUDE, INPUT=ring_nodes.inp\n" + elements + top +
+               "*HEADING\nhotmesh test ring\n*INCLUDE, INPUT=ring_nodes.inp\n" + elements + top + bottom +
                    "*INCLUDE, INPUT=ring_sets.inp\n*SURFACE, NAME=TOP, TYPE=ELEMENT\nETOP, S3\n"
+                   "*SURFACE, NAME=BOTTOM\nEBOTTOM, S1\n"
                    "*MATERIAL, NAME=STEEL\n*ELASTIC\n200e9, 0.3\n*EXPANSION\n1.2e-5\n*DENSITY\n7800\n"
                    "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 20\n" +
                    step(400, "*DLOAD\nEALL, CENTRIF, 1e6, 0, 0, 0, 0, 1, 0\n") + step(200, ""));
