@@ -1,13 +1,15 @@
 // hotmesh sample coupled_disc: an axisymmetric CalculiX model of the stator well's rotor
 // (samples/stator_well), written from the same profile as the CFD sector.
 //
-// The model is a band of metal under the rotor walls the CFD case slides over: from the
-// joint's lower corner down the upstream disc's face (disc_up_lower), along the drum under
-// the seal fins (disc_base), up the downstream disc's face, its fillet and lip underside
-// (disc_down). Its wall nodes are the stator well's FEM nodes (fem_tables.hpp: on the walls'
-// curves, at most 5 mm apart); `layers` rows of CAX4 elements go `thickness` into the metal
-// along the wall's normal. It is not a whole disc: the sample shows the loop, and a band
-// whose wetted side is the CFD wall is the smallest model that gives those walls.
+// The model is a band of metal under every rotor wall of the CFD sector, in the profile's
+// order: the upstream blade platform and lip (rim_up), the upstream disc's upper face
+// (disc_up_upper), around the joint's slot (joint), the disc's lower face (disc_up_lower),
+// the drum under the seal fins (disc_base), the downstream disc's face, fillet and lip
+// (disc_down) and the downstream lip and platform (rim_down). Its wall nodes are the stator
+// well's FEM nodes (fem_tables.hpp: on the walls' curves, at most 5 mm apart); `layers` rows
+// of CAX4 elements go `thickness` into the metal along the wall's normal. It is not a whole
+// rotor (a thin shell of steel, not discs): the sample shows the loop, and a band whose
+// wetted side is the CFD walls is the smallest model that gives all of them from one solve.
 //
 // Loads: nodal temperatures varying linearly in r from `bore_temperature` (r = 0.31 m) to
 // `rim_temperature` (r = 0.42 m), from 20 degrees; centrifugal (*DLOAD CENTRIF, omega^2 about

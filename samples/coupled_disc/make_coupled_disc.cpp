@@ -8,9 +8,8 @@
 //   disc_mesh.inp            the band's nodes, elements, wall surfaces and bore (an *INCLUDE)
 //   disc_1.inp, disc_2.inp   the decks of coupling iterations 1 and 2 (temperatures differ)
 //   case_1.yaml, case_2.yaml the mesh-motion cases: the stator well's small sector, its CAD
-//                            file and stator tables from ../stator_well, the rotor walls
-//                            disc_up_lower, disc_base and disc_down from disc_<i>.frd;
-//                            case_2 restarts from case_1-out/restart.hmr
+//                            file and stator tables from ../stator_well, every rotor wall
+//                            from disc_<i>.frd; case_2 restarts from case_1-out/restart.hmr
 // Then run_loop.sh runs ccx and hotmesh for both iterations (README.md: the recipe).
 #include <algorithm>
 #include <filesystem>
@@ -56,8 +55,8 @@ std::string deflection_entry(const std::vector<stator_well::ProfileCurve>& loop,
 std::string case_file(const std::vector<stator_well::ProfileCurve>& loop, int iteration) {
   std::string text = fmt::format(
       "# hotmesh sample coupled_disc, coupling iteration {0}: the stator well's small sector moved by\n"
-      "# CalculiX's results for the rotor (disc_{0}.frd, from disc_{0}.inp) on the disc faces and\n"
-      "# the disc base, by the stator well's tables elsewhere. Written by make_coupled_disc; run\n"
+      "# CalculiX's results for the rotor (disc_{0}.frd, from disc_{0}.inp) on every rotor wall,\n"
+      "# by the stator well's tables on the stator. Written by make_coupled_disc; run\n"
       "# run_loop.sh, or: ccx -i disc_{0} && hotmesh deform case_{0}.yaml\n"
       "mesh: {1}/stator_well.msh\ncad: {1}/stator_well.step\n"
       "axis: {{origin: [0, 0, 0], direction: [0, 0, 1]}}\nsolver: {{increments: 8}}\n",
