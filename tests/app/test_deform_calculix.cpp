@@ -91,6 +91,18 @@ TEST_F(RingSector, CcxResultsMoveTheWallsOntoTheDeflectedRing) {
       EXPECT_LT(distance_to_deflected({std::hypot(x.x, x.y), x.z}, samples), 1e-9) << patch << " node " << n;
     }
   }
+  // report.json says where each table came from, and the set's temperatures at that step.
+  const nlohmann::json report = test::read_json(dir / "out" / "report.json");
+  std::size_t from_ccx = 0;
+  for (const auto& d : report["deflections"]) {
+    if (!d.contains("calculix")) continue;
+    ++from_ccx;
+    EXPECT_EQ(d["calculix"]["step"], 2);
+    EXPECT_EQ(d["calculix"]["model"], "axisymmetric");
+    EXPECT_EQ(d["calculix"]["max_temperature"], 200.0);
+    EXPECT_THAT(d["calculix"]["frd"].get<std::string>(), HasSubstr("ring.frd"));
+  }
+  EXPECT_EQ(from_ccx, 4u);
   // Heated from 20 to 200 and still spinning (ccx keeps step 1's *DLOAD in step 2): the rim
   // grew by more than the 0.43 mm of the heat alone, by what ccx found for the rim's nodes.
   const geometry::DeflectionSamples rim = table("OUTER");
