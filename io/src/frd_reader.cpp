@@ -150,7 +150,7 @@ class FrdParser {
       const char code = line.size() > 5 ? line[5] : ' ';
       if (key == "9999") {
         ended = true;
-      } else if (key == "1" && line.substr(5).starts_with("PSTEP")) {
+      } else if (key == "1" && columns(line, 5, std::string_view::npos).starts_with("PSTEP")) {
         read_step(line);
       } else if (key == "1") {
         continue;  // model and user headers
@@ -175,7 +175,7 @@ class FrdParser {
   /// "    1PSTEP   <block>   <increment>   <step>".
   void read_step(std::string_view line) {
     std::vector<std::int64_t> numbers;
-    std::string_view rest = line.substr(11);
+    std::string_view rest = columns(line, 11, std::string_view::npos);
     while (!(rest = trim_blanks(rest)).empty()) {
       const std::size_t end = std::min(rest.find(' '), rest.size());
       if (const auto n = field_integer(rest.substr(0, end))) numbers.push_back(*n);
@@ -233,7 +233,8 @@ class FrdParser {
   void read_result(std::string_view header) {
     FrdBlock block;
     block.line = in_.line();
-    block.step = step_;
+    // The step from the PSTEP line before the block; without one, the header's numstp field.
+    block.step = step_ > 0 ? step_ : static_cast<int>(field_integer(columns(header, 58, 5)).value_or(0));
     block.increment = increment_;
     const auto time = field_double(columns(header, 12, 12));
     if (!time) in_.fail("the result header has no step time in columns 13-24");

@@ -186,6 +186,75 @@ TEST_F(SolvedRing, TruncatedBinaryFrdSaysSo) {
       InputError);
 }
 
+/// Deterministic pseudo-random numbers (a 64-bit LCG), so a failure can be replayed.
+struct Lcg {
+  std::uint64_t state = 12345;
+  std::size_t below(std::size_t n) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<std::size_t>((state >> 33) % n);
+  }
+};
+
+TEST_F(SolvedRing, DamagedFrdFilesFailOnlyWithInputErrors) {
+  // ccx's own files, ASCII and binary, with bytes overwritten, lines cut out and ends cut off:
+  // each is read or refused with an InputError naming the file, nothing else.
+  solve("*NODE FILE");
+  ring.write(dir.path(), "*NODE OUTPUT", "ring_binary");
+  ASSERT_EQ(test::run_ccx(dir.path(), "ring_binary").exit_code, 0);
+  Lcg random;
+  for (const char* name : {"ring.frd", "ring_binary.frd"}) {
+    const std::string original = test::read_text(dir / name);
+    for (int trial = 0; trial < 1500; ++trial) {
+      std::string damaged = original;
+      for (std::size_t k = 0, n = 1 + random.below(4); k < n; ++k) {
+        const std::size_t at = random.below(damaged.size());
+        switch (random.below(3)) {
+          case 0: damaged[at] = static_cast<char>(random.below(256)); break;
+          case 1: damaged.erase(at, random.below(80)); break;
+          default: damaged.resize(at); break;
+        }
+        if (damaged.empty()) damaged.push_back(' ');
+      }
+      try {
+        parse_frd(damaged, "damaged.frd");
+      } catch (const InputError& e) {
+        ASSERT_EQ(std::string(e.what()).rfind("damaged.frd", 0), 0u) << e.what();
+      }
+    }
+  }
+}
+
+TEST_F(SolvedRing, DamagedDecksFailOnlyWithInputErrors) {
+  // The ring's deck with bytes overwritten, pieces cut out and ends cut off, read with its
+  // *INCLUDEs and asked for every set: read or refused with an InputError, nothing else.
+  solve("*NODE FILE");
+  const std::string original = test::read_text(dir / "ring.inp");
+  Lcg random;
+  for (int trial = 0; trial < 1000; ++trial) {
+    std::string damaged = original;
+    for (std::size_t k = 0, n = 1 + random.below(3); k < n && !damaged.empty(); ++k) {
+      const std::size_t at = random.below(damaged.size());
+      switch (random.below(3)) {
+        case 0: damaged[at] = "*,=\n 1Sx"[random.below(9)]; break;
+        case 1: damaged.erase(at, random.below(40)); break;
+        default: damaged.resize(at); break;
+      }
+    }
+    test::write_text(dir / "damaged.inp", damaged);
+    try {
+      const InpDeck deck = read_inp(dir / "damaged.inp");
+      for (const char* set : {"BORE", "OUTER", "TOP", "BOTTOM", "NALL"}) {
+        try {
+          deck.set_nodes(set);
+        } catch (const InputError&) {  // a set the damage removed
+        }
+      }
+    } catch (const InputError& e) {
+      ASSERT_NE(std::string(e.what()).find(".inp"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST_F(SolvedRing, MissingStepListsTheStepsThereAre) {
   solve("*NODE FILE");
   CalculixSelection s = selection("BORE");
