@@ -477,6 +477,14 @@ class CaseParser {
       ok = ok && name.has_value();
       selection.set = name.value_or("");
     }
+    ok = read_step_choice(m, selection.choice) && ok;
+    if (!ok) return false;
+    return read_calculix_results(e, m, selection, spec);
+  }
+
+  /// `step: last | N` and `time: T` of a `calculix:` map.
+  bool read_step_choice(const MapEntries& m, FrdStepChoice& choice) {
+    bool ok = true;
     const Entry* step = m.find("step");
     if (step != nullptr && !(step->value.IsScalar() && step->value.Scalar() == "last")) {
       const auto n = step->value.IsScalar() && !quoted(step->value) ? detail::parse<std::int64_t>(step->value.Scalar())
@@ -486,17 +494,14 @@ class CaseParser {
                                  describe(step->value));
         ok = false;
       } else {
-        selection.choice.step = static_cast<int>(*n);
+        choice.step = static_cast<int>(*n);
       }
     }
-    const Entry* time = m.find("time");
-    if (time != nullptr) {
-      const auto t = reader_.number(*time);
-      ok = ok && t.has_value();
-      selection.choice.time = t;
+    if (const Entry* time = m.find("time")) {
+      choice.time = reader_.number(*time);
+      ok = ok && choice.time.has_value();
     }
-    if (!ok) return false;
-    return read_calculix_results(e, m, selection, spec);
+    return ok;
   }
 
   /// Reads the deck and the results of a checked selection; reports each problem at its key.
