@@ -285,6 +285,48 @@ TEST_F(SolvedRing, UnknownSetListsTheSetsOfTheDeck) {
   }
 }
 
+TEST(CalculixSolid, HexDeckGivesACartesianTableOfItsTopFaceEqualToTheDatPrintout) {
+  // A 2 x 2 x 1 block of C3D8 elements, clamped below, heated: ccx's .frd against its .dat.
+  if (!test::have_ccx()) GTEST_SKIP() << "ccx (Debian package calculix-ccx) is not installed; scripts/install-deps.sh installs it";
+  TempDir dir;
+  std::string deck = "*NODE, NSET=NALL\n";
+  const auto id = [](int i, int j, int k) { return 1 + i + 3 * j + 9 * k; };
+  for (int k = 0; k <= 1; ++k) {
+    for (int j = 0; j <= 2; ++j) {
+      for (int i = 0; i <= 2; ++i) deck += fmt::format("{}, {}, {}, {}\n", id(i, j, k), 0.5 * i, 0.5 * j, 0.25 * k);
+    }
+  }
+  deck += "*ELEMENT, TYPE=C3D8, ELSET=EALL\n";
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 2; ++i) {
+      deck += fmt::format("{}, {}, {}, {}, {}, {}, {}, {}, {}\n", 1 + i + 2 * j, id(i, j, 0), id(i + 1, j, 0),
+                          id(i + 1, j + 1, 0), id(i, j + 1, 0), id(i, j, 1), id(i + 1, j, 1), id(i + 1, j + 1, 1),
+                          id(i, j + 1, 1));
+    }
+  }
+  deck += "*NSET, NSET=BOTTOM, GENERATE\n1, 9, 1\n*SURFACE, NAME=LID\nEALL, S2\n"
+          "*MATERIAL, NAME=STEEL\n*ELASTIC\n200e9, 0.3\n*EXPANSION\n1.2e-5\n"
+          "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 20\n"
+          "*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 1, 3\n*TEMPERATURE\nNALL, 520\n*NODE FILE\nU\n"
+          "*NODE PRINT, NSET=NALL\nU\n*END STEP\n";
+  test::write_text(dir / "block.inp", deck);
+  const test::CommandResult run = test::run_ccx(dir.path(), "block");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto printout = test::dat_displacements(test::read_text(dir / "block.dat"));
+  ASSERT_EQ(printout.size(), 1u);
+
+  const CalculixTable table = read_calculix_table({dir / "block.frd", dir / "block.inp", "lid", {}});
+  EXPECT_EQ(table.kind, ModelKind::solid);
+  EXPECT_EQ(table.samples.frame, SampleFrame::cartesian);
+  ASSERT_EQ(table.samples.size(), 9u);  // the nodes of the S2 faces (5-8-7-6): the top
+  for (std::size_t n = 0; n < table.samples.size(); ++n) {
+    EXPECT_EQ(table.samples.points[n].z, 0.25);
+    const Vec3& printed = printout[0].at(table.samples.ids[n]);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(table.samples.deflections[n][k], printed[k], 1e-5 * largest(printout[0]));
+  }
+  EXPECT_GT(largest(printout[0]), 1e-3);  // 500 degrees hotter: millimetres, up and out
+}
+
 // Decks written by hand: element kinds and faces, without ccx.
 
 InpDeck deck_of(const TempDir& dir, const std::string& text) {
