@@ -56,6 +56,32 @@ void add_temperatures(const FrdResults& results, const FrdBlock& disp, const std
   }
 }
 
+/// The largest coordinate of the deck, the scale of its positions.
+double deck_size(const InpDeck& deck) {
+  double size = 0.0;
+  for (const auto& [n, x] : deck.nodes) size = std::max({size, std::abs(x.x), std::abs(x.y), std::abs(x.z)});
+  return size;
+}
+
+/// The .frd's node block must place the set's nodes where the deck does (to the six digits an
+/// ASCII .frd keeps): results of another model, or of an older deck, are refused.
+void require_same_model(const FrdResults& results, const InpDeck& deck, const std::vector<std::int64_t>& nodes) {
+  const double tolerance = 2e-5 * deck_size(deck);
+  for (const std::int64_t n : nodes) {
+    const auto in_frd = results.nodes.find(n);
+    const auto in_deck = deck.nodes.find(n);
+    if (in_frd == results.nodes.end() || in_deck == deck.nodes.end()) continue;  // reported by the caller
+    const Vec3 a = in_deck->second, b = in_frd->second;
+    if (std::hypot(a.x - b.x, a.y - b.y, a.z - b.z) > tolerance) {
+      throw InputError::in(results.source, "node " + std::to_string(n) + " is at (" + std::to_string(b.x) + ", " +
+                                               std::to_string(b.y) + ", " + std::to_string(b.z) + ") here but at (" +
+                                               std::to_string(a.x) + ", " + std::to_string(a.y) + ", " +
+                                               std::to_string(a.z) + ") in " + deck.file.string() +
+                                               ": the results are not of this deck (solve it again with ccx?)");
+    }
+  }
+}
+
 }  // namespace
 
 CalculixTable calculix_table(const FrdResults& results, const InpDeck& deck, const CalculixSelection& selection) {
@@ -63,6 +89,7 @@ CalculixTable calculix_table(const FrdResults& results, const InpDeck& deck, con
   const DeckPlace set_place = deck.set_place(selection.set);
   if (nodes.empty()) throw InputError::at(set_place.file.string(), set_place.line, "the set '" + selection.set + "' has no nodes");
   const FrdBlock& disp = choose_displacements(results, selection.choice);
+  require_same_model(results, deck, nodes);
 
   CalculixTable table;
   table.kind = deck.kind();

@@ -2,6 +2,7 @@
 // calculix_table.cpp) against files written by the real ccx: its .frd displacements equal its
 // own .dat printout of the same nodes, binary .frd equals ASCII .frd, sets come through
 // *INCLUDE and GENERATE, surfaces of element faces give their nodes.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -252,6 +253,21 @@ TEST_F(SolvedRing, DamagedDecksFailOnlyWithInputErrors) {
     } catch (const InputError& e) {
       ASSERT_NE(std::string(e.what()).find(".inp"), std::string::npos) << e.what();
     }
+  }
+}
+
+TEST_F(SolvedRing, ResultsOfAnotherDeckAreRefused) {
+  solve("*NODE FILE");
+  RingDeck wider = ring;
+  wider.r1 = 0.25;  // same numbering, the rim 50 mm further out
+  wider.write(dir.path(), "*NODE FILE", "wider");
+  try {
+    read_calculix_table({dir / "ring.frd", dir / "wider.inp", "OUTER", {}});
+    FAIL() << "the ring's results were read for the wider deck";
+  } catch (const InputError& e) {
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr("ring.frd: node 9 is at (0.200000, 0.000000, 0.000000) here "
+                                                            "but at (0.250000, 0.000000, 0.000000) in"))
+        << e.what();
   }
 }
 
