@@ -7,7 +7,7 @@
 //     give: CAX* (axisymmetric, x is r and y is z) meridional, CPS*/CPE* planar, C3D* cartesian.
 // The table is the same geometry::DeflectionSamples a CSV table gives, so a `calculix:`
 // deflection feeds the same reconstruction. Every problem is an InputError naming the file
-// and line. Recipe and format notes: docs/calculix.md.
+// and line. Recipe and format notes: docs/bring-your-own-data.md.
 #pragma once
 
 #include <cstddef>
