@@ -144,7 +144,8 @@ struct CalculixTable {
 /// The deflection table of the set's nodes: coordinates from the deck, displacements from the
 /// chosen DISP block. Frame: meridional for axisymmetric decks (r = x, z = y, about the
 /// case's axis), planar for plane decks, cartesian for solid ones. Throws InputError when a
-/// node of the set has no displacement in that block.
+/// node of the set has no displacement in that block, or when the .frd's node block puts a
+/// node of the set elsewhere than the deck does (results of another model).
 CalculixTable read_calculix_table(const CalculixSelection& selection);
 CalculixTable calculix_table(const FrdResults& results, const InpDeck& deck, const CalculixSelection& selection);
 
