@@ -1,7 +1,8 @@
 // Tests of `hotmesh deform` driven by CalculiX results (`deflection: {calculix: ...}`): a ring
 // of CAX4 elements solved by the real ccx (tests/support/calculix_runs.hpp) moves a sector
 // of the same ring, its walls prescribed and sliding over the curves through the deflected
-// FEM nodes; a set the deck does not have is refused with exit code 2 at the case's line.
+// FEM nodes; a set the deck does not have is refused with exit code 2 at the case's line; a
+// plane-stress strip (CPS4) moves the floor of a 2D channel.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -124,6 +125,53 @@ TEST_F(RingSector, SetNotInTheDeckIsRefusedAtItsLine) {
                                               "'RIM'; its node sets: BORE (3 nodes), NALL (27 nodes), OUTER (3 nodes)",
                                               (dir / "case.yaml").string(), (dir / "ring.inp").string())));
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "deformed.msh"));
+}
+
+/// A plane-stress strip of CPS4 elements under the floor of the coarse ramp channel (x in
+/// [0, 2], y in [-0.05, 0]), clamped at x = 0, its upper face 300 degrees hotter than its
+/// lower one: it grows along x, and its upper face rises. Surface FLOOR: the faces on y = 0.
+std::string strip_deck() {
+  constexpr int kColumns = 10;
+  std::string deck = "*NODE, NSET=NALL\n";
+  for (int j = 0; j <= 1; ++j) {
+    for (int i = 0; i <= kColumns; ++i) deck += fmt::format("{}, {}, {}\n", 1 + i + 11 * j, 0.2 * i, -0.05 + 0.05 * j);
+  }
+  deck += "*ELEMENT, TYPE=CPS4, ELSET=EALL\n";
+  for (int i = 0; i < kColumns; ++i) deck += fmt::format("{}, {}, {}, {}, {}\n", 1 + i, 1 + i, 2 + i, 13 + i, 12 + i);
+  deck += "*SURFACE, NAME=FLOOR\nEALL, S3\n*NSET, NSET=CLAMP\n1, 12\n*NSET, NSET=HOT, GENERATE\n12, 22\n"
+          "*NSET, NSET=COLD, GENERATE\n1, 11\n"
+          "*MATERIAL, NAME=STEEL\n*ELASTIC\n200e9, 0.3\n*EXPANSION\n1.2e-5\n"
+          "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n0.01\n*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 20\n"
+          "*STEP\n*STATIC\n*BOUNDARY\nCLAMP, 1, 2\n*TEMPERATURE\nHOT, 320\nCOLD, 20\n*NODE FILE\nU\n*END STEP\n";
+  return deck;
+}
+
+TEST(PlaneStrip, CcxResultsOfAPlaneDeckMoveA2DWall) {
+  if (!test::have_ccx()) GTEST_SKIP() << "ccx (Debian package calculix-ccx) is not installed; scripts/install-deps.sh installs it";
+  test::TempDir dir;
+  test::write_coarse_ramp(dir.path());
+  test::write_text(dir / "strip.inp", strip_deck());
+  const test::CommandResult solved = test::run_ccx(dir.path(), "strip");
+  ASSERT_EQ(solved.exit_code, 0) << solved.output;
+  test::write_text(dir / "case.yaml",
+                   "mesh: ramp.msh\nsolver: {increments: 4}\npatches:\n  left: {role: fixed}\n  right: {role: slip}\n"
+                   "  top: {role: sliding}\n"
+                   "  bottom: {role: prescribed, deflection: {calculix: {frd: strip.frd, inp: strip.inp, set: floor}}}\n");
+  const test::CommandResult r = test::hotmesh("deform " + shell_quote((dir / "case.yaml").string()) + " -o " +
+                                              shell_quote((dir / "out").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const geometry::DeflectionSamples floor = io::read_calculix_table({dir / "strip.frd", dir / "strip.inp", "FLOOR", {}}).samples;
+  ASSERT_EQ(floor.frame, geometry::SampleFrame::planar);
+  // The free end grew along x by alpha * 150 K (the mean heating) * 2 m, and the floor rose as
+  // the strip thickened (one row of fully integrated CPS4 elements hardly bends).
+  EXPECT_NEAR(floor.deflections.back().x, 1.2e-5 * 150 * 2.0, 0.1e-3);
+  EXPECT_GT(floor.deflections.back().y, 1e-5);
+  const mesh::Mesh moved = io::read_gmsh(dir / "out" / "deformed.msh");
+  for (const mesh::NodeId n : moved.find_patch("bottom")->nodes) {
+    const auto& x = moved.points[static_cast<std::size_t>(n)];
+    EXPECT_LT(distance_to_deflected({x.x, x.y}, floor), 1e-9) << "floor node " << n;
+  }
+  EXPECT_EQ(mesh::summarize_quality(mesh::scaled_jacobians(moved.cells, moved.points)).inverted_cells, 0u);
 }
 
 }  // namespace
