@@ -24,5 +24,6 @@ Command add_cad_command(CLI::App& parent);
 Command add_curve_command(CLI::App& parent);
 Command add_serve_command(CLI::App& parent);
 Command add_check_command(CLI::App& parent);
+Command add_fem_command(CLI::App& parent);
 
 }  // namespace hotmesh::app

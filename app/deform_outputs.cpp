@@ -129,7 +129,17 @@ void put_length(json& object, const std::string& key, double length, double scal
   object[key + "_relative"] = length / scale;
 }
 
-json deflections_json(const io::CaseSetup& setup, double scale) {
+/// Where a `calculix:` table came from: files, set, the output step read and the set's
+/// temperatures at that step (when the .frd has them).
+json calculix_json(const io::CalculixNote& note) {
+  json j{{"frd", note.selection.frd.string()}, {"inp", note.selection.inp.string()}, {"set", note.selection.set},
+         {"model", io::to_string(note.kind)},  {"step", note.step},                  {"time", note.time}};
+  if (note.min_temperature) j["min_temperature"] = *note.min_temperature;
+  if (note.max_temperature) j["max_temperature"] = *note.max_temperature;
+  return j;
+}
+
+json deflections_json(const io::Case& c, const io::CaseSetup& setup, double scale) {
   json deflections = json::array();
   for (const auto& s : setup.shapes) {
     const auto& r = s.reconstruction;
@@ -141,6 +151,10 @@ json deflections_json(const io::CaseSetup& setup, double scale) {
                     {"form", geometry::to_string(r.form)}};
     put_length(deflection, "max_node_distance_to_cad", r.max_node_distance_to_cad, scale);
     put_length(deflection, "max_node_residual", r.max_node_residual, scale);
+    const io::PatchSpec* spec = c.find_patch(s.patch);
+    if (spec != nullptr && spec->deflection && spec->deflection->calculix) {
+      deflection["calculix"] = calculix_json(*spec->deflection->calculix);
+    }
     deflections.push_back(std::move(deflection));
   }
   return deflections;
@@ -283,7 +297,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["mesh"] = mesh_summary(loaded, c.mesh);
   j["patches"] = json::array();
   for (const auto& m : setup.motions) j["patches"].push_back({{"name", m.patch}, {"role", deform::to_string(m.role)}});
-  j["deflections"] = deflections_json(setup, result.length_scale);
+  j["deflections"] = deflections_json(c, setup, result.length_scale);
   j["solver"] = solver_json(c.solver);
   put_increments(j, result);
   put_motion(j, loaded.mesh, result);

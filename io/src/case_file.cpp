@@ -48,7 +48,9 @@ constexpr std::array<std::string_view, 5> kPatchKeys{"role", "deflection", "part
 constexpr std::array<std::string_view, 1> kFeatureKeys{"angle"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"folder", "series"};
 constexpr std::string_view kFeaturesExample = "`features: {angle: 25}` (degrees) or `features: off`";
-constexpr std::array<std::string_view, 4> kDeflectionKeys{"file", "degree", "faces", "form"};
+constexpr std::array<std::string_view, 5> kDeflectionKeys{"file", "calculix", "degree", "faces", "form"};
+constexpr std::array<std::string_view, 5> kCalculixKeys{"frd", "inp", "set", "step", "time"};
+constexpr std::string_view kCalculixExample = "`calculix: {frd: disc.frd, inp: disc.inp, set: DISC_FACE}`";
 constexpr std::string_view kRoleList = "fixed, prescribed, slip, sliding, passive, periodic";
 constexpr std::string_view kAxisExample = "axis: {origin: [0, 0, 0], direction: [0, 0, 1]}";
 
@@ -395,10 +397,17 @@ class CaseParser {
     spec.line = e.line;
     bool table_read = false;
     const Entry* file = m.find("file");
-    if (file == nullptr) {
-      reader_.error(e.line, e.sub("file"), "missing; give the deflection table, e.g. `file: deflections.csv`");
+    const Entry* calculix = m.find("calculix");
+    if (file != nullptr && calculix != nullptr) {
+      reader_.error(*calculix, "give either `file:` (a CSV table) or `calculix:` (CalculiX results), not both");
+    } else if (calculix != nullptr) {
+      table_read = read_calculix(*calculix, spec);
+    } else if (file == nullptr) {
+      reader_.error(e.line, e.sub("file"), cat("missing; give the deflection table, e.g. `file: deflections.csv`, "
+                                               "or CalculiX results, e.g. ", kCalculixExample));
     } else if (auto path = input_file(*file, "the deflection table file name (.csv)")) {
       spec.file = *path;
+      spec.files = {*path};
       try {
         spec.samples = parse_deflection_csv(read_file(*path), path->string());
         table_read = true;
@@ -406,6 +415,7 @@ class CaseParser {
         reader_.error(*file, error.what());
       }
     }
+    const Entry& source = file != nullptr ? *file : (calculix != nullptr ? *calculix : e);
     bool ok = table_read;
     const Entry* degree = m.find("degree");
     if (degree != nullptr) {
@@ -414,7 +424,7 @@ class CaseParser {
       spec.degree = value.value_or(spec.degree);
     }
     if (ok && spec.samples.size() < static_cast<std::size_t>(spec.degree) + 1) {
-      reader_.error(degree != nullptr ? *degree : *file,
+      reader_.error(degree != nullptr ? *degree : source,
                     cat("a degree-", std::to_string(spec.degree), " curve needs at least ",
                         std::to_string(spec.degree + 1), " samples, the table has ",
                         std::to_string(spec.samples.size())));
@@ -434,6 +444,95 @@ class CaseParser {
     }
     if (!ok) return std::nullopt;
     return spec;
+  }
+
+  /// `calculix: {frd, inp, set, step | time}`: the table of a node set or surface of a deck,
+  /// from a DISP block of its results. Each problem is reported at the key it comes from.
+  bool read_calculix(const Entry& e, DeflectionSpec& spec) {
+    if (!reader_.map_or_empty(e, cat("a map such as ", kCalculixExample))) return false;
+    const MapEntries m = reader_.keys(e, kCalculixKeys);
+    CalculixSelection selection;
+    bool ok = true;
+    const auto required = [&](std::string_view key, std::string_view what) -> const Entry* {
+      const Entry* x = m.find(key);
+      if (x == nullptr) reader_.error(e.line, e.sub(key), cat("missing; give ", what, ", e.g. ", kCalculixExample));
+      ok = ok && x != nullptr;
+      return x;
+    };
+    const Entry* frd = required("frd", "the results file ccx wrote (.frd)");
+    const Entry* inp = required("inp", "the input deck ccx solved (.inp), which defines the set");
+    const Entry* set = required("set", "a node set (*NSET) or surface (*SURFACE) of the deck");
+    if (frd != nullptr) {
+      const auto path = input_file(*frd, "the CalculiX results file (.frd)");
+      ok = ok && path.has_value();
+      selection.frd = path.value_or(fs::path());
+    }
+    if (inp != nullptr) {
+      const auto path = input_file(*inp, "the CalculiX input deck (.inp)");
+      ok = ok && path.has_value();
+      selection.inp = path.value_or(fs::path());
+    }
+    if (set != nullptr) {
+      const auto name = reader_.text(*set, "the name of a node set or surface of the deck");
+      ok = ok && name.has_value();
+      selection.set = name.value_or("");
+    }
+    ok = read_step_choice(m, selection.choice) && ok;
+    if (!ok) return false;
+    return read_calculix_results(e, m, selection, spec);
+  }
+
+  /// `step: last | N` and `time: T` of a `calculix:` map.
+  bool read_step_choice(const MapEntries& m, FrdStepChoice& choice) {
+    bool ok = true;
+    const Entry* step = m.find("step");
+    if (step != nullptr && !(step->value.IsScalar() && step->value.Scalar() == "last")) {
+      const auto n = step->value.IsScalar() && !quoted(step->value) ? detail::parse<std::int64_t>(step->value.Scalar())
+                                                                     : std::nullopt;
+      if (!n || *n < 1 || *n > INT_MAX) {
+        reader_.error(*step, "expected `last` or the number of an analysis step (*STEP, from 1), got " +
+                                 describe(step->value));
+        ok = false;
+      } else {
+        choice.step = static_cast<int>(*n);
+      }
+    }
+    if (const Entry* time = m.find("time")) {
+      choice.time = reader_.number(*time);
+      ok = ok && choice.time.has_value();
+    }
+    return ok;
+  }
+
+  /// Reads the deck and the results of a checked selection; reports each problem at its key.
+  bool read_calculix_results(const Entry& e, const MapEntries& m, const CalculixSelection& selection,
+                             DeflectionSpec& spec) {
+    const auto attempt = [&](const Entry& at, const auto& work) {
+      try {
+        work();
+        return true;
+      } catch (const InputError& error) {
+        reader_.error(at, error.what());
+        return false;
+      }
+    };
+    InpDeck deck;
+    FrdResults results;
+    if (!attempt(*m.find("inp"), [&] { deck = read_inp(selection.inp); })) return false;
+    if (!attempt(*m.find("set"), [&] { deck.set_nodes(selection.set); })) return false;
+    if (!attempt(*m.find("frd"), [&] { results = read_frd(selection.frd); })) return false;
+    const Entry* step = m.find("step");
+    const Entry* time = m.find("time");
+    const Entry& choice_at = step != nullptr ? *step : (time != nullptr ? *time : *m.find("frd"));
+    if (!attempt(choice_at, [&] { choose_displacements(results, selection.choice); })) return false;
+    return attempt(e, [&] {
+      CalculixTable table = calculix_table(results, deck, selection);
+      spec.file = selection.frd;
+      spec.files = table.files;
+      spec.samples = std::move(table.samples);
+      spec.calculix = CalculixNote{selection, table.kind, table.step, table.time, table.min_temperature,
+                                   table.max_temperature};
+    });
   }
 
   bool read_faces(const Entry& e, std::vector<int>& faces) {
@@ -617,8 +716,10 @@ std::vector<std::filesystem::path> Case::inputs() const {
   if (cad) files.push_back(*cad);
   if (restart) files.push_back(*restart);
   for (const PatchSpec& p : patches) {
-    if (p.deflection && std::find(files.begin(), files.end(), p.deflection->file) == files.end()) {
-      files.push_back(p.deflection->file);
+    if (!p.deflection) continue;
+    const std::vector<std::filesystem::path>& read = p.deflection->files;
+    for (const std::filesystem::path& f : read.empty() ? std::vector{p.deflection->file} : read) {
+      if (std::find(files.begin(), files.end(), f) == files.end()) files.push_back(f);
     }
   }
   return files;

@@ -307,4 +307,24 @@ geometry::DeflectionSamples read_deflection_csv(const std::filesystem::path& pat
   return parse_deflection_csv(read_file(path), path.string());
 }
 
+std::string format_deflection_csv(const geometry::DeflectionSamples& samples) {
+  const bool ids = samples.ids.size() == samples.size();
+  const std::size_t components = samples.frame == SampleFrame::cartesian ? 3 : 2;
+  std::string text = ids ? "id," : "";
+  text.append(join_names(columns_of(samples.frame))).push_back('\n');
+  const auto append = [&text](double v, char after) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);  // shortest text that reads back the same
+    text.append(buffer, result.ptr).push_back(after);
+  };
+  for (std::size_t j = 0; j < samples.size(); ++j) {
+    if (ids) text.append(std::to_string(samples.ids[j])).push_back(',');
+    for (std::size_t k = 0; k < components; ++k) append(samples.points[j][static_cast<int>(k)], ',');
+    for (std::size_t k = 0; k < components; ++k) {
+      append(samples.deflections[j][static_cast<int>(k)], k + 1 == components ? '\n' : ',');
+    }
+  }
+  return text;
+}
+
 }  // namespace hotmesh::io

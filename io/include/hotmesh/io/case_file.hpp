@@ -18,6 +18,7 @@
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/deflected_curve.hpp"
 #include "hotmesh/geometry/deflection_samples.hpp"
+#include "hotmesh/io/calculix.hpp"
 
 namespace hotmesh::io {
 
@@ -32,8 +33,20 @@ using PatchRole = deform::BoundaryRole;
 inline constexpr int kMaxIncrements = 10'000;
 inline constexpr int kMaxIncrementSplits = 20;
 
+/// Where a `calculix:` deflection was read: the selection and the step it found.
+struct CalculixNote {
+  CalculixSelection selection;
+  ModelKind kind = ModelKind::solid;
+  int step = 0;
+  double time = 0.0;
+  std::optional<double> min_temperature, max_temperature;  ///< of the set's nodes, if the .frd has NDTEMP
+};
+
 struct DeflectionSpec {
-  std::filesystem::path file;           ///< resolved against the case file's folder
+  std::filesystem::path file;           ///< the table (or the .frd), resolved against the case file's folder
+  /// Every file the table was read from: the table, or the .frd, the .inp and its *INCLUDEs.
+  std::vector<std::filesystem::path> files;
+  std::optional<CalculixNote> calculix; ///< set when the table comes from CalculiX results
   int degree = 1;                       ///< B-spline degree q of the reconstruction, 1..5
   geometry::DeflectionForm form = geometry::DeflectionForm::curve;  ///< eq. (21), or c = r + d
   std::vector<int> faces;               ///< CAD face ids (1-based); needs `cad`
@@ -85,8 +98,8 @@ struct Case {
   std::optional<std::filesystem::path> restart;
 
   const PatchSpec* find_patch(std::string_view name) const;
-  /// Every file the case reads: the case file, mesh, CAD file and deflection tables (each once,
-  /// in that order).
+  /// Every file the case reads: the case file, mesh, CAD file, restart file and deflection
+  /// tables (CalculiX: the .frd, the .inp and its *INCLUDEs), each once, in that order.
   std::vector<std::filesystem::path> inputs() const;
 };
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <string_view>
 
 #include "hotmesh/geometry/deflection_samples.hpp"
@@ -21,5 +22,10 @@ namespace hotmesh::io {
 geometry::DeflectionSamples parse_deflection_csv(std::string_view content, std::string_view source);
 
 geometry::DeflectionSamples read_deflection_csv(const std::filesystem::path& path);
+
+/// The table as CSV that parse_deflection_csv reads back to the same numbers: a header
+/// (id first when the samples have ids) and one row per sample, each value the shortest text
+/// that reads back to the same double.
+std::string format_deflection_csv(const geometry::DeflectionSamples& samples);
 
 }  // namespace hotmesh::io

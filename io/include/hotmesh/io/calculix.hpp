@@ -1,0 +1,152 @@
+// hotmesh io: FEM results as CalculiX writes them. Three pieces:
+//   - the .frd results file (ASCII or binary): its nodes and, per output step, the DISP
+//     (displacement) and NDTEMP (temperature) blocks;
+//   - the .inp input deck (Abaqus syntax): nodes, elements, *NSET, *ELSET, *SURFACE (element
+//     faces turned into their nodes), *INCLUDE files and GENERATE ranges;
+//   - the deflection table of one node set or surface at one step, in the frame its elements
+//     give: CAX* (axisymmetric, x is r and y is z) meridional, CPS*/CPE* planar, C3D* cartesian.
+// The table is the same geometry::DeflectionSamples a CSV table gives, so a `calculix:`
+// deflection feeds the same reconstruction. Every problem is an InputError naming the file
+// and line. Recipe and format notes: docs/bring-your-own-data.md.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hotmesh/geometry/deflection_samples.hpp"
+#include "hotmesh/geometry/vec3.hpp"
+
+namespace hotmesh::io {
+
+// ---------------------------------------------------------------------------------------------
+// .frd results
+
+/// One nodal result block of an .frd file (DISP, NDTEMP, ...) at one output step.
+struct FrdBlock {
+  std::string name;                       ///< "DISP", "NDTEMP", "STRESS", ...
+  int step = 0;                           ///< the analysis step (*STEP) it belongs to, 1-based
+  int increment = 0;                      ///< the increment within the step
+  double time = 0.0;                      ///< the step time ccx writes in the block header
+  std::size_t line = 0;                   ///< line of the block header in the file
+  std::vector<std::int64_t> nodes;        ///< node numbers, in file order
+  std::vector<geometry::Vec3> values;     ///< the first (up to) three components of each node
+};
+
+struct FrdResults {
+  std::string source;                                ///< file name, for messages
+  bool binary = false;                               ///< some block was written in binary
+  std::map<std::int64_t, geometry::Vec3> nodes;      ///< the node block: number -> coordinates
+  std::vector<FrdBlock> blocks;                      ///< every nodal result block, in file order
+
+  /// The DISP blocks, in file order.
+  std::vector<const FrdBlock*> displacements() const;
+  /// The block named `name` written at the same step and increment as `at`, if any.
+  const FrdBlock* companion(const FrdBlock& at, std::string_view name) const;
+};
+
+/// Parses an .frd file; `source` names it in messages. Throws InputError "<source>:<line>: ..."
+/// on a truncated file, a block shorter than its header says, a value that is not a number.
+FrdResults parse_frd(std::string_view content, std::string_view source);
+FrdResults read_frd(const std::filesystem::path& path);
+
+/// Which output step a table is read from: the last DISP block (default), the last one of an
+/// analysis step, or the one at a step time.
+struct FrdStepChoice {
+  std::optional<int> step;
+  std::optional<double> time;
+};
+
+/// The DISP block `choice` names. Throws InputError listing the steps (and times) the file has
+/// when there is no such block, or when the file has no DISP block at all.
+const FrdBlock& choose_displacements(const FrdResults& results, const FrdStepChoice& choice);
+
+// ---------------------------------------------------------------------------------------------
+// .inp deck
+
+/// Where something is defined: a file of the deck (the main file or an *INCLUDE) and a line.
+struct DeckPlace {
+  std::filesystem::path file;
+  std::size_t line = 0;
+  std::string text() const;  ///< "file:line"
+};
+
+/// The kind of model the deck's solid elements make.
+enum class ModelKind { axisymmetric, plane, solid };
+const char* to_string(ModelKind kind);
+
+struct DeckElement {
+  std::string type;                   ///< upper case, e.g. "CAX4", "C3D20R"
+  std::vector<std::int64_t> nodes;
+  DeckPlace place;
+};
+
+/// A node set, element set or surface: its members as written (numbers) and where it is.
+struct DeckSet {
+  std::string name;                   ///< upper case, as CalculiX keeps names
+  std::vector<std::int64_t> members;  ///< node numbers (NSET, node surface) or element numbers (ELSET)
+  /// Element surface: the element faces (element number, face 1..6).
+  std::vector<std::pair<std::int64_t, int>> faces;
+  DeckPlace place;                    ///< its first definition
+};
+
+struct InpDeck {
+  std::filesystem::path file;                     ///< the main deck
+  std::vector<std::filesystem::path> files;       ///< the main deck, then every *INCLUDE, once each
+  std::map<std::int64_t, geometry::Vec3> nodes;   ///< number -> coordinates (z = 0 in 2D)
+  std::map<std::int64_t, DeckElement> elements;
+  std::map<std::string, DeckSet> nsets;
+  std::map<std::string, DeckSet> elsets;
+  std::map<std::string, DeckSet> surfaces;
+
+  /// The kind the deck's CAX*, CPS*/CPE* and C3D* elements make. Throws InputError when the
+  /// deck has none of them, or several kinds.
+  ModelKind kind() const;
+  /// The nodes of a node set or surface (name in any case), sorted and each once. Throws
+  /// InputError listing the node sets and surfaces of the deck when there is no such one.
+  std::vector<std::int64_t> set_nodes(std::string_view name) const;
+  /// Where the node set or surface `name` is defined (set_nodes found it).
+  DeckPlace set_place(std::string_view name) const;
+};
+
+/// Reads a deck and the files it includes (paths relative to the including file's folder).
+/// Throws InputError "<file>:<line>: ..." on a bad number, an unknown element face, a set
+/// that uses an undefined set, an *INCLUDE that is missing or includes itself.
+InpDeck read_inp(const std::filesystem::path& path);
+
+// ---------------------------------------------------------------------------------------------
+// the table of one set
+
+/// `deflection: {calculix: {frd, inp, set, step | time}}` of a case file.
+struct CalculixSelection {
+  std::filesystem::path frd;
+  std::filesystem::path inp;
+  std::string set;
+  FrdStepChoice choice;
+};
+
+struct CalculixTable {
+  geometry::DeflectionSamples samples;        ///< the set's nodes, undeformed, and their DISP
+  std::vector<std::filesystem::path> files;   ///< the .frd, the deck and its *INCLUDEs
+  ModelKind kind = ModelKind::solid;
+  int step = 0;                               ///< the DISP block read
+  int increment = 0;
+  double time = 0.0;
+  /// Temperatures of the set's nodes at that step (NDTEMP), when the .frd has them.
+  std::optional<double> min_temperature, max_temperature;
+};
+
+/// The deflection table of the set's nodes: coordinates from the deck, displacements from the
+/// chosen DISP block. Frame: meridional for axisymmetric decks (r = x, z = y, about the
+/// case's axis), planar for plane decks, cartesian for solid ones. Throws InputError when a
+/// node of the set has no displacement in that block, or when the .frd's node block puts a
+/// node of the set elsewhere than the deck does (results of another model).
+CalculixTable read_calculix_table(const CalculixSelection& selection);
+CalculixTable calculix_table(const FrdResults& results, const InpDeck& deck, const CalculixSelection& selection);
+
+}  // namespace hotmesh::io

@@ -1,0 +1,78 @@
+// Tests of `hotmesh fem` on results of the real ccx (the ring of tests/support/
+// calculix_runs.hpp): it lists the output steps and the deck's sets with their node counts,
+// writes the table of one set as CSV that reads back to the same numbers, and refuses a set,
+// a step or a file it cannot read with exit code 2 and a message naming the file.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "calculix_runs.hpp"
+#include "deform_cases.hpp"
+#include "hotmesh/io/calculix.hpp"
+#include "hotmesh/io/deflection_csv.hpp"
+
+namespace hotmesh::app {
+namespace {
+
+using ::testing::HasSubstr;
+using test::shell_quote;
+
+class FemCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!test::have_ccx()) GTEST_SKIP() << "ccx (Debian package calculix-ccx) is not installed; scripts/install-deps.sh installs it";
+    test::RingDeck().write(dir.path(), "*NODE FILE");
+    const test::CommandResult solved = test::run_ccx(dir.path(), "ring");
+    ASSERT_EQ(solved.exit_code, 0) << solved.output;
+  }
+  test::CommandResult fem(const std::string& arguments) const {
+    return test::hotmesh("fem " + shell_quote((dir / "ring.frd").string()) + " --inp " +
+                         shell_quote((dir / "ring.inp").string()) + " " + arguments);
+  }
+  test::TempDir dir;
+};
+
+TEST_F(FemCommand, ListsStepsSetsAndSurfaces) {
+  const test::CommandResult r = fem("");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("ASCII .frd, 27 nodes"));
+  EXPECT_THAT(r.output, HasSubstr("step   1  increment   1  time 1"));
+  EXPECT_THAT(r.output, HasSubstr("temperature 400 to 400"));
+  EXPECT_THAT(r.output, HasSubstr("step   2  increment   1  time 2"));
+  EXPECT_THAT(r.output, HasSubstr("axisymmetric model, 27 nodes, 16 elements, 3 file(s)"));
+  EXPECT_THAT(r.output, HasSubstr("largest |u| at step 2 (time 2)"));
+  EXPECT_THAT(r.output, ::testing::ContainsRegex("nset +BORE +3 nodes"));
+  EXPECT_THAT(r.output, ::testing::ContainsRegex("surface +TOP +9 nodes"));
+}
+
+TEST_F(FemCommand, WritesTheTableOfASetThatReadsBackTheSame) {
+  const test::CommandResult r = fem("--set outer --step 1 -o " + shell_quote((dir / "outer.csv").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("meridional (r, z) table of set outer (3 nodes), step 1 (time 1)"));
+  const geometry::DeflectionSamples written = io::read_deflection_csv(dir / "outer.csv");
+  io::FrdStepChoice step1;
+  step1.step = 1;
+  const geometry::DeflectionSamples read = io::read_calculix_table({dir / "ring.frd", dir / "ring.inp", "OUTER", step1}).samples;
+  EXPECT_EQ(written.frame, geometry::SampleFrame::meridional);
+  EXPECT_EQ(written.ids, read.ids);
+  EXPECT_EQ(written.points, read.points);
+  EXPECT_EQ(written.deflections, read.deflections);
+}
+
+TEST_F(FemCommand, RefusesUnknownSetStepAndTruncatedFile) {
+  const test::CommandResult set = fem("--set RIM");
+  EXPECT_EQ(set.exit_code, 2) << set.output;
+  EXPECT_THAT(set.output, HasSubstr((dir / "ring.inp").string() + ": no node set or surface 'RIM'; its node sets: BORE"));
+
+  const test::CommandResult step = fem("--set BORE --step 9");
+  EXPECT_EQ(step.exit_code, 2) << step.output;
+  EXPECT_THAT(step.output, HasSubstr((dir / "ring.frd").string() + ": no displacements at step 9"));
+
+  const std::string frd = test::read_text(dir / "ring.frd");
+  test::write_text(dir / "ring.frd", frd.substr(0, frd.size() - 200));
+  const test::CommandResult cut = fem("");
+  EXPECT_EQ(cut.exit_code, 2) << cut.output;
+  EXPECT_THAT(cut.output, ::testing::ContainsRegex("ring\\.frd:[0-9]+: .*truncated"));
+}
+
+}  // namespace
+}  // namespace hotmesh::app
