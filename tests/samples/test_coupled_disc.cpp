@@ -52,6 +52,7 @@ std::size_t count(const std::string& text, const std::string& what) {
 }
 
 TEST(CoupledDiscRun, TwoIterationsFromCcxAreValidOnTheDeflectedRotorAndTheRestartContinues) {
+  if (test::under_sanitizers()) GTEST_SKIP() << "three 3D runs: a minute in the Release build, far longer here; run there";
   if (!test::have_ccx()) GTEST_SKIP() << "ccx (Debian package calculix-ccx) is not installed; scripts/install-deps.sh installs it";
   const CoupledDisc sample;
   const auto loop = test::run_command("HOTMESH=" + shell_quote(HOTMESH_EXE) + " sh " +
