@@ -2,7 +2,7 @@
 #include "series_outputs.hpp"
 
 #include <fstream>
-#include <regex>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -15,14 +15,26 @@ namespace {
 
 constexpr const char* kSeriesFolder = "series";
 
+/// The value of attribute `name` in an XML line (`name="value"`), or nothing.
+std::optional<std::string> attribute(const std::string& line, const std::string& name) {
+  const std::string open = " " + name + "=\"";
+  const auto begin = line.find(open);
+  if (begin == std::string::npos) return std::nullopt;
+  const auto first = begin + open.size();
+  const auto end = line.find('"', first);
+  if (end == std::string::npos) return std::nullopt;
+  return line.substr(first, end - first);
+}
+
 /// The (time, file) pairs of a .pvd this writer wrote, in order; none if there is no such file.
 std::vector<std::pair<double, std::string>> read_collection(const std::filesystem::path& path) {
   std::ifstream in(path);
   std::vector<std::pair<double, std::string>> entries;
-  const std::regex dataset(R"re(<DataSet timestep="([^"]+)" file="([^"]+)"/>)re");
   for (std::string line; std::getline(in, line);) {
-    std::smatch m;
-    if (std::regex_search(line, m, dataset)) entries.emplace_back(std::stod(m[1].str()), m[2].str());
+    const auto time = attribute(line, "timestep");
+    const auto file = attribute(line, "file");
+    if (line.find("<DataSet") == std::string::npos || !time || !file) continue;
+    entries.emplace_back(std::stod(*time), *file);
   }
   return entries;
 }
