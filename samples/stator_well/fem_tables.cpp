@@ -209,6 +209,9 @@ std::string engine_case_file(const std::vector<ProfileCurve>& loop, const std::s
   };
   replace("hotmesh deform " + case_file_name(label, true), "hotmesh deform " + engine_case_file_name(label, format));
   replace(std::string("mesh: ") + kMeshFile, "mesh: " + mesh);
+  replace("# Written by make_stator_well",
+          "# The mesh " + mesh + " is the .msh file's sector (written by make_stator_well --engine-formats FOLDER).\n"
+          "# Written by make_stator_well");
   return text;
 }
 

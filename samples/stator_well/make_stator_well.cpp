@@ -12,12 +12,12 @@
 //   stator_well.msh     the hex mesh of the sector (Gmsh 4.1, binary unless --ascii)
 //   <patch>.csv         one FEM deflection table per metal patch (r, z, dr, dz), severe case
 //   case_<label>.yaml, case_<label>_nosliding.yaml    the case files, sliding on and off
+//   case_<label>_cgns.yaml, case_<label>_foam.yaml    the sliding case on the meshes below
 // and with --engine-formats also
 //   stator_well.cgns    the sector as structured multi-block CGNS (one zone per block, 1-to-1
 //                       connections, BCs named as the patches)
 //   stator_well_foam/   the sector as an OpenFOAM case (constant/polyMesh, ASCII unless --binary
 //                       is given explicitly; system/ for checkMesh)
-//   case_<label>_cgns.yaml, case_<label>_foam.yaml    the sliding case on those meshes
 // and prints a summary: size, quality, patches with their roles, CAD faces and tables, and what
 // the deflections do to the seal clearance and the joint.
 // The committed files in samples/stator_well/ are this program's default output.
@@ -118,14 +118,15 @@ int main(int argc, char** argv) {
       hotmesh::io::write_file_atomically(o.folder / case_file_name(o.label, sliding), case_file(loop, o.label, sliding));
     }
 
-    // 4. With --engine-formats: the sector as structured multi-block CGNS and as an OpenFOAM case.
+    // 4. The case files on the sector in engine formats, and with --engine-formats the sector as
+    //    structured multi-block CGNS and as an OpenFOAM case.
+    for (const auto& [format, file] : {std::pair<std::string, std::string>{"cgns", kCgnsFile}, {"foam", kFoamCase}}) {
+      hotmesh::io::write_file_atomically(o.folder / engine_case_file_name(o.label, format),
+                                         engine_case_file(loop, o.label, format, file));
+    }
     if (o.engine_formats) {
       write_sector_cgns(o.folder / kCgnsFile, section, mesh, loop, size.theta_cells);
       write_sector_foam(o.folder / kFoamCase, mesh, o.binary_given && o.binary);
-      for (const auto& [format, file] : {std::pair<std::string, std::string>{"cgns", kCgnsFile}, {"foam", kFoamCase}}) {
-        hotmesh::io::write_file_atomically(o.folder / engine_case_file_name(o.label, format),
-                                           engine_case_file(loop, o.label, format, file));
-      }
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
