@@ -2,6 +2,7 @@
 #include "foam_cells.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <optional>
 
 #include <fmt/format.h>
@@ -90,16 +91,36 @@ std::optional<std::int64_t> node_above(const CellQuads& cell, std::int64_t node,
 }
 
 /// Each of the cell's edges must lie in exactly two of its faces, once in each direction.
+/// The cell's (at most 8) points get local numbers, its directed edges are bits i * 8 + j of
+/// a mask: no bit set twice, and the mask equal to its transpose.
 bool edges_close(const CellQuads& cell) {
-  std::array<std::pair<std::int64_t, std::int64_t>, 24> edges;
-  std::size_t n = 0;
+  std::array<std::int64_t, 8> points{};
+  std::size_t count = 0;
+  const auto local = [&](std::int64_t p) -> int {
+    for (std::size_t i = 0; i < count; ++i) {
+      if (points[i] == p) return static_cast<int>(i);
+    }
+    if (count == points.size()) return -1;
+    points[count] = p;
+    return static_cast<int>(count++);
+  };
+  std::uint64_t edges = 0;
   for (const auto& f : cell) {
-    for (std::size_t i = 0; i < 4; ++i) edges[n++] = {f[i], f[(i + 1) % 4]};
+    std::array<int, 4> q{};
+    for (std::size_t i = 0; i < 4; ++i) {
+      q[i] = local(f[i]);
+      if (q[i] < 0) return false;
+    }
+    for (std::size_t i = 0; i < 4; ++i) {
+      const std::uint64_t bit = std::uint64_t{1} << (q[i] * 8 + q[(i + 1) % 4]);
+      if (edges & bit) return false;
+      edges |= bit;
+    }
   }
-  std::sort(edges.begin(), edges.end());
-  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
-  for (const auto& [a, b] : edges) {
-    if (!std::binary_search(edges.begin(), edges.end(), std::pair{b, a})) return false;
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      if (((edges >> (i * 8 + j)) & 1U) != ((edges >> (j * 8 + i)) & 1U)) return false;
+    }
   }
   return true;
 }
