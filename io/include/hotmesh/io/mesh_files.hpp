@@ -25,8 +25,7 @@ namespace hotmesh::io {
 enum class MeshFormat { gmsh, vtu, cgns, foam };
 
 /// The format a path names by its extension (foam for a folder or a path named polyMesh).
-/// Throws hotmesh::InputError
-/// for others.
+/// Throws hotmesh::InputError for others.
 MeshFormat mesh_format(const std::filesystem::path& path);
 
 /// How a run writes its moved mesh back in the format the mesh came from, beside
