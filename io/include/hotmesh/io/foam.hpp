@@ -35,7 +35,7 @@ struct FoamWriteOptions {
 };
 
 /// The polyMesh folder write_foam writes for `path`: `path` if it is named polyMesh, else
-/// `path`/constant/polyMesh (a case folder).
+/// `path`/constant/polyMesh (a case folder; mesh_format() takes only an existing folder so).
 std::filesystem::path foam_output_folder(const std::filesystem::path& path);
 
 /// Writes a new polyMesh (points, faces, owner, neighbour, boundary) of the 3D hex mesh `m`
