@@ -5,6 +5,7 @@
 
 #include <array>
 #include <memory>
+#include <vector>
 
 #include "commands.hpp"
 #include "hotmesh/io/foam.hpp"
@@ -32,9 +33,15 @@ Command add_convert_command(CLI::App& parent) {
   cmd->add_option("OUT", options->output, "Output mesh (.msh, .cgns, .vtu, or .../polyMesh or a case folder for OpenFOAM); never the input")->required();
   cmd->add_flag("--binary", options->binary, "Write .msh or OpenFOAM files in binary (smaller, faster for large meshes)");
   return [options] {
-    const std::array<std::filesystem::path, 1> inputs{options->input};
-    io::refuse_overwriting_input(options->output, inputs);
-    io::mesh_format(options->output);  // reject unknown extensions before reading
+    const std::array<std::filesystem::path, 1> input{options->input};
+    io::refuse_overwriting_input(options->output, input);
+    if (io::mesh_format(options->output) == io::MeshFormat::foam) {  // a polyMesh folder's files
+      const std::vector<std::filesystem::path> inputs = io::mesh_input_files(options->input);
+      const std::filesystem::path folder = io::foam_output_folder(options->output);
+      for (const char* name : {"points", "faces", "owner", "neighbour", "boundary"}) {
+        io::refuse_overwriting_input(folder / name, inputs);
+      }
+    }
     const io::LoadedMesh loaded = io::read_mesh(options->input);
     const auto& mesh = loaded.mesh;
     if (io::mesh_format(options->output) == io::MeshFormat::gmsh) {

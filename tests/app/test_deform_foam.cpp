@@ -294,6 +294,10 @@ TEST(ConvertFoam, WritesANewPolyMeshFromAHexMeshAndRefusesA2dMeshNamingTheFolder
   EXPECT_EQ(back.mesh.node_count(), 25408u);
   EXPECT_EQ(back.mesh.cell_count(), 17979u);
   EXPECT_EQ(back.mesh.patches.size(), 17u);
+  // The polyMesh just written, converted onto itself through its case folder: refused.
+  const auto onto_itself = hotmesh("convert " + shell_quote((dir / "case").string()) + " " + shell_quote(polymesh.string()));
+  EXPECT_EQ(onto_itself.exit_code, 2);
+  EXPECT_THAT(onto_itself.output, HasSubstr("would replace an input file"));
   const fs::path flat = dir / "flat" / "constant" / "polyMesh";
   const auto refused =
       hotmesh("convert " + shell_quote((samples / "ramp2d" / "ramp2d.msh").string()) + " " + shell_quote(flat.string()));
