@@ -52,6 +52,7 @@ args_for() {
       bench_renumbering) echo "--quick" ;;
       bench_stator_solve) echo "5000" ;;
       bench_checkpoint) echo "--cells 100000 --runs 1" ;;
+      bench_mesh_formats) echo "200000 1" ;;
     esac
   fi
 }

@@ -2,6 +2,7 @@
 #include "foam_cells.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <optional>
 
 #include <fmt/format.h>
@@ -13,7 +14,7 @@ namespace {
 
 using Quad = std::array<std::int64_t, 4>;
 
-/// The faces of one cell, each with its points in outward order.
+/// The faces of one cell, each with its points in outward order (for messages).
 struct OutwardFaces {
   std::vector<std::vector<std::int64_t>> faces;
 };
@@ -56,10 +57,27 @@ std::string shape_of(const OutwardFaces& cell) {
   return fmt::format("{} faces ({})", n, shape);
 }
 
+/// The six faces of a cell of six quadrilaterals, each with its points in outward order.
+using CellQuads = std::array<Quad, 6>;
+
+std::optional<CellQuads> outward_quads(const PolyMesh& mesh, const CellFaces& cells, std::size_t c) {
+  if (cells.offsets[c + 1] - cells.offsets[c] != 6) return std::nullopt;
+  CellQuads out{};
+  for (std::size_t k = 0; k < 6; ++k) {
+    const auto i = static_cast<std::size_t>(cells.offsets[c]) + k;
+    const auto f = static_cast<std::size_t>(cells.faces[i]);
+    const auto begin = static_cast<std::size_t>(mesh.faces.offsets[f]);
+    if (static_cast<std::size_t>(mesh.faces.offsets[f + 1]) - begin != 4) return std::nullopt;
+    std::copy_n(mesh.faces.nodes.begin() + static_cast<std::ptrdiff_t>(begin), 4, out[k].begin());
+    if (!cells.owned[i]) std::reverse(out[k].begin(), out[k].end());
+  }
+  return out;
+}
+
 /// The node joined to `node` by an edge of the cell that is not in `bottom`, if exactly one.
-std::optional<std::int64_t> node_above(const OutwardFaces& cell, std::int64_t node, const Quad& bottom) {
+std::optional<std::int64_t> node_above(const CellQuads& cell, std::int64_t node, const Quad& bottom) {
   std::optional<std::int64_t> above;
-  for (const auto& f : cell.faces) {
+  for (const auto& f : cell) {
     for (std::size_t i = 0; i < 4; ++i) {
       if (f[i] != node) continue;
       for (const std::int64_t other : {f[(i + 1) % 4], f[(i + 3) % 4]}) {
@@ -73,26 +91,43 @@ std::optional<std::int64_t> node_above(const OutwardFaces& cell, std::int64_t no
 }
 
 /// Each of the cell's edges must lie in exactly two of its faces, once in each direction.
-bool edges_close(const OutwardFaces& cell) {
-  std::vector<std::pair<std::int64_t, std::int64_t>> edges;
-  for (const auto& f : cell.faces) {
-    for (std::size_t i = 0; i < 4; ++i) edges.emplace_back(f[i], f[(i + 1) % 4]);
+/// The cell's (at most 8) points get local numbers, its directed edges are bits i * 8 + j of
+/// a mask: no bit set twice, and the mask equal to its transpose.
+bool edges_close(const CellQuads& cell) {
+  std::array<std::int64_t, 8> points{};
+  std::size_t count = 0;
+  const auto local = [&](std::int64_t p) -> int {
+    for (std::size_t i = 0; i < count; ++i) {
+      if (points[i] == p) return static_cast<int>(i);
+    }
+    if (count == points.size()) return -1;
+    points[count] = p;
+    return static_cast<int>(count++);
+  };
+  std::uint64_t edges = 0;
+  for (const auto& f : cell) {
+    std::array<int, 4> q{};
+    for (std::size_t i = 0; i < 4; ++i) {
+      q[i] = local(f[i]);
+      if (q[i] < 0) return false;
+    }
+    for (std::size_t i = 0; i < 4; ++i) {
+      const std::uint64_t bit = std::uint64_t{1} << (q[i] * 8 + q[(i + 1) % 4]);
+      if (edges & bit) return false;
+      edges |= bit;
+    }
   }
-  std::sort(edges.begin(), edges.end());
-  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
-  for (const auto& [a, b] : edges) {
-    if (!std::binary_search(edges.begin(), edges.end(), std::pair{b, a})) return false;
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      if (((edges >> (i * 8 + j)) & 1U) != ((edges >> (j * 8 + i)) & 1U)) return false;
+    }
   }
   return true;
 }
 
-std::optional<Hex> hex_from(const OutwardFaces& cell, std::size_t bottom_face) {
-  if (cell.faces.size() != 6) return std::nullopt;
-  for (const auto& f : cell.faces) {
-    if (f.size() != 4) return std::nullopt;
-  }
+std::optional<Hex> hex_from(const CellQuads& cell, std::size_t bottom_face) {
   if (!edges_close(cell)) return std::nullopt;
-  const auto& b = cell.faces[bottom_face];
+  const auto& b = cell[bottom_face];
   const Quad bottom{b[0], b[3], b[2], b[1]};  // right-hand normal into the cell
   Hex hex{};
   for (std::size_t i = 0; i < 4; ++i) {
@@ -134,17 +169,17 @@ std::vector<Hex> hexahedra(const PolyMesh& mesh, const CellFaces& cells, std::sp
   std::size_t others = 0;
   std::string first;
   for (std::size_t c = 0; c < mesh.cell_count; ++c) {
-    const OutwardFaces cell = outward_faces(mesh, cells, c);
+    const std::optional<CellQuads> quads = outward_quads(mesh, cells, c);
     std::size_t bottom = 0;
     if (!bottom_faces.empty()) {
       const auto begin = cells.faces.begin() + cells.offsets[c], end = cells.faces.begin() + cells.offsets[c + 1];
       bottom = static_cast<std::size_t>(std::find(begin, end, bottom_faces[c]) - begin);
     }
-    const auto hex = bottom < cell.faces.size() ? hex_from(cell, bottom) : std::nullopt;
+    const auto hex = quads && bottom < 6 ? hex_from(*quads, bottom) : std::nullopt;
     if (hex) {
       hexes[c] = *hex;
     } else if (others++ == 0) {
-      first = fmt::format("cell {} has {}", c, shape_of(cell));
+      first = fmt::format("cell {} has {}", c, shape_of(outward_faces(mesh, cells, c)));
     }
   }
   if (others > 0) {

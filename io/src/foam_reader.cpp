@@ -29,7 +29,7 @@ bool is_file(const fs::path& path) {
 
 bool is_foam_path(const fs::path& path) {
   std::error_code ec;
-  return fs::is_directory(path, ec);
+  return fs::is_directory(path, ec) || path.filename() == "polyMesh";
 }
 
 fs::path foam_mesh_folder(const fs::path& path) {

@@ -22,7 +22,7 @@ MeshFormat mesh_format(const std::filesystem::path& path) {
   if (ext == ".cgns" || ext == ".hdf" || ext == ".adf") return MeshFormat::cgns;
   throw InputError::in(path.string(), "unknown mesh format '" + ext +
                                           "': hotmesh reads Gmsh .msh and CGNS .cgns files and OpenFOAM polyMesh "
-                                          "folders, and writes .msh, .cgns and .vtu");
+                                          "folders, and writes .msh, .cgns, .vtu and polyMesh folders");
 }
 
 LoadedMesh read_mesh(const std::filesystem::path& path) {
@@ -81,9 +81,8 @@ void write_mesh(const std::filesystem::path& path, const mesh::Mesh& mesh, std::
     }
     case MeshFormat::vtu: write_vtu(path, mesh, points, fields); return;
     case MeshFormat::cgns: write_cgns(path, mesh, points); return;
-    case MeshFormat::foam: break;
+    case MeshFormat::foam: write_foam(path, mesh, points); return;
   }
-  throw InputError::in(path.string(), "hotmesh writes OpenFOAM meshes only as the moved points of a mesh it read");
 }
 
 }  // namespace hotmesh::io

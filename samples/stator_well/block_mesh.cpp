@@ -318,6 +318,7 @@ QuadMesh BlockMesher::mesh(double refinement) const {
     for (std::size_t j = 0; j + 1 < nj; ++j) {
       for (std::size_t i = 0; i + 1 < ni; ++i) out.quads.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
     }
+    out.blocks.push_back({ni, nj, std::move(grid)});
   }
   // Boundary segments along the loop, each on the curve that holds its middle.
   for (std::size_t i = 0; i < edges_.size(); ++i) {

@@ -59,6 +59,14 @@ struct QuadMesh {
     int curve = 0;              ///< index into BlockLayout::loop
   };
   std::vector<Segment> boundary;  ///< every boundary edge of the mesh
+  /// Each block as a structured grid: ni x nj nodes, node (i, j) at nodes[j ni + i]; i runs
+  /// along the block's first side (P0 -> P1), j along its fourth (P0 -> P3). Its quads are
+  /// those of `quads` in the same order, i fastest.
+  struct Block {
+    std::size_t ni = 0, nj = 0;
+    std::vector<std::int32_t> nodes;
+  };
+  std::vector<Block> blocks;
 };
 
 class BlockMesher {

@@ -195,4 +195,24 @@ std::string case_file(const std::vector<ProfileCurve>& loop, const std::string& 
   return text;
 }
 
+std::string engine_case_file_name(const std::string& label, const std::string& format) {
+  return "case_" + label + "_" + format + ".yaml";
+}
+
+std::string engine_case_file(const std::vector<ProfileCurve>& loop, const std::string& label, const std::string& format,
+                             const std::string& mesh) {
+  std::string text = case_file(loop, label, true);
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = text.find(from);
+    if (at == std::string::npos) throw std::logic_error("case file without '" + from + "'");
+    text.replace(at, from.size(), to);
+  };
+  replace("hotmesh deform " + case_file_name(label, true), "hotmesh deform " + engine_case_file_name(label, format));
+  replace(std::string("mesh: ") + kMeshFile, "mesh: " + mesh);
+  replace("# Written by make_stator_well",
+          "# The mesh " + mesh + " is the .msh file's sector (written by make_stator_well --engine-formats FOLDER).\n"
+          "# Written by make_stator_well");
+  return text;
+}
+
 }  // namespace hotmesh::samples::stator_well

@@ -77,4 +77,11 @@ std::string case_file_name(const std::string& label, bool sliding);
 /// prescribed (`sliding` false).
 std::string case_file(const std::vector<ProfileCurve>& loop, const std::string& label, bool sliding);
 
+/// "case_<label>_<format>.yaml" (format "cgns" or "foam").
+std::string engine_case_file_name(const std::string& label, const std::string& format);
+/// The sliding case file on the mesh `mesh` (kCgnsFile or kFoamCase) instead of the .msh file:
+/// the same roles and tables.
+std::string engine_case_file(const std::vector<ProfileCurve>& loop, const std::string& label, const std::string& format,
+                             const std::string& mesh);
+
 }  // namespace hotmesh::samples::stator_well

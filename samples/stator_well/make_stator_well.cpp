@@ -5,13 +5,19 @@
 // upper and a lower component joined by a 1 mm radial gap.
 //
 // Run:   build/samples/stator_well/make_stator_well [--cells N | --refinement S] [--label NAME]
-//                                                   [--ascii | --binary] [OUTPUT_FOLDER]
+//                                                   [--ascii | --binary] [--engine-formats] [OUTPUT_FOLDER]
 // (default: 18 000 cells, label "small", the current folder). Writes
 //   stator_well.step    the meridional profile revolved by 3.6 degrees about z, one face per
 //                       curve, numbered by patch (README.md lists them)
 //   stator_well.msh     the hex mesh of the sector (Gmsh 4.1, binary unless --ascii)
 //   <patch>.csv         one FEM deflection table per metal patch (r, z, dr, dz), severe case
 //   case_<label>.yaml, case_<label>_nosliding.yaml    the case files, sliding on and off
+//   case_<label>_cgns.yaml, case_<label>_foam.yaml    the sliding case on the meshes below
+// and with --engine-formats also
+//   stator_well.cgns    the sector as structured multi-block CGNS (one zone per block, 1-to-1
+//                       connections, BCs named as the patches)
+//   stator_well_foam/   the sector as an OpenFOAM case (constant/polyMesh, ASCII unless --binary
+//                       is given explicitly; system/ for checkMesh)
 // and prints a summary: size, quality, patches with their roles, CAD faces and tables, and what
 // the deflections do to the seal clearance and the joint.
 // The committed files in samples/stator_well/ are this program's default output.
@@ -44,6 +50,8 @@ struct Options {
   double refinement = 0.0;  // > 0: use it instead of cells
   std::string label = "small";
   bool binary = true;
+  bool binary_given = false;
+  bool engine_formats = false;
   std::filesystem::path folder = ".";
 };
 
@@ -63,9 +71,13 @@ Options parse(int argc, char** argv) {
       o.label = value();
     } else if (a == "--ascii" || a == "--binary") {
       o.binary = a == "--binary";
+      o.binary_given = true;
+    } else if (a == "--engine-formats") {
+      o.engine_formats = true;
     } else if (a == "-h" || a == "--help") {
       std::printf(
-          "usage: make_stator_well [--cells N | --refinement S] [--label NAME] [--ascii | --binary] [FOLDER]\n");
+          "usage: make_stator_well [--cells N | --refinement S] [--label NAME] [--ascii | --binary] "
+          "[--engine-formats] [FOLDER]\n");
       std::exit(0);
     } else if (!a.empty() && a[0] == '-') {
       throw std::invalid_argument("unknown option " + std::string(a));
@@ -92,7 +104,8 @@ int main(int argc, char** argv) {
     // 2. The mesh: blocks of the meridional section, swept in theta.
     const hotmesh::samples::BlockMesher mesher(block_layout(loop), spacing_field());
     const Size size = o.refinement > 0.0 ? size_at(mesher, o.refinement) : size_for_cells(mesher, o.cells);
-    auto mesh = sector_mesh(mesher.mesh(size.refinement), loop, size.theta_cells);
+    const auto section = mesher.mesh(size.refinement);
+    auto mesh = sector_mesh(section, loop, size.theta_cells);
     hotmesh::mesh::validate_mesh(mesh);
     const auto quality = hotmesh::mesh::summarize_quality(hotmesh::mesh::scaled_jacobians(mesh.cells, mesh.points));
     hotmesh::io::write_gmsh(o.folder / kMeshFile, mesh, {.binary = o.binary});
@@ -104,9 +117,20 @@ int main(int argc, char** argv) {
     for (const bool sliding : {true, false}) {
       hotmesh::io::write_file_atomically(o.folder / case_file_name(o.label, sliding), case_file(loop, o.label, sliding));
     }
+
+    // 4. The case files on the sector in engine formats, and with --engine-formats the sector as
+    //    structured multi-block CGNS and as an OpenFOAM case.
+    for (const auto& [format, file] : {std::pair<std::string, std::string>{"cgns", kCgnsFile}, {"foam", kFoamCase}}) {
+      hotmesh::io::write_file_atomically(o.folder / engine_case_file_name(o.label, format),
+                                         engine_case_file(loop, o.label, format, file));
+    }
+    if (o.engine_formats) {
+      write_sector_cgns(o.folder / kCgnsFile, section, mesh, loop, size.theta_cells);
+      write_sector_foam(o.folder / kFoamCase, mesh, o.binary_given && o.binary);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    // 4. Summary.
+    // 5. Summary.
     std::string out = fmt::format("# stator_well ({})\n\nWritten to {} in {:.1f} s.\n\n", o.label, o.folder.string(), seconds);
     out += fmt::format(
         "| refinement | theta cells | quads (section) | hex cells | nodes | min scaled Jacobian | mean |\n"

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,6 +27,8 @@ inline constexpr std::int64_t kSmallCells = 18000;
 /// The files the generator writes besides the tables and case files.
 inline constexpr const char* kMeshFile = "stator_well.msh";
 inline constexpr const char* kCadFile = "stator_well.step";
+inline constexpr const char* kCgnsFile = "stator_well.cgns";   ///< --engine-formats
+inline constexpr const char* kFoamCase = "stator_well_foam";   ///< --engine-formats: an OpenFOAM case folder
 
 /// Mesh patches, in the order of their tags (tag = index + 1); roles as in case_small.yaml.
 enum class Patch {
@@ -96,5 +99,18 @@ mesh::Mesh sector_mesh(const QuadMesh& section, const std::vector<ProfileCurve>&
 
 /// (r, z) of a point given as (z, r): the meridional convention of hotmesh's geometry.
 inline Vec2 to_rz(const Vec2& zr) { return {zr.y, zr.x}; }
+
+/// Writes the sector as a structured multi-block CGNS file (HDF5): one zone per block of
+/// `section` (i, j the block's, k along theta), GridConnectivity1to1 between blocks sharing a
+/// side, BCs as vertex point ranges whose FamilyName is the patch (also the BC's name, with
+/// _2, _3 appended where a zone has more than one of a patch). `sector` is
+/// sector_mesh(section, loop, theta_cells). Throws std::runtime_error with the library's message.
+void write_sector_cgns(const std::filesystem::path& path, const QuadMesh& section, const mesh::Mesh& sector,
+                       const std::vector<ProfileCurve>& loop, int theta_cells);
+
+/// Writes the sector as an OpenFOAM case: `folder`/constant/polyMesh (hotmesh's polyMesh
+/// writer; per_lo, per_hi, inlet and outlet of type patch, the others wall) and the system/
+/// files checkMesh reads.
+void write_sector_foam(const std::filesystem::path& folder, const mesh::Mesh& sector, bool binary);
 
 }  // namespace hotmesh::samples::stator_well

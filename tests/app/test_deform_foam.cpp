@@ -282,5 +282,30 @@ TEST(DeformFoam, BadFoamTimesAndNonHexMeshesExitWithCode2BeforeAnyWork) {
   EXPECT_THAT(p.output, HasSubstr("cell 0 has 5 faces (a prism)"));
 }
 
+TEST(ConvertFoam, WritesANewPolyMeshFromAHexMeshAndRefusesA2dMeshNamingTheFolder) {
+  test::TempDir dir;
+  const fs::path samples = fs::path(HOTMESH_SOURCE_DIR) / "samples";
+  const fs::path polymesh = dir / "case" / "constant" / "polyMesh";
+  const auto to_foam = hotmesh("convert --binary " + shell_quote((samples / "stator_well" / "stator_well.msh").string()) +
+                               " " + shell_quote(polymesh.string()));
+  ASSERT_EQ(to_foam.exit_code, 0) << to_foam.output;
+  EXPECT_THAT(test::read_text(polymesh / "faces"), HasSubstr("faceCompactList"));
+  const io::LoadedMesh back = io::read_mesh(dir / "case");
+  EXPECT_EQ(back.mesh.node_count(), 25408u);
+  EXPECT_EQ(back.mesh.cell_count(), 17979u);
+  EXPECT_EQ(back.mesh.patches.size(), 17u);
+  // The polyMesh just written, converted onto itself through its case folder: refused.
+  const auto onto_itself = hotmesh("convert " + shell_quote((dir / "case").string()) + " " + shell_quote(polymesh.string()));
+  EXPECT_EQ(onto_itself.exit_code, 2);
+  EXPECT_THAT(onto_itself.output, HasSubstr("would replace an input file"));
+  const fs::path flat = dir / "flat" / "constant" / "polyMesh";
+  const auto refused =
+      hotmesh("convert " + shell_quote((samples / "ramp2d" / "ramp2d.msh").string()) + " " + shell_quote(flat.string()));
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.output, HasSubstr(flat.string()));
+  EXPECT_THAT(refused.output, HasSubstr("3D hex meshes only"));
+  EXPECT_FALSE(fs::exists(flat));
+}
+
 }  // namespace
 }  // namespace hotmesh::app

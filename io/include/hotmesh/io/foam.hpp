@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string_view>
 
 #include "hotmesh/io/mesh_files.hpp"
@@ -26,8 +27,26 @@ std::filesystem::path foam_mesh_folder(const std::filesystem::path& path);
 /// are refused) or the mesh is not a case's constant/polyMesh.
 std::filesystem::path foam_time_folder(const std::filesystem::path& mesh_path, std::string_view time);
 
-/// True if `path` is a folder (read as an OpenFOAM mesh).
+/// True if `path` is a folder (read as an OpenFOAM mesh) or is named polyMesh.
 bool is_foam_path(const std::filesystem::path& path);
+
+struct FoamWriteOptions {
+  bool binary = false;  ///< binary points, faces (faceCompactList), owner and neighbour
+};
+
+/// The polyMesh folder write_foam writes for `path`: `path` if it is named polyMesh, else
+/// `path`/constant/polyMesh (a case folder; mesh_format() takes only an existing folder so).
+std::filesystem::path foam_output_folder(const std::filesystem::path& path);
+
+/// Writes a new polyMesh (points, faces, owner, neighbour, boundary) of the 3D hex mesh `m`
+/// with its nodes at `points` into foam_output_folder(path). Points and cells keep the mesh's
+/// order; internal faces come in OpenFOAM's upper-triangular order, then each patch's faces
+/// (outward), then the boundary faces in no patch as the wall patch `defaultFaces`. A patch is
+/// of type `patch` if its name starts or ends with inlet, outlet, inflow or outflow or starts
+/// with per_ or periodic, else `wall`. Throws hotmesh::InputError naming `path` for 2D meshes,
+/// cells other than hexahedra and patch faces that are not boundary faces.
+void write_foam(const std::filesystem::path& path, const mesh::Mesh& m, std::span<const geometry::Vec3> points,
+                const FoamWriteOptions& options = {});
 
 struct FoamMesh {
   mesh::Mesh mesh;  ///< not yet validated (see read_mesh in mesh_files.hpp)

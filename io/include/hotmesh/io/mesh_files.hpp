@@ -3,8 +3,8 @@
 //   .vtu  VTK XML unstructured grid (write only: for ParaView)
 //   .cgns CGNS, HDF5 or ADF (also .hdf, .adf): read, written back (deformed.cgns), and
 //         written new by convert (docs/cgns.md)
-//   a folder: an OpenFOAM polyMesh folder or case (read, and written back: foam.hpp,
-//         docs/openfoam.md)
+//   a folder (or a path named polyMesh): an OpenFOAM polyMesh folder or case (read, written
+//         back, and written new from a 3D hex mesh: foam.hpp, docs/openfoam.md)
 // A mesh read from another solver's format keeps what it needs to be written back in that
 // format (MeshWriteBack), with only the coordinates of its nodes changed.
 #pragma once
@@ -24,8 +24,8 @@ namespace hotmesh::io {
 
 enum class MeshFormat { gmsh, vtu, cgns, foam };
 
-/// The format a path names by its extension (foam for a folder). Throws hotmesh::InputError
-/// for others.
+/// The format a path names by its extension (foam for a folder or a path named polyMesh).
+/// Throws hotmesh::InputError for others.
 MeshFormat mesh_format(const std::filesystem::path& path);
 
 /// How a run writes its moved mesh back in the format the mesh came from, beside
