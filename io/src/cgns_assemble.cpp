@@ -78,7 +78,7 @@ void join_coincident(const RawMesh& raw, NodeUnion& nodes) {
   const mesh::FaceIndex index(raw.cells, raw.points.size());
   const mesh::FaceTopology topology = mesh::face_topology(index);
   std::vector<char> on_boundary(raw.points.size(), 0);
-  double shortest = INFINITY;
+  double shortest = std::numeric_limits<double>::infinity();
   for (const mesh::CellFace& f : topology.boundary) {
     const mesh::FaceNodes face = mesh::face_nodes(raw.cells, f);
     for (int i = 0; i < face.count; ++i) {

@@ -153,7 +153,7 @@ double FoamCursor::binary_scalar(std::string_view what) {
   if (size == 4) {
     float v = 0.0f;
     std::memcpy(&v, text_.data() + pos_, 4);
-    value = v;
+    value = static_cast<double>(v);
   } else {
     std::memcpy(&value, text_.data() + pos_, 8);
   }
