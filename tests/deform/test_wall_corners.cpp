@@ -130,14 +130,25 @@ TEST(WallCorners, TwoCornersWithinOneCellAreReportedNotSquashed) {
   EXPECT_TRUE(noted);
 }
 
+/// The wall's 10-degree sector about z, 3 cells in theta, sides side0/side1 (slip planes in
+/// the tests); the wall's inner rows of nodes turned by `turn` of a cell in theta.
+constexpr double kSector = 10.0 * std::numbers::pi / 180.0;
+mesh::Mesh sector_mesh(double turn) {
+  mesh::Mesh mesh = mesh::structured_hexes(along(), mesh::uniform_line(0.0, kSector, 3), across(),
+                                           {"left", "right", "side0", "side1", "bottom", "top"});
+  for (Vec3& p : mesh.points) {
+    const bool inner_wall_row = p.z == 0.0 && p.y > 0.1 * kSector && p.y < 0.9 * kSector;
+    const double theta = p.y + (inner_wall_row ? turn * kSector / 3.0 : 0.0);
+    p = {p.x * std::cos(theta), p.x * std::sin(theta), p.z};
+  }
+  return mesh;
+}
+
 TEST(WallCorners, OnASurfaceOfRevolutionEveryMeridionalRowHoldsEachCornerCircle) {
   // The same wall as the meridional curve (r, z) of a 10-degree sector about z, 3 cells in
   // theta; its sides are slip planes, whose wall nodes hold the corners too (the corner circle
   // crosses them in their own meridional planes).
-  const double sector = 10.0 * std::numbers::pi / 180.0;
-  mesh::Mesh mesh = mesh::structured_hexes(along(), mesh::uniform_line(0.0, sector, 3), across(),
-                                           {"left", "right", "side0", "side1", "bottom", "top"});
-  for (Vec3& p : mesh.points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), p.z};
+  const mesh::Mesh mesh = sector_mesh(0.0);
   const geometry::Axis axis({0, 0, 0}, {0, 0, 1});
   const auto wall = std::make_shared<geometry::RevolvedShape>(bump_wall(), axis);
   const auto rz = [&](const Vec3& p) {
@@ -156,7 +167,7 @@ TEST(WallCorners, OnASurfaceOfRevolutionEveryMeridionalRowHoldsEachCornerCircle)
     for (mesh::NodeId n : f.nodes) thetas.push_back(axis.to_cylindrical(r.points[static_cast<std::size_t>(n)]).theta);
     std::sort(thetas.begin(), thetas.end());
     EXPECT_NEAR(thetas.front(), 0.0, 1e-12);
-    EXPECT_NEAR(thetas.back(), sector, 1e-12);
+    EXPECT_NEAR(thetas.back(), kSector, 1e-12);
   }
   EXPECT_LT(largest_corner_gap(mesh, r, rz), 1e-12);
 }
@@ -166,14 +177,7 @@ TEST(WallCorners, OnASurfaceOfRevolutionTheHoldingNodesSlideAlongTheCornerCircle
   // that the mesh pulls wall nodes round the axis. Nodes given a corner circle end on it, and
   // are free along it: in the corner pass they move in theta too (a node prescribed onto the
   // corner would keep the theta it had).
-  const double sector = 10.0 * std::numbers::pi / 180.0;
-  mesh::Mesh mesh = mesh::structured_hexes(along(), mesh::uniform_line(0.0, sector, 3), across(),
-                                           {"left", "right", "side0", "side1", "bottom", "top"});
-  for (Vec3& p : mesh.points) {
-    const bool inner_wall_row = p.z == 0.0 && p.y > 0.1 * sector && p.y < 0.9 * sector;
-    const double theta = p.y + (inner_wall_row ? 0.25 * sector / 3.0 : 0.0);
-    p = {p.x * std::cos(theta), p.x * std::sin(theta), p.z};
-  }
+  const mesh::Mesh mesh = sector_mesh(0.25);
   const geometry::Axis axis({0, 0, 0}, {0, 0, 1});
   const auto wall = std::make_shared<geometry::RevolvedShape>(bump_wall(), axis);
   const MotionResult r = move_mesh(mesh, motions(wall, true, {"side0", "side1"}), {}, {});
@@ -198,10 +202,7 @@ TEST(WallCorners, OnASurfaceOfRevolutionTheHoldingNodesSlideAlongTheCornerCircle
 TEST(WallCorners, TheCornerPassRunsWithTheAmgSolverToo) {
   // The sector's corner circles with the assembled solver (nodal frames for the nodes that
   // slide along a circle): the same corners held as with jacobi-pcg.
-  const double sector = 10.0 * std::numbers::pi / 180.0;
-  mesh::Mesh mesh = mesh::structured_hexes(along(), mesh::uniform_line(0.0, sector, 3), across(),
-                                           {"left", "right", "side0", "side1", "bottom", "top"});
-  for (Vec3& p : mesh.points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), p.z};
+  const mesh::Mesh mesh = sector_mesh(0.0);
   const geometry::Axis axis({0, 0, 0}, {0, 0, 1});
   const auto wall = std::make_shared<geometry::RevolvedShape>(bump_wall(), axis);
   SolverOptions amg;
