@@ -51,7 +51,7 @@ deform::MotionCheckpoint state_of(const mesh::Mesh& mesh) {
     for (mesh::NodeId n : patch.nodes) boundary[static_cast<std::size_t>(n)] = 1;
   }
   for (std::size_t n = 0; n < mesh.node_count(); ++n) {
-    if (boundary[n]) s.sliding.push_back({static_cast<mesh::NodeId>(n), mesh.points[n], {0.5, 0.25, 0.0}});
+    if (boundary[n]) s.sliding.push_back({static_cast<mesh::NodeId>(n), mesh.points[n], {{{.t = 0.5}, {.t = 0.25}, {.t = 0.0}}}});
   }
   for (int k = 1; k <= 8; ++k) {
     deform::IncrementRecord r;

@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
       moved[i] = points[i] + Vec3{0.0012 * (uniform(random) - 0.5), 0.0012 * (uniform(random) - 0.5),
                                   0.0012 * (uniform(random) - 0.5)};
     }
-    std::vector<double> hints(count);
+    std::vector<ShapeParameter> hints(count);
     std::vector<ShapePoint> result(count);
     const double cold = rate(count, 3, [&] {
       for (std::size_t i = 0; i < count; ++i) result[i] = shape.project(points[i], 0.5);
@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
     double iterations = 0.0;
     for (std::size_t i = 0; i < count; i += 97) {
       const Cylindrical c = axis.to_cylindrical(moved[i]);
-      const CurveProjection w = shape.projector().project({c.r, c.z}, 0.5, hints[i]);
+      const CurveProjection w = shape.projector().project({c.r, c.z}, 0.5, hints[i].t);
       const CurveProjection g = shape.projector().project({c.r, c.z}, 0.5);
       worst = std::max(worst, std::abs(w.distance - g.distance));
       iterations += w.iterations;

@@ -195,7 +195,7 @@ Json GeometryService::project(std::string_view curve_id, const Json& request) co
       const geometry::ShapePoint q = stored->shape->project({x[0], x[1], x[2]}, lambda);
       projections.push_back({{"point", vec3_json(q.point)},
                              {"normal", vec3_json(q.normal)},
-                             {"parameter", q.parameter},
+                             {"parameter", q.parameter.t},
                              {"distance", q.distance}});
     }
   }

@@ -67,7 +67,7 @@ SlipPlane slip_plane(const Mesh& mesh, const Patch& patch) {
 
 /// Parameters of `nodes` on the undeformed shape (stage 0); throws if any is farther from it
 /// than 1e-3 times the diagonal of the patch's bounding box, listing them.
-std::vector<double> locate(const Mesh& mesh, std::span<const Vec3> points, const Patch& patch, const PatchMotion& m,
+std::vector<geometry::ShapeParameter> locate(const Mesh& mesh, std::span<const Vec3> points, const Patch& patch, const PatchMotion& m,
                            std::span<const NodeId> nodes) {
   const double tolerance = 1e-3 * bounding_diagonal(mesh.points, patch.nodes);
   std::vector<geometry::ShapePoint> found(nodes.size());
@@ -82,7 +82,7 @@ std::vector<double> locate(const Mesh& mesh, std::span<const Vec3> points, const
   errors.rethrow();
   std::size_t off = 0;
   std::string examples;
-  std::vector<double> parameters(nodes.size());
+  std::vector<geometry::ShapeParameter> parameters(nodes.size());
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     parameters[k] = found[k].parameter;
     if (found[k].distance > tolerance || !std::isfinite(found[k].distance)) {
@@ -423,7 +423,7 @@ class BoundaryBuilder {
       auto path = std::make_shared<const CornerPath>(wall, corner, x0_[static_cast<std::size_t>(n)], static_cast<int>(d));
       s.shapes[d] = path.get();
       s.segments[d] = {};
-      s.hints[d] = corner;
+      s.hints[d] = {.t = corner};
       setup_.corner_paths.push_back(std::move(path));
     }
     s.shape_count = 2;
@@ -461,7 +461,7 @@ class BoundaryBuilder {
             follow_corner_line(n, *m.shape, held.feature.parameter);
           } else {  // a corner point: the node is prescribed onto it
             holds[static_cast<std::size_t>(n)] = kPrescribedOntoCorner;
-            setup_.prescribed.push_back({n, held.feature.parameter, m.shape.get(), true});
+            setup_.prescribed.push_back({n, {.t = held.feature.parameter}, m.shape.get(), true});
             setup_.constraints.fix(n);
           }
         }

@@ -29,7 +29,7 @@ namespace hotmesh::deform::detail {
 /// fades over the increments, x(lambda) = at(t, lambda) + (1 - lambda) (x0 - at(t, 0)).
 struct PrescribedNode {
   NodeId node = 0;
-  double parameter = 0.0;
+  geometry::ShapeParameter parameter;
   const geometry::BoundaryShape* shape = nullptr;
   bool reaches_shape = false;
 };
@@ -47,11 +47,11 @@ struct SlidingNode {
   NodeId node = 0;
   std::array<const geometry::BoundaryShape*, kMaxShapes> shapes{};
   int shape_count = 0;
-  std::array<double, kMaxShapes> hints{};  ///< parameter of the last projection on each shape
+  std::array<geometry::ShapeParameter, kMaxShapes> hints{};  ///< parameter of the last projection on each shape
   std::array<int, 2> planes{};             ///< indices into BoundarySetup::slip_planes
   int plane_count = 0;
   Vec3 target;  ///< x_F: where the node is to end on the fully deflected boundary (section 4.3)
-  double origin = 0.0;  ///< t0: its material parameter on shapes[0] (SlidingOrigin)
+  geometry::ShapeParameter origin;  ///< t0: its material parameter on shapes[0] (SlidingOrigin)
   /// The part of each shape it slides on: between the corners on either side of it.
   std::array<geometry::ParameterRange, kMaxShapes> segments{};
 };

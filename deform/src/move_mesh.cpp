@@ -122,10 +122,10 @@ class Motion {
       f.nodes.insert(f.nodes.end(), c.held.held_by_role.begin(), c.held.held_by_role.end());
       for (NodeId n : f.nodes) {
         const Vec3& x = result_.points[static_cast<std::size_t>(n)];
-        f.distance = std::max(f.distance, distance(x, c.shape->at(f.parameter, result_.lambda_reached, x).point));
+        f.distance = std::max(f.distance, distance(x, c.shape->at({.t = f.parameter}, result_.lambda_reached, x).point));
       }
       const Vec3& reference = f.nodes.empty() ? c.reference : result_.points[static_cast<std::size_t>(f.nodes.front())];
-      f.point = c.shape->at(f.parameter, result_.lambda_reached, reference).point;
+      f.point = c.shape->at({.t = f.parameter}, result_.lambda_reached, reference).point;
       result_.features.push_back(std::move(f));
     }
   }
@@ -404,12 +404,12 @@ constexpr int kCornerPassIncrements = 2;
 class FinalStage final : public geometry::BoundaryShape {
  public:
   explicit FinalStage(std::shared_ptr<const geometry::BoundaryShape> shape) : shape_(std::move(shape)) {}
-  geometry::ShapePoint project(const Vec3& p, double /*lambda*/, double hint,
+  geometry::ShapePoint project(const Vec3& p, double /*lambda*/, const geometry::ShapeParameter& hint,
                                const geometry::ParameterRange& range) const override {
     return shape_->project(p, 1.0, hint, range);
   }
-  geometry::ShapePoint at(double t, double /*lambda*/, const Vec3& reference) const override {
-    return shape_->at(t, 1.0, reference);
+  geometry::ShapePoint at(const geometry::ShapeParameter& where, double /*lambda*/, const Vec3& reference) const override {
+    return shape_->at(where, 1.0, reference);
   }
   std::vector<geometry::ShapeFeature> features(double min_angle) const override { return shape_->features(min_angle); }
 

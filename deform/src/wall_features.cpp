@@ -71,7 +71,7 @@ class CornerPlanner {
     for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(count_); ++i) {
       errors.run([&] {
         const auto k = static_cast<std::size_t>(i);
-        plan_.parameters[k] = shape_.project(x(k), 0.0).parameter;
+        plan_.parameters[k] = shape_.project(x(k), 0.0).parameter.t;
       });
     }
     errors.rethrow();
@@ -133,7 +133,7 @@ class CornerPlanner {
   void note_unheld_corners() {
     for (HeldFeature& held : plan_.features) {
       if (held.unheld_edges == 0) continue;
-      const Vec3 p = shape_.at(held.feature.parameter, 1.0, x(0)).point;
+      const Vec3 p = shape_.at({.t = held.feature.parameter}, 1.0, x(0)).point;
       held.note = fmt::format(
           "patch '{}': the corner at ({:.6g}, {:.6g}, {:.6g}) (turning {:.1f} degrees) has no node on {} of the wall "
           "edges that cross it: their ends hold other corners, lie on other patches, or would squash a wall cell "
@@ -157,7 +157,7 @@ class CornerPlanner {
   const Vec3& x(std::size_t k) const { return x0_[static_cast<std::size_t>(patch_.nodes[k])]; }
   /// Corner f's point in the meridional plane of node k (in 2D: the point).
   Vec3 corner_at(std::size_t f, std::size_t k) const {
-    return shape_.at(plan_.features[f].feature.parameter, 0.0, x(k)).point;
+    return shape_.at({.t = plan_.features[f].feature.parameter}, 0.0, x(k)).point;
   }
   double offset(std::size_t f, std::size_t k) const { return distance(x(k), corner_at(f, k)); }
   Vec3 position(std::size_t k) const { return holds_[k] >= 0 ? moved_[k] : x(k); }
@@ -208,19 +208,19 @@ CornerPath::CornerPath(const geometry::BoundaryShape& wall, double corner, const
 
 CornerPath::Section CornerPath::section(const Vec3& p) const {
   Section s;
-  s.corner = wall_.at(corner_, 1.0, p).point;
+  s.corner = wall_.at({.t = corner_}, 1.0, p).point;
   // The wall's normals on either side of the corner span its cross-section (they differ by
   // the corner's angle); Gram-Schmidt makes them an orthonormal pair.
   const double step = kOneSided * (1.0 + std::abs(corner_));
-  const Vec3 a = wall_.at(corner_ - step, 1.0, p).normal;
-  const Vec3 b = wall_.at(corner_ + step, 1.0, p).normal;
+  const Vec3 a = wall_.at({.t = corner_ - step}, 1.0, p).normal;
+  const Vec3 b = wall_.at({.t = corner_ + step}, 1.0, p).normal;
   s.axes[0] = a / norm(a);
   const Vec3 c = b - dot(b, s.axes[0]) * s.axes[0];
   s.axes[1] = c / norm(c);
   return s;
 }
 
-geometry::ShapePoint CornerPath::project(const Vec3& p, double lambda, double /*hint*/,
+geometry::ShapePoint CornerPath::project(const Vec3& p, double lambda, const geometry::ShapeParameter& /*hint*/,
                                          const geometry::ParameterRange& /*range*/) const {
   const Section s = section(p);
   const double fade = 1.0 - lambda;
@@ -228,11 +228,12 @@ geometry::ShapePoint CornerPath::project(const Vec3& p, double lambda, double /*
   q.point = s.corner + fade * (offset_[0] * s.axes[0] + offset_[1] * s.axes[1]);
   q.distance = distance(p, q.point);
   q.normal = s.axes[static_cast<std::size_t>(direction_)];
-  q.parameter = corner_;
+  q.parameter = {.t = corner_};
   return q;
 }
 
-geometry::ShapePoint CornerPath::at(double /*t*/, double lambda, const Vec3& reference) const {
+geometry::ShapePoint CornerPath::at(const geometry::ShapeParameter& /*where*/, double lambda,
+                                    const Vec3& reference) const {
   return project(reference, lambda);
 }
 

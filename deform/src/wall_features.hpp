@@ -53,9 +53,9 @@ class CornerPath final : public geometry::BoundaryShape {
  public:
   CornerPath(const geometry::BoundaryShape& wall, double corner, const Vec3& start, int direction);
 
-  geometry::ShapePoint project(const Vec3& p, double lambda, double hint = geometry::kNoHint,
+  geometry::ShapePoint project(const Vec3& p, double lambda, const geometry::ShapeParameter& hint = geometry::kNoHint,
                                const geometry::ParameterRange& range = {}) const override;
-  geometry::ShapePoint at(double t, double lambda, const Vec3& reference) const override;
+  geometry::ShapePoint at(const geometry::ShapeParameter& where, double lambda, const Vec3& reference) const override;
 
  private:
   /// The corner's point in the cross-section through p, and an orthonormal pair spanning

@@ -7,14 +7,15 @@
 
 namespace hotmesh::geometry {
 
-ShapePoint PlanarCurveShape::project(const Vec3& p, double lambda, double hint, const ParameterRange& range) const {
-  const CurveProjection q = projector_.project({p.x, p.y}, lambda, hint, range);
-  return {{q.point.x, q.point.y, p.z}, {q.normal.x, q.normal.y, 0.0}, q.parameter, q.distance};
+ShapePoint PlanarCurveShape::project(const Vec3& p, double lambda, const ShapeParameter& hint,
+                                     const ParameterRange& range) const {
+  const CurveProjection q = projector_.project({p.x, p.y}, lambda, hint.t, range);
+  return {{q.point.x, q.point.y, p.z}, {q.normal.x, q.normal.y, 0.0}, {.t = q.parameter}, q.distance};
 }
 
-ShapePoint PlanarCurveShape::at(double t, double lambda, const Vec3& reference) const {
-  const CurveProjection q = projector_.at(t, lambda);
-  return {{q.point.x, q.point.y, reference.z}, {q.normal.x, q.normal.y, 0.0}, q.parameter, 0.0};
+ShapePoint PlanarCurveShape::at(const ShapeParameter& where, double lambda, const Vec3& reference) const {
+  const CurveProjection q = projector_.at(where.t, lambda);
+  return {{q.point.x, q.point.y, reference.z}, {q.normal.x, q.normal.y, 0.0}, {.t = q.parameter}, 0.0};
 }
 
 std::vector<ShapeFeature> PlanarCurveShape::features(double min_angle) const {
@@ -23,18 +24,19 @@ std::vector<ShapeFeature> PlanarCurveShape::features(double min_angle) const {
 
 ShapePoint RevolvedShape::to_cartesian(const CurveProjection& q, double theta) const {
   return {axis_.to_cartesian({q.point.x, theta, q.point.y}), axis_.meridional_vector(theta, q.normal.x, q.normal.y),
-          q.parameter, q.distance};
+          {.t = q.parameter}, q.distance};
 }
 
 // Fig. 4-b: P' = (r + dr, theta + dtheta, z + dz) is projected in its meridional plane onto the
 // meridional curve, giving (r_F, z_F); P_F = (r_F, theta + dtheta, z_F).
-ShapePoint RevolvedShape::project(const Vec3& p, double lambda, double hint, const ParameterRange& range) const {
+ShapePoint RevolvedShape::project(const Vec3& p, double lambda, const ShapeParameter& hint,
+                                     const ParameterRange& range) const {
   const Cylindrical c = axis_.to_cylindrical(p);
-  return to_cartesian(projector_.project({c.r, c.z}, lambda, hint, range), c.theta);
+  return to_cartesian(projector_.project({c.r, c.z}, lambda, hint.t, range), c.theta);
 }
 
-ShapePoint RevolvedShape::at(double t, double lambda, const Vec3& reference) const {
-  return to_cartesian(projector_.at(t, lambda), axis_.to_cylindrical(reference).theta);
+ShapePoint RevolvedShape::at(const ShapeParameter& where, double lambda, const Vec3& reference) const {
+  return to_cartesian(projector_.at(where.t, lambda), axis_.to_cylindrical(reference).theta);
 }
 
 std::vector<ShapeFeature> RevolvedShape::features(double min_angle) const {
@@ -49,13 +51,13 @@ PlaneShape::PlaneShape(const Vec3& origin, const Vec3& normal) : origin_(origin)
   normal_ = normal / length;
 }
 
-ShapePoint PlaneShape::project(const Vec3& p, double /*lambda*/, double /*hint*/,
+ShapePoint PlaneShape::project(const Vec3& p, double /*lambda*/, const ShapeParameter& /*hint*/,
                                const ParameterRange& /*range*/) const {
   const double height = dot(p - origin_, normal_);
-  return {p - height * normal_, normal_, 0.0, std::abs(height)};
+  return {p - height * normal_, normal_, {}, std::abs(height)};
 }
 
-ShapePoint PlaneShape::at(double /*t*/, double lambda, const Vec3& reference) const {
+ShapePoint PlaneShape::at(const ShapeParameter& /*where*/, double lambda, const Vec3& reference) const {
   ShapePoint q = project(reference, lambda);
   q.distance = 0.0;
   return q;

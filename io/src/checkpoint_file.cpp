@@ -24,8 +24,10 @@ namespace {
 
 constexpr std::string_view kMagic = "HOTMESH-CHECKPOINT\n";
 /// Version 2 holds the pieces of a split increment left (`split_pieces`) where version 1 held
-/// every step left (`remaining`, 31 bytes per increment of the run); both are read.
-constexpr int kVersion = 2;
+/// every step left (`remaining`, 31 bytes per increment of the run). Version 3 appends the s
+/// and face of each projection hint (surfaces' parameters) after version 2's arrays, which hold
+/// t, with a checksum of their own. All are read.
+constexpr int kVersion = 3;
 constexpr int kOldestVersion = 1;
 constexpr std::string_view kKind = "checkpoint file";
 
@@ -120,15 +122,43 @@ std::string local_time_now() {
   return text;
 }
 
-/// The hash of a checkpoint's arrays, in file order (hints: kHints per sliding node).
+/// Projection hints per sliding node.
 constexpr std::size_t kHints = std::tuple_size_v<decltype(deform::SlidingState::hints)>;
 
-std::uint64_t arrays_hash(const std::vector<geometry::Vec3>& points, const std::vector<deform::SlidingState>& sliding) {
+/// The hints of the sliding nodes as the file stores them: every t, every s, every face.
+struct HintArrays {
+  std::vector<double> t, s;
+  std::vector<std::int32_t> face;
+};
+
+HintArrays hint_arrays(const std::vector<deform::SlidingState>& sliding) {
+  HintArrays a;
+  for (const auto& node : sliding) {
+    for (const geometry::ShapeParameter& h : node.hints) {
+      a.t.push_back(h.t);
+      a.s.push_back(h.s);
+      a.face.push_back(h.face);
+    }
+  }
+  return a;
+}
+
+/// The hash of a checkpoint's arrays of version 2, in file order (the hints' t only).
+std::uint64_t arrays_hash(const std::vector<geometry::Vec3>& points, const std::vector<deform::SlidingState>& sliding,
+                          const HintArrays& hints) {
   std::uint64_t h = detail::kFnvOffset;
   detail::hash_words(h, points.data(), points.size() * sizeof(geometry::Vec3));
   for (const auto& s : sliding) detail::hash_words(h, &s.node, sizeof s.node);
   for (const auto& s : sliding) detail::hash_words(h, &s.target, sizeof s.target);
-  for (const auto& s : sliding) detail::hash_words(h, s.hints.data(), sizeof s.hints);
+  detail::hash_words(h, hints.t.data(), hints.t.size() * sizeof(double));
+  return h;
+}
+
+/// The hash of the arrays version 3 appends: the hints' s and face.
+std::uint64_t surface_hints_hash(const HintArrays& hints) {
+  std::uint64_t h = detail::kFnvOffset;
+  detail::hash_words(h, hints.s.data(), hints.s.size() * sizeof(double));
+  detail::hash_words(h, hints.face.data(), hints.face.size() * sizeof(std::int32_t));
   return h;
 }
 
@@ -256,7 +286,7 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin&
   }
   for (const auto& r : s.records) header["records"].push_back(record_json(r));
 
-  // Sliding nodes as three arrays (ids, targets, hints), written without copying the points.
+  // Sliding nodes as arrays (ids, targets, hints' t, s and face), written without copying the points.
   const auto count = [](std::size_t n) { return static_cast<std::uint64_t>(n); };
   AtomicFile file(path);
   std::ostream& out = file.stream();
@@ -268,10 +298,17 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin&
   for (const auto& node : s.sliding) put(&node.node, sizeof node.node);
   put(&n, sizeof n);
   for (const auto& node : s.sliding) put(&node.target, sizeof node.target);
+  const HintArrays h = hint_arrays(s.sliding);
   put(&hints, sizeof hints);
-  for (const auto& node : s.sliding) put(node.hints.data(), sizeof node.hints);
-  const std::uint64_t hash = arrays_hash(s.points, s.sliding);
+  put(h.t.data(), h.t.size() * sizeof(double));
+  const std::uint64_t hash = arrays_hash(s.points, s.sliding, h);
   put(&hash, sizeof hash);
+  put(&hints, sizeof hints);
+  put(h.s.data(), h.s.size() * sizeof(double));
+  put(&hints, sizeof hints);
+  put(h.face.data(), h.face.size() * sizeof(std::int32_t));
+  const std::uint64_t surface_hash = surface_hints_hash(h);
+  put(&surface_hash, sizeof surface_hash);
   file.commit();
 }
 
@@ -293,8 +330,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& 
   const json header = parse_header(in, path);
   Checkpoint k;
   std::uint64_t nodes = 0, sliding = 0;
+  int version = 0;
   try {
     k.info = info_from_json(header);
+    version = detail::integer_value<int>(header.at("format_version"));
     k.origin.case_file = k.info.case_file;
     k.origin.mesh_fingerprint = detail::integer_value<std::uint64_t>(header.at("mesh_fingerprint"));
     for (const json& f : header.at("inputs")) {
@@ -310,7 +349,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& 
     // Version 1 listed the whole increments left too: they follow from finished_increments.
     // (Its run maxima, max_normal_slip and max_sliding_projection_distance, follow from the
     // records.)
-    const bool listed_all = detail::integer_value<int>(header.at("format_version")) == 1;
+    const bool listed_all = version == 1;
     for (const json& step : header.at(listed_all ? "remaining" : "split_pieces")) {
       const deform::MotionStep piece{detail::integer_value<int>(step.at(0)), step.at(1).get<double>(),
                                      step.at(2).get<double>(), detail::integer_value<int>(step.at(3))};
@@ -338,17 +377,32 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& 
   k.state.points = in.array<geometry::Vec3>(nodes);
   const auto ids = in.array<mesh::NodeId>(sliding);
   const auto targets = in.array<geometry::Vec3>(sliding);
-  const auto hints = in.array<double>(sliding * kHints);
+  HintArrays hints;
+  hints.t = in.array<double>(sliding * kHints);
+  std::uint64_t hash = 0;
+  in.read(&hash, sizeof hash);
+  bool intact = true;
+  if (version >= 3) {
+    hints.s = in.array<double>(sliding * kHints);
+    hints.face = in.array<std::int32_t>(sliding * kHints);
+    std::uint64_t surface_hash = 0;
+    in.read(&surface_hash, sizeof surface_hash);
+    intact = surface_hash == surface_hints_hash(hints);
+  } else {  // curve parameters only
+    hints.s.assign(hints.t.size(), 0.0);
+    hints.face.assign(hints.t.size(), 0);
+  }
   k.state.sliding.resize(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {
     deform::SlidingState& node = k.state.sliding[i];
     node.node = ids[i];
     node.target = targets[i];
-    std::copy_n(hints.begin() + static_cast<std::ptrdiff_t>(i * kHints), kHints, node.hints.begin());
+    for (std::size_t j = 0; j < kHints; ++j) {
+      const std::size_t at = i * kHints + j;
+      node.hints[j] = {hints.t[at], hints.s[at], hints.face[at]};
+    }
   }
-  std::uint64_t hash = 0;
-  in.read(&hash, sizeof hash);
-  if (hash != arrays_hash(k.state.points, k.state.sliding) || in.at() != bytes.size()) {
+  if (!intact || hash != arrays_hash(k.state.points, k.state.sliding, hints) || in.at() != bytes.size()) {
     throw InputError::in(path.string(), "the checkpoint file is damaged (its content does not match its checksum)");
   }
   return k;

@@ -15,7 +15,9 @@ namespace hotmesh::io {
 namespace {
 
 constexpr std::string_view kMagic = "HOTMESH-RESTART\n";
-constexpr int kVersion = 1;
+/// Version 2 gives each sliding node's material parameter its (t, s) and face, where version 1
+/// held t alone; both are read.
+constexpr int kVersion = 2;
 
 using nlohmann::json;
 using detail::hash_bytes;
@@ -108,13 +110,18 @@ void write_restart(const std::filesystem::path& path, const RestartState& state)
   detail::write_header(out, kMagic, header.dump());
   write_array(out, state.points);
   std::vector<mesh::NodeId> nodes;
-  std::vector<double> parameters;
+  std::vector<double> t, s;
+  std::vector<std::int32_t> faces;
   for (const auto& o : state.sliding) {
     nodes.push_back(o.node);
-    parameters.push_back(o.parameter);
+    t.push_back(o.parameter.t);
+    s.push_back(o.parameter.s);
+    faces.push_back(o.parameter.face);
   }
   write_array(out, nodes);
-  write_array(out, parameters);
+  write_array(out, t);
+  write_array(out, s);
+  write_array(out, faces);
   file.commit();
 }
 
@@ -124,13 +131,14 @@ RestartState read_restart(const std::filesystem::path& path, const mesh::Mesh& m
   const std::string text = in.header(kMagic, "write one with `hotmesh deform`: restart.hmr");
   RestartState s;
   std::uint64_t nodes = 0, sliding = 0;
+  int version = 0;
   try {
     const json header = json::parse(text);
     using detail::integer_value;
-    const int version = integer_value<int>(header.at("format_version"));
-    if (version != kVersion) {
+    version = integer_value<int>(header.at("format_version"));
+    if (version < 1 || version > kVersion) {
       throw InputError::in(path.string(), "restart file format " + std::to_string(version) +
-                                              " is not the one this hotmesh reads (" + std::to_string(kVersion) + ")");
+                                              " is not one this hotmesh reads (1 to " + std::to_string(kVersion) + ")");
     }
     s.mesh_fingerprint = integer_value<std::uint64_t>(header.at("mesh_fingerprint"));
     s.case_file = header.at("case").get<std::string>();
@@ -158,8 +166,11 @@ RestartState read_restart(const std::filesystem::path& path, const mesh::Mesh& m
   }
   s.points = in.array<geometry::Vec3>(nodes);
   const auto ids = in.array<mesh::NodeId>(sliding);
-  const auto parameters = in.array<double>(sliding);
-  for (std::size_t i = 0; i < ids.size(); ++i) s.sliding.push_back({ids[i], parameters[i]});
+  const auto t = in.array<double>(sliding);
+  const auto on_faces = version >= 2;  // version 1: curve parameters only
+  const auto surface_s = on_faces ? in.array<double>(sliding) : std::vector<double>(t.size(), 0.0);
+  const auto faces = on_faces ? in.array<std::int32_t>(sliding) : std::vector<std::int32_t>(t.size(), 0);
+  for (std::size_t i = 0; i < ids.size(); ++i) s.sliding.push_back({ids[i], {t[i], surface_s[i], faces[i]}});
   return s;
 }
 

@@ -40,12 +40,13 @@ std::shared_ptr<test::TestCurveShape> ramp_wall(Ramp ramp) {
 class ExhaustedWall final : public geometry::BoundaryShape {
  public:
   ExhaustedWall(std::shared_ptr<const geometry::BoundaryShape> wall, int calls) : wall_(std::move(wall)), calls_(calls) {}
-  geometry::ShapePoint project(const Vec3& p, double lambda, double hint, const geometry::ParameterRange& range = {}) const override {
+  geometry::ShapePoint project(const Vec3& p, double lambda, const geometry::ShapeParameter& hint,
+                               const geometry::ParameterRange& range = {}) const override {
     if (calls_.fetch_sub(1) <= 0) throw std::bad_alloc();
     return wall_->project(p, lambda, hint, range);
   }
-  geometry::ShapePoint at(double t, double lambda, const Vec3& reference) const override {
-    return wall_->at(t, lambda, reference);
+  geometry::ShapePoint at(const geometry::ShapeParameter& where, double lambda, const Vec3& reference) const override {
+    return wall_->at(where, lambda, reference);
   }
 
  private:

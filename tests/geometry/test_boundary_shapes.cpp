@@ -44,9 +44,9 @@ TEST(RevolvedShape, ProjectsInTheMeridionalPlaneKeepingTheAngle) {
     EXPECT_NEAR(distance(q.normal, axis.meridional_vector(theta, -u.y, u.x)), 0.0, 1e-14);
   }
   // at() places the point at t in the meridional plane of the reference.
-  const ShapePoint q = shape.at(0.5, 1.0, p);
+  const ShapePoint q = shape.at({.t = 0.5}, 1.0, p);
   EXPECT_NEAR(distance(q.point, axis.to_cartesian({2.05, theta, 2.0})), 0.0, 1e-14);
-  EXPECT_EQ(q.parameter, 0.5);
+  EXPECT_EQ(q.parameter.t, 0.5);
 }
 
 TEST(RevolvedShape, NormalIsOrthogonalToTheSurfaceOfATorus) {
@@ -72,7 +72,7 @@ TEST(PlanarCurveShape, ProjectsInTheXYPlane) {
   EXPECT_NEAR(q.point.y, std::sqrt(0.5), 1e-14);
   EXPECT_EQ(q.point.z, 0.0);
   EXPECT_NEAR(q.normal.x, -std::sqrt(0.5), 1e-14);  // left of increasing t (counter-clockwise)
-  EXPECT_NEAR(q.parameter, 0.5, 1e-14);
+  EXPECT_NEAR(q.parameter.t, 0.5, 1e-14);
   const std::unique_ptr<BoundaryShape> any = std::make_unique<PlanarCurveShape>(DeflectedCurve(test::s_curve()));
   EXPECT_NEAR(any->project({1.0, 1.0, 0.0}, 0.0).distance, test::brute_force_closest(DeflectedCurve(test::s_curve()), {1, 1}, 0.0).distance, 1e-10);
 }

@@ -67,7 +67,7 @@ TEST(CurveCorners, AProjectionKeptToASegmentDoesNotCrossItsCorner) {
   const CurveProjection free = projector.project(p, 1.0);
   EXPECT_GT(free.parameter, 0.45);
   const ParameterRange before_a{-1.0, 0.45};
-  const CurveProjection kept = projector.project(p, 1.0, kNoHint, before_a);
+  const CurveProjection kept = projector.project(p, 1.0, kNoCurveHint, before_a);
   EXPECT_LE(kept.parameter, 0.45);
   EXPECT_NEAR(kept.point.x, 0.9, 1e-12);  // the flat's closest point to p is its end, A
   EXPECT_NEAR(kept.point.y, 0.0, 1e-12);
@@ -77,9 +77,9 @@ TEST(CurveCorners, AProjectionKeptToASegmentDoesNotCrossItsCorner) {
   EXPECT_NEAR(warm.distance, kept.distance, 1e-12);
   // Inside its segment a point projects as it would on the whole curve.
   const Vec2 q{0.4, 0.1};
-  EXPECT_NEAR(projector.project(q, 1.0, kNoHint, before_a).parameter, projector.project(q, 1.0).parameter, 1e-14);
+  EXPECT_NEAR(projector.project(q, 1.0, kNoCurveHint, before_a).parameter, projector.project(q, 1.0).parameter, 1e-14);
   // On the ramp's own segment, the point before A goes to the ramp.
-  const CurveProjection on_ramp = projector.project(p, 1.0, kNoHint, {0.45, 0.55});
+  const CurveProjection on_ramp = projector.project(p, 1.0, kNoCurveHint, {0.45, 0.55});
   EXPECT_NEAR(on_ramp.parameter, free.parameter, 1e-12);
 }
 

@@ -43,7 +43,7 @@ TEST(ProjectionAllocations, ProjectAndAtAllocateNothing) {
     const Vec3 p{0.01 * i, 0.3 + 0.001 * i, 0.2};
     const ShapePoint cold = shape.project(p, 0.5);
     const ShapePoint warm = shape.project(p + Vec3{0.001, 0.0, 0.0}, 0.5, cold.parameter);
-    checksum += warm.distance + shape.at(0.3, 0.7, p).point.x + plane.project(p, 0.0).distance;
+    checksum += warm.distance + shape.at({.t = 0.3}, 0.7, p).point.x + plane.project(p, 0.0).distance;
   }
   counting = false;
   EXPECT_EQ(allocations, 0);

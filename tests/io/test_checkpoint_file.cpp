@@ -43,7 +43,8 @@ deform::MotionCheckpoint some_state(const mesh::Mesh& mesh) {
   s.split_pieces = {{3, 0.3125, 0.34375, 2}, {3, 0.34375, 0.375, 2}};
   s.points = mesh.points;
   for (auto& p : s.points) p = (1.0 + 1e-13) * p + geometry::Vec3{0.1, -0.2, 0.0};
-  s.sliding = {{3, {0.5, 1.0 / 3.0, 0.0}, {0.25, geometry::kNoHint, 0.0}}, {7, {1.0, 2.0, 3.0}, {1.0, 2.0, 3.0}}};
+  s.sliding = {{3, {0.5, 1.0 / 3.0, 0.0}, {{{.t = 0.25}, geometry::kNoHint, {.t = 0.0, .s = -0.5, .face = 4}}}},
+               {7, {1.0, 2.0, 3.0}, {{{.t = 1.0}, {.t = 2.0, .s = 0.75, .face = 1}, {.t = 3.0}}}}};
   deform::IncrementRecord rejected;
   rejected.increment = 3;
   rejected.lambda_begin = 0.25;
@@ -95,7 +96,11 @@ TEST(CheckpointFile, RoundTripKeepsEveryFieldBitForBit) {
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(s.sliding[i].node, expected.sliding[i].node);
     EXPECT_TRUE(same_bits(s.sliding[i].target.y, expected.sliding[i].target.y));
-    for (std::size_t h = 0; h < 3; ++h) EXPECT_TRUE(same_bits(s.sliding[i].hints[h], expected.sliding[i].hints[h]));
+    for (std::size_t h = 0; h < 3; ++h) {
+      EXPECT_TRUE(same_bits(s.sliding[i].hints[h].t, expected.sliding[i].hints[h].t));
+      EXPECT_TRUE(same_bits(s.sliding[i].hints[h].s, expected.sliding[i].hints[h].s));
+      EXPECT_EQ(s.sliding[i].hints[h].face, expected.sliding[i].hints[h].face);
+    }
   }
   ASSERT_EQ(s.records.size(), 2u);
   const auto& a = s.records[0];
@@ -221,8 +226,8 @@ TEST(CheckpointFile, DamagedOrForeignFilesAreRefused) {
   refused(good.substr(0, 30), "cut short");
   refused("hello", "not a hotmesh checkpoint file");
   std::string version = good;
-  version.replace(version.find("\"format_version\":2"), 18, "\"format_version\":7");
-  refused(version, "checkpoint format 7 is not one this hotmesh reads (1 to 2)");
+  version.replace(version.find("\"format_version\":3"), 18, "\"format_version\":7");
+  refused(version, "checkpoint format 7 is not one this hotmesh reads (1 to 3)");
   EXPECT_THROW(read_checkpoint_info(dir / "bad.hmc"), InputError);
 }
 

@@ -118,3 +118,42 @@ TEST(StateFileDamage, RestartTablesAndRolesOutsideWhatARunWrites) {
 
 }  // namespace
 }  // namespace hotmesh::io
+
+namespace hotmesh::io {
+namespace {
+
+/// Restart files keep each sliding node's material parameter whole: (t, s) and face for nodes
+/// on faces (format 2), and files of format 1, which held t alone, are still read (a coupling
+/// loop that updates hotmesh continues from its last iteration).
+TEST(RestartFile, KeepsSurfaceParametersAndReadsFormatOne) {
+  test::TempDir dir;
+  const mesh::Mesh mesh = test::unit_square(2, 2);
+  RestartState state;
+  state.mesh_fingerprint = mesh_fingerprint(mesh);
+  state.points = mesh.points;
+  state.case_file = "case.yaml";
+  state.sliding = {{1, {.t = 0.25, .s = 0.75, .face = 2}}, {4, {.t = -1.5, .s = 0.0, .face = 0}}};
+  write_restart(dir / "two.hmr", state);
+  const RestartState read = read_restart(dir / "two.hmr", mesh);
+  ASSERT_EQ(read.sliding.size(), 2u);
+  EXPECT_EQ(read.sliding[0].node, 1);
+  EXPECT_EQ(read.sliding[0].parameter, state.sliding[0].parameter);
+  EXPECT_EQ(read.sliding[1].parameter, state.sliding[1].parameter);
+
+  // Format 1: the same arrays without the s and face arrays (a count and 8 + 4 bytes per node each).
+  std::string bytes = test::read_text(dir / "two.hmr");
+  bytes.resize(bytes.size() - (2 * sizeof(std::uint64_t) + state.sliding.size() * (sizeof(double) + sizeof(std::int32_t))));
+  test::write_text(dir / "one.hmr", with_header_edit(bytes, kRestartMagic, "\"format_version\":2", "\"format_version\":1"));
+  const RestartState old = read_restart(dir / "one.hmr", mesh);
+  ASSERT_EQ(old.sliding.size(), 2u);
+  EXPECT_EQ(old.sliding[0].parameter, (geometry::ShapeParameter{.t = 0.25}));
+  EXPECT_EQ(old.sliding[1].parameter, (geometry::ShapeParameter{.t = -1.5}));
+
+  test::write_text(dir / "next.hmr", with_header_edit(test::read_text(dir / "two.hmr"), kRestartMagic,
+                                                      "\"format_version\":2", "\"format_version\":3"));
+  EXPECT_THAT([&] { read_restart(dir / "next.hmr", mesh); },
+              ThrowsMessage<InputError>(HasSubstr("restart file format 3 is not one this hotmesh reads (1 to 2)")));
+}
+
+}  // namespace
+}  // namespace hotmesh::io

@@ -30,7 +30,8 @@ class TestCurveShape final : public geometry::BoundaryShape {
 
   TestCurveShape(std::vector<Vec3> vertices, Motion motion) : vertices_(std::move(vertices)), motion_(std::move(motion)) {}
 
-  ShapePoint project(const Vec3& p, double lambda, double /*hint*/, const geometry::ParameterRange& /*range*/ = {}) const override {
+  ShapePoint project(const Vec3& p, double lambda, const geometry::ShapeParameter& /*hint*/,
+                     const geometry::ParameterRange& /*range*/ = {}) const override {
     ShapePoint best;
     best.distance = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i + 1 < vertices_.size(); ++i) {
@@ -40,18 +41,19 @@ class TestCurveShape final : public geometry::BoundaryShape {
       const Vec3 q = a + s * ab;
       const double d = distance(p, q);
       if (d < best.distance) {
-        best = {q, Vec3{ab.y, -ab.x, 0.0} / norm(ab), static_cast<double>(i) + s, d};
+        best = {q, Vec3{ab.y, -ab.x, 0.0} / norm(ab), {.t = static_cast<double>(i) + s}, d};
       }
     }
     return best;
   }
 
-  ShapePoint at(double t, double lambda, const Vec3& reference) const override {
+  ShapePoint at(const geometry::ShapeParameter& where, double lambda, const Vec3& reference) const override {
+    const double t = where.t;
     const auto i = std::min(static_cast<std::size_t>(std::max(t, 0.0)), vertices_.size() - 2);
     const double s = t - static_cast<double>(i);
     const Vec3 a = moved(i, lambda, reference.z), b = moved(i + 1, lambda, reference.z);
     const Vec3 ab = b - a;
-    return {a + s * ab, Vec3{ab.y, -ab.x, 0.0} / norm(ab), t, 0.0};
+    return {a + s * ab, Vec3{ab.y, -ab.x, 0.0} / norm(ab), where, 0.0};
   }
 
  private:
@@ -68,12 +70,14 @@ class TestCurveShape final : public geometry::BoundaryShape {
 class AffineShape final : public geometry::BoundaryShape {
  public:
   AffineShape(std::array<Vec3, 3> g, Vec3 shift) : g_(g), shift_(shift) {}
-  ShapePoint project(const Vec3& p, double, double, const geometry::ParameterRange&) const override { return {p, {1, 0, 0}, 0.0, 0.0}; }
-  ShapePoint at(double t, double lambda, const Vec3& x) const override {
-    const Vec3 gx{dot(g_[0], x), dot(g_[1], x), dot(g_[2], x)};
-    return {x + lambda * (gx + shift_), {1, 0, 0}, t, 0.0};
+  ShapePoint project(const Vec3& p, double, const geometry::ShapeParameter&, const geometry::ParameterRange&) const override {
+    return {p, {1, 0, 0}, {}, 0.0};
   }
-  Vec3 moved(const Vec3& x) const { return at(0, 1, x).point; }
+  ShapePoint at(const geometry::ShapeParameter& where, double lambda, const Vec3& x) const override {
+    const Vec3 gx{dot(g_[0], x), dot(g_[1], x), dot(g_[2], x)};
+    return {x + lambda * (gx + shift_), {1, 0, 0}, where, 0.0};
+  }
+  Vec3 moved(const Vec3& x) const { return at({}, 1, x).point; }
 
  private:
   std::array<Vec3, 3> g_;

@@ -129,7 +129,7 @@ struct MotionTimings {
 /// undeformed (cold) geometry. A restarted run needs it to set the node's new target.
 struct SlidingOrigin {
   NodeId node = 0;
-  double parameter = 0.0;
+  geometry::ShapeParameter parameter;
 };
 
 /// The state a run continues from (section 4.3, re-start): the positions a previous run
@@ -205,7 +205,7 @@ struct MotionStep {
 struct SlidingState {
   NodeId node = 0;
   Vec3 target;
-  std::array<double, 3> hints{};
+  std::array<geometry::ShapeParameter, 3> hints{};
 };
 
 /// Where a run stands after an accepted step: everything needed to continue it and make

@@ -1,12 +1,13 @@
 // hotmesh geometry: a boundary the mesh follows, as seen by the solver in deform.
 //
 // One interface for every kind of boundary (a curve in the x-y plane for 2D cases, a surface
-// of revolution described by its meridional curve, a plane). A shape has stages
-// lambda in [0, 1]: the undeformed boundary r(t) at lambda = 0, the fully deflected boundary
-// c(t) at lambda = 1, and between them the partial shapes of the increments,
+// of revolution described by its meridional curve, CAD faces of any kind, a plane). A shape
+// has stages lambda in [0, 1]: the undeformed boundary r(t) at lambda = 0, the fully deflected
+// boundary c(t) at lambda = 1, and between them the partial shapes of the increments,
 //     c_lambda(t) = r(t) + lambda (c(t) - r(t)),                                (section 4.3)
-// Points with the same parameter t on different stages are the same material point of the
-// boundary, so a prescribed node at parameter t moves by at(t, lambda) - at(t, 0).
+// (on faces, S_lambda(t, s) = S(t, s) + lambda d(t, s)). Points with the same parameter on
+// different stages are the same material point of the boundary, so a prescribed node at
+// parameter t moves by at(t, lambda) - at(t, 0).
 #pragma once
 
 #include <limits>
@@ -16,7 +17,21 @@
 
 namespace hotmesh::geometry {
 
-/// A point on a boundary shape with its unit normal and curve parameter.
+/// Where a point lies on a boundary shape: on a curve (2D, or the meridional curve of a surface
+/// of revolution) its parameter t; on a surface made of faces, the face and (t, s) on it.
+/// A parameter whose t is NaN is unknown (kNoHint).
+struct ShapeParameter {
+  double t = 0.0;
+  double s = 0.0;
+  int face = 0;  ///< 0-based index among the shape's faces
+  bool known() const { return t == t; }
+  friend bool operator==(const ShapeParameter&, const ShapeParameter&) = default;
+};
+
+/// No earlier projection to start from: the search is global.
+inline constexpr ShapeParameter kNoHint{std::numeric_limits<double>::quiet_NaN(), 0.0, 0};
+
+/// A point on a boundary shape with its unit normal and parameter.
 struct ShapePoint {
   Vec3 point;
   /// Unit normal to the boundary at `point`: in the x-y plane for 2D shapes, in the meridional
@@ -24,11 +39,9 @@ struct ShapePoint {
   /// (consistent along the shape; for curves, to the left of increasing t; at a corner, the
   /// bisector of the two sides); users that need "outward" orient it themselves.
   Vec3 normal;
-  double parameter = 0.0;  ///< t; for planes, 0
+  ShapeParameter parameter;  ///< for planes, t = 0
   double distance = 0.0;   ///< distance from the point that was projected (0 for at())
 };
-
-inline constexpr double kNoHint = std::numeric_limits<double>::quiet_NaN();
 
 /// A parameter interval [first, last] of a shape: the part of it between two of its features,
 /// which a sliding node may not leave (it would slide across a corner). The default is the
@@ -58,13 +71,13 @@ class BoundaryShape {
   /// Even with a hint the result is the global closest point, except where a point moved by
   /// much more than its distance to a near branch of the curve since the hint was computed.
   /// Const and thread-safe: called from parallel loops over nodes.
-  /// `range` restricts the search to a part of the shape (shapes without a parameter ignore it).
-  virtual ShapePoint project(const Vec3& p, double lambda, double hint = kNoHint,
+  /// `range` restricts the search to a part of a curve's parameter t (other shapes ignore it).
+  virtual ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
                              const ParameterRange& range = {}) const = 0;
 
-  /// The point of the stage-lambda shape at parameter t. For axisymmetric shapes it lies in
-  /// the meridional plane through `reference` (any point off the axis).
-  virtual ShapePoint at(double t, double lambda, const Vec3& reference) const = 0;
+  /// The point of the stage-lambda shape at `where`. For axisymmetric shapes it lies in the
+  /// meridional plane through `reference` (any point off the axis).
+  virtual ShapePoint at(const ShapeParameter& where, double lambda, const Vec3& reference) const = 0;
 
   /// The shape's corners that turn by at least `min_angle` (radians) on the undeformed or the
   /// fully deflected stage, in increasing parameter; none for smooth shapes and planes.

@@ -22,10 +22,10 @@ class PlanarCurveShape final : public BoundaryShape {
   explicit PlanarCurveShape(DeflectedCurve curve) : projector_(std::move(curve)) {}
 
   /// Projects (p.x, p.y) onto the curve; the result keeps p.z. Normal as CurveProjection.
-  ShapePoint project(const Vec3& p, double lambda, double hint = kNoHint,
+  ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
                      const ParameterRange& range = {}) const override;
   /// The curve point at t, with z of `reference`.
-  ShapePoint at(double t, double lambda, const Vec3& reference) const override;
+  ShapePoint at(const ShapeParameter& where, double lambda, const Vec3& reference) const override;
   std::vector<ShapeFeature> features(double min_angle) const override;
 
   const CurveProjector& projector() const { return projector_; }
@@ -42,9 +42,9 @@ class RevolvedShape final : public BoundaryShape {
   /// Section 4.2, Fig. 4: p = (r, theta, z) about the axis; (r, z) is projected on the
   /// meridional curve and the result keeps theta. The normal is the curve's normal (in (r, z))
   /// turned into the meridional plane through p.
-  ShapePoint project(const Vec3& p, double lambda, double hint = kNoHint,
+  ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
                      const ParameterRange& range = {}) const override;
-  ShapePoint at(double t, double lambda, const Vec3& reference) const override;
+  ShapePoint at(const ShapeParameter& where, double lambda, const Vec3& reference) const override;
   /// The corners of the meridional curve: circles about the axis.
   std::vector<ShapeFeature> features(double min_angle) const override;
 
@@ -63,10 +63,10 @@ class PlaneShape final : public BoundaryShape {
   /// Throws std::invalid_argument if the normal has zero length or a value is not finite.
   PlaneShape(const Vec3& origin, const Vec3& normal);
 
-  ShapePoint project(const Vec3& p, double lambda, double hint = kNoHint,
+  ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
                      const ParameterRange& range = {}) const override;
   /// The projection of `reference` (a plane has no curve parameter).
-  ShapePoint at(double t, double lambda, const Vec3& reference) const override;
+  ShapePoint at(const ShapeParameter& where, double lambda, const Vec3& reference) const override;
 
   const Vec3& origin() const { return origin_; }
   const Vec3& normal() const { return normal_; }

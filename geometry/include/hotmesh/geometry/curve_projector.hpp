@@ -24,6 +24,9 @@
 
 namespace hotmesh::geometry {
 
+/// No earlier projection to start from (a curve parameter): the search is global.
+inline constexpr double kNoCurveHint = kNoHint.t;
+
 struct CurveProjection {
   Vec2 point;
   /// Unit normal: the unit tangent turned by +90 degrees, i.e. to the left when walking along
@@ -47,10 +50,11 @@ class CurveProjector {
   /// Bound on the distance between the sample polyline and the curve, for every stage.
   double sampling_deviation() const { return deviation_; }
 
-  /// Closest point to p on c_lambda (lambda clamped to [0, 1]); with kNoHint, global. With a
+  /// Closest point to p on c_lambda (lambda clamped to [0, 1]); with kNoCurveHint, global. With a
   /// range, the closest point of the part of c_lambda with t in it (its ends are clamped to
   /// the parameter range and taken to the nearest piece ends: corners are piece ends).
-  CurveProjection project(const Vec2& p, double lambda, double hint = kNoHint, const ParameterRange& range = {}) const;
+  CurveProjection project(const Vec2& p, double lambda, double hint = kNoCurveHint,
+                          const ParameterRange& range = {}) const;
   /// The point of c_lambda at parameter t (clamped to the range), with tangent and normal.
   CurveProjection at(double t, double lambda) const;
 
