@@ -25,8 +25,9 @@ constexpr double kDerivativeSafety = 2.0;
 /// Cell bounds are sampled: maxima are used times kMaximumSafety, minima times kMinimumSafety.
 constexpr double kMaximumSafety = 1.25;
 constexpr double kMinimumSafety = 0.8;
-/// Sub-patch refinement stops after this many halvings of a patch's initial cell.
-constexpr int kMaxSplitDepth = 24;
+/// Sub-patch refinement stops after this many halvings of a patch's initial cell (at most 4096
+/// sub-patches per cell; beyond it sub-patches keep their larger deviation, pruning less).
+constexpr int kMaxSplitDepth = 12;
 /// Sub-patches per tree leaf.
 constexpr std::uint32_t kLeafSize = 2;
 /// A normal |S_u x S_v| below this times the patch's largest |S_u| |S_v| vanishes.

@@ -130,7 +130,7 @@ class SurfaceProjector {
   /// With a hint (patch >= 0; parameters are clamped), a warm start first. Ties within
   /// rounding: the hint's patch, else the lowest patch index.
   SurfaceProjection project(const Vec3& p, const SurfaceParameter& hint = {}) const;
-  /// The point and normal at a parameter (clamped to its patch's rectangle).
+  /// The point and normal at a parameter (patch index and parameters clamped to the valid ones).
   SurfaceProjection at(const SurfaceParameter& where) const;
 
  private:
