@@ -1,11 +1,14 @@
 // hotmesh geometry: a clamped tensor-product B-spline (optionally rational) surface, the form
 // in which CAD systems export their faces (section 4.2: "a set of B-Splines (or NURBS)
-// surfaces"). Used to give a CAD face in B-spline form and to write surfaces to STEP/IGES.
+// surfaces"). Used to give a CAD face in B-spline form and to write surfaces to STEP/IGES, and
+// as a deflection field d(u, v) over a face (vector poles) for the deformed face S + d.
+// Evaluation is const, allocation-free and thread-safe.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
+#include "hotmesh/geometry/parametric_surface.hpp"
 #include "hotmesh/geometry/vec3.hpp"
 
 namespace hotmesh::geometry {
@@ -32,8 +35,18 @@ class BSplineSurface {
   double v_first() const { return v_knots_[static_cast<std::size_t>(v_degree_)]; }
   double v_last() const { return v_knots_[v_count()]; }
 
+  ParameterRectangle domain() const { return {u_first(), u_last(), v_first(), v_last()}; }
+
   /// The point at (u, v), clamped to the parameter ranges.
   Vec3 point(double u, double v) const;
+  /// The point and its first and second partial derivatives at (u, v), clamped to the
+  /// parameter ranges (at a knot: the derivatives of the span that starts there; at the last
+  /// parameter, of the last span).
+  SurfaceDerivatives derivatives(double u, double v) const;
+  /// The distinct knot values from u_first() to u_last() (v_first() to v_last()): where the
+  /// surface may be less smooth than its degree allows.
+  std::vector<double> u_breakpoints() const;
+  std::vector<double> v_breakpoints() const;
 
  private:
   int u_degree_;
