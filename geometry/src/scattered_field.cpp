@@ -7,8 +7,9 @@
 //   s_j(x) = sum_{i in I_j} lambda_i |x - p_i|^3 + c_0 + sum_{k=1..d} c_k z_k(x),
 //   z_k(x) = v_k . (x - m) / sigma_k,
 // with m the centroid of the points, v_k their principal directions and sigma_k the RMS
-// extents along them, keeping the d directions with sigma_k > flatness * sigma_1 (the affine
-// hull; the z_k are whitened so the polynomial block is well conditioned). The coefficients
+// extents along them, keeping the d directions with sigma_k > flatness * sigma_1 and above the
+// coordinates' rounding (the affine hull; the z_k are whitened so the polynomial block is well
+// conditioned). The coefficients
 // solve, for each component of the values f,
 //   [ A    P ] [ lambda ]   [ f ]     A_ik = |p_i - p_k|^3,   P_i = [1  z_1(p_i) .. z_d(p_i)],
 //   [ P^T  0 ] [   c    ] = [ 0 ],
@@ -81,7 +82,7 @@ std::string format(const Vec3& v) {
 }
 
 /// Principal axes of a set of points: centroid, directions, RMS extents (largest first) and
-/// the number of extents above `flatness` times the largest.
+/// the number of extents above both `flatness` times the largest and `noise`.
 struct Hull {
   Vec3 centroid;
   std::array<Vec3, 3> axes;
@@ -89,7 +90,7 @@ struct Hull {
   int dimension = 0;
 };
 
-Hull affine_hull(const std::vector<Vec3>& points, std::span<const Index> members, double flatness) {
+Hull affine_hull(const std::vector<Vec3>& points, std::span<const Index> members, double flatness, double noise) {
   Hull hull;
   for (const Index i : members) hull.centroid += points[i];
   hull.centroid = hull.centroid / static_cast<double>(members.size());
@@ -104,9 +105,17 @@ Hull affine_hull(const std::vector<Vec3>& points, std::span<const Index> members
     hull.axes[static_cast<std::size_t>(k)] = {svd.matrixV()(0, k), svd.matrixV()(1, k), svd.matrixV()(2, k)};
     if (k >= svd.singularValues().size()) break;  // fewer than 3 points
     hull.extent[static_cast<std::size_t>(k)] = svd.singularValues()(k) * rms;
-    if (hull.extent[static_cast<std::size_t>(k)] > flatness * hull.extent[0]) hull.dimension = k + 1;
+    const double extent = hull.extent[static_cast<std::size_t>(k)];
+    if (extent > flatness * hull.extent[0] && extent > noise) hull.dimension = k + 1;
   }
   return hull;
+}
+
+/// coordinate_precision times the largest |coordinate|: what rounding may have moved a point by.
+double rounding(const std::vector<Vec3>& points, const ScatteredFieldOptions& options) {
+  double largest = 0.0;
+  for (const Vec3& p : points) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  return options.coordinate_precision * largest;
 }
 
 void check_options(const ScatteredFieldOptions& o) {
@@ -118,6 +127,9 @@ void check_options(const ScatteredFieldOptions& o) {
   }
   if (!(o.flatness > 0.0 && o.flatness < 1.0)) {
     throw std::invalid_argument("scattered field: flatness must be in (0, 1)");
+  }
+  if (!(o.coordinate_precision >= 0.0 && o.coordinate_precision < 1.0)) {
+    throw std::invalid_argument("scattered field: coordinate_precision must be in [0, 1)");
   }
   if (!(o.same_point >= 0.0 && o.same_value >= 0.0)) {
     throw std::invalid_argument("scattered field: duplicate tolerances must not be negative");
@@ -276,7 +288,8 @@ class ScatteredField::Impl::Builder {
  public:
   Builder(const std::vector<Vec3>& points, const std::vector<Vec3>& values, const ScatteredFieldOptions& options,
           Impl& out, ScatteredFieldReport& report)
-      : points_(points), values_(values), options_(options), out_(out), report_(report) {}
+      : points_(points), values_(values), options_(options), out_(out), report_(report),
+        rounding_(rounding(points, options)) {}
 
   void build() {
     const auto [lo, hi] = bounding_box(points_);
@@ -371,7 +384,7 @@ class ScatteredField::Impl::Builder {
 
   /// The patch interpolant through `members` (the system in the comment at the top).
   Patch solve(const std::vector<Index>& members) {
-    const Hull hull = affine_hull(points_, members, options_.flatness);
+    const Hull hull = affine_hull(points_, members, options_.flatness, rounding_);
     const auto n = static_cast<Eigen::Index>(members.size());
     const Eigen::Index d = hull.dimension;
     Patch patch;
@@ -431,6 +444,7 @@ class ScatteredField::Impl::Builder {
   const ScatteredFieldOptions& options_;
   Impl& out_;
   ScatteredFieldReport& report_;
+  double rounding_;  ///< extents below this are the coordinates' rounding
   std::vector<Ancestor> ancestors_;
 };
 
@@ -465,7 +479,7 @@ ScatteredField::ScatteredField(std::vector<Vec3> points, std::vector<Vec3> value
     throw InputError("scattered data: a field over a surface needs at least 3 distinct points not on one line, got " +
                      std::to_string(points.size()) + " (of " + std::to_string(report_.samples) + " samples)");
   }
-  const Hull hull = affine_hull(points, all, options.flatness);
+  const Hull hull = affine_hull(points, all, options.flatness, rounding(points, options));
   if (hull.dimension < 2) {
     throw InputError("scattered data: a field over a surface needs at least 3 points not on one line; all " +
                      std::to_string(points.size()) + " distinct points lie on the line through " +

@@ -46,10 +46,14 @@ struct ScatteredFieldOptions {
   std::size_t max_patch_points = 100;
   /// A cell's ball radius over the cell's half-diagonal, 1.05 to 4: how far patches overlap.
   double overlap = 1.25;
-  /// Relative tolerance of a patch's dimension: a principal extent (RMS) of its points below
-  /// `flatness` times the largest one is dropped, and its linear polynomial is over the plane
-  /// (or line) that remains, the field constant along the dropped directions.
+  /// A patch's dimension: a principal extent (RMS) of its points at most `flatness` times the
+  /// largest one, or at most `coordinate_precision` times the largest |coordinate| of the data,
+  /// is dropped; the patch's linear polynomial is then over the plane (or line) that remains,
+  /// and the field is constant along the dropped directions. The second test is for rounding:
+  /// points on a plane written with 7 significant digits would otherwise span 3D, and the field
+  /// off the plane would follow a normal gradient fitted to the rounding noise.
   double flatness = 1e-6;
+  double coordinate_precision = 1e-6;
   /// Points closer than this fraction of the data's bounding-box diagonal are one point: the
   /// first sample's is kept...
   double same_point = 1e-10;
