@@ -11,7 +11,8 @@
 // it is
 //   exact at the points:  every patch interpolant is, and every patch that weighs a point holds it;
 //   linear-exact:         every patch interpolant reproduces a linear field (over its points'
-//                         affine hull, so points on a plane or a line are handled);
+//                         affine hull, so points on a plane or a line are handled; but see
+//                         coordinate_precision);
 //   smooth:               C2 between the points (r^3 is C2, so are the weights);
 //   local:                set-up is O(N) small dense solves, an evaluation O(log N + the points of
 //                         the few patches around it), where one global RBF system costs O(N^3).
@@ -51,7 +52,9 @@ struct ScatteredFieldOptions {
   /// is dropped; the patch's linear polynomial is then over the plane (or line) that remains,
   /// and the field is constant along the dropped directions. The second test is for rounding:
   /// points on a plane written with 7 significant digits would otherwise span 3D, and the field
-  /// off the plane would follow a normal gradient fitted to the rounding noise.
+  /// off the plane would follow a normal gradient fitted to the rounding noise. The price: on a
+  /// patch curved by less than that, a linear field is reproduced only to its normal gradient
+  /// times the patch's RMS distance from its plane. 0 turns the second test off.
   double flatness = 1e-6;
   double coordinate_precision = 1e-6;
   /// Points closer than this fraction of the data's bounding-box diagonal are one point: the
