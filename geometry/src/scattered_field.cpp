@@ -9,13 +9,12 @@
 // with m the centroid of the points, v_k their principal directions and sigma_k the RMS
 // extents along them, keeping the d directions with sigma_k > flatness * sigma_1 and above the
 // coordinates' rounding (the affine hull; the z_k are whitened so the polynomial block is well
-// conditioned). The coefficients
-// solve, for each component of the values f,
+// conditioned). The coefficients solve, for each component of the values f,
 //   [ A    P ] [ lambda ]   [ f ]     A_ik = |p_i - p_k|^3,   P_i = [1  z_1(p_i) .. z_d(p_i)],
 //   [ P^T  0 ] [   c    ] = [ 0 ],
 // which has one solution: r^3 is conditionally positive definite of order 2 and the points
 // are unisolvent for linear polynomials on their hull (Wendland, Scattered Data Approximation,
-// 2005, theorem 8.21). The field is the Shepard blend
+// 2005, chapter 8). The field is the Shepard blend
 //   s(x) = sum_j psi_j(x) s_j(x) / sum_j psi_j(x),   psi_j(x) = psi(|x - c_j| / R_j),
 //   psi(r) = (1 - r)^4 (4 r + 1) for r < 1, 0 beyond   (Wendland's C2 function).
 // psi_j(p_i) > 0 exactly when i is in I_j (the same test |x - c_j|^2 < R_j^2 decides both), so
