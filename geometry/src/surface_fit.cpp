@@ -51,7 +51,7 @@ std::string cannot_determine(std::size_t samples, int q, const std::string& why)
          "degree or give the face more FEM nodes";
 }
 
-void check(std::span<const FieldSample> samples, const ParameterRect& domain, const SurfaceFitOptions& options) {
+void check(std::span<const FieldSample> samples, const ParameterRectangle& domain, const SurfaceFitOptions& options) {
   if (options.degree < 1 || options.degree > kMaxReconstructionDegree) {
     throw InputError("the degree of a deflection surface must be 1 to " + std::to_string(kMaxReconstructionDegree) +
                      ", got " + std::to_string(options.degree));
@@ -185,7 +185,7 @@ std::vector<double> interpolation_knots(const std::vector<double>& t, int q, dou
 // the curves through every line of constant v, then through their poles along v. One sparse
 // LU per direction; every line and component is a right-hand side.
 SurfaceFit interpolate_grid(const Levels& u, const Levels& v, std::span<const FieldSample> samples,
-                            const ParameterRect& domain, int q) {
+                            const ParameterRectangle& domain, int q) {
   const std::size_t m = u.values.size();
   const std::size_t n = v.values.size();
   std::vector<double> u_knots = interpolation_knots(u.values, q, domain.u_first, domain.u_last);
@@ -293,7 +293,7 @@ std::array<std::size_t, 2> span_counts(const std::vector<double>& x, const std::
 // are sparse and positive definite iff no polynomial of degree <= q in u and v other than zero
 // vanishes at every sample; a sparse LDL^T solves them for the three components.
 SurfaceFit least_squares(const std::vector<double>& u, const std::vector<double>& v,
-                         std::span<const FieldSample> samples, const ParameterRect& domain,
+                         std::span<const FieldSample> samples, const ParameterRectangle& domain,
                          const SurfaceFitOptions& options) {
   const int q = options.degree;
   const auto p = static_cast<std::size_t>(q);
@@ -397,7 +397,7 @@ void fill_residuals(SurfaceFit& fit, std::span<const FieldSample> samples, const
 
 }  // namespace
 
-SurfaceFit fit_surface_field(std::span<const FieldSample> samples, const ParameterRect& domain,
+SurfaceFit fit_surface_field(std::span<const FieldSample> samples, const ParameterRectangle& domain,
                              const SurfaceFitOptions& options) {
   check(samples, domain, options);
   const std::vector<double> u = clamped_parameters(samples, &FieldSample::u, domain.u_first, domain.u_last);

@@ -23,14 +23,14 @@ namespace {
 using ::testing::HasSubstr;
 using Field = std::function<Vec3(double, double)>;
 
-constexpr ParameterRect kUnit{0.0, 1.0, 0.0, 1.0};
+constexpr ParameterRectangle kUnit{0.0, 1.0, 0.0, 1.0};
 
 /// (x, y) in [0, 1]^2 mapped onto the domain.
-double u_at(const ParameterRect& d, double x) { return d.u_first + (d.u_last - d.u_first) * x; }
-double v_at(const ParameterRect& d, double y) { return d.v_first + (d.v_last - d.v_first) * y; }
+double u_at(const ParameterRectangle& d, double x) { return d.u_first + (d.u_last - d.u_first) * x; }
+double v_at(const ParameterRectangle& d, double y) { return d.v_first + (d.v_last - d.v_first) * y; }
 
 /// A field given on the unit square, sampled at (x, y) = the sample's position scaled to it.
-std::vector<FieldSample> sample(const std::vector<std::array<double, 2>>& xy, const ParameterRect& d, const Field& f) {
+std::vector<FieldSample> sample(const std::vector<std::array<double, 2>>& xy, const ParameterRectangle& d, const Field& f) {
   std::vector<FieldSample> samples;
   for (const auto& [x, y] : xy) samples.push_back({u_at(d, x), v_at(d, y), f(x, y)});
   return samples;
@@ -96,7 +96,7 @@ Vec3 smooth(double x, double y) {
 
 /// Largest |fit - f| over max |f| at 41 x 41 points of the whole domain and at 5000 random
 /// ones (a lattice alone would miss the worst places of fine fits).
-double relative_error(const SurfaceFit& fit, const ParameterRect& d, const Field& f) {
+double relative_error(const SurfaceFit& fit, const ParameterRectangle& d, const Field& f) {
   static const std::vector<std::array<double, 2>> points = [] {
     std::vector<std::array<double, 2>> xy = random_points(5000, 1u);
     for (int i = 0; i <= 40; ++i) {
@@ -295,14 +295,14 @@ TEST(SurfaceFit, BadOptionsAndSamplesOutsideTheDomainAreRefused) {
 TEST(SurfaceFit, DoesNotDependOnTheParametersUnits) {
   // The same nodes on the unit square and on u in [0, 10], v in [0, 0.01] (and shifted),
   // deflections scaled by 1e-3: the same field.
-  const ParameterRect thin{0.0, 10.0, 0.0, 0.01};
-  const ParameterRect shifted{-3.0, 7.0, 100.0, 100.01};
+  const ParameterRectangle thin{0.0, 10.0, 0.0, 0.01};
+  const ParameterRectangle shifted{-3.0, 7.0, 100.0, 100.01};
   const Field small = [](double x, double y) { return 1e-3 * smooth(x, y); };
   const auto check = [&](const std::vector<std::array<double, 2>>& xy, SurfaceFitMethod method) {
     for (int q = 1; q <= 3; ++q) {
       const SurfaceFit unit = fit_surface_field(sample(xy, kUnit, smooth), kUnit, {.degree = q});
       ASSERT_EQ(unit.report.method, method);
-      for (const ParameterRect& d : {thin, shifted}) {
+      for (const ParameterRectangle& d : {thin, shifted}) {
         const SurfaceFit fit = fit_surface_field(sample(xy, d, small), d, {.degree = q});
         EXPECT_EQ(fit.report.method, method);
         EXPECT_EQ(fit.report.u_poles, unit.report.u_poles);

@@ -15,6 +15,7 @@
 #include <span>
 
 #include "hotmesh/geometry/bspline_surface.hpp"
+#include "hotmesh/geometry/parametric_surface.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/geometry/vec3.hpp"
 
@@ -25,16 +26,6 @@ struct FieldSample {
   double u = 0.0;
   double v = 0.0;
   Vec3 value;
-};
-
-/// The parameter rectangle the fitted field covers: a face's, or, for a face much larger than
-/// the region its FEM nodes cover (a full cylinder under a sector model), that region with a
-/// margin. Beyond the nodes the field is extrapolated.
-struct ParameterRect {
-  double u_first = 0.0;
-  double u_last = 1.0;
-  double v_first = 0.0;
-  double v_last = 1.0;
 };
 
 enum class SurfaceFitMethod {
@@ -75,14 +66,16 @@ struct SurfaceFit {
 /// (within 1e-7 of the domain's extent, at least q + 1 values each way, every pair present
 /// once) are interpolated; any others are fitted by least squares. Between the nodes and the
 /// domain's edges the field is extrapolated: the grid's end polynomial pieces continued, or
-/// the smoothest continuation the least-squares penalty allows.
+/// the smoothest continuation the least-squares penalty allows. `domain` is the face's
+/// parameter rectangle or, for a face much larger than the region its FEM nodes cover (a full
+/// cylinder under a sector model), that region with a margin.
 ///
 /// Throws hotmesh::InputError (its message speaks of "this face"; the caller names the face)
 /// for options out of range, deflections that are not finite, and nodes that cannot determine
 /// a degree-q field: fewer than (q + 1)^2, fewer than q + 1 distinct values of u or of v, all
 /// on one line or curve of the parameter plane, or on too small a part of the domain. Throws
 /// std::invalid_argument for an empty or non-finite domain, or a sample outside it.
-SurfaceFit fit_surface_field(std::span<const FieldSample> samples, const ParameterRect& domain,
+SurfaceFit fit_surface_field(std::span<const FieldSample> samples, const ParameterRectangle& domain,
                              const SurfaceFitOptions& options = {});
 
 }  // namespace hotmesh::geometry
