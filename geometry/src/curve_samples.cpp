@@ -28,14 +28,7 @@ CurveSamples copy_labels(const DeflectionSamples& samples) {
 
 }  // namespace
 
-std::string CurveSamples::label(std::size_t j) const {
-  const bool has_id = j < ids.size();
-  const bool has_line = j < lines.size() && lines[j] > 0;
-  if (has_id && has_line) return "node " + std::to_string(ids[j]) + " (line " + std::to_string(lines[j]) + ")";
-  if (has_id) return "node " + std::to_string(ids[j]);
-  if (has_line) return "line " + std::to_string(lines[j]);
-  return "sample " + std::to_string(j + 1);
-}
+std::string CurveSamples::label(std::size_t j) const { return sample_label(ids, lines, j); }
 
 CurveSamples planar_samples(const DeflectionSamples& samples) {
   if (samples.frame != SampleFrame::planar) {

@@ -4,21 +4,23 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 
 #include "hotmesh/geometry/curve_projector.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/geometry/interpolation.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
+#include "node_list.hpp"
 
 namespace hotmesh::geometry {
 
 namespace {
 
+using detail::format;
+using detail::list_nodes;
+
 /// Nodes whose parameters differ by less than this fraction of the range are one node.
 constexpr double kSameParameter = 1e-10;
-constexpr std::size_t kListedNodes = 20;
 
 /// An FEM node placed on the undeformed curve.
 struct PlacedNode {
@@ -48,23 +50,6 @@ void check_inputs(const CurveSamples& samples, const ReconstructionOptions& opti
       throw InputError::in(samples.source, samples.label(j) + " has a coordinate or deflection that is not finite");
     }
   }
-}
-
-std::string format(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
-}
-
-std::string list_nodes(const std::vector<NodeDistance>& nodes) {
-  std::string text;
-  for (std::size_t i = 0; i < nodes.size() && i < kListedNodes; ++i) {
-    if (i > 0) text += "; ";
-    text += nodes[i].label + " at distance " + format(nodes[i].distance);
-  }
-  if (nodes.size() > kListedNodes) text += "; and " + std::to_string(nodes.size() - kListedNodes) + " more";
-  return text;
 }
 
 /// Sorted by t; groups of nodes at one parameter become one node (their mean), provided their

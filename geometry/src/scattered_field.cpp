@@ -33,6 +33,8 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "hotmesh/geometry/input_error.hpp"
 
@@ -259,9 +261,9 @@ struct ScatteredField::Impl {
     return sum;
   }
 
-  /// The patch whose ball is nearest to x (smallest |x - c_j| - R_j): branch and bound, an inner
-  /// node's |x - c| - radius being a lower bound for the patches below it.
-  const Patch& nearest_patch(const Vec3& x) const {
+  /// The patch whose ball is nearest to x (smallest |x - c_j| - R_j) and that gap: branch and
+  /// bound, an inner node's |x - c| - radius being a lower bound for the patches below it.
+  std::pair<const Patch*, double> nearest_patch(const Vec3& x) const {
     std::array<Index, 8 * (kMaxDepth + 1)> stack;
     std::size_t top = 0;
     stack[top++] = 0;
@@ -278,7 +280,7 @@ struct ScatteredField::Impl {
         for (Index c = 0; c < node.children; ++c) stack[top++] = node.first_child + c;
       }
     }
-    return patches[static_cast<std::size_t>(found)];
+    return {&patches[static_cast<std::size_t>(found)], best};
   }
 };
 
@@ -500,7 +502,11 @@ Vec3 ScatteredField::operator()(const Vec3& x) const {
   double weight = 0.0;
   const Vec3 sum = impl_->blend(x, weight);
   if (weight > 0.0) return sum / weight;
-  return impl_->patch_value(impl_->nearest_patch(x), x);
+  return impl_->patch_value(*impl_->nearest_patch(x).first, x);
+}
+
+double ScatteredField::outside(const Vec3& x) const {
+  return std::max(0.0, impl_->nearest_patch(x).second);
 }
 
 }  // namespace hotmesh::geometry

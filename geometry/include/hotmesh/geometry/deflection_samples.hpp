@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,12 @@ struct DeflectionSamples {
   std::string source;             ///< where the samples came from (file name), for messages
 
   std::size_t size() const { return points.size(); }
+  /// "node 17 (line 19)", "node 17", "line 19" or "sample 3" for sample j (0-based).
+  std::string label(std::size_t j) const;
 };
+
+/// A sample's name in messages from its FEM node id and source line, where known (as
+/// DeflectionSamples::label).
+std::string sample_label(std::span<const std::int64_t> ids, std::span<const std::size_t> lines, std::size_t j);
 
 }  // namespace hotmesh::geometry

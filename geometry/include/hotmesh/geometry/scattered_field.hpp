@@ -89,6 +89,9 @@ class ScatteredField {
   /// The interpolated value at x. Const and thread-safe (no state is changed).
   Vec3 operator()(const Vec3& x) const;
 
+  /// How far x lies outside every patch's ball, the region the points cover (0 within).
+  double outside(const Vec3& x) const;
+
   const ScatteredFieldReport& report() const { return report_; }
 
  private:

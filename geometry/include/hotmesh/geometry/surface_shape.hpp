@@ -1,0 +1,144 @@
+// hotmesh geometry: walls of any shape in 3D, beyond surfaces of revolution (issue 23).
+//
+// Section 4.2 on CAD faces, as the paper describes it for B-spline surfaces S(t, s): every FEM
+// node Q_j is projected onto the undeformed faces to get its face and (t_j, s_j); on each face
+// the deflection field d(t, s) is a degree-q B-spline surface through the nodes' deflections
+// delta_j (surface_fit.hpp: global interpolation where the nodes form a grid in (t, s),
+// regularised least squares where they are scattered); the deflected face is
+//     S'(t, s) = S(t, s) + d(t, s)                                  (displacement form)
+// and the stages of the increments are S + lambda d (section 4.3). A node on an edge shared by
+// two faces is a sample of both, so both fields pass near its deflection there.
+//
+// SurfaceShape is the BoundaryShape of such a wall: points are projected onto the stage's
+// deformed faces (surface_projector.hpp), parameters are (face, t, s). A restarted run goes
+// from one deflection field to the next: S + d0 + lambda (d1 - d0).
+//
+// ScatteredShape is the motion of a prescribed wall without CAD faces: the table's deflections
+// interpolated over the wall by partition-of-unity radial basis functions (scattered_field.hpp:
+// exact at the FEM nodes, linear fields reproduced exactly, smooth). It is a field rather than a
+// surface: a point is its own closest point, and at() moves the material point at `reference`.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <shared_mutex>
+#include <span>
+#include <vector>
+
+#include "hotmesh/geometry/boundary_shape.hpp"
+#include "hotmesh/geometry/bspline_surface.hpp"
+#include "hotmesh/geometry/deflection_samples.hpp"
+#include "hotmesh/geometry/reconstruction.hpp"
+#include "hotmesh/geometry/scattered_field.hpp"
+#include "hotmesh/geometry/surface_fit.hpp"
+#include "hotmesh/geometry/surface_projector.hpp"
+
+namespace hotmesh::geometry {
+
+/// A CAD face in B-spline form (CadModel::face_bspline) with its number in the CAD file.
+struct CadFace {
+  int id = 0;
+  BSplineSurface surface;
+};
+
+/// How the field of one face was fitted.
+struct FaceFitReport {
+  int face = 0;               ///< CAD face number
+  std::size_t nodes = 0;      ///< FEM nodes on the face (those on a shared edge count on both)
+  SurfaceFitReport fit;
+};
+
+struct SurfaceReconstructionReport {
+  std::size_t nodes = 0;       ///< FEM nodes given
+  std::size_t used_nodes = 0;  ///< nodes within the tolerance of a face
+  int degree = 1;
+  double tolerance = 0.0;      ///< the distance tolerance used
+  double max_node_distance_to_cad = 0.0;
+  /// max |d(t_j, s_j) - delta_j| over the nodes used and the faces each lies on: the
+  /// interpolation's round-off on grids, the fit's error elsewhere.
+  double max_node_residual = 0.0;
+  /// Largest difference between the deflections of two faces along the edges they share
+  /// (sampled): how far apart the deflected faces are there.
+  double max_edge_gap = 0.0;
+  std::vector<NodeDistance> rejected_nodes;  ///< dropped for distance (FarNodePolicy::drop)
+  std::vector<FaceFitReport> faces;
+};
+
+/// The deflection field of every face, in the order of `faces`.
+struct FaceDeflections {
+  std::vector<BSplineSurface> fields;
+  SurfaceReconstructionReport report;
+};
+
+/// Section 4.2 on CAD faces: FEM nodes (cartesian samples) projected onto the faces, d(t, s)
+/// fitted on each (options.degree; options.form is not used: surfaces take the displacement
+/// form). Throws hotmesh::InputError naming the table for samples that are not cartesian,
+/// nodes farther than the tolerance from every face (policy reject), a face without enough
+/// nodes for the degree (naming the face), or options out of range.
+FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const DeflectionSamples& samples,
+                                     const ReconstructionOptions& options = {});
+
+class SurfaceShape final : public BoundaryShape {
+ public:
+  /// Stage lambda is S + before + lambda (after - before), face by face; `before` empty means
+  /// zero (a run from the cold geometry). Throws std::invalid_argument if the counts or the
+  /// fields' parameter rectangles differ from the faces'.
+  SurfaceShape(std::vector<CadFace> faces, std::vector<BSplineSurface> after, std::vector<BSplineSurface> before = {});
+
+  /// The closest point of the stage-lambda faces; parameter (t, s, face index). The normal is
+  /// S_t x S_s of that face, unit (its sign is the face's parametrisation's).
+  ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
+                     const ParameterRange& range = {}) const override;
+  ShapePoint at(const ShapeParameter& where, double lambda, const Vec3& reference) const override;
+
+  std::size_t face_count() const { return faces_.size(); }
+  const CadFace& face(std::size_t i) const { return faces_[i]; }
+
+ private:
+  /// The projector of stage lambda, built on first use (one per increment's stage) and kept.
+  const SurfaceProjector& stage(double lambda) const;
+  SurfaceDerivatives evaluate(std::size_t face, double t, double s, double lambda) const;
+
+  std::vector<CadFace> faces_;
+  std::vector<BSplineSurface> after_;
+  std::vector<BSplineSurface> before_;
+  mutable std::shared_mutex stages_mutex_;
+  mutable std::map<double, std::unique_ptr<SurfaceProjector>> stages_;
+};
+
+struct SurfaceShapeFit {
+  std::shared_ptr<SurfaceShape> shape;
+  SurfaceReconstructionReport report;
+};
+
+/// The deflected wall on `faces` through the samples (reconstruct_on_faces), from the cold
+/// geometry; with `previous` samples, from their deflected wall to the new one (a restart,
+/// section 4.3).
+SurfaceShapeFit make_surface_shape(std::vector<CadFace> faces, const DeflectionSamples& samples,
+                                   const ReconstructionOptions& options = {},
+                                   const DeflectionSamples* previous = nullptr);
+
+class ScatteredShape final : public BoundaryShape {
+ public:
+  /// Stage lambda moves the material point x0 to x0 + before(x0) + lambda (after(x0) -
+  /// before(x0)); without `before`, to x0 + lambda after(x0).
+  explicit ScatteredShape(ScatteredField after, std::shared_ptr<const ScatteredField> before = nullptr);
+
+  /// p itself; `distance` is how far p lies outside the region the table covers (0 within).
+  ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
+                     const ParameterRange& range = {}) const override;
+  /// The stage-lambda position of the material point that stage 0 has at `reference`.
+  ShapePoint at(const ShapeParameter& where, double lambda, const Vec3& reference) const override;
+
+  const ScatteredField& field() const { return after_; }
+
+ private:
+  /// The cold position x0 with x0 + before(x0) = x (x itself without `before`).
+  Vec3 material_point(const Vec3& x) const;
+
+  ScatteredField after_;
+  std::shared_ptr<const ScatteredField> before_;
+};
+
+}  // namespace hotmesh::geometry

@@ -1,0 +1,317 @@
+// hotmesh geometry: section 4.2 on CAD faces (FEM nodes to (face, t, s), a deflection field
+// d(t, s) per face) and the shapes of 3D walls that are not surfaces of revolution.
+#include "hotmesh/geometry/surface_shape.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <shared_mutex>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "hotmesh/geometry/input_error.hpp"
+#include "node_list.hpp"
+
+namespace hotmesh::geometry {
+
+namespace {
+
+using detail::format;
+
+struct Box {
+  Vec3 lo;
+  Vec3 hi;
+  bool holds(const Vec3& p, double margin) const {
+    return p.x >= lo.x - margin && p.x <= hi.x + margin && p.y >= lo.y - margin && p.y <= hi.y + margin &&
+           p.z >= lo.z - margin && p.z <= hi.z + margin;
+  }
+};
+
+/// The box of a face's poles, which holds the face (convex hull property, positive weights).
+Box pole_box(const BSplineSurface& s) {
+  Box b{s.poles().front(), s.poles().front()};
+  for (const Vec3& p : s.poles()) {
+    b.lo = {std::min(b.lo.x, p.x), std::min(b.lo.y, p.y), std::min(b.lo.z, p.z)};
+    b.hi = {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y), std::max(b.hi.z, p.z)};
+  }
+  return b;
+}
+
+void check_inputs(std::span<const CadFace> faces, const DeflectionSamples& samples,
+                  const ReconstructionOptions& options) {
+  if (samples.frame != SampleFrame::cartesian) {
+    throw InputError::in(samples.source, std::string("a wall reconstructed on CAD faces needs a cartesian (x, y, z) "
+                                                     "table, got a ") +
+                                             to_string(samples.frame) + " one");
+  }
+  if (options.degree < 1 || options.degree > kMaxReconstructionDegree) {
+    throw InputError::in(samples.source, "the degree of the deflected surface must be 1 to " +
+                                             std::to_string(kMaxReconstructionDegree) + ", got " +
+                                             std::to_string(options.degree));
+  }
+  if (!std::isfinite(options.tolerance) || options.tolerance < 0.0 || !(options.relative_tolerance > 0.0) ||
+      !std::isfinite(options.relative_tolerance)) {
+    throw InputError::in(samples.source, "the node distance tolerance must be a finite positive number");
+  }
+  if (samples.deflections.size() != samples.size()) {
+    throw InputError::in(samples.source, "every FEM node needs a deflection");
+  }
+  if (samples.size() == 0) throw InputError::in(samples.source, "there are no FEM nodes");
+  if (faces.empty()) throw InputError::in(samples.source, "no CAD faces to reconstruct the wall on");
+  for (std::size_t j = 0; j < samples.size(); ++j) {
+    if (!is_finite(samples.points[j]) || !is_finite(samples.deflections[j])) {
+      throw InputError::in(samples.source, samples.label(j) + " has a coordinate or deflection that is not finite");
+    }
+  }
+}
+
+/// The face's lengths along t and s over its length along s, measured at 5 x 5 points: tells
+/// the fit how the parameters are stretched on the face (SurfaceFitOptions::aspect).
+double aspect(const BSplineSurface& s) {
+  const ParameterRectangle r = s.domain();
+  double along_u = 0.0, along_v = 0.0;
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      const double u = r.u_first + (r.u_last - r.u_first) * (i + 0.5) / 5.0;
+      const double v = r.v_first + (r.v_last - r.v_first) * (j + 0.5) / 5.0;
+      const SurfaceDerivatives d = s.derivatives(u, v);
+      along_u += norm(d.du) * (r.u_last - r.u_first);
+      along_v += norm(d.dv) * (r.v_last - r.v_first);
+    }
+  }
+  if (!(along_u > 0.0) || !(along_v > 0.0)) return 1.0;  // degenerate face: no preference
+  return std::clamp(along_u / along_v, 1e-6, 1e6);
+}
+
+/// Where the FEM nodes lie on the faces: per face the field samples (t_j, s_j, delta_j) and the
+/// sample indices.
+struct PlacedSamples {
+  std::vector<std::vector<FieldSample>> on_face;
+  std::vector<std::vector<std::size_t>> index;
+};
+
+/// The largest difference between the deflections of two faces at sampled points of their
+/// rectangles' edges that lie on the other face (its shared edges).
+double edge_gap(std::span<const CadFace> faces, const std::vector<SurfaceProjector>& projectors,
+                const std::vector<BSplineSurface>& fields, double tolerance) {
+  constexpr int kPerEdge = 32;
+  double gap = 0.0;
+  for (std::size_t a = 0; a < faces.size(); ++a) {
+    const ParameterRectangle r = faces[a].surface.domain();
+    for (int k = 0; k <= 4 * kPerEdge; ++k) {
+      const int side = k / (kPerEdge + 1);
+      const double f = static_cast<double>(k % (kPerEdge + 1)) / kPerEdge;
+      const double u = side < 2 ? r.u_first + f * (r.u_last - r.u_first) : (side == 2 ? r.u_first : r.u_last);
+      const double v = side < 2 ? (side == 0 ? r.v_first : r.v_last) : r.v_first + f * (r.v_last - r.v_first);
+      const Vec3 p = faces[a].surface.point(u, v);
+      for (std::size_t b = 0; b < faces.size(); ++b) {
+        if (b == a) continue;
+        const SurfaceProjection q = projectors[b].project(p);
+        if (q.distance > tolerance) continue;
+        gap = std::max(gap, distance(fields[a].point(u, v), fields[b].point(q.where.u, q.where.v)));
+      }
+    }
+  }
+  return gap;
+}
+
+/// The sorted union of two lists of breakpoints.
+std::vector<double> merged(std::vector<double> a, const std::vector<double>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  std::sort(a.begin(), a.end());
+  a.erase(std::unique(a.begin(), a.end()), a.end());
+  return a;
+}
+
+}  // namespace
+
+FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const DeflectionSamples& samples,
+                                     const ReconstructionOptions& options) {
+  check_inputs(faces, samples, options);
+  FaceDeflections out;
+  SurfaceReconstructionReport& report = out.report;
+  report.nodes = samples.size();
+  report.degree = options.degree;
+
+  std::vector<SurfaceProjector> projectors;
+  std::vector<Box> boxes;
+  Box all = pole_box(faces.front().surface);
+  for (const CadFace& f : faces) {
+    projectors.emplace_back(std::vector<SurfacePatch>{bspline_patch(f.surface)});
+    boxes.push_back(pole_box(f.surface));
+    all.lo = {std::min(all.lo.x, boxes.back().lo.x), std::min(all.lo.y, boxes.back().lo.y),
+              std::min(all.lo.z, boxes.back().lo.z)};
+    all.hi = {std::max(all.hi.x, boxes.back().hi.x), std::max(all.hi.y, boxes.back().hi.y),
+              std::max(all.hi.z, boxes.back().hi.z)};
+  }
+  const double size = distance(all.lo, all.hi);
+  report.tolerance = options.tolerance > 0.0 ? options.tolerance : options.relative_tolerance * size;
+
+  // Every Q_j onto every face near it: a node within the tolerance of several faces (on the
+  // edge they share) is a sample of each, so their fields agree there.
+  PlacedSamples placed;
+  placed.on_face.resize(faces.size());
+  placed.index.resize(faces.size());
+  for (std::size_t j = 0; j < samples.size(); ++j) {
+    const Vec3& q = samples.points[j];
+    double nearest = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<std::size_t, SurfaceProjection>> near;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      if (!boxes[f].holds(q, report.tolerance)) continue;
+      const SurfaceProjection p = projectors[f].project(q);
+      nearest = std::min(nearest, p.distance);
+      if (p.distance <= report.tolerance) near.emplace_back(f, p);
+    }
+    if (near.empty()) {  // its distance for the message, from every face
+      for (const SurfaceProjector& projector : projectors) nearest = std::min(nearest, projector.project(q).distance);
+      report.rejected_nodes.push_back({j, samples.label(j), nearest, 0.0});
+      continue;
+    }
+    ++report.used_nodes;
+    report.max_node_distance_to_cad = std::max(report.max_node_distance_to_cad, nearest);
+    for (const auto& [f, p] : near) {
+      placed.on_face[f].push_back({p.where.u, p.where.v, samples.deflections[j]});
+      placed.index[f].push_back(j);
+    }
+  }
+  if (!report.rejected_nodes.empty() && options.far_nodes == FarNodePolicy::reject) {
+    const std::string how = options.tolerance > 0.0 ? "the given tolerance"
+                                                    : "the default tolerance, " + format(options.relative_tolerance) +
+                                                          " of the faces' size " + format(size);
+    throw InputError::in(samples.source, std::to_string(report.rejected_nodes.size()) + " of " +
+                                             std::to_string(samples.size()) + " FEM nodes are farther than " +
+                                             format(report.tolerance) + " (" + how + ") from the CAD faces: " +
+                                             detail::list_nodes(report.rejected_nodes));
+  }
+
+  // d(t, s) on each face through its nodes.
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const int id = faces[f].id;
+    if (placed.on_face[f].empty()) {
+      throw InputError::in(samples.source, "no FEM node lies on CAD face " + std::to_string(id) + " (within " +
+                                               format(report.tolerance) +
+                                               "): give only the faces the table covers, or a table that covers them");
+    }
+    SurfaceFitOptions fit_options;
+    fit_options.degree = options.degree;
+    fit_options.aspect = aspect(faces[f].surface);
+    try {
+      SurfaceFit fit = fit_surface_field(placed.on_face[f], faces[f].surface.domain(), fit_options);
+      report.faces.push_back({id, placed.on_face[f].size(), fit.report});
+      report.max_node_residual = std::max(report.max_node_residual, fit.report.max_residual);
+      out.fields.push_back(std::move(fit.field));
+    } catch (const InputError& e) {
+      throw InputError::in(samples.source, "CAD face " + std::to_string(id) + ": " + e.what());
+    }
+  }
+  report.max_edge_gap = edge_gap(faces, projectors, out.fields, report.tolerance);
+  return out;
+}
+
+SurfaceShape::SurfaceShape(std::vector<CadFace> faces, std::vector<BSplineSurface> after,
+                           std::vector<BSplineSurface> before)
+    : faces_(std::move(faces)), after_(std::move(after)), before_(std::move(before)) {
+  if (faces_.empty() || after_.size() != faces_.size() || (!before_.empty() && before_.size() != faces_.size())) {
+    throw std::invalid_argument("SurfaceShape: one deflection field per face");
+  }
+  const auto same = [](const ParameterRectangle& a, const ParameterRectangle& b) {
+    return a.u_first == b.u_first && a.u_last == b.u_last && a.v_first == b.v_first && a.v_last == b.v_last;
+  };
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    const ParameterRectangle r = faces_[f].surface.domain();
+    if (!same(r, after_[f].domain()) || (!before_.empty() && !same(r, before_[f].domain()))) {
+      throw std::invalid_argument("SurfaceShape: a deflection field's rectangle differs from its face's");
+    }
+  }
+}
+
+// Stage lambda of the faces (section 4.3): S + (1 - lambda) d0 + lambda d1, d0 the deflection
+// the run starts from (zero from the cold geometry, the previous run's on a restart).
+SurfaceDerivatives SurfaceShape::evaluate(std::size_t face, double t, double s, double lambda) const {
+  SurfaceDerivatives d = faces_[face].surface.derivatives(t, s) + lambda * after_[face].derivatives(t, s);
+  if (!before_.empty()) d = d + (1.0 - lambda) * before_[face].derivatives(t, s);
+  return d;
+}
+
+const SurfaceProjector& SurfaceShape::stage(double lambda) const {
+  {
+    const std::shared_lock read(stages_mutex_);
+    const auto it = stages_.find(lambda);
+    if (it != stages_.end()) return *it->second;
+  }
+  const std::unique_lock write(stages_mutex_);
+  auto& slot = stages_[lambda];
+  if (!slot) {
+    std::vector<SurfacePatch> patches;
+    for (std::size_t f = 0; f < faces_.size(); ++f) {
+      const BSplineSurface& s = faces_[f].surface;
+      SurfacePatch patch;
+      patch.evaluate = [this, f, lambda](double t, double u) { return evaluate(f, t, u, lambda); };
+      patch.domain = s.domain();
+      patch.u_breaks = merged(s.u_breakpoints(), after_[f].u_breakpoints());
+      patch.v_breaks = merged(s.v_breakpoints(), after_[f].v_breakpoints());
+      if (!before_.empty()) {
+        patch.u_breaks = merged(patch.u_breaks, before_[f].u_breakpoints());
+        patch.v_breaks = merged(patch.v_breaks, before_[f].v_breakpoints());
+      }
+      patches.push_back(std::move(patch));
+    }
+    slot = std::make_unique<SurfaceProjector>(std::move(patches));
+  }
+  return *slot;
+}
+
+ShapePoint SurfaceShape::project(const Vec3& p, double lambda, const ShapeParameter& hint,
+                                 const ParameterRange& /*range*/) const {
+  const SurfaceParameter start = hint.known() ? SurfaceParameter{hint.face, hint.t, hint.s} : SurfaceParameter{};
+  const SurfaceProjection q = stage(lambda).project(p, start);
+  return {q.point, q.normal, {q.where.u, q.where.v, q.where.patch}, q.distance};
+}
+
+ShapePoint SurfaceShape::at(const ShapeParameter& where, double lambda, const Vec3& /*reference*/) const {
+  const SurfaceProjection q = stage(lambda).at({where.face, where.t, where.s});
+  return {q.point, q.normal, {q.where.u, q.where.v, q.where.patch}, 0.0};
+}
+
+SurfaceShapeFit make_surface_shape(std::vector<CadFace> faces, const DeflectionSamples& samples,
+                                   const ReconstructionOptions& options, const DeflectionSamples* previous) {
+  FaceDeflections after = reconstruct_on_faces(faces, samples, options);
+  std::vector<BSplineSurface> before;
+  if (previous) before = reconstruct_on_faces(faces, *previous, options).fields;
+  auto shape = std::make_shared<SurfaceShape>(std::move(faces), std::move(after.fields), std::move(before));
+  return {std::move(shape), std::move(after.report)};
+}
+
+ScatteredShape::ScatteredShape(ScatteredField after, std::shared_ptr<const ScatteredField> before)
+    : after_(std::move(after)), before_(std::move(before)) {}
+
+ShapePoint ScatteredShape::project(const Vec3& p, double /*lambda*/, const ShapeParameter& /*hint*/,
+                                   const ParameterRange& /*range*/) const {
+  return {p, {}, {}, after_.outside(p)};
+}
+
+// x = x0 + before(x0) by fixed-point iteration x0 <- x - before(x0): a contraction wherever the
+// deflection's gradient is below 1, as any FEM deflection of a wall is by orders of magnitude.
+Vec3 ScatteredShape::material_point(const Vec3& x) const {
+  if (!before_) return x;
+  constexpr int kMaxIterations = 100;
+  const double tolerance = 1e-15 * (1.0 + norm(x));
+  Vec3 x0 = x - (*before_)(x);
+  for (int k = 0; k < kMaxIterations; ++k) {
+    const Vec3 next = x - (*before_)(x0);
+    const double step = distance(next, x0);
+    x0 = next;
+    if (step <= tolerance) break;
+  }
+  return x0;
+}
+
+ShapePoint ScatteredShape::at(const ShapeParameter& where, double lambda, const Vec3& reference) const {
+  const Vec3 x0 = material_point(reference);
+  const Vec3 start = before_ ? (*before_)(x0) : Vec3{};
+  return {x0 + start + lambda * (after_(x0) - start), {}, where, 0.0};
+}
+
+}  // namespace hotmesh::geometry

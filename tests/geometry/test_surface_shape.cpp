@@ -1,0 +1,242 @@
+// Tests of walls on CAD faces of any shape (section 4.2 on surfaces, issue 23): FEM nodes
+// projected onto the faces, d(t, s) per face, the deflected faces as a BoundaryShape; and the
+// scattered-data motion of prescribed walls without CAD.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/geometry/surface_shape.hpp"
+#include "occt_surfaces.hpp"
+
+namespace hotmesh::geometry {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
+
+/// The bilinear face [x0, x1] x [y0, y1] of the plane z = 0, parameters (x, y).
+BSplineSurface flat_face(double x0, double x1, double y0, double y1) {
+  return BSplineSurface(1, 1, {x0, x0, x1, x1}, {y0, y0, y1, y1}, {{x0, y0, 0}, {x0, y1, 0}, {x1, y0, 0}, {x1, y1, 0}});
+}
+
+DeflectionSamples cartesian(std::vector<Vec3> points, std::vector<Vec3> deflections) {
+  DeflectionSamples s;
+  s.frame = SampleFrame::cartesian;
+  s.points = std::move(points);
+  s.deflections = std::move(deflections);
+  s.source = "wall.csv";
+  return s;
+}
+
+/// FEM nodes at S(u_i, v_j) on an n x n grid of the face's parameters, with deflection f(u, v).
+template <class F>
+DeflectionSamples grid_samples(const BSplineSurface& s, int n, F f) {
+  const ParameterRectangle r = s.domain();
+  std::vector<Vec3> points, deflections;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double u = r.u_first + (r.u_last - r.u_first) * i / (n - 1);
+      const double v = r.v_first + (r.v_last - r.v_first) * j / (n - 1);
+      points.push_back(s.point(u, v));
+      deflections.push_back(f(u, v));
+    }
+  }
+  return cartesian(points, deflections);
+}
+
+// Deflections that are polynomials of degree <= q in (t, s), given at a grid of FEM nodes, are
+// reproduced by the deflected face to round-off everywhere (global interpolation, eq. 21 in
+// each direction), on a rational face too.
+TEST(SurfaceShape, ReproducesPolynomialDeflectionsOfDegreeQ) {
+  for (const auto& occt : {test::occt_wavy(), test::occt_wavy_rational()}) {
+    const BSplineSurface face = test::from_occt(occt);
+    for (int q = 1; q <= 3; ++q) {
+      const auto f = [q](double u, double v) {
+        const double a = std::pow(u, q) * v, b = u * std::pow(v, q), c = std::pow(u * v, q);
+        return Vec3{0.01 * a - 0.002, -0.02 * b + 0.001 * u, 0.005 * c + 0.003 * v};
+      };
+      const SurfaceShapeFit fit = make_surface_shape({{7, face}}, grid_samples(face, 7, f), {.degree = q});
+      ASSERT_EQ(fit.report.faces.size(), 1u);
+      EXPECT_EQ(fit.report.faces[0].face, 7);
+      EXPECT_EQ(fit.report.faces[0].fit.method, SurfaceFitMethod::interpolation);
+      EXPECT_EQ(fit.report.used_nodes, 49u);
+      std::mt19937 random(static_cast<unsigned>(q));
+      std::uniform_real_distribution<double> unit(0.0, 1.0);
+      const ParameterRectangle r = face.domain();
+      for (int k = 0; k < 50; ++k) {
+        const double u = r.u_first + (r.u_last - r.u_first) * unit(random);
+        const double v = r.v_first + (r.v_last - r.v_first) * unit(random);
+        const Vec3 expected = face.point(u, v) + 0.5 * f(u, v);
+        EXPECT_LT(distance(fit.shape->at({u, v, 0}, 0.5, {}).point, expected), 1e-12) << "q " << q;
+        EXPECT_LT(distance(fit.shape->at({u, v, 0}, 0.0, {}).point, face.point(u, v)), 1e-14);
+      }
+    }
+  }
+}
+
+// A smooth deflection of a cylinder (a rational face) from scattered FEM nodes: the deflected
+// face converges to the exact one as the nodes get denser, at about the order q + 1 of the fit
+// (measured orders printed; docs/method.md records them).
+TEST(SurfaceShape, ConvergesOnASmoothFieldFromScatteredNodes) {
+  const BSplineSurface face = test::from_occt(test::occt_cylinder());
+  const ParameterRectangle r = face.domain();
+  const auto deflection = [](const Vec3& x) {
+    return 0.01 * Vec3{std::sin(x.x + 0.5 * x.z), std::cos(0.7 * x.y), 0.3 * x.x * std::cos(0.5 * x.z)};
+  };
+  for (int q = 1; q <= 2; ++q) {
+    std::vector<double> errors;
+    for (const int n : {8, 16, 32}) {
+      std::mt19937 random(11);
+      std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+      std::vector<Vec3> points, deflections;
+      for (int i = 0; i <= n; ++i) {
+        for (int j = 0; j <= n; ++j) {
+          const double a = std::clamp((i + (i > 0 && i < n ? jitter(random) : 0.0)) / n, 0.0, 1.0);
+          const double b = std::clamp((j + (j > 0 && j < n ? jitter(random) : 0.0)) / n, 0.0, 1.0);
+          points.push_back(face.point(r.u_first + a * (r.u_last - r.u_first), r.v_first + b * (r.v_last - r.v_first)));
+          deflections.push_back(deflection(points.back()));
+        }
+      }
+      const SurfaceShapeFit fit = make_surface_shape({{1, face}}, cartesian(points, deflections), {.degree = q});
+      EXPECT_EQ(fit.report.faces[0].fit.method, SurfaceFitMethod::least_squares);
+      double worst = 0.0;
+      for (int i = 0; i <= 40; ++i) {
+        for (int j = 0; j <= 40; ++j) {
+          const double u = r.u_first + (r.u_last - r.u_first) * i / 40.0;
+          const double v = r.v_first + (r.v_last - r.v_first) * j / 40.0;
+          const Vec3 x = face.point(u, v);
+          worst = std::max(worst, distance(fit.shape->at({u, v, 0}, 1.0, {}).point, x + deflection(x)));
+        }
+      }
+      errors.push_back(worst / 0.01);
+    }
+    const double order = std::log2(errors[1] / errors[2]);
+    std::printf("cylinder, scattered nodes, q = %d: relative errors %.3g %.3g %.3g, order %.2f then %.2f\n", q,
+                errors[0], errors[1], errors[2], std::log2(errors[0] / errors[1]), order);
+    EXPECT_GT(order, q + 0.5) << "q " << q;
+  }
+}
+
+// Sliding nodes are projected onto the deflected faces of a stage: the point found lies on that
+// stage (S + lambda d at its parameters) and the offset is normal to it; a warm start from the
+// previous parameters lands at the same place.
+TEST(SurfaceShape, ProjectsOntoTheDeflectedFacesOfAStage) {
+  const BSplineSurface face = test::from_occt(test::occt_wavy());
+  const auto f = [](double u, double v) { return Vec3{0.02 * std::sin(2 * u), 0.01 * v * v, 0.05 * std::cos(u + v)}; };
+  const SurfaceShapeFit fit = make_surface_shape({{1, face}}, grid_samples(face, 9, f), {.degree = 3});
+  const ParameterRectangle r = face.domain();
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> unit(0.1, 0.9);
+  for (int k = 0; k < 100; ++k) {
+    const double u = r.u_first + (r.u_last - r.u_first) * unit(random);
+    const double v = r.v_first + (r.v_last - r.v_first) * unit(random);
+    const double lambda = 0.25 * (k % 5);
+    const ShapePoint on = fit.shape->at({u, v, 0}, lambda, {});
+    const Vec3 p = on.point + 0.01 * (unit(random) - 0.5) * on.normal;
+    const ShapePoint q = fit.shape->project(p, lambda);
+    EXPECT_LT(distance(q.point, fit.shape->at(q.parameter, lambda, {}).point), 1e-12);
+    EXPECT_LT(norm(cross(p - q.point, q.normal)), 1e-9) << k;
+    const ShapePoint warm = fit.shape->project(p + Vec3{1e-4, 0, 0}, lambda, q.parameter);
+    EXPECT_LT(distance(warm.point, fit.shape->project(p + Vec3{1e-4, 0, 0}, lambda).point), 1e-10);
+  }
+}
+
+// Two faces joined along an edge: the FEM nodes on the edge are samples of both, so with the
+// nodes on grids the two deflected faces meet exactly along it.
+TEST(SurfaceShape, FacesSharingAnEdgeMeetAfterTheDeflection) {
+  const std::vector<CadFace> faces{{1, flat_face(0, 1, 0, 1)}, {2, flat_face(1, 2, 0, 1)}};
+  std::vector<Vec3> points, deflections;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j <= 4; ++j) {
+      points.push_back({0.25 * i, 0.25 * j, 0.0});
+      deflections.push_back({0.0, 0.0, 0.05 * std::sin(3.0 * points.back().x) * std::cos(2.0 * points.back().y)});
+    }
+  }
+  const SurfaceShapeFit fit = make_surface_shape(faces, cartesian(points, deflections), {.degree = 1});
+  EXPECT_EQ(fit.report.used_nodes, 45u);
+  EXPECT_EQ(fit.report.faces[0].nodes + fit.report.faces[1].nodes, 45u + 5u);  // the edge's 5 nodes on both
+  EXPECT_LT(fit.report.max_edge_gap, 1e-14);
+  for (int j = 0; j <= 10; ++j) {
+    const double y = 0.1 * j;
+    EXPECT_LT(distance(fit.shape->at({1.0, y, 0}, 1.0, {}).point, fit.shape->at({1.0, y, 1}, 1.0, {}).point), 1e-14);
+  }
+  // A point of the deflected edge lies on the deflected wall, whichever face takes it.
+  EXPECT_LT(fit.shape->project(fit.shape->at({1.0, 0.5, 0}, 1.0, {}).point, 1.0).distance, 1e-12);
+}
+
+TEST(SurfaceShape, RefusesTablesThatDoNotDescribeTheFaces) {
+  const std::vector<CadFace> faces{{3, flat_face(0, 1, 0, 1)}, {4, flat_face(2, 3, 0, 1)}};
+  DeflectionSamples left = grid_samples(faces[0].surface, 4, [](double, double) { return Vec3{0, 0, 0.01}; });
+  EXPECT_THAT([&] { reconstruct_on_faces(faces, left); },
+              ThrowsMessage<InputError>(HasSubstr("no FEM node lies on CAD face 4")));
+  DeflectionSamples off = left;
+  off.points[5].z = 0.1;
+  off.ids.resize(off.size());
+  for (std::size_t j = 0; j < off.size(); ++j) off.ids[j] = static_cast<std::int64_t>(100 + j);
+  EXPECT_THAT([&] { reconstruct_on_faces({faces.data(), 1}, off); },
+              ThrowsMessage<InputError>(HasSubstr("1 of 16 FEM nodes are farther than")));
+  EXPECT_THAT([&] { reconstruct_on_faces({faces.data(), 1}, off); },
+              ThrowsMessage<InputError>(HasSubstr("node 105 at distance 0.1")));
+  const FaceDeflections dropped = reconstruct_on_faces({faces.data(), 1}, off, {.far_nodes = FarNodePolicy::drop});
+  ASSERT_EQ(dropped.report.rejected_nodes.size(), 1u);
+  EXPECT_EQ(dropped.report.used_nodes, 15u);
+  DeflectionSamples meridional = left;
+  meridional.frame = SampleFrame::meridional;
+  EXPECT_THAT([&] { reconstruct_on_faces({faces.data(), 1}, meridional); },
+              ThrowsMessage<InputError>(HasSubstr("needs a cartesian (x, y, z) table")));
+  DeflectionSamples few = cartesian({{0.1, 0.1, 0}, {0.9, 0.1, 0}, {0.5, 0.9, 0}}, {{}, {}, {}});
+  EXPECT_THAT([&] { reconstruct_on_faces({faces.data(), 1}, few, {.degree = 2}); },
+              ThrowsMessage<InputError>(HasSubstr("CAD face 3: ")));
+}
+
+// A restart (section 4.3) goes from the previous run's deflected faces (stage 0) to the new
+// ones (stage 1), at the same material parameters.
+TEST(SurfaceShape, RestartGoesFromThePreviousDeflectionToTheNext) {
+  const BSplineSurface face = test::from_occt(test::occt_wavy());
+  const auto first = [](double u, double v) { return Vec3{0.01 * u, 0.0, 0.02 * v}; };
+  const auto second = [](double u, double v) { return Vec3{0.0, 0.03 * u * v, -0.01}; };
+  const DeflectionSamples before = grid_samples(face, 5, first);
+  const SurfaceShapeFit fit = make_surface_shape({{1, face}}, grid_samples(face, 5, second), {.degree = 2}, &before);
+  const ParameterRectangle r = face.domain();
+  for (int k = 0; k <= 4; ++k) {
+    const double u = r.u_first + 0.2 * k * (r.u_last - r.u_first), v = r.v_first + 0.1 * k * (r.v_last - r.v_first);
+    EXPECT_LT(distance(fit.shape->at({u, v, 0}, 0.0, {}).point, face.point(u, v) + first(u, v)), 1e-12);
+    EXPECT_LT(distance(fit.shape->at({u, v, 0}, 1.0, {}).point, face.point(u, v) + second(u, v)), 1e-12);
+  }
+}
+
+// Without CAD a prescribed wall moves by the table interpolated over it; on a restart each node
+// is taken back to its material point through the previous deflection first.
+TEST(ScatteredShape, MovesMaterialPointsFromTheirPreviousDeflection) {
+  std::vector<Vec3> points;
+  for (int i = 0; i <= 10; ++i) {
+    for (int j = 0; j <= 10; ++j) points.push_back({0.1 * i, 0.1 * j, 0.2 * std::sin(0.1 * i)});
+  }
+  const auto first = [](const Vec3& x) { return Vec3{0.01 * x.y, 0.0, 0.02 * x.x * x.x}; };
+  const auto second = [](const Vec3& x) { return Vec3{0.0, -0.01 * x.x, 0.03 * x.y}; };
+  std::vector<Vec3> d1, d2;
+  for (const Vec3& x : points) {
+    d1.push_back(first(x));
+    d2.push_back(second(x));
+  }
+  const ScatteredShape fresh{ScatteredField(points, d1)};
+  const ScatteredShape restarted{ScatteredField(points, d2), std::make_shared<const ScatteredField>(points, d1)};
+  for (std::size_t k = 0; k < points.size(); k += 7) {
+    const Vec3& x0 = points[k];
+    EXPECT_LT(distance(fresh.at({}, 1.0, x0).point, x0 + first(x0)), 1e-13);
+    EXPECT_LT(distance(fresh.at({}, 0.0, x0).point, x0), 1e-15);
+    const Vec3 previous = x0 + first(x0);  // where the first run left the node
+    EXPECT_LT(distance(restarted.at({}, 0.0, previous).point, previous), 1e-13);
+    EXPECT_LT(distance(restarted.at({}, 1.0, previous).point, x0 + second(x0)), 1e-13);
+  }
+  EXPECT_EQ(fresh.project(points[12], 0.0).distance, 0.0);
+  EXPECT_GT(fresh.project({5.0, 5.0, 5.0}, 0.0).distance, 4.0);
+}
+
+}  // namespace
+}  // namespace hotmesh::geometry
