@@ -151,6 +151,25 @@ json deflections_json(const io::Case& c, const io::CaseSetup& setup, double scal
                     {"form", geometry::to_string(r.form)}};
     put_length(deflection, "max_node_distance_to_cad", r.max_node_distance_to_cad, scale);
     put_length(deflection, "max_node_residual", r.max_node_residual, scale);
+    deflection["wall"] = io::kWallKindNames.name(s.kind);
+    if (s.faces) {
+      put_length(deflection, "max_edge_gap", s.faces->max_edge_gap, scale);
+      json faces = json::array();
+      for (const auto& f : s.faces->faces) {
+        json face{{"face", f.face},
+                  {"nodes", f.nodes},
+                  {"method", f.fit.method == geometry::SurfaceFitMethod::interpolation ? "interpolation" : "least_squares"},
+                  {"poles", {f.fit.u_poles, f.fit.v_poles}}};
+        put_length(face, "max_node_residual", f.fit.max_residual, scale);
+        faces.push_back(std::move(face));
+      }
+      deflection["faces"] = std::move(faces);
+    }
+    if (s.scattered) {
+      deflection["interpolation"] = {{"method", "partition-of-unity RBF"},
+                                     {"patches", s.scattered->patches},
+                                     {"largest_patch", s.scattered->largest_patch}};
+    }
     const io::PatchSpec* spec = c.find_patch(s.patch);
     if (spec != nullptr && spec->deflection && spec->deflection->calculix) {
       deflection["calculix"] = calculix_json(*spec->deflection->calculix);

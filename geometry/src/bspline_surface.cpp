@@ -89,8 +89,12 @@ Vec3 BSplineSurface::point(double u, double v) const {
 // A polynomial surface has w = 1 and S = A. The tensor sums run one direction at a time: for
 // each row i the sums over j with M, M', M'', then those over i with N, N', N''.
 SurfaceDerivatives BSplineSurface::derivatives(double u, double v) const {
-  const double uu = std::clamp(u, u_first(), u_last());
-  const double vv = std::clamp(v, v_first(), v_last());
+  return continued_derivatives(std::clamp(u, u_first(), u_last()), std::clamp(v, v_first(), v_last()));
+}
+
+// Beyond the rectangle the spans at its edges are the nearest (find_span), and the basis
+// functions of a span are the polynomials of that span at any parameter: the end pieces go on.
+SurfaceDerivatives BSplineSurface::continued_derivatives(double uu, double vv) const {
   const std::size_t us = detail::find_span(u_knots_, u_degree_, u_count(), uu);
   const std::size_t vs = detail::find_span(v_knots_, v_degree_, v_count(), vv);
   detail::BasisDerivatives nu;

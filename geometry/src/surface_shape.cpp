@@ -92,6 +92,13 @@ struct PlacedSamples {
   std::vector<std::vector<std::size_t>> index;
 };
 
+/// The point at fraction f along side 0..3 of a rectangle (v first, v last, u first, u last).
+std::pair<double, double> on_side(const ParameterRectangle& r, int side, double f) {
+  const double u = side < 2 ? r.u_first + f * (r.u_last - r.u_first) : (side == 2 ? r.u_first : r.u_last);
+  const double v = side < 2 ? (side == 0 ? r.v_first : r.v_last) : r.v_first + f * (r.v_last - r.v_first);
+  return {u, v};
+}
+
 /// The largest difference between the deflections of two faces at sampled points of their
 /// rectangles' edges that lie on the other face (its shared edges).
 double edge_gap(std::span<const CadFace> faces, const std::vector<SurfaceProjector>& projectors,
@@ -99,12 +106,9 @@ double edge_gap(std::span<const CadFace> faces, const std::vector<SurfaceProject
   constexpr int kPerEdge = 32;
   double gap = 0.0;
   for (std::size_t a = 0; a < faces.size(); ++a) {
-    const ParameterRectangle r = faces[a].surface.domain();
-    for (int k = 0; k <= 4 * kPerEdge; ++k) {
-      const int side = k / (kPerEdge + 1);
-      const double f = static_cast<double>(k % (kPerEdge + 1)) / kPerEdge;
-      const double u = side < 2 ? r.u_first + f * (r.u_last - r.u_first) : (side == 2 ? r.u_first : r.u_last);
-      const double v = side < 2 ? (side == 0 ? r.v_first : r.v_last) : r.v_first + f * (r.v_last - r.v_first);
+    for (int k = 0; k <= 4 * kPerEdge + 3; ++k) {
+      const auto [u, v] = on_side(faces[a].surface.domain(), k / (kPerEdge + 1),
+                                  static_cast<double>(k % (kPerEdge + 1)) / kPerEdge);
       const Vec3 p = faces[a].surface.point(u, v);
       for (std::size_t b = 0; b < faces.size(); ++b) {
         if (b == a) continue;
@@ -123,6 +127,56 @@ std::vector<double> merged(std::vector<double> a, const std::vector<double>& b) 
   std::sort(a.begin(), a.end());
   a.erase(std::unique(a.begin(), a.end()), a.end());
   return a;
+}
+
+/// How far a face reaches beyond each of its free edges, as a fraction of its parameter range.
+/// A wall often ends where the CFD domain does (an inlet, the side of a sector), and its
+/// deflection may carry its edge along that plane, away from the plane's nodes: beyond a free
+/// edge the face goes on (its end pieces continued), so they still find it. Edges it shares
+/// with another face of the wall, and collapsed edges (poles), do not reach.
+constexpr double kFreeEdgeReach = 0.05;
+
+/// Each face's rectangle with its free edges moved out by kFreeEdgeReach.
+std::vector<ParameterRectangle> reaches(std::span<const CadFace> faces) {
+  constexpr int kSamples = 5;
+  std::vector<SurfaceProjector> projectors;
+  Box all = pole_box(faces.front().surface);
+  for (const CadFace& f : faces) {
+    projectors.emplace_back(std::vector<SurfacePatch>{bspline_patch(f.surface)});
+    const Box b = pole_box(f.surface);
+    all.lo = {std::min(all.lo.x, b.lo.x), std::min(all.lo.y, b.lo.y), std::min(all.lo.z, b.lo.z)};
+    all.hi = {std::max(all.hi.x, b.hi.x), std::max(all.hi.y, b.hi.y), std::max(all.hi.z, b.hi.z)};
+  }
+  const double size = distance(all.lo, all.hi);
+  std::vector<ParameterRectangle> out;
+  for (std::size_t a = 0; a < faces.size(); ++a) {
+    const ParameterRectangle r = faces[a].surface.domain();
+    ParameterRectangle reach = r;
+    for (int side = 0; side < 4; ++side) {
+      bool shared = faces.size() > 1;
+      double length = 0.0;
+      Vec3 previous;
+      for (int k = 0; k < kSamples; ++k) {
+        const auto [u, v] = on_side(r, side, (k + 0.5) / kSamples);
+        const Vec3 p = faces[a].surface.point(u, v);
+        if (k > 0) length += distance(p, previous);
+        previous = p;
+        bool on_other = false;
+        for (std::size_t b = 0; b < faces.size() && !on_other; ++b) {
+          on_other = b != a && projectors[b].project(p).distance <= 1e-6 * size;
+        }
+        shared = shared && on_other;
+      }
+      if (shared || length <= 1e-9 * size) continue;
+      const double du = kFreeEdgeReach * (r.u_last - r.u_first), dv = kFreeEdgeReach * (r.v_last - r.v_first);
+      if (side == 0) reach.v_first -= dv;
+      if (side == 1) reach.v_last += dv;
+      if (side == 2) reach.u_first -= du;
+      if (side == 3) reach.u_last += du;
+    }
+    out.push_back(reach);
+  }
+  return out;
 }
 
 }  // namespace
@@ -225,13 +279,16 @@ SurfaceShape::SurfaceShape(std::vector<CadFace> faces, std::vector<BSplineSurfac
       throw std::invalid_argument("SurfaceShape: a deflection field's rectangle differs from its face's");
     }
   }
+  reach_ = reaches(faces_);
 }
 
 // Stage lambda of the faces (section 4.3): S + (1 - lambda) d0 + lambda d1, d0 the deflection
 // the run starts from (zero from the cold geometry, the previous run's on a restart).
+// Beyond a free edge, the faces and fields continued (kFreeEdgeReach).
 SurfaceDerivatives SurfaceShape::evaluate(std::size_t face, double t, double s, double lambda) const {
-  SurfaceDerivatives d = faces_[face].surface.derivatives(t, s) + lambda * after_[face].derivatives(t, s);
-  if (!before_.empty()) d = d + (1.0 - lambda) * before_[face].derivatives(t, s);
+  SurfaceDerivatives d =
+      faces_[face].surface.continued_derivatives(t, s) + lambda * after_[face].continued_derivatives(t, s);
+  if (!before_.empty()) d = d + (1.0 - lambda) * before_[face].continued_derivatives(t, s);
   return d;
 }
 
@@ -249,7 +306,7 @@ const SurfaceProjector& SurfaceShape::stage(double lambda) const {
       const BSplineSurface& s = faces_[f].surface;
       SurfacePatch patch;
       patch.evaluate = [this, f, lambda](double t, double u) { return evaluate(f, t, u, lambda); };
-      patch.domain = s.domain();
+      patch.domain = reach_[f];
       patch.u_breaks = merged(s.u_breakpoints(), after_[f].u_breakpoints());
       patch.v_breaks = merged(s.v_breakpoints(), after_[f].v_breakpoints());
       if (!before_.empty()) {

@@ -48,7 +48,7 @@ constexpr std::array<std::string_view, 5> kPatchKeys{"role", "deflection", "part
 constexpr std::array<std::string_view, 1> kFeatureKeys{"angle"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"folder", "series"};
 constexpr std::string_view kFeaturesExample = "`features: {angle: 25}` (degrees) or `features: off`";
-constexpr std::array<std::string_view, 5> kDeflectionKeys{"file", "calculix", "degree", "faces", "form"};
+constexpr std::array<std::string_view, 6> kDeflectionKeys{"file", "calculix", "degree", "faces", "form", "mode"};
 constexpr std::array<std::string_view, 5> kCalculixKeys{"frd", "inp", "set", "step", "time"};
 constexpr std::string_view kCalculixExample = "`calculix: {frd: disc.frd, inp: disc.inp, set: DISC_FACE}`";
 constexpr std::string_view kRoleList = "fixed, prescribed, slip, sliding, passive, periodic";
@@ -436,6 +436,17 @@ class CaseParser {
       ok = ok && value.has_value();
       if (value) spec.form = *value;
     }
+    if (const Entry* mode = m.find("mode")) {
+      const auto value = reader_.choice(*mode, kWallModeNames);
+      ok = ok && value.has_value();
+      if (value) spec.mode = *value;
+      if (value == WallMode::meridional && !has_axis_) {
+        reader_.error(*mode, cat("a meridional wall is a surface of revolution about the top-level axis; give it, "
+                                 "e.g. ",
+                                 kAxisExample));
+        ok = false;
+      }
+    }
 
     if (table_read && spec.samples.frame == SampleFrame::meridional && !has_axis_) {
       reader_.error(patch.line, "patches." + patch.name,
@@ -748,6 +759,10 @@ void check_case_against_mesh(const Case& c, const mesh::Mesh& mesh) {
                        mesh_names.empty() ? std::string("(none)") : join(mesh_names)));
     }
     if (!spec.deflection) continue;
+    if (mesh.dimension == 2 && spec.deflection->mode != WallMode::automatic) {
+      problems.add(spec.deflection->line, key + ".deflection.mode",
+                   "is for the walls of 3D meshes (a surface of revolution or CAD faces); a 2D wall is a curve");
+    }
     const SampleFrame frame = spec.deflection->samples.frame;
     const int wanted = frame == SampleFrame::planar ? 2 : 3;
     if (mesh.dimension != wanted) {

@@ -64,12 +64,27 @@ std::vector<mesh::NodeId> chain_patch(const mesh::Patch& patch, const mesh::Mesh
   return chain;
 }
 
+/// The case's CAD model: the one given to set_up_case, else read when first needed.
+class CadSource {
+ public:
+  CadSource(const Case& c, const geometry::CadModel* given) : c_(c), given_(given) {}
+  const geometry::CadModel& model() {
+    if (given_ != nullptr) return *given_;
+    if (!read_) read_ = read_case_cad(c_);
+    return *read_;
+  }
+
+ private:
+  const Case& c_;
+  const geometry::CadModel* given_;
+  std::optional<geometry::CadModel> read_;
+};
+
 /// Builds the curves of a case's patches: undeformed from CAD, FEM nodes or the patch itself,
 /// deflected through the tables, rebased on a previous run's curves for a restart.
 class CurveBuilder {
  public:
-  CurveBuilder(const Case& c, const mesh::Mesh& mesh, const geometry::CadModel* cad)
-      : c_(c), mesh_(mesh), given_cad_(cad) {}
+  CurveBuilder(const Case& c, const mesh::Mesh& mesh, CadSource& cad) : c_(c), mesh_(mesh), cad_(cad) {}
 
   /// The patch's curve as the case describes it (cold undeformed r, deflection D).
   Curve curve(const PatchSpec& spec, const std::optional<DeflectionSpec>& deflection) {
@@ -132,9 +147,7 @@ class CurveBuilder {
 
   geometry::BSplineCurve2d cad_curve(const DeflectionSpec& d) {
     if (mesh_.dimension == 2) throw InputError("CAD faces describe surfaces of revolution: 3D cases only");
-    if (!given_cad_ && !cad_) cad_ = read_case_cad(c_);
-    const geometry::CadModel& cad = given_cad_ ? *given_cad_ : *cad_;
-    return cad.meridional_curve(d.faces, {.axis = axis()}).curve;
+    return cad_.model().meridional_curve(d.faces, {.axis = axis()}).curve;
   }
 
   /// A sliding patch without table slides over its own undeformed shape: the polyline through
@@ -164,9 +177,95 @@ class CurveBuilder {
 
   const Case& c_;
   const mesh::Mesh& mesh_;
-  const geometry::CadModel* given_cad_;
-  std::optional<geometry::CadModel> cad_;  // read when first needed, if not given
+  CadSource& cad_;
 };
+
+/// The 3D walls that are not surfaces of revolution (issue 23): on their CAD faces, a
+/// deflection field per face (SurfaceShape); without faces, prescribed walls moved by the table
+/// interpolated over them (ScatteredShape). A restart goes from the previous table's wall to
+/// the new one's (section 4.3); a patch without a new table goes back to zero deflection.
+class SurfaceBuilder {
+ public:
+  SurfaceBuilder(const Case& c, CadSource& cad) : c_(c), cad_(cad) {}
+
+  struct Wall {
+    std::shared_ptr<const geometry::BoundaryShape> shape;
+    ShapeReport report;
+  };
+
+  Wall wall(const PatchSpec& spec, const DeflectionSpec& deflection, const DeflectionSpec* previous) {
+    ShapeReport report{spec.name};
+    geometry::ReconstructionOptions options;
+    options.degree = deflection.degree;
+    options.form = geometry::DeflectionForm::displacement;
+    report.reconstruction.nodes = deflection.samples.size();
+    report.reconstruction.degree = deflection.degree;
+    report.reconstruction.form = options.form;
+    if (!deflection.faces.empty()) {
+      std::vector<geometry::CadFace> faces;
+      for (int id : deflection.faces) faces.push_back({id, cad_.model().face_bspline(id)});
+      geometry::SurfaceShapeFit fit =
+          geometry::make_surface_shape(std::move(faces), deflection.samples, options, previous ? &previous->samples : nullptr);
+      report.kind = WallKind::faces;
+      report.reconstruction.used_nodes = fit.report.used_nodes;
+      report.reconstruction.tolerance = fit.report.tolerance;
+      report.reconstruction.max_node_distance_to_cad = fit.report.max_node_distance_to_cad;
+      report.reconstruction.max_node_residual = fit.report.max_node_residual;
+      report.faces = std::move(fit.report);
+      return {std::move(fit.shape), std::move(report)};
+    }
+    if (spec.role == PatchRole::sliding) {
+      throw InputError("a sliding wall that is not a surface of revolution slides over its CAD faces: give them in "
+                       "its deflection (`faces: [...]`, with the top-level `cad:`), or the top-level `axis:` if it "
+                       "is a surface of revolution");
+    }
+    geometry::ScatteredField after = field(deflection.samples);
+    std::shared_ptr<const geometry::ScatteredField> before;
+    if (previous) before = std::make_shared<const geometry::ScatteredField>(field(previous->samples));
+    report.kind = WallKind::scattered;
+    report.reconstruction.used_nodes = after.report().points;
+    report.reconstruction.merged_duplicates = after.report().merged_duplicates;
+    report.reconstruction.max_node_residual = after.report().max_residual;
+    report.scattered = after.report();
+    return {std::make_shared<geometry::ScatteredShape>(std::move(after), std::move(before)), std::move(report)};
+  }
+
+  /// Whether a 3D wall is a surface of revolution about the case's axis (module comment of
+  /// case_setup.hpp).
+  bool meridional(const DeflectionSpec& d) {
+    if (d.mode != WallMode::automatic) return d.mode == WallMode::meridional;
+    if (d.samples.frame == geometry::SampleFrame::meridional) return true;
+    if (!c_.axis) return false;
+    if (d.faces.empty()) return true;
+    try {
+      cad_.model().meridional_curve(d.faces, {.axis = *c_.axis});
+      return true;
+    } catch (const InputError&) {  // faces not rotational about the axis
+      return false;
+    }
+  }
+
+ private:
+  static geometry::ScatteredField field(const geometry::DeflectionSamples& samples) {
+    if (samples.frame != geometry::SampleFrame::cartesian) {
+      throw InputError::in(samples.source, std::string("a wall that is not a surface of revolution needs a cartesian "
+                                                       "(x, y, z) table, got a ") +
+                                               geometry::to_string(samples.frame) + " one");
+    }
+    return geometry::ScatteredField(samples.points, samples.deflections);
+  }
+
+  const Case& c_;
+  CadSource& cad_;
+};
+
+/// A table of the same nodes with zero deflections: where a restarted patch without a new
+/// table goes back to.
+DeflectionSpec at_rest(const DeflectionSpec& d) {
+  DeflectionSpec rest = d;
+  for (auto& delta : rest.samples.deflections) delta = {};
+  return rest;
+}
 
 const RestartPatch& previous_patch(const RestartState& previous, const PatchSpec& spec, const Case& c) {
   const auto it = std::find_if(previous.patches.begin(), previous.patches.end(),
@@ -195,7 +294,9 @@ std::optional<geometry::CadModel> read_case_cad(const Case& c) {
 CaseSetup set_up_case(const Case& c, const mesh::Mesh& mesh, const RestartState* previous,
                       const geometry::CadModel* cad) {
   CaseSetup setup;
-  CurveBuilder builder(c, mesh, cad);
+  CadSource cad_source(c, cad);
+  CurveBuilder builder(c, mesh, cad_source);
+  SurfaceBuilder surfaces(c, cad_source);
   for (const PatchSpec& spec : c.patches) {
     deform::PatchMotion motion{spec.name, spec.role, nullptr};
     motion.features = spec.features;
@@ -208,9 +309,21 @@ CaseSetup set_up_case(const Case& c, const mesh::Mesh& mesh, const RestartState*
     const RestartPatch* before = previous ? &previous_patch(*previous, spec, c) : nullptr;
     if (follows) {
       try {
+        const DeflectionSpec* earlier = before && before->deflection ? &*before->deflection : nullptr;
+        const DeflectionSpec* table = spec.deflection ? &*spec.deflection : earlier;
+        if (mesh.dimension == 3 && table != nullptr && !surfaces.meridional(*table)) {
+          const DeflectionSpec target = spec.deflection ? *spec.deflection : at_rest(*earlier);
+          SurfaceBuilder::Wall wall = surfaces.wall(spec, target, earlier);
+          motion.shape = std::move(wall.shape);
+          if (spec.deflection) setup.shapes.push_back(std::move(wall.report));
+          setup.motions.push_back(std::move(motion));
+          continue;
+        }
         Curve curve = before && before->deflection ? builder.rebased(spec, *before->deflection, spec.deflection)
                                                    : builder.curve(spec, spec.deflection);
-        if (spec.deflection) setup.shapes.push_back({spec.name, curve.report, curve_outline(curve.curve, 1.0)});
+        if (spec.deflection) {
+          setup.shapes.push_back({spec.name, WallKind::curve, curve.report, {}, {}, curve_outline(curve.curve, 1.0)});
+        }
         motion.shape = builder.shape(std::move(curve.curve));
       } catch (const InputError& e) {  // the message names the file at fault, if one is
         throw InputError::at(c.file.string(), spec.line, fmt::format("patches.{}: {}", spec.name, e.what()));

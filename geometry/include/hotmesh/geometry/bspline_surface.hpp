@@ -43,6 +43,10 @@ class BSplineSurface {
   /// parameter ranges (at a knot: the derivatives of the span that starts there; at the last
   /// parameter, of the last span).
   SurfaceDerivatives derivatives(double u, double v) const;
+  /// The same without clamping: beyond the parameter ranges, the polynomial (rational) pieces
+  /// at the edges continued. Meant for a short way past the edges (a face extended beyond
+  /// a free edge); far out the continuation has no meaning, and weights may vanish.
+  SurfaceDerivatives continued_derivatives(double u, double v) const;
   /// The distinct knot values from u_first() to u_last() (v_first() to v_last()): where the
   /// surface may be less smooth than its degree allows.
   std::vector<double> u_breakpoints() const;

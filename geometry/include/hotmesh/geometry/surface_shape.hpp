@@ -103,6 +103,7 @@ class SurfaceShape final : public BoundaryShape {
   std::vector<CadFace> faces_;
   std::vector<BSplineSurface> after_;
   std::vector<BSplineSurface> before_;
+  std::vector<ParameterRectangle> reach_;  ///< each face's rectangle, beyond its free edges
   mutable std::shared_mutex stages_mutex_;
   mutable std::map<double, std::unique_ptr<SurfaceProjector>> stages_;
 };

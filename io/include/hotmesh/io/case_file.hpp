@@ -42,6 +42,16 @@ struct CalculixNote {
   std::optional<double> min_temperature, max_temperature;  ///< of the set's nodes, if the .frd has NDTEMP
 };
 
+/// How the deflected wall of a 3D patch is reconstructed (the deflection's `mode` key).
+enum class WallMode {
+  automatic,   ///< meridional where the walls are surfaces of revolution about the axis, else surface
+  meridional,  ///< a surface of revolution: the meridional curve about the case's axis (section 4.2, Fig. 4)
+  surface,     ///< the CAD faces themselves, d(t, s) per face; without faces, the table interpolated (prescribed)
+};
+inline constexpr EnumNames<WallMode, 3> kWallModeNames{{{{WallMode::automatic, "auto"},
+                                                                   {WallMode::meridional, "meridional"},
+                                                                   {WallMode::surface, "surface"}}}};
+
 struct DeflectionSpec {
   std::filesystem::path file;           ///< the table (or the .frd), resolved against the case file's folder
   /// Every file the table was read from: the table, or the .frd, the .inp and its *INCLUDEs.
@@ -50,6 +60,7 @@ struct DeflectionSpec {
   int degree = 1;                       ///< B-spline degree q of the reconstruction, 1..5
   geometry::DeflectionForm form = geometry::DeflectionForm::curve;  ///< eq. (21), or c = r + d
   std::vector<int> faces;               ///< CAD face ids (1-based); needs `cad`
+  WallMode mode = WallMode::automatic;  ///< 3D walls: meridional or on the faces themselves
   geometry::DeflectionSamples samples;  ///< the table, read during validation
   std::size_t line = 0;                 ///< line of the `deflection` key in the case file
 };

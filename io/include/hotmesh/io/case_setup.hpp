@@ -1,9 +1,15 @@
 // hotmesh io: from a validated case and its mesh to what the solver needs. For every patch
 // its role and, for patches that follow a boundary, the boundary's shape (the paper's section
-// 4.2): in 2D a curve in the x-y plane, in 3D a surface of revolution about the case's axis.
-// The undeformed curve r(t) comes from the CAD faces named in the case, else from the FEM
-// nodes of the table (or, for a sliding patch without table, from the patch's own nodes); the
-// deflected curve is reconstructed through the FEM deflections (eq. 21).
+// 4.2): in 2D a curve in the x-y plane; in 3D a surface of revolution about the case's axis
+// (meridional), or the CAD faces themselves (surface). A curve r(t) comes from the CAD faces
+// named in the case, else from the FEM nodes of the table (or, for a sliding patch without
+// table, from the patch's own nodes); the deflected curve is reconstructed through the FEM
+// deflections (eq. 21). On faces, a deflection field d(t, s) is fitted per face; a prescribed
+// 3D wall without faces or axis moves by the table interpolated over it (ScatteredShape).
+//
+// A 3D wall is meridional when its deflection says `mode: meridional`, or by default when its
+// table is meridional, or when the case has an axis and the wall's faces (if any) are
+// surfaces of revolution about it; otherwise it is a surface.
 //
 // A restarted run (section 4.3) continues from where the previous one left the boundaries:
 // each shape then goes from the previous deflected curve (stage 0) to the new one (stage 1),
@@ -18,17 +24,34 @@
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
+#include "hotmesh/geometry/scattered_field.hpp"
+#include "hotmesh/geometry/surface_shape.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/restart_file.hpp"
 
 namespace hotmesh::io {
 
+/// What a patch's deflected wall was built as.
+enum class WallKind {
+  curve,      ///< a curve: in the x-y plane (2D) or the meridional curve of a surface of revolution
+  faces,      ///< CAD faces with a deflection field each
+  scattered,  ///< the table interpolated over the wall (prescribed, no CAD faces)
+};
+/// The names report.json uses.
+inline constexpr EnumNames<WallKind, 3> kWallKindNames{
+    {{{WallKind::curve, "curve"}, {WallKind::faces, "faces"}, {WallKind::scattered, "scattered"}}}};
+
 /// How the deflected shape of one patch was built, for the run's report.
 struct ShapeReport {
   std::string patch;
+  WallKind kind = WallKind::curve;
+  /// Of a curve; of the others, the counts (nodes, used_nodes, degree) and distances that
+  /// apply to them.
   geometry::ReconstructionReport reconstruction;
-  /// The deflected curve at the end of the run, densely sampled in its plane ((x, y) in 2D,
-  /// (r, z) about the axis in 3D), for pictures.
+  std::optional<geometry::SurfaceReconstructionReport> faces;  ///< kind faces
+  std::optional<geometry::ScatteredFieldReport> scattered;     ///< kind scattered
+  /// A curve's deflected shape at the end of the run, densely sampled in its plane ((x, y) in
+  /// 2D, (r, z) about the axis in 3D), for pictures; empty for other kinds.
   std::vector<geometry::Vec2> deflected_outline;
 };
 

@@ -1,0 +1,158 @@
+// Tests of `hotmesh deform` on 3D walls that are not surfaces of revolution (issue 23): a box
+// channel whose floor takes an x, y, z table without CAD and without an axis (prescribed, the
+// table interpolated over the floor), and on a CAD face in B-spline form (prescribed and
+// sliding, the deflection field fitted on the face); a sliding floor without faces is refused.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "deform_cases.hpp"
+#include "hotmesh/geometry/cad_export.hpp"
+#include "hotmesh/io/gmsh.hpp"
+#include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
+#include "run_command.hpp"
+#include "test_support.hpp"
+
+namespace hotmesh::app {
+namespace {
+
+using ::testing::HasSubstr;
+using test::hotmesh;
+using test::read_json;
+using test::shell_quote;
+using geometry::distance;
+
+/// The floor's deflection: a bulge and a shear along the channel, with a linear part.
+geometry::Vec3 bulge(const geometry::Vec3& x) {
+  return {0.02 * x.y, 0.0, 0.05 + 0.02 * x.x - 0.01 * x.y + 0.08 * std::sin(M_PI * x.x / 4.0) * std::sin(M_PI * x.y)};
+}
+/// The same without its sine: linear in x, y.
+geometry::Vec3 tilt(const geometry::Vec3& x) { return {0.02 * x.y, 0.0, 0.05 + 0.02 * x.x - 0.01 * x.y}; }
+
+/// A box channel [0, 4] x [0, 1] x [0, 1] of 16 x 4 x 8 hexes (patches inlet, outlet, sides,
+/// floor, ceiling) in `dir`, a table of the floor's FEM nodes on a 9 x 5 grid, and the floor
+/// as a bilinear B-spline face in floor.step (face 1).
+template <class F>
+void write_channel(const std::filesystem::path& dir, F deflection) {
+  const auto xs = mesh::uniform_line(0.0, 4.0, 17);
+  const auto ys = mesh::uniform_line(0.0, 1.0, 5);
+  const auto zs = mesh::uniform_line(0.0, 1.0, 9);
+  io::write_gmsh(dir / "box.msh",
+                 mesh::structured_hexes(xs, ys, zs, {"inlet", "outlet", "side_a", "side_b", "floor", "ceiling"}));
+  std::string table = "x,y,z,dx,dy,dz\n";
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j <= 4; ++j) {
+      const geometry::Vec3 x{0.5 * i, 0.25 * j, 0.0};
+      const geometry::Vec3 d = deflection(x);
+      table += fmt::format("{},{},{},{:.17g},{:.17g},{:.17g}\n", x.x, x.y, x.z, d.x, d.y, d.z);
+    }
+  }
+  test::write_text(dir / "floor.csv", table);
+  geometry::CadExport cad;
+  cad.surfaces.push_back({"floor", geometry::BSplineSurface(1, 1, {0, 0, 4, 4}, {0, 0, 1, 1},
+                                                              {{0, 0, 0}, {0, 1, 0}, {4, 0, 0}, {4, 1, 0}})});
+  test::write_text(dir / "floor.step", geometry::to_step(cad));
+}
+
+std::string channel_case(const std::string& floor, const std::string& extra = "") {
+  return fmt::format("mesh: box.msh\n{}solver: {{increments: 4, newton_tolerance: 1.0e-8, pcg_tolerance: 1.0e-8}}\n"
+                     "patches:\n  inlet: {{role: slip}}\n  outlet: {{role: slip}}\n  side_a: {{role: slip}}\n"
+                     "  side_b: {{role: slip}}\n  ceiling: {{role: fixed}}\n  floor: {}\n",
+                     extra, floor);
+}
+
+struct DeformRun {
+  test::CommandResult result;
+  std::filesystem::path out;
+};
+
+DeformRun deform(const test::TempDir& dir, const std::string& yaml) {
+  test::write_text(dir / "case.yaml", yaml);
+  DeformRun r{{}, dir / "out"};
+  r.result = hotmesh("deform " + shell_quote((dir / "case.yaml").string()) + " -o " + shell_quote(r.out.string()));
+  return r;
+}
+
+/// The floor nodes of the undeformed and the deformed mesh.
+std::vector<std::pair<geometry::Vec3, geometry::Vec3>> floor_nodes(const std::filesystem::path& dir, const DeformRun& r) {
+  const mesh::Mesh before = io::read_gmsh(dir / "box.msh");
+  const mesh::Mesh after = io::read_gmsh(r.out / "deformed.msh");
+  EXPECT_EQ(mesh::summarize_quality(mesh::scaled_jacobians(after.cells, after.points)).inverted_cells, 0u);
+  std::vector<std::pair<geometry::Vec3, geometry::Vec3>> nodes;
+  for (mesh::NodeId n : before.find_patch("floor")->nodes) {
+    nodes.emplace_back(before.points[static_cast<std::size_t>(n)], after.points[static_cast<std::size_t>(n)]);
+  }
+  return nodes;
+}
+
+// Item 0 of issue 23: a plain box channel with an FEM table on its floor, no CAD and no axis.
+// The table is interpolated over the floor, exactly for its linear part: with a linear
+// deflection every floor node moves exactly by it.
+TEST(DeformSurfaces, BoxChannelFloorTakesACartesianTableWithoutCadOrAxis) {
+  test::TempDir dir;
+  write_channel(dir.path(), tilt);
+  const DeformRun r = deform(dir, channel_case("{role: prescribed, deflection: {file: floor.csv}}"));
+  ASSERT_EQ(r.result.exit_code, 0) << r.result.output;
+  for (const auto& [x0, x] : floor_nodes(dir.path(), r)) {
+    EXPECT_LT(distance(x, x0 + tilt(x0)), 1e-10) << x0.x << " " << x0.y;
+  }
+  const auto report = read_json(r.out / "report.json");
+  EXPECT_EQ(report["deflections"][0]["wall"], "scattered");
+  EXPECT_EQ(report["deflections"][0]["used_nodes"], 45);
+}
+
+// The same floor as a CAD face: the deflection field d(t, s) fitted on the face through the
+// nodes. Prescribed: every floor node at S + d; sliding: every floor node on the deflected face,
+// and the mesh valid.
+TEST(DeformSurfaces, FloorOnACadFacePrescribedAndSliding) {
+  test::TempDir dir;
+  write_channel(dir.path(), bulge);
+  const DeformRun prescribed = deform(dir, channel_case("{role: prescribed, deflection: {file: floor.csv, faces: [1], "
+                                                  "degree: 3}}",
+                                                  "cad: floor.step\n"));
+  ASSERT_EQ(prescribed.result.exit_code, 0) << prescribed.result.output;
+  double worst = 0.0;
+  for (const auto& [x0, x] : floor_nodes(dir.path(), prescribed)) worst = std::max(worst, distance(x, x0 + bulge(x0)));
+  EXPECT_LT(worst, 2e-3);  // the bicubic interpolant of a sine on a 9 x 5 grid
+  const auto report = read_json(prescribed.out / "report.json");
+  EXPECT_EQ(report["deflections"][0]["wall"], "faces");
+  EXPECT_EQ(report["deflections"][0]["faces"][0]["method"], "interpolation");
+
+  std::filesystem::rename(prescribed.out, dir / "prescribed-out");
+  const DeformRun sliding = deform(dir, channel_case("{role: sliding, deflection: {file: floor.csv, faces: [1], degree: "
+                                               "3}}",
+                                               "cad: floor.step\n"));
+  ASSERT_EQ(sliding.result.exit_code, 0) << sliding.result.output;
+  // Every floor node on the deflected floor, whatever it slid to: its material point p on the
+  // cold floor (p + bulge(p) = x, solved by fixed-point iteration) is found within the fit's
+  // accuracy; the corner nodes, held by the slip planes on two sides, stay at the corners.
+  for (const auto& [x0, x] : floor_nodes(dir.path(), sliding)) {
+    geometry::Vec3 p{x.x, x.y, 0.0};
+    for (int k = 0; k < 100; ++k) p = {x.x - bulge(p).x, x.y - bulge(p).y, 0.0};
+    EXPECT_LT(distance(p + bulge(p), x), 2e-3) << x0.x << " " << x0.y;
+    if ((x0.x == 0.0 || x0.x == 4.0) && (x0.y == 0.0 || x0.y == 1.0)) {
+      EXPECT_NEAR(x.x, x0.x, 1e-9);
+      EXPECT_NEAR(x.y, x0.y, 1e-9);
+    }
+  }
+  const auto slid = read_json(sliding.out / "report.json");
+  EXPECT_EQ(slid["status"], "success");
+  EXPECT_LT(slid["final_projection_distance"].get<double>(), 1e-9);
+}
+
+TEST(DeformSurfaces, SlidingFloorWithoutFacesIsRefused) {
+  test::TempDir dir;
+  write_channel(dir.path(), tilt);
+  const DeformRun r = deform(dir, channel_case("{role: sliding, deflection: {file: floor.csv}}"));
+  EXPECT_EQ(r.result.exit_code, 2);
+  EXPECT_THAT(r.result.output, HasSubstr("patches.floor: a sliding wall that is not a surface of revolution slides "
+                                         "over its CAD faces"));
+}
+
+}  // namespace
+}  // namespace hotmesh::app
