@@ -1,5 +1,6 @@
 // hotmesh geometry: STEP and IGES output of B-spline curves and surfaces through
 // OpenCASCADE's writers (serialised, in the caller's length unit, written to memory).
+#include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <IGESControl_Writer.hxx>
@@ -22,6 +23,7 @@
 #include <Transfer_FinderProcess.hxx>
 #include <XSControl_TransferWriter.hxx>
 
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -68,6 +70,15 @@ const char* iges_unit_name(LengthUnit unit) {
   return "M";
 }
 
+/// The IGES date of a time stamp "YYYY-MM-DDTHH:MM:SS" (the writer stores it as YYMMDD.HHNNSS).
+Handle(TCollection_HAsciiString) iges_date(const std::string& time_stamp) {
+  int year = 0, month = 0, day = 0, hour = 0, minute = 0, second = 0;
+  if (std::sscanf(time_stamp.c_str(), "%4d-%2d-%2dT%2d:%2d:%2d", &year, &month, &day, &hour, &minute, &second) != 6) {
+    throw std::invalid_argument("time stamp '" + time_stamp + "' is not YYYY-MM-DDTHH:MM:SS");
+  }
+  return IGESData_GlobalSection::NewDateString(year, month, day, hour, minute, second, 0);
+}
+
 }  // namespace
 
 PlaneFrame meridional_frame(const Axis& axis, double theta) {
@@ -102,6 +113,10 @@ std::string to_step(const CadExport& content) {
         Handle(StepRepr_RepresentationItem)::DownCast(entity)->SetName(new TCollection_HAsciiString(name.c_str()));
       }
     }
+    if (!content.time_stamp.empty()) {
+      APIHeaderSection_MakeHeader header(model);
+      header.SetTimeStamp(new TCollection_HAsciiString(content.time_stamp.c_str()));
+    }
     return detail::step_text(writer);
   } catch (const Standard_Failure& e) {
     throw std::runtime_error(std::string("STEP output failed: ") + e.GetMessageString());
@@ -116,6 +131,11 @@ std::string to_iges(const CadExport& content) {
     // The model keeps its own copy of the shape unit (millimetres unless told otherwise).
     IGESData_GlobalSection global = writer.Model()->GlobalSection();
     global.SetCascadeUnit(UnitsMethods::GetCasCadeLengthUnit());
+    if (!content.time_stamp.empty()) {  // a reproducible file: no date or login of its own
+      global.SetDate(iges_date(content.time_stamp));
+      global.SetLastChangeDate(iges_date(content.time_stamp));
+      global.SetAuthorName(new TCollection_HAsciiString("hotmesh"));
+    }
     writer.Model()->SetGlobalSection(global);
     const NamedShapes shapes = shapes_of(content);
     for (const auto& [shape, name] : shapes) {

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #if defined(__SANITIZE_ADDRESS__)
 #include <sanitizer/lsan_interface.h>
@@ -161,6 +163,19 @@ TEST(CadExport, SurfacesComeBackAsBSplineFacesInTheDeclaredUnit) {
       EXPECT_NEAR(std::hypot(p.x, p.y), 0.002, 1e-12) << name;
     }
   }
+}
+
+TEST(CadExport, ATimeStampMakesTheFilesTheSameOnEveryRunAndMachine) {
+  CadExport content;
+  content.surfaces.push_back({"square", BSplineSurface(1, 1, {0, 0, 1, 1}, {0, 0, 1, 1}, {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}})});
+  content.time_stamp = "2001-02-03T04:05:06";
+  EXPECT_THAT(to_step(content), HasSubstr("FILE_NAME('Open CASCADE Shape Model','2001-02-03T04:05:06'"));
+  const std::string iges = to_iges(content);
+  EXPECT_THAT(iges, HasSubstr("010203.040506,"));  // the dates of creation and last change
+  EXPECT_THAT(iges, HasSubstr("7Hhotmesh,"));      // the author, instead of the user's login
+  EXPECT_EQ(to_iges(content), iges);
+  content.time_stamp = "yesterday";
+  EXPECT_THROW(to_iges(content), std::invalid_argument);
 }
 
 TEST(CadFiles, MalformedEmptyAndNonCadFilesGiveClearErrors) {

@@ -39,6 +39,11 @@ struct CadExport {
   std::vector<ExportCurve> curves;
   std::vector<ExportSurface> surfaces;
   LengthUnit unit = LengthUnit::metre;  ///< the unit of the coordinates, declared in the file
+  /// The header's time stamp, "YYYY-MM-DDTHH:MM:SS" (STEP FILE_NAME; IGES dates of creation and
+  /// last change, and the IGES author is then "hotmesh" instead of the user's login); empty:
+  /// the current time. Give one for files that must come out the same byte for byte on any
+  /// machine (a sample's committed CAD files).
+  std::string time_stamp;
 };
 
 /// The content of a STEP file holding the curves (as edges) and surfaces (as faces).
