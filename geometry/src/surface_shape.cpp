@@ -3,6 +3,7 @@
 #include "hotmesh/geometry/surface_shape.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -136,39 +137,93 @@ std::vector<double> merged(std::vector<double> a, const std::vector<double>& b) 
 /// with another face of the wall, and collapsed edges (poles), do not reach.
 constexpr double kFreeEdgeReach = 0.05;
 
+/// The faces of a wall seen together: each on its own (undeformed) projector, their common
+/// size, and for each side of each face's rectangle (v first, v last, u first, u last) the face
+/// it is shared with (-1: a free edge) and whether it collapses to a point.
+struct FaceSet {
+  std::vector<SurfaceProjector> projectors;
+  std::vector<Box> boxes;
+  double size = 0.0;
+  std::vector<std::array<int, 4>> neighbours;
+  std::vector<std::array<bool, 4>> collapsed;
+
+  explicit FaceSet(std::span<const CadFace> faces) {
+    Box all = pole_box(faces.front().surface);
+    for (const CadFace& f : faces) {
+      projectors.emplace_back(std::vector<SurfacePatch>{bspline_patch(f.surface)});
+      boxes.push_back(pole_box(f.surface));
+      all.lo = {std::min(all.lo.x, boxes.back().lo.x), std::min(all.lo.y, boxes.back().lo.y),
+                std::min(all.lo.z, boxes.back().lo.z)};
+      all.hi = {std::max(all.hi.x, boxes.back().hi.x), std::max(all.hi.y, boxes.back().hi.y),
+                std::max(all.hi.z, boxes.back().hi.z)};
+    }
+    size = distance(all.lo, all.hi);
+    for (std::size_t a = 0; a < faces.size(); ++a) find_edges(faces, a);
+  }
+
+  /// Groups of faces joined through shared edges.
+  std::vector<std::vector<std::size_t>> groups() const {
+    std::vector<int> group(neighbours.size(), -1);
+    std::vector<std::vector<std::size_t>> out;
+    for (std::size_t start = 0; start < neighbours.size(); ++start) {
+      if (group[start] >= 0) continue;
+      out.emplace_back();
+      std::vector<std::size_t> stack{start};
+      group[start] = static_cast<int>(out.size() - 1);
+      while (!stack.empty()) {
+        const std::size_t f = stack.back();
+        stack.pop_back();
+        out.back().push_back(f);
+        for (const int n : neighbours[f]) {
+          if (n >= 0 && group[static_cast<std::size_t>(n)] < 0) {
+            group[static_cast<std::size_t>(n)] = group[start];
+            stack.push_back(static_cast<std::size_t>(n));
+          }
+        }
+      }
+    }
+    return out;
+  }
+
+ private:
+  /// A side is shared when 5 points along it lie on one other face (within 1e-6 of the size),
+  /// collapsed when they are one point.
+  void find_edges(std::span<const CadFace> faces, std::size_t a) {
+    constexpr int kSamples = 5;
+    const ParameterRectangle r = faces[a].surface.domain();
+    std::array<int, 4> shared{-1, -1, -1, -1};
+    std::array<bool, 4> point{};
+    for (int side = 0; side < 4; ++side) {
+      std::vector<Vec3> along;
+      for (int k = 0; k < kSamples; ++k) {
+        const auto [u, v] = on_side(r, side, (k + 0.5) / kSamples);
+        along.push_back(faces[a].surface.point(u, v));
+      }
+      double length = 0.0;
+      for (std::size_t k = 1; k < along.size(); ++k) length += distance(along[k], along[k - 1]);
+      point[static_cast<std::size_t>(side)] = length <= 1e-9 * size;
+      for (std::size_t b = 0; b < faces.size() && shared[static_cast<std::size_t>(side)] < 0; ++b) {
+        const bool on_b = b != a && std::all_of(along.begin(), along.end(), [&](const Vec3& p) {
+                            return projectors[b].project(p).distance <= 1e-6 * size;
+                          });
+        if (on_b) shared[static_cast<std::size_t>(side)] = static_cast<int>(b);
+      }
+    }
+    neighbours.push_back(shared);
+    collapsed.push_back(point);
+  }
+};
+
 /// Each face's rectangle with its free edges moved out by kFreeEdgeReach.
 std::vector<ParameterRectangle> reaches(std::span<const CadFace> faces) {
-  constexpr int kSamples = 5;
-  std::vector<SurfaceProjector> projectors;
-  Box all = pole_box(faces.front().surface);
-  for (const CadFace& f : faces) {
-    projectors.emplace_back(std::vector<SurfacePatch>{bspline_patch(f.surface)});
-    const Box b = pole_box(f.surface);
-    all.lo = {std::min(all.lo.x, b.lo.x), std::min(all.lo.y, b.lo.y), std::min(all.lo.z, b.lo.z)};
-    all.hi = {std::max(all.hi.x, b.hi.x), std::max(all.hi.y, b.hi.y), std::max(all.hi.z, b.hi.z)};
-  }
-  const double size = distance(all.lo, all.hi);
+  const FaceSet set(faces);
   std::vector<ParameterRectangle> out;
   for (std::size_t a = 0; a < faces.size(); ++a) {
     const ParameterRectangle r = faces[a].surface.domain();
     ParameterRectangle reach = r;
-    for (int side = 0; side < 4; ++side) {
-      bool shared = faces.size() > 1;
-      double length = 0.0;
-      Vec3 previous;
-      for (int k = 0; k < kSamples; ++k) {
-        const auto [u, v] = on_side(r, side, (k + 0.5) / kSamples);
-        const Vec3 p = faces[a].surface.point(u, v);
-        if (k > 0) length += distance(p, previous);
-        previous = p;
-        bool on_other = false;
-        for (std::size_t b = 0; b < faces.size() && !on_other; ++b) {
-          on_other = b != a && projectors[b].project(p).distance <= 1e-6 * size;
-        }
-        shared = shared && on_other;
-      }
-      if (shared || length <= 1e-9 * size) continue;
-      const double du = kFreeEdgeReach * (r.u_last - r.u_first), dv = kFreeEdgeReach * (r.v_last - r.v_first);
+    const double du = kFreeEdgeReach * (r.u_last - r.u_first), dv = kFreeEdgeReach * (r.v_last - r.v_first);
+    for (std::size_t side = 0; side < 4; ++side) {
+      if (set.neighbours[a][side] >= 0 || set.collapsed[a][side]) continue;
       if (side == 0) reach.v_first -= dv;
       if (side == 1) reach.v_last += dv;
       if (side == 2) reach.u_first -= du;
@@ -177,6 +232,61 @@ std::vector<ParameterRectangle> reaches(std::span<const CadFace> faces) {
     out.push_back(reach);
   }
   return out;
+}
+
+/// Faces that cannot carry a field d(t, s) are refused (item 6 of issue 23): one whose
+/// parametrisation degenerates (a pole, a collapsed edge, a point inside where S_t x S_s
+/// vanishes: (t, s) is not unique there), naming the FEM nodes nearest the degenerate spot;
+/// and faces that share no edge with the rest of the wall (a face number mistyped, or a
+/// separate part that needs its own patch).
+void refuse_faces(std::span<const CadFace> faces, const FaceSet& set, const DeflectionSamples& samples) {
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const DegeneracyReport& report = set.projectors[f].degeneracies();
+    if (report.empty()) continue;
+    const ParameterRectangle r = faces[f].surface.domain();
+    std::pair<double, double> spot{0.5 * (r.u_first + r.u_last), 0.5 * (r.v_first + r.v_last)};
+    std::string where;
+    if (!report.edges.empty()) {
+      const auto edge = report.edges.front().edge;
+      const int side = edge == PatchEdge::v_first ? 0 : edge == PatchEdge::v_last ? 1 : edge == PatchEdge::u_first ? 2 : 3;
+      spot = on_side(r, side, 0.5);
+      where = std::string(report.edges.front().collapsed ? "an edge collapses to one point (a pole)"
+                                                         : "the surface's normal vanishes along an edge");
+    } else {
+      spot = {report.points.front().u, report.points.front().v};
+      where = "the surface's normal vanishes inside it";
+    }
+    const Vec3 p = faces[f].surface.point(spot.first, spot.second);
+    std::vector<std::size_t> order(samples.size());
+    for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
+    const std::size_t listed = std::min<std::size_t>(5, order.size());
+    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(listed), order.end(),
+                      [&](std::size_t i, std::size_t j) { return distance(samples.points[i], p) < distance(samples.points[j], p); });
+    std::string nodes;
+    for (std::size_t k = 0; k < listed; ++k) {
+      nodes += (k > 0 ? ", " : "") + samples.label(order[k]) + " at " + format(distance(samples.points[order[k]], p));
+    }
+    throw InputError::in(samples.source,
+                         "CAD face " + std::to_string(faces[f].id) + ": its parametrisation degenerates (" + where +
+                             ", at (" + format(p.x) + ", " + format(p.y) + ", " + format(p.z) +
+                             ")): (t, s) is not unique there, so no deflection field d(t, s) can be fitted on it. "
+                             "FEM nodes nearest that point: " + nodes +
+                             ". Split the face in the CAD system so that no face has a pole, or, if the wall is a "
+                             "surface of revolution, give the case's axis and `mode: meridional`");
+  }
+  const auto groups = set.groups();
+  if (groups.size() <= 1) return;
+  const auto ids = [&](const std::vector<std::size_t>& group) {
+    std::string text;
+    for (std::size_t k = 0; k < group.size(); ++k) text += (k > 0 ? ", " : "") + std::to_string(faces[group[k]].id);
+    return text;
+  };
+  std::string parts;
+  for (std::size_t g = 0; g < groups.size(); ++g) parts += (g > 0 ? "; " : "") + ids(groups[g]);
+  throw InputError::in(samples.source, "the CAD faces of the wall do not join: they form " +
+                                           std::to_string(groups.size()) + " separate parts (faces " + parts +
+                                           ") sharing no edge. Check the face numbers (`hotmesh cad` lists them), or "
+                                           "give each part its own patch");
 }
 
 }  // namespace
@@ -189,18 +299,10 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
   report.nodes = samples.size();
   report.degree = options.degree;
 
-  std::vector<SurfaceProjector> projectors;
-  std::vector<Box> boxes;
-  Box all = pole_box(faces.front().surface);
-  for (const CadFace& f : faces) {
-    projectors.emplace_back(std::vector<SurfacePatch>{bspline_patch(f.surface)});
-    boxes.push_back(pole_box(f.surface));
-    all.lo = {std::min(all.lo.x, boxes.back().lo.x), std::min(all.lo.y, boxes.back().lo.y),
-              std::min(all.lo.z, boxes.back().lo.z)};
-    all.hi = {std::max(all.hi.x, boxes.back().hi.x), std::max(all.hi.y, boxes.back().hi.y),
-              std::max(all.hi.z, boxes.back().hi.z)};
-  }
-  const double size = distance(all.lo, all.hi);
+  const FaceSet set(faces);
+  refuse_faces(faces, set, samples);
+  const std::vector<SurfaceProjector>& projectors = set.projectors;
+  const double size = set.size;
   report.tolerance = options.tolerance > 0.0 ? options.tolerance : options.relative_tolerance * size;
 
   // Every Q_j onto every face near it: a node within the tolerance of several faces (on the
@@ -213,7 +315,7 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
     double nearest = std::numeric_limits<double>::infinity();
     std::vector<std::pair<std::size_t, SurfaceProjection>> near;
     for (std::size_t f = 0; f < faces.size(); ++f) {
-      if (!boxes[f].holds(q, report.tolerance)) continue;
+      if (!set.boxes[f].holds(q, report.tolerance)) continue;
       const SurfaceProjection p = projectors[f].project(q);
       nearest = std::min(nearest, p.distance);
       if (p.distance <= report.tolerance) near.emplace_back(f, p);

@@ -16,6 +16,7 @@
 namespace hotmesh::geometry {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
@@ -170,8 +171,8 @@ TEST(SurfaceShape, FacesSharingAnEdgeMeetAfterTheDeflection) {
 }
 
 TEST(SurfaceShape, RefusesTablesThatDoNotDescribeTheFaces) {
-  const std::vector<CadFace> faces{{3, flat_face(0, 1, 0, 1)}, {4, flat_face(2, 3, 0, 1)}};
-  DeflectionSamples left = grid_samples(faces[0].surface, 4, [](double, double) { return Vec3{0, 0, 0.01}; });
+  const std::vector<CadFace> faces{{3, flat_face(0, 1, 0, 1)}, {4, flat_face(1, 2, 0, 1)}};
+  DeflectionSamples left = grid_samples(flat_face(0, 0.9, 0, 1), 4, [](double, double) { return Vec3{0, 0, 0.01}; });
   EXPECT_THAT([&] { reconstruct_on_faces(faces, left); },
               ThrowsMessage<InputError>(HasSubstr("no FEM node lies on CAD face 4")));
   DeflectionSamples off = left;
@@ -208,6 +209,29 @@ TEST(SurfaceShape, RestartGoesFromThePreviousDeflectionToTheNext) {
     EXPECT_LT(distance(fit.shape->at({u, v, 0}, 0.0, {}).point, face.point(u, v) + first(u, v)), 1e-12);
     EXPECT_LT(distance(fit.shape->at({u, v, 0}, 1.0, {}).point, face.point(u, v) + second(u, v)), 1e-12);
   }
+}
+
+// Faces that cannot carry a field d(t, s) are refused naming them: a sphere's face, whose
+// edges collapse to its poles ((t, s) is not unique there), with the FEM nodes nearest the
+// pole; and faces that share no edge with the rest of the wall.
+TEST(SurfaceShape, RefusesDegenerateAndSeparateFaces) {
+  const BSplineSurface sphere = test::from_occt(test::occt_sphere());
+  DeflectionSamples on_sphere = grid_samples(sphere, 6, [](double, double) { return Vec3{0, 0, 0.01}; });
+  EXPECT_THAT([&] { reconstruct_on_faces(std::vector<CadFace>{{9, sphere}}, on_sphere); },
+              ThrowsMessage<InputError>(AllOf(HasSubstr("CAD face 9: its parametrisation degenerates (an edge "
+                                                        "collapses to one point (a pole)"),
+                                              HasSubstr("FEM nodes nearest that point: sample "))));
+  const std::vector<CadFace> apart{{1, flat_face(0, 1, 0, 1)}, {2, flat_face(1, 2, 0, 1)}, {5, flat_face(3, 4, 0, 1)}};
+  std::vector<Vec3> points, deflections;
+  for (int i = 0; i <= 16; ++i) {
+    for (int j = 0; j <= 4; ++j) {
+      points.push_back({0.25 * i, 0.25 * j, 0.0});
+      deflections.push_back({0, 0, 0.01});
+    }
+  }
+  EXPECT_THAT([&] { reconstruct_on_faces(apart, cartesian(points, deflections), {.far_nodes = FarNodePolicy::drop}); },
+              ThrowsMessage<InputError>(HasSubstr("the CAD faces of the wall do not join: they form 2 separate parts "
+                                                  "(faces 1, 2; 5)")));
 }
 
 // Without CAD a prescribed wall moves by the table interpolated over it; on a restart each node
