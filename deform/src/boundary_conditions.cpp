@@ -378,6 +378,46 @@ class BoundaryBuilder {
     }
   }
 
+  /// A sliding node on an edge where two faces of its wall meet at an angle (crease_sides:
+  /// at least the wall's feature angle) slides along that edge: it is held by each face as a
+  /// shape of its own instead of by the wall, so it never rounds the edge off; where three
+  /// faces meet it stays at their corner.
+  void slide_along_creases() {
+    std::size_t held = 0;
+    for (SlidingNode& s : setup_.sliding) {
+      for (int i = 0; i < s.shape_count; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        const PatchMotion* m = sliding_motion_of(s.shapes[k]);
+        if (m == nullptr || !m->features.creases) continue;
+        auto sides = s.shapes[k]->crease_sides(s.hints[k], m->features.angle);
+        if (sides.size() < 2 || s.shape_count + static_cast<int>(sides.size()) - 1 > SlidingNode::kMaxShapes) continue;
+        s.shapes[k] = sides[0].get();
+        for (std::size_t j = 1; j < sides.size(); ++j) {
+          const auto added = static_cast<std::size_t>(s.shape_count++);
+          s.shapes[added] = sides[j].get();
+          s.hints[added] = geometry::kNoHint;
+          s.segments[added] = {};
+        }
+        for (auto& side : sides) setup_.corner_paths.push_back(std::move(side));
+        ++held;
+        break;
+      }
+    }
+    if (held > 0) {
+      setup_.notes.push_back(fmt::format("{} sliding nodes slide along edges where the faces of their walls meet at an "
+                                         "angle (features)",
+                                         held));
+    }
+  }
+
+  /// The sliding patch's motion whose shape this is, if any.
+  const PatchMotion* sliding_motion_of(const geometry::BoundaryShape* shape) const {
+    for (const PatchMotion* m : motion_of_) {
+      if (m->role == BoundaryRole::sliding && m->shape.get() == shape) return m;
+    }
+    return nullptr;
+  }
+
   /// A sliding node on the rim of a passive surface that crosses its wall is held on that
   /// surface too: on the plane tangent to the surface's undeformed shape at the node (for an
   /// inlet or outlet plane, the plane itself). It then slides along the line where wall and
@@ -620,6 +660,7 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
   builder.constrain_slip_nodes();
   builder.constrain_fixed_and_prescribed_nodes();
   builder.collect_sliding_nodes();
+  builder.slide_along_creases();
   builder.hold_sliding_rims_on_passive_surfaces();
   builder.hold_wall_corners();
   builder.set_sliding_targets();

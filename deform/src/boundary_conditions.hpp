@@ -92,7 +92,8 @@ struct BoundarySetup {
   std::vector<SlipPlane> slip_planes;
   PeriodicCoupling periodic;
   std::vector<WallCorner> corners;
-  /// The paths of the nodes that slide along corner lines (SlidingNode::shapes point to them).
+  /// The paths of the nodes that slide along corner lines, and the faces of the nodes that
+  /// slide along creases of walls made of faces (SlidingNode::shapes point to them).
   std::vector<std::shared_ptr<const geometry::BoundaryShape>> corner_paths;
   std::vector<NodeRoleCode> roles;
   std::vector<std::string> notes;

@@ -533,7 +533,7 @@ MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, c
   const auto begin = Clock::now();
   const bool corners = has_corners(patches);
   std::vector<PatchMotion> sliding_freely(patches.begin(), patches.end());
-  for (PatchMotion& m : sliding_freely) m.features.enabled = false;
+  for (PatchMotion& m : sliding_freely) m.features.enabled = false;  // creases stay held
   auto kernel = std::make_shared<const StiffnessKernel>(mesh, element_lame(mesh, material), material.drop_jacobian);
   Motion motion(mesh, sliding_freely, kernel, solver, observers, start, ranks);
   motion.set_setup_time(seconds_since(begin));

@@ -130,11 +130,12 @@ std::vector<double> merged(std::vector<double> a, const std::vector<double>& b) 
   return a;
 }
 
-/// How far a face reaches beyond each of its free edges, as a fraction of its parameter range.
-/// A wall often ends where the CFD domain does (an inlet, the side of a sector), and its
-/// deflection may carry its edge along that plane, away from the plane's nodes: beyond a free
-/// edge the face goes on (its end pieces continued), so they still find it. Edges it shares
-/// with another face of the wall, and collapsed edges (poles), do not reach.
+/// How far a face reaches beyond each of its free edges, as a fraction of its parameter range,
+/// at least. A wall often ends where the CFD domain does (an inlet, the side of a sector), and
+/// its deflection may carry its edge along that plane, away from the plane's nodes: beyond a
+/// free edge the face goes on (its end pieces continued), so they still find it. It reaches
+/// twice the largest deflection beyond the edge where that is farther (reaches()). Edges it
+/// shares with another face of the wall, and collapsed edges (poles), do not reach.
 constexpr double kFreeEdgeReach = 0.05;
 
 /// The faces of a wall seen together: each on its own (undeformed) projector, their common
@@ -214,14 +215,42 @@ struct FaceSet {
   }
 };
 
-/// Each face's rectangle with its free edges moved out by kFreeEdgeReach.
-std::vector<ParameterRectangle> reaches(std::span<const CadFace> faces) {
-  const FaceSet set(faces);
+/// The largest deflection a field gives (bounded by its largest pole: convex hull property).
+double largest_pole(const BSplineSurface& field) {
+  double largest = 0.0;
+  for (const Vec3& p : field.poles()) largest = std::max(largest, norm(p));
+  return largest;
+}
+
+/// The smallest speeds |S_t| and |S_s| of a face, sampled on a 9 x 9 grid.
+std::pair<double, double> slowest(const BSplineSurface& s) {
+  const ParameterRectangle r = s.domain();
+  double along_t = std::numeric_limits<double>::infinity(), along_s = along_t;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j <= 8; ++j) {
+      const SurfaceDerivatives d =
+          s.derivatives(r.u_first + (r.u_last - r.u_first) * i / 8.0, r.v_first + (r.v_last - r.v_first) * j / 8.0);
+      along_t = std::min(along_t, norm(d.du));
+      along_s = std::min(along_s, norm(d.dv));
+    }
+  }
+  return {along_t, along_s};
+}
+
+/// Each face's rectangle with its free edges moved out by kFreeEdgeReach of its range, or by
+/// twice `deflection` (the largest a stage gives) where that is farther.
+std::vector<ParameterRectangle> reaches(std::span<const CadFace> faces, const FaceSet& set,
+                                        std::span<const double> deflection) {
   std::vector<ParameterRectangle> out;
   for (std::size_t a = 0; a < faces.size(); ++a) {
     const ParameterRectangle r = faces[a].surface.domain();
     ParameterRectangle reach = r;
-    const double du = kFreeEdgeReach * (r.u_last - r.u_first), dv = kFreeEdgeReach * (r.v_last - r.v_first);
+    const auto [speed_t, speed_s] = slowest(faces[a].surface);
+    const auto beyond = [&](double range, double speed) {
+      const double carried = speed > 0.0 ? 2.0 * deflection[a] / speed : 0.0;
+      return std::min(std::max(kFreeEdgeReach * range, carried), range);
+    };
+    const double du = beyond(r.u_last - r.u_first, speed_t), dv = beyond(r.v_last - r.v_first, speed_s);
     for (std::size_t side = 0; side < 4; ++side) {
       if (set.neighbours[a][side] >= 0 || set.collapsed[a][side]) continue;
       if (side == 0) reach.v_first -= dv;
@@ -381,7 +410,13 @@ SurfaceShape::SurfaceShape(std::vector<CadFace> faces, std::vector<BSplineSurfac
       throw std::invalid_argument("SurfaceShape: a deflection field's rectangle differs from its face's");
     }
   }
-  reach_ = reaches(faces_);
+  const FaceSet set(faces_);
+  neighbours_ = set.neighbours;
+  std::vector<double> deflection(faces_.size());
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    deflection[f] = std::max(largest_pole(after_[f]), before_.empty() ? 0.0 : largest_pole(before_[f]));
+  }
+  reach_ = reaches(faces_, set, deflection);
 }
 
 // Stage lambda of the faces (section 4.3): S + (1 - lambda) d0 + lambda d1, d0 the deflection
@@ -394,17 +429,19 @@ SurfaceDerivatives SurfaceShape::evaluate(std::size_t face, double t, double s, 
   return d;
 }
 
-const SurfaceProjector& SurfaceShape::stage(double lambda) const {
+const SurfaceProjector& SurfaceShape::stage(double lambda, int face) const {
+  const std::pair key{lambda, face};
   {
     const std::shared_lock read(stages_mutex_);
-    const auto it = stages_.find(lambda);
+    const auto it = stages_.find(key);
     if (it != stages_.end()) return *it->second;
   }
   const std::unique_lock write(stages_mutex_);
-  auto& slot = stages_[lambda];
+  auto& slot = stages_[key];
   if (!slot) {
     std::vector<SurfacePatch> patches;
     for (std::size_t f = 0; f < faces_.size(); ++f) {
+      if (face >= 0 && f != static_cast<std::size_t>(face)) continue;
       const BSplineSurface& s = faces_[f].surface;
       SurfacePatch patch;
       patch.evaluate = [this, f, lambda](double t, double u) { return evaluate(f, t, u, lambda); };
@@ -432,6 +469,53 @@ ShapePoint SurfaceShape::project(const Vec3& p, double lambda, const ShapeParame
 ShapePoint SurfaceShape::at(const ShapeParameter& where, double lambda, const Vec3& /*reference*/) const {
   const SurfaceProjection q = stage(lambda).at({where.face, where.t, where.s});
   return {q.point, q.normal, {q.where.u, q.where.v, q.where.patch}, 0.0};
+}
+
+ShapePoint SurfaceShape::project_on_face(int face, const Vec3& p, double lambda, const ShapeParameter& hint) const {
+  const SurfaceParameter start = hint.known() && hint.face == face ? SurfaceParameter{0, hint.t, hint.s}
+                                                                   : SurfaceParameter{};
+  const SurfaceProjection q = stage(lambda, face).project(p, start);
+  return {q.point, q.normal, {q.where.u, q.where.v, face}, q.distance};
+}
+
+/// One face of a wall as a shape of its own (clamped at its shared edges): a node held by the
+/// faces on both sides of a crease slides along it (alternating projections meet on the edge).
+class FaceOfWall final : public BoundaryShape {
+ public:
+  FaceOfWall(std::shared_ptr<const SurfaceShape> wall, int face) : wall_(std::move(wall)), face_(face) {}
+  ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
+                     const ParameterRange& /*range*/ = {}) const override {
+    return wall_->project_on_face(face_, p, lambda, hint);
+  }
+  ShapePoint at(const ShapeParameter& where, double lambda, const Vec3& reference) const override {
+    return wall_->at({where.t, where.s, face_}, lambda, reference);
+  }
+
+ private:
+  std::shared_ptr<const SurfaceShape> wall_;
+  int face_;
+};
+
+std::vector<std::shared_ptr<const BoundaryShape>> SurfaceShape::crease_sides(const ShapeParameter& where,
+                                                                           double min_angle) const {
+  if (!where.known() || where.face < 0 || static_cast<std::size_t>(where.face) >= faces_.size()) return {};
+  const auto f = static_cast<std::size_t>(where.face);
+  const ParameterRectangle r = faces_[f].surface.domain();
+  const double on_t = 1e-9 * (r.u_last - r.u_first), on_s = 1e-9 * (r.v_last - r.v_first);
+  const std::array<bool, 4> at_side{std::abs(where.s - r.v_first) <= on_s, std::abs(where.s - r.v_last) <= on_s,
+                                    std::abs(where.t - r.u_first) <= on_t, std::abs(where.t - r.u_last) <= on_t};
+  const ShapePoint here = at(where, 0.0, {});
+  std::vector<std::shared_ptr<const BoundaryShape>> sides;
+  for (std::size_t side = 0; side < 4; ++side) {
+    const int other = neighbours_[f][side];
+    if (!at_side[side] || other < 0) continue;
+    const ShapePoint there = project_on_face(other, here.point, 0.0, kNoHint);
+    const double turn = std::acos(std::min(1.0, std::abs(dot(here.normal, there.normal))));
+    if (turn < min_angle) continue;
+    if (sides.empty()) sides.push_back(std::make_shared<FaceOfWall>(shared_from_this(), where.face));
+    sides.push_back(std::make_shared<FaceOfWall>(shared_from_this(), other));
+  }
+  return sides;
 }
 
 SurfaceShapeFit make_surface_shape(std::vector<CadFace> faces, const DeflectionSamples& samples,

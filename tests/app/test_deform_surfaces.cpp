@@ -39,9 +39,9 @@ geometry::Vec3 tilt(const geometry::Vec3& x) { return {0.02 * x.y, 0.0, 0.05 + 0
 /// as a bilinear B-spline face in floor.step (face 1).
 template <class F>
 void write_channel(const std::filesystem::path& dir, F deflection) {
-  const auto xs = mesh::uniform_line(0.0, 4.0, 17);
-  const auto ys = mesh::uniform_line(0.0, 1.0, 5);
-  const auto zs = mesh::uniform_line(0.0, 1.0, 9);
+  const auto xs = mesh::uniform_line(0.0, 4.0, 16);
+  const auto ys = mesh::uniform_line(0.0, 1.0, 4);
+  const auto zs = mesh::uniform_line(0.0, 1.0, 8);
   io::write_gmsh(dir / "box.msh",
                  mesh::structured_hexes(xs, ys, zs, {"inlet", "outlet", "side_a", "side_b", "floor", "ceiling"}));
   std::string table = "x,y,z,dx,dy,dz\n";
@@ -143,6 +143,58 @@ TEST(DeformSurfaces, FloorOnACadFacePrescribedAndSliding) {
   const auto slid = read_json(sliding.out / "report.json");
   EXPECT_EQ(slid["status"], "success");
   EXPECT_LT(slid["final_projection_distance"].get<double>(), 1e-9);
+}
+
+/// A channel [0, 4] x [0, 1] whose floor bends up by 30 degrees at x = 2 (two planar CAD faces,
+/// 1 flat and 2 rising, sharing the edge x = 2), ceiling at z = 2; 16 x 4 x 8 hexes whose floor
+/// nodes lie on the bent floor. The FEM table: a 9 x 5 grid over both faces, the crease's
+/// nodes on both, with a deflection linear along the floor.
+const double kRise = std::tan(M_PI / 6.0);
+geometry::Vec3 bent_floor(double x, double y) { return {x, y, x > 2.0 ? (x - 2.0) * kRise : 0.0}; }
+geometry::Vec3 crease_shift(const geometry::Vec3& x) { return {0.1 + 0.02 * x.y, 0.0, 0.05 + 0.02 * x.y}; }
+
+void write_bent_channel(const std::filesystem::path& dir) {
+  mesh::Mesh m = mesh::structured_hexes(mesh::uniform_line(0.0, 4.0, 16), mesh::uniform_line(0.0, 1.0, 4),
+                                        mesh::uniform_line(0.0, 2.0, 8),
+                                        {"inlet", "outlet", "side_a", "side_b", "floor", "ceiling"});
+  for (auto& p : m.points) p.z = bent_floor(p.x, p.y).z + p.z * (2.0 - bent_floor(p.x, p.y).z) / 2.0;
+  io::write_gmsh(dir / "box.msh", m);
+  std::string table = "x,y,z,dx,dy,dz\n";
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j <= 4; ++j) {
+      const geometry::Vec3 x = bent_floor(0.5 * i, 0.25 * j), d = crease_shift(x);
+      table += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", x.x, x.y, x.z, d.x, d.y, d.z);
+    }
+  }
+  test::write_text(dir / "floor.csv", table);
+  geometry::CadExport cad;
+  const auto face = [](double x0, double x1) {
+    const geometry::Vec3 a = bent_floor(x0, 0), b = bent_floor(x0, 1), c = bent_floor(x1, 0), d = bent_floor(x1, 1);
+    return geometry::BSplineSurface(1, 1, {0, 0, 1, 1}, {0, 0, 1, 1}, {a, b, c, d});
+  };
+  cad.surfaces = {{"flat", face(0, 2)}, {"rising", face(2, 4)}};
+  test::write_text(dir / "floor.step", geometry::to_step(cad));
+}
+
+// A crease of the wall (issue 23 item 2, issue 20 item 2 on faces): the floor nodes on the edge
+// where the two faces meet at 30 degrees slide along that edge only, so the deflected floor
+// keeps its crease: each ends on the deflected edge, (2, y, 0) + d.
+TEST(DeformSurfaces, NodesOnACreaseBetweenTwoFacesSlideAlongIt) {
+  test::TempDir dir;
+  write_bent_channel(dir.path());
+  const DeformRun r = deform(dir, channel_case("{role: sliding, deflection: {file: floor.csv, faces: [1, 2]}}",
+                                               "cad: floor.step\n"));
+  ASSERT_EQ(r.result.exit_code, 0) << r.result.output;
+  EXPECT_THAT(r.result.output, HasSubstr("sliding nodes slide along edges where the faces of their walls meet"));
+  int on_crease = 0;
+  for (const auto& [x0, x] : floor_nodes(dir.path(), r)) {
+    if (std::abs(x0.x - 2.0) > 1e-12) continue;
+    ++on_crease;
+    const geometry::Vec3 edge = bent_floor(2.0, x.y) + crease_shift(bent_floor(2.0, x.y));
+    EXPECT_NEAR(x.x, edge.x, 1e-6) << "node at y = " << x0.y;
+    EXPECT_NEAR(x.z, edge.z, 1e-6) << "node at y = " << x0.y;
+  }
+  EXPECT_EQ(on_crease, 5);
 }
 
 TEST(DeformSurfaces, SlidingFloorWithoutFacesIsRefused) {

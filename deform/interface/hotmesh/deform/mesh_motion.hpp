@@ -45,8 +45,13 @@ inline constexpr double kDefaultFeatureAngle = 25.0 * std::numbers::pi / 180.0;
 /// Which corners of a sliding patch's shape mesh nodes hold (beyond the paper, whose sliding
 /// rounds them): the case file's `features: {angle: 25}` or `features: off`.
 struct FeatureOptions {
+  /// Corners of curves (and circles of surfaces of revolution): held by the nearest wall nodes
+  /// in a corner pass after the motion.
   bool enabled = true;
-  double angle = kDefaultFeatureAngle;  ///< radians: corners turning by at least this are held
+  /// Edges where the faces of a wall meet: the wall nodes on them slide along them from the
+  /// start (they lie on them already).
+  bool creases = true;
+  double angle = kDefaultFeatureAngle;  ///< radians: corners and edges turning by at least this are held
 };
 
 /// What one mesh patch does during the motion.

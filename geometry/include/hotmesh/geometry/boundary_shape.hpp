@@ -11,6 +11,7 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "hotmesh/geometry/vec3.hpp"
@@ -82,6 +83,15 @@ class BoundaryShape {
   /// The shape's corners that turn by at least `min_angle` (radians) on the undeformed or the
   /// fully deflected stage, in increasing parameter; none for smooth shapes and planes.
   virtual std::vector<ShapeFeature> features(double /*min_angle*/) const { return {}; }
+
+  /// Where the shape is made of faces that meet at an edge turning by at least `min_angle`
+  /// (radians), at the point `where` of such an edge: the faces on either side as shapes of
+  /// their own, so that a node held by all of them slides along the edge (or, at a corner of
+  /// three faces, stays on it). Empty elsewhere and for shapes without faces.
+  virtual std::vector<std::shared_ptr<const BoundaryShape>> crease_sides(const ShapeParameter& /*where*/,
+                                                                         double /*min_angle*/) const {
+    return {};
+  }
 };
 
 }  // namespace hotmesh::geometry

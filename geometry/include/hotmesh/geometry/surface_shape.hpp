@@ -19,11 +19,13 @@
 // surface: a point is its own closest point, and at() moves the material point at `reference`.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <map>
 #include <memory>
 #include <shared_mutex>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "hotmesh/geometry/boundary_shape.hpp"
@@ -79,7 +81,7 @@ struct FaceDeflections {
 FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const DeflectionSamples& samples,
                                      const ReconstructionOptions& options = {});
 
-class SurfaceShape final : public BoundaryShape {
+class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_this<SurfaceShape> {
  public:
   /// Stage lambda is S + before + lambda (after - before), face by face; `before` empty means
   /// zero (a run from the cold geometry). Throws std::invalid_argument if the counts or the
@@ -91,21 +93,33 @@ class SurfaceShape final : public BoundaryShape {
   ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
                      const ParameterRange& range = {}) const override;
   ShapePoint at(const ShapeParameter& where, double lambda, const Vec3& reference) const override;
+  /// At a point of an edge where two faces meet turning by at least `min_angle` (radians; the
+  /// angle between their normals, so turns beyond 180 - min_angle are not seen): each face as a
+  /// shape of its own, the point's face first (three where it is a corner of three faces).
+  /// The shape must be owned by a shared_ptr.
+  std::vector<std::shared_ptr<const BoundaryShape>> crease_sides(const ShapeParameter& where,
+                                                                 double min_angle) const override;
+  /// The closest point of one face at stage lambda (clamped at its shared edges).
+  ShapePoint project_on_face(int face, const Vec3& p, double lambda, const ShapeParameter& hint) const;
 
   std::size_t face_count() const { return faces_.size(); }
   const CadFace& face(std::size_t i) const { return faces_[i]; }
 
  private:
-  /// The projector of stage lambda, built on first use (one per increment's stage) and kept.
-  const SurfaceProjector& stage(double lambda) const;
+  /// The projector of stage lambda onto every face (face -1) or one, built on first use (one per
+  /// increment's stage) and kept.
+  const SurfaceProjector& stage(double lambda, int face = -1) const;
   SurfaceDerivatives evaluate(std::size_t face, double t, double s, double lambda) const;
 
   std::vector<CadFace> faces_;
   std::vector<BSplineSurface> after_;
   std::vector<BSplineSurface> before_;
   std::vector<ParameterRectangle> reach_;  ///< each face's rectangle, beyond its free edges
+  /// Per face and side of its rectangle (s first, s last, t first, t last), the face sharing it,
+  /// or -1.
+  std::vector<std::array<int, 4>> neighbours_;
   mutable std::shared_mutex stages_mutex_;
-  mutable std::map<double, std::unique_ptr<SurfaceProjector>> stages_;
+  mutable std::map<std::pair<double, int>, std::unique_ptr<SurfaceProjector>> stages_;
 };
 
 struct SurfaceShapeFit {
