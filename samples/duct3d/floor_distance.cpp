@@ -2,6 +2,7 @@
 // (floor_distance.hpp says which).
 #include "floor_distance.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -154,13 +155,59 @@ FloorDistance floor_distance(const mesh::Mesh& m, const DeflectedFloor& floor, c
   return d;
 }
 
-std::string to_json(const FloorDistance& d) {
+NodesApart nodes_apart(const mesh::Mesh& a, const mesh::Mesh& b, const std::string& patch) {
+  if (a.node_count() != b.node_count()) {
+    throw std::invalid_argument(fmt::format("the meshes have {} and {} nodes", a.node_count(), b.node_count()));
+  }
+  const auto* p = a.find_patch(patch);
+  if (!p) throw std::invalid_argument(fmt::format("the mesh has no patch '{}'", patch));
+  NodesApart apart{.all = {.distance = -1.0}, .patch = {.distance = -1.0}};
+  for (std::size_t n = 0; n < a.node_count(); ++n) {
+    keep_worst(apart.all, distance(a.points[n], b.points[n]), a.points[n], b.points[n], a.node_id(static_cast<mesh::NodeId>(n)));
+  }
+  for (const auto n : p->nodes) {
+    const auto i = static_cast<std::size_t>(n);
+    keep_worst(apart.patch, distance(a.points[i], b.points[i]), a.points[i], b.points[i], a.node_id(n));
+  }
+  return apart;
+}
+
+std::vector<Vec3> floor_section(const DeflectedFloor& floor, int axis, double value, int n) {
+  if ((axis != 0 && axis != 1) || n < 1) throw std::invalid_argument("floor_section: axis 0 (x) or 1 (y), n >= 1");
+  const double along = axis == 0 ? kWidth : kLength, across = axis == 0 ? kLength : kWidth;
+  const auto at = [&](double p, double other) { return axis == 0 ? floor.evaluate(p, other) : floor.evaluate(other, p); };
+  std::vector<Vec3> points;
+  for (int i = 0; i <= n; ++i) {
+    const double other = along * i / n;
+    double p = value;  // the parameter of the plane's coordinate
+    for (int k = 0; k < 50; ++k) {
+      const FloorPoint x = at(p, other);
+      const double miss = (axis == 0 ? x.x.x : x.x.y) - value;
+      if (std::abs(miss) < 1e-13 * kH) break;
+      p = std::clamp(p - miss / (axis == 0 ? x.xt.x : x.xs.y), 0.0, across);
+    }
+    points.push_back(at(p, other).x);
+  }
+  return points;
+}
+
+namespace {
+
+std::string worst_json(const WorstPoint& w, bool node) {
   const auto vec = [](const Vec3& v) { return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", v.x, v.y, v.z); };
-  const auto worst = [&](const WorstPoint& w, bool node) {
-    std::string s = fmt::format("{{\"distance\": {:.6g}, \"over_h\": {:.6g}, ", w.distance, w.distance / kH);
-    if (node) s += fmt::format("\"node\": {}, ", w.node);
-    return s + fmt::format("\"point\": {}, \"nearest\": {}}}", vec(w.point), vec(w.nearest));
-  };
+  std::string s = fmt::format("{{\"distance\": {:.6g}, \"over_h\": {:.6g}, ", w.distance, w.distance / kH);
+  if (node) s += fmt::format("\"node\": {}, ", w.node);
+  return s + fmt::format("\"point\": {}, \"nearest\": {}}}", vec(w.point), vec(w.nearest));
+}
+
+}  // namespace
+
+std::string to_json(const NodesApart& apart, const std::string& patch) {
+  return fmt::format("{{\"all\": {}, \"{}\": {}}}", worst_json(apart.all, true), patch, worst_json(apart.patch, true));
+}
+
+std::string to_json(const FloorDistance& d) {
+  const auto worst = worst_json;
   std::string s = fmt::format("{{\n  \"unit\": \"mm\",\n  \"h\": {},\n  \"nodes\": {},\n  \"faces\": {},\n", kH, d.nodes, d.faces);
   s += fmt::format("  \"node_distance\": {},\n", worst(d.node, true));
   s += fmt::format("  \"mesh_to_floor\": {},\n", worst(d.mesh_to_floor, false));

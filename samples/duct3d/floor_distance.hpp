@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "duct_floor.hpp"
 #include "hotmesh/mesh/mesh.hpp"
@@ -56,6 +57,24 @@ struct FloorDistanceOptions {
 /// that the mesh lacks, that has faces other than quads, or meshes whose node counts differ.
 FloorDistance floor_distance(const mesh::Mesh& mesh, const DeflectedFloor& floor, const FloorDistanceOptions& options = {},
                              const mesh::Mesh* undeformed = nullptr);
+
+/// How far apart two meshes of the same nodes end (two runs that should agree, e.g. a restarted
+/// run and a straight one): the largest distance between a node of `a` and the same node of
+/// `b`, over every node and over the nodes of `patch` (point: in a; nearest: in b). Throws
+/// std::invalid_argument for meshes whose node counts differ or a patch that `a` lacks.
+struct NodesApart {
+  WorstPoint all;
+  WorstPoint patch;
+};
+NodesApart nodes_apart(const mesh::Mesh& a, const mesh::Mesh& b, const std::string& patch = "floor");
+/// As a JSON object {"all": ..., "<patch>": ...} (mm, and over h).
+std::string to_json(const NodesApart& apart, const std::string& patch = "floor");
+
+/// Where the plane x = value (axis 0) or y = value (axis 1) cuts the exact floor: n + 1 points
+/// of X, at parameters evenly spaced over the other coordinate's range (for each, Newton on the
+/// parameter of the plane's coordinate, t for x and s for y, from value). For pictures of a mesh
+/// cut by the same plane. Throws std::invalid_argument for another axis or n < 1.
+std::vector<Vec3> floor_section(const DeflectedFloor& floor, int axis, double value, int n);
 
 /// The measures as a JSON object (mm, and over h), for duct_wall_distance.
 std::string to_json(const FloorDistance& d);
