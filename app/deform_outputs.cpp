@@ -5,11 +5,13 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <fstream>
 #include <numbers>
 
 #include <nlohmann/json.hpp>
 
+#include "hotmesh/geometry/surface_shape.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/figure.hpp"
 #include "hotmesh/io/gmsh.hpp"
@@ -247,12 +249,28 @@ void put_increments(json& j, const deform::MotionResult& result) {
 }
 
 /// The corners of the sliding walls and the nodes that hold them (the corner pass).
-json features_json(const mesh::Mesh& mesh, const deform::MotionResult& result) {
+/// The CAD face numbers of a crease of a wall made of faces (WallFeature::faces holds the
+/// faces' indices in the wall's shape).
+json crease_faces(const io::CaseSetup& setup, const deform::WallFeature& f) {
+  json faces = json::array();
+  const auto motion = std::find_if(setup.motions.begin(), setup.motions.end(),
+                                   [&](const deform::PatchMotion& m) { return m.patch == f.patch; });
+  const auto* wall = motion == setup.motions.end() ? nullptr
+                                                   : dynamic_cast<const geometry::SurfaceShape*>(motion->shape.get());
+  for (const int i : f.faces) {
+    const bool known = wall != nullptr && i >= 0 && static_cast<std::size_t>(i) < wall->face_count();
+    faces.push_back(known ? wall->face(static_cast<std::size_t>(i)).id : i);
+  }
+  return faces;
+}
+
+json features_json(const mesh::Mesh& mesh, const io::CaseSetup& setup, const deform::MotionResult& result) {
   json features = json::array();
   for (const deform::WallFeature& f : result.features) {
     json nodes = json::array();
     for (const mesh::NodeId n : f.nodes) nodes.push_back(mesh.node_id(n));
     json feature{{"patch", f.patch},
+                 {"kind", f.faces.empty() ? "corner" : "crease"},
                  {"parameter", f.parameter},
                  {"angle_deg", f.angle * 180.0 / std::numbers::pi},
                  {"point", {f.point.x, f.point.y, f.point.z}},
@@ -261,13 +279,14 @@ json features_json(const mesh::Mesh& mesh, const deform::MotionResult& result) {
                  {"unheld_edges", f.unheld_edges}};
     put_length(feature, "largest_offset", f.largest_offset, result.length_scale);
     put_length(feature, "distance", f.distance, result.length_scale);
+    if (!f.faces.empty()) feature["faces"] = crease_faces(setup, f);
     features.push_back(std::move(feature));
   }
   return features;
 }
 
 /// The motion's results: stage, node counts, memory, the lengths and the quality.
-void put_motion(json& j, const mesh::Mesh& mesh, const deform::MotionResult& result) {
+void put_motion(json& j, const mesh::Mesh& mesh, const io::CaseSetup& setup, const deform::MotionResult& result) {
   const double scale = result.length_scale;
   j["stage_reached"] = result.lambda_reached;
   j["sliding_nodes"] = result.sliding_nodes;
@@ -286,7 +305,7 @@ void put_motion(json& j, const mesh::Mesh& mesh, const deform::MotionResult& res
   j["inverted_cells"] = result.summary.inverted_cells;
   j["quality"] = quality_json(mesh, result.summary);
   j["notes"] = result.notes;
-  j["features"] = features_json(mesh, result);
+  j["features"] = features_json(mesh, setup, result);
   const auto& repair = result.corner_repair;
   j["corner_repair"] = {{"cells_below", repair.cells_below},
                         {"nodes_moved", repair.nodes_moved},
@@ -319,7 +338,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["deflections"] = deflections_json(c, setup, result.length_scale);
   j["solver"] = solver_json(c.solver);
   put_increments(j, result);
-  put_motion(j, loaded.mesh, result);
+  put_motion(j, loaded.mesh, setup, result);
   j["wall_deviations"] = wall_deviations_json(loaded.mesh, result.points, setup, result.lambda_reached, result.length_scale);
   if (c.restart) j["restarted_from"] = c.restart->string();
   if (resumed) {

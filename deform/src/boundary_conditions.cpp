@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -233,6 +234,7 @@ class BoundaryBuilder {
                PeriodicCoupling(static_cast<std::size_t>(mesh.dimension)),
                {},
                {},
+               {},
                std::vector<NodeRoleCode>(mesh.node_count(), 0),
                {}},
         x0_(setup_.reference),
@@ -384,6 +386,7 @@ class BoundaryBuilder {
   /// faces meet it stays at their corner.
   void slide_along_creases() {
     std::size_t held = 0;
+    std::map<std::pair<std::string, std::vector<int>>, std::size_t> crease_of;
     for (SlidingNode& s : setup_.sliding) {
       for (int i = 0; i < s.shape_count; ++i) {
         const auto k = static_cast<std::size_t>(i);
@@ -398,6 +401,7 @@ class BoundaryBuilder {
           s.hints[added] = geometry::kNoHint;
           s.segments[added] = {};
         }
+        note_crease(crease_of, m->patch, s.node, sides);
         for (auto& side : sides) setup_.corner_paths.push_back(std::move(side));
         ++held;
         break;
@@ -408,6 +412,34 @@ class BoundaryBuilder {
                                          "angle (features)",
                                          held));
     }
+  }
+
+  /// Adds node n, on the crease where `sides` meet, to the wall's record of that crease.
+  void note_crease(std::map<std::pair<std::string, std::vector<int>>, std::size_t>& crease_of, const std::string& patch,
+                   NodeId n, const std::vector<std::shared_ptr<const geometry::BoundaryShape>>& sides) {
+    const Vec3& x = x0_[static_cast<std::size_t>(n)];
+    std::vector<int> faces;
+    std::vector<Vec3> normals;
+    for (const auto& side : sides) {
+      const geometry::ShapePoint q = side->project(x, 0.0);
+      faces.push_back(q.parameter.face);
+      normals.push_back(q.normal);
+    }
+    double angle = 0.0;
+    for (std::size_t a = 0; a < normals.size(); ++a) {
+      for (std::size_t b = a + 1; b < normals.size(); ++b) {
+        angle = std::max(angle, std::acos(std::min(1.0, std::abs(dot(normals[a], normals[b])))));
+      }
+    }
+    std::vector<const geometry::BoundaryShape*> shapes;
+    for (const auto& side : sides) shapes.push_back(side.get());
+    std::vector<int> key = faces;
+    std::sort(key.begin(), key.end());
+    const auto [it, added] = crease_of.try_emplace({patch, key}, setup_.creases.size());
+    if (added) setup_.creases.push_back({patch, key, 0.0, {}, shapes});
+    WallCrease& crease = setup_.creases[it->second];
+    crease.angle = std::max(crease.angle, angle);
+    crease.nodes.push_back(n);
   }
 
   /// The sliding patch's motion whose shape this is, if any.

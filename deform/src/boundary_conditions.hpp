@@ -79,6 +79,16 @@ struct WallCorner {
   HeldFeature held;
 };
 
+/// An edge where faces of a sliding wall meet at an angle, and the nodes sliding along it
+/// (or, where three faces meet, staying at their corner).
+struct WallCrease {
+  std::string patch;
+  std::vector<int> faces;  ///< the wall's face indices that meet there, increasing
+  double angle = 0.0;      ///< radians between their normals, the largest at its nodes
+  std::vector<NodeId> nodes;
+  std::vector<const geometry::BoundaryShape*> sides;  ///< the faces as shapes (in corner_paths)
+};
+
 struct BoundarySetup {
   /// Positions the shapes' stage 0 refers to: the mesh's, or those a restarted run starts from.
   std::vector<Vec3> reference;
@@ -92,6 +102,7 @@ struct BoundarySetup {
   std::vector<SlipPlane> slip_planes;
   PeriodicCoupling periodic;
   std::vector<WallCorner> corners;
+  std::vector<WallCrease> creases;
   /// The paths of the nodes that slide along corner lines, and the faces of the nodes that
   /// slide along creases of walls made of faces (SlidingNode::shapes point to them).
   std::vector<std::shared_ptr<const geometry::BoundaryShape>> corner_paths;

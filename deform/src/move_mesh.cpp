@@ -114,7 +114,8 @@ class Motion {
  private:
   int increments() const { return std::max(solver_.increments, 1); }
 
-  /// The corners of the sliding walls, and how far their nodes are from them at the end.
+  /// The corners of the sliding walls and the creases of those made of faces, and how far
+  /// their nodes are from them at the end.
   void report_corners() {
     for (const detail::WallCorner& c : setup_.corners) {
       WallFeature f{c.patch, c.held.feature.parameter, c.held.feature.angle, {}, c.held.nodes, c.held.nodes.size(),
@@ -126,6 +127,17 @@ class Motion {
       }
       const Vec3& reference = f.nodes.empty() ? c.reference : result_.points[static_cast<std::size_t>(f.nodes.front())];
       f.point = c.shape->at({.t = f.parameter}, result_.lambda_reached, reference).point;
+      result_.features.push_back(std::move(f));
+    }
+    for (const detail::WallCrease& c : setup_.creases) {
+      WallFeature f{c.patch, 0.0, c.angle, result_.points[static_cast<std::size_t>(c.nodes.front())], c.nodes,
+                    c.nodes.size(), 0.0, 0.0, 0, c.faces};
+      for (NodeId n : c.nodes) {
+        const Vec3& x = result_.points[static_cast<std::size_t>(n)];
+        for (const geometry::BoundaryShape* side : c.sides) {
+          f.distance = std::max(f.distance, side->project(x, result_.lambda_reached).distance);
+        }
+      }
       result_.features.push_back(std::move(f));
     }
   }

@@ -215,6 +215,14 @@ TEST(DeformSurfaces, NodesOnACreaseBetweenTwoFacesSlideAlongIt) {
     EXPECT_NEAR(x.z, edge.z, 1e-6) << "node at y = " << x0.y;
   }
   EXPECT_EQ(on_crease, 5);
+  // report.json lists the crease with its CAD faces, its 5 nodes and their distance from it.
+  const auto features = read_json(r.out / "report.json")["features"];
+  ASSERT_EQ(features.size(), 1u);
+  EXPECT_EQ(features[0]["kind"], "crease");
+  EXPECT_EQ(features[0]["faces"], nlohmann::json::array({1, 2}));
+  EXPECT_EQ(features[0]["nodes"].size(), 5u);
+  EXPECT_NEAR(features[0]["angle_deg"].get<double>(), 30.0, 1e-6);
+  EXPECT_LT(features[0]["distance"].get<double>(), 1e-9);
 }
 
 TEST(DeformSurfaces, SlidingFloorWithoutFacesIsRefused) {
