@@ -359,6 +359,7 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
     for (const auto& [f, p] : near) {
       placed.on_face[f].push_back({p.where.u, p.where.v, samples.deflections[j]});
       placed.index[f].push_back(j);
+      out.placements.push_back({j, f, p.where.u, p.where.v, p.distance});
     }
   }
   if (!report.rejected_nodes.empty() && options.far_nodes == FarNodePolicy::reject) {
