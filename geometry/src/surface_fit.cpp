@@ -363,6 +363,22 @@ void fill_residuals(SurfaceFit& fit, std::span<const FieldSample> samples, const
 
 }  // namespace
 
+double face_aspect(const BSplineSurface& face) {
+  const ParameterRectangle r = face.domain();
+  double along_u = 0.0, along_v = 0.0;
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      const double u = r.u_first + (r.u_last - r.u_first) * (i + 0.5) / 5.0;
+      const double v = r.v_first + (r.v_last - r.v_first) * (j + 0.5) / 5.0;
+      const SurfaceDerivatives d = face.derivatives(u, v);
+      along_u += norm(d.du) * (r.u_last - r.u_first);
+      along_v += norm(d.dv) * (r.v_last - r.v_first);
+    }
+  }
+  if (!(along_u > 0.0) || !(along_v > 0.0)) return 1.0;  // degenerate face: no preference
+  return std::clamp(along_u / along_v, 1e-6, 1e6);
+}
+
 SurfaceFit fit_surface_field(std::span<const FieldSample> samples, const ParameterRectangle& domain,
                              const SurfaceFitOptions& options) {
   check(samples, domain, options);
