@@ -22,6 +22,7 @@ Command add_convert_command(CLI::App& parent);
 Command add_deform_command(CLI::App& parent);
 Command add_cad_command(CLI::App& parent);
 Command add_curve_command(CLI::App& parent);
+Command add_surface_command(CLI::App& parent);
 Command add_serve_command(CLI::App& parent);
 Command add_check_command(CLI::App& parent);
 Command add_fem_command(CLI::App& parent);

@@ -13,11 +13,9 @@
 #include "curve_outputs.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
-#include "hotmesh/io/output_folder.hpp"
+#include "node_fit.hpp"
 
 namespace hotmesh::app {
-
-geometry::LengthUnit parse_unit_option(const std::string& text);  // cad_command.cpp
 
 namespace {
 
@@ -25,16 +23,10 @@ struct Options {
   std::string cad;
   std::vector<int> faces;
   std::vector<double> axis;
-  std::string fem;
-  int degree = 1;
+  NodeFitOptions fit;
   std::string form = "curve";
-  double tolerance = 0.0;
-  bool drop_far_nodes = false;
-  std::string unit = "m";
   std::size_t samples = 2000;
   double amplification = 0.0;
-  std::string output;
-  bool force = false;
 };
 
 std::optional<geometry::Axis> axis_option(const std::vector<double>& values) {
@@ -59,7 +51,7 @@ CurveRun with_cad(const Options& o, const geometry::DeflectionSamples& samples,
     throw InputError::in(samples.source, "meridional (r, z) nodes need --axis: z is measured from the axis origin");
   }
   geometry::CadReadOptions read;
-  read.unit = parse_unit_option(o.unit);
+  read.unit = parse_unit_option(o.fit.unit);
   const geometry::CadModel model = geometry::CadModel::read(o.cad, read);
   geometry::MeridionalOptions meridional;
   meridional.axis = axis;
@@ -73,38 +65,28 @@ CurveRun with_cad(const Options& o, const geometry::DeflectionSamples& samples,
 CurveRun without_cad(const Options& o, const geometry::DeflectionSamples& samples,
                      const geometry::ReconstructionOptions& reconstruction) {
   if (!o.faces.empty()) throw InputError("--faces needs --cad");
-  return fit_without_cad(samples, axis_option(o.axis), reconstruction, parse_unit_option(o.unit), "--axis");
+  return fit_without_cad(samples, axis_option(o.axis), reconstruction, parse_unit_option(o.fit.unit), "--axis");
 }
 
 int run_curve(const Options& o) {
-  geometry::ReconstructionOptions reconstruction;
-  reconstruction.degree = o.degree;
+  geometry::ReconstructionOptions reconstruction = reconstruction_options(o.fit);
   reconstruction.form = geometry::kDeflectionFormNames.parse(o.form).value();  // CLI::IsMember checked it
-  reconstruction.tolerance = o.tolerance;
-  reconstruction.far_nodes = o.drop_far_nodes ? geometry::FarNodePolicy::drop : geometry::FarNodePolicy::reject;
 
-  const geometry::DeflectionSamples samples = io::read_deflection_csv(o.fem);
+  const geometry::DeflectionSamples samples = io::read_deflection_csv(o.fit.fem);
   const CurveRun run = o.cad.empty() ? without_cad(o, samples, reconstruction) : with_cad(o, samples, reconstruction);
 
   // The folder is made only once the inputs have been read and the curve built.
-  std::vector<std::filesystem::path> inputs{o.fem};
+  std::vector<std::filesystem::path> inputs{o.fit.fem};
   if (!o.cad.empty()) inputs.emplace_back(o.cad);
-  const io::OutputFolder folder_guard = io::prepare_output_folder(o.output, inputs, o.force);
-  const std::filesystem::path folder(o.output);
-  for (const char* name : {"undeformed.csv", "deformed.csv", "curves.step", "curves.igs", "plot.svg", "summary.json"}) {
-    io::refuse_overwriting_input(folder / name, inputs);
-  }
+  const io::OutputFolder folder_guard = prepare_fit_folder(o.fit, inputs, kCurveFiles);
+  const std::filesystem::path folder(o.fit.output);
   const auto& report = run.fit.report;
-  for (const auto& node : report.rejected_nodes) {
-    spdlog::warn("{}: {} is {:.3g} from the CAD curve (tolerance {:.3g}): left out", o.fem, node.label, node.distance,
-                 report.tolerance);
-  }
+  warn_dropped_nodes(o.fit, report.rejected_nodes, report.tolerance, "the CAD curve");
   write_curve_outputs(folder, run, {o.samples, o.amplification});
   spdlog::info("{} nodes ({} used), degree {}, form {}: max node distance to the curve {:.3g}, residual {:.3g}",
                report.nodes, report.used_nodes, report.degree, geometry::to_string(report.form),
                report.max_node_distance_to_cad, report.max_node_residual);
-  spdlog::info("wrote {}: undeformed.csv, deformed.csv, curves.step, curves.igs, plot.svg, summary.json",
-               folder.string());
+  spdlog::info("wrote {}: {}", folder.string(), fmt::join(kCurveFiles, ", "));
   return 0;
 }
 
@@ -120,21 +102,10 @@ Command add_curve_command(CLI::App& parent) {
       ->delimiter(',');
   cmd->add_option("--axis", options->axis, "Axis of revolution ox,oy,oz,dx,dy,dz (default: the faces' axis)")
       ->delimiter(',');
-  cmd->add_option("--fem", options->fem, "FEM nodes and deflections (CSV: x,y,dx,dy | x,y,z,dx,dy,dz | r,z,dr,dz)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--degree", options->degree, "Degree q of the deflected B-spline")
-      ->check(CLI::Range(1, 5))
-      ->capture_default_str();
+  add_node_fit_options(*cmd, options->fit, "FEM nodes and deflections (CSV: x,y,dx,dy | x,y,z,dx,dy,dz | r,z,dr,dz)",
+                       "Degree q of the deflected B-spline", "the CAD curve");
   cmd->add_option("--form", options->form, "curve: interpolate Q+delta (eq. 21); displacement: r(t) + d(t)")
       ->check(CLI::IsMember(geometry::kDeflectionFormNames.names()))
-      ->capture_default_str();
-  cmd->add_option("--tolerance", options->tolerance,
-                  "Largest node distance from the CAD curve (default: 1e-3 of the curve's size)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--drop-far-nodes", options->drop_far_nodes,
-                "Leave out nodes farther than the tolerance (listed in summary.json) instead of failing");
-  cmd->add_option("--unit", options->unit, "Length unit of the CAD import and the node table: m, mm, cm, um, in, ft")
       ->capture_default_str();
   cmd->add_option("--samples", options->samples, "Samples of the curves in the CSV files (plus every knot)")
       ->check(CLI::Range(2, 10000000))
@@ -142,8 +113,7 @@ Command add_curve_command(CLI::App& parent) {
   cmd->add_option("--amplification", options->amplification,
                   "Scale of the deflections in plot.svg (default: automatic, arrows up to 10 % of the curve)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("-o,--output", options->output, "Output folder")->required();
-  cmd->add_flag("--force", options->force, "Write into a folder that holds input files (never over them)");
+  add_output_options(*cmd, options->fit);
   return [options] { return run_curve(*options); };
 }
 

@@ -12,6 +12,7 @@
 #include "cad_json.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/figure.hpp"
+#include "node_fit.hpp"
 
 namespace hotmesh::app {
 
@@ -135,9 +136,8 @@ nlohmann::json curve_summary(const CurveRun& run, double amplification) {
   const geometry::ReconstructionReport& report = run.fit.report;
   nlohmann::json rejected = nlohmann::json::array();
   for (const auto& node : report.rejected_nodes) {
-    nlohmann::json entry = {{"node", node.label}, {"distance", node.distance}, {"parameter", node.parameter}};
-    if (node.index < run.nodes.ids.size()) entry["id"] = run.nodes.ids[node.index];
-    if (node.index < run.nodes.lines.size()) entry["line"] = run.nodes.lines[node.index];
+    nlohmann::json entry = dropped_node_json(node, run.nodes.ids, run.nodes.lines);
+    entry["parameter"] = node.parameter;
     rejected.push_back(entry);
   }
   const nlohmann::json axis = run.axis ? axis_json(*run.axis) : nlohmann::json(nullptr);
@@ -172,7 +172,7 @@ std::string write_curve_outputs(const std::filesystem::path& folder, const Curve
       options.amplification > 0.0 ? options.amplification : amplification_for(run, curve_size(curve, t));
   const io::Figure figure = picture(run, t, amplification);
   nlohmann::json summary = curve_summary(run, amplification);
-  summary["files"] = {"undeformed.csv", "deformed.csv", "curves.step", "curves.igs", "plot.svg", "summary.json"};
+  summary["files"] = kCurveFiles;
   const std::string text = summary.dump(2) + "\n";
   const std::pair<const char*, std::string> files[] = {{"undeformed.csv", curve_csv(curve, t, 0.0, meridional)},
                                                        {"deformed.csv", curve_csv(curve, t, 1.0, meridional)},

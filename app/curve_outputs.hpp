@@ -3,6 +3,7 @@
 // the fit (JSON). `hotmesh curve` writes them to a folder; `hotmesh serve` sends them.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,6 +13,10 @@
 #include "hotmesh/geometry/cad_export.hpp"
 
 namespace hotmesh::app {
+
+/// The files write_curve_outputs writes.
+inline constexpr std::array<const char*, 6> kCurveFiles{"undeformed.csv", "deformed.csv", "curves.step",
+                                                        "curves.igs",     "plot.svg",     "summary.json"};
 
 struct CurveOutputOptions {
   std::size_t samples = 2000;  ///< uniform samples in t, plus every knot

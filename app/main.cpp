@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   remember(hotmesh::app::add_deform_command(app));
   remember(hotmesh::app::add_cad_command(app));
   remember(hotmesh::app::add_curve_command(app));
+  remember(hotmesh::app::add_surface_command(app));
   remember(hotmesh::app::add_check_command(app));
   remember(hotmesh::app::add_fem_command(app));
   remember(hotmesh::app::add_serve_command(app));

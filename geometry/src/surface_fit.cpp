@@ -5,7 +5,6 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 
 #include <algorithm>
 #include <array>
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "bspline_basis.hpp"
+#include "grid_interpolation.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/geometry/interpolation.hpp"
 
@@ -152,19 +152,6 @@ SparseMatrix from_triplets(Eigen::Index rows, Eigen::Index cols, const Triplets&
   return matrix;
 }
 
-/// The square collocation matrix (B)_ja = N_a(t_j) of interpolation at t on `knots`.
-SparseMatrix collocation(const std::vector<double>& knots, int q, const std::vector<double>& t) {
-  Triplets entries;
-  for (std::size_t j = 0; j < t.size(); ++j) {
-    const BasisAt basis = basis_at(knots, q, t[j]);
-    for (std::size_t a = 0; a <= static_cast<std::size_t>(q); ++a) {
-      entries.emplace_back(static_cast<int>(j), static_cast<int>(basis.first + a), basis.value(a));
-    }
-  }
-  const auto size = static_cast<Eigen::Index>(t.size());
-  return from_triplets(size, size, entries);
-}
-
 /// Interpolation knots for parameters t_0 < ... < t_{m-1} inside [first, last]: the averaged
 /// interior knots of The NURBS Book eq. (9.8), clamped at the domain's ends rather than at t_0
 /// and t_{m-1}. Basis function i is then still positive at t_i (Schoenberg-Whitney: the first
@@ -179,38 +166,17 @@ std::vector<double> interpolation_knots(const std::vector<double>& t, int q, dou
   return knots;
 }
 
-// Global interpolation on a grid (The NURBS Book section 9.2.5). With grid values D_ij at
-// (u_i, v_j) and collocation matrices (B_u)_ia = N_a(u_i), (B_v)_jb = N_b(v_j), the poles solve
-//     B_u P B_v^T = D,   so   P B_v^T = B_u^{-1} D   and   P^T = B_v^{-1} (B_u^{-1} D)^T:
-// the curves through every line of constant v, then through their poles along v. One sparse
-// LU per direction; every line and component is a right-hand side.
+// Global interpolation on a grid (The NURBS Book section 9.2.5): the grid values, one per
+// pair of levels, through grid_interpolation.hpp.
 SurfaceFit interpolate_grid(const Levels& u, const Levels& v, std::span<const FieldSample> samples,
                             const ParameterRectangle& domain, int q) {
   const std::size_t m = u.values.size();
   const std::size_t n = v.values.size();
   std::vector<double> u_knots = interpolation_knots(u.values, q, domain.u_first, domain.u_last);
   std::vector<double> v_knots = interpolation_knots(v.values, q, domain.v_first, domain.v_last);
-  const Eigen::SparseLU<SparseMatrix> lu_u(collocation(u_knots, q, u.values));
-  const Eigen::SparseLU<SparseMatrix> lu_v(collocation(v_knots, q, v.values));
-  if (lu_u.info() != Eigen::Success || lu_v.info() != Eigen::Success) {
-    throw std::logic_error("surface fit: singular collocation matrix");  // Schoenberg-Whitney holds
-  }
-
-  std::vector<Vec3> poles(m * n);
-  Eigen::MatrixXd values(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n));
-  for (int c = 0; c < 3; ++c) {
-    for (std::size_t j = 0; j < samples.size(); ++j) {
-      values(static_cast<Eigen::Index>(u.of_sample[j]), static_cast<Eigen::Index>(v.of_sample[j])) =
-          samples[j].value[c];
-    }
-    const Eigen::MatrixXd along_u = lu_u.solve(values);                  // P B_v^T
-    const Eigen::MatrixXd transposed = lu_v.solve(along_u.transpose());  // P^T
-    for (std::size_t i = 0; i < m; ++i) {
-      for (std::size_t k = 0; k < n; ++k) {
-        poles[i * n + k][c] = transposed(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i));
-      }
-    }
-  }
+  std::vector<Vec3> values(m * n);
+  for (std::size_t j = 0; j < samples.size(); ++j) values[u.of_sample[j] * n + v.of_sample[j]] = samples[j].value;
+  std::vector<Vec3> poles = detail::interpolate_on_grid(u_knots, q, u.values, v_knots, q, v.values, values);
   SurfaceFitReport report{.method = SurfaceFitMethod::interpolation, .degree = q, .u_poles = m, .v_poles = n};
   return {BSplineSurface(q, q, std::move(u_knots), std::move(v_knots), std::move(poles)), report};
 }
@@ -396,6 +362,22 @@ void fill_residuals(SurfaceFit& fit, std::span<const FieldSample> samples, const
 }
 
 }  // namespace
+
+double face_aspect(const BSplineSurface& face) {
+  const ParameterRectangle r = face.domain();
+  double along_u = 0.0, along_v = 0.0;
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      const double u = r.u_first + (r.u_last - r.u_first) * (i + 0.5) / 5.0;
+      const double v = r.v_first + (r.v_last - r.v_first) * (j + 0.5) / 5.0;
+      const SurfaceDerivatives d = face.derivatives(u, v);
+      along_u += norm(d.du) * (r.u_last - r.u_first);
+      along_v += norm(d.dv) * (r.v_last - r.v_first);
+    }
+  }
+  if (!(along_u > 0.0) || !(along_v > 0.0)) return 1.0;  // degenerate face: no preference
+  return std::clamp(along_u / along_v, 1e-6, 1e6);
+}
 
 SurfaceFit fit_surface_field(std::span<const FieldSample> samples, const ParameterRectangle& domain,
                              const SurfaceFitOptions& options) {

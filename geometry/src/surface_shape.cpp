@@ -68,24 +68,6 @@ void check_inputs(std::span<const CadFace> faces, const DeflectionSamples& sampl
   }
 }
 
-/// The face's lengths along t and s over its length along s, measured at 5 x 5 points: tells
-/// the fit how the parameters are stretched on the face (SurfaceFitOptions::aspect).
-double aspect(const BSplineSurface& s) {
-  const ParameterRectangle r = s.domain();
-  double along_u = 0.0, along_v = 0.0;
-  for (int i = 0; i < 5; ++i) {
-    for (int j = 0; j < 5; ++j) {
-      const double u = r.u_first + (r.u_last - r.u_first) * (i + 0.5) / 5.0;
-      const double v = r.v_first + (r.v_last - r.v_first) * (j + 0.5) / 5.0;
-      const SurfaceDerivatives d = s.derivatives(u, v);
-      along_u += norm(d.du) * (r.u_last - r.u_first);
-      along_v += norm(d.dv) * (r.v_last - r.v_first);
-    }
-  }
-  if (!(along_u > 0.0) || !(along_v > 0.0)) return 1.0;  // degenerate face: no preference
-  return std::clamp(along_u / along_v, 1e-6, 1e6);
-}
-
 /// Where the FEM nodes lie on the faces: per face the field samples (t_j, s_j, delta_j) and the
 /// sample indices.
 struct PlacedSamples {
@@ -359,6 +341,7 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
     for (const auto& [f, p] : near) {
       placed.on_face[f].push_back({p.where.u, p.where.v, samples.deflections[j]});
       placed.index[f].push_back(j);
+      out.placements.push_back({j, f, p.where.u, p.where.v, p.distance});
     }
   }
   if (!report.rejected_nodes.empty() && options.far_nodes == FarNodePolicy::reject) {
@@ -381,7 +364,7 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
     }
     SurfaceFitOptions fit_options;
     fit_options.degree = options.degree;
-    fit_options.aspect = aspect(faces[f].surface);
+    fit_options.aspect = face_aspect(faces[f].surface);
     try {
       SurfaceFit fit = fit_surface_field(placed.on_face[f], faces[f].surface.domain(), fit_options);
       report.faces.push_back({id, placed.on_face[f].size(), fit.report});

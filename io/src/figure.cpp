@@ -77,8 +77,8 @@ void Figure::arrow(PlotPoint from, PlotPoint to, Stroke stroke, double head) {
   commands_.push_back({Command::Kind::arrow, {from, to}, stroke, {}, {}, head, false, {}});
 }
 
-void Figure::text(PlotPoint at, std::string label, double size, Color color) {
-  commands_.push_back({Command::Kind::text, {at}, {}, {}, color, size, false, std::move(label)});
+void Figure::text(PlotPoint at, std::string label, double size, Color color, PlotPoint offset) {
+  commands_.push_back({Command::Kind::text, {at}, {}, {}, color, size, false, std::move(label), offset});
 }
 
 void Figure::legend(std::string label, Stroke stroke, bool as_marker) {
@@ -150,7 +150,7 @@ struct Renderer {
       case Kind::text:
         set_color(cr, c.fill);
         cairo_set_font_size(cr, c.size);
-        cairo_move_to(cr, t.px(c.points[0].x), t.py(c.points[0].y));
+        cairo_move_to(cr, t.px(c.points[0].x) + c.offset.x, t.py(c.points[0].y) - c.offset.y);
         cairo_show_text(cr, c.text.c_str());
         return;
     }

@@ -3,6 +3,7 @@
 #include "hotmesh/io/vtu.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <ostream>
 #include <stdexcept>
@@ -44,7 +45,10 @@ Block array_block(const VtuArray& a, std::size_t count, const char* where) {
           throw std::invalid_argument(fmt::format("{} array '{}' has {} values, expected {}", where, a.name,
                                                   v.size(), expected));
         }
-        const char* type = std::is_same_v<T, double> ? "Float64" : std::is_same_v<T, std::int32_t> ? "Int32" : "UInt8";
+        const char* type = std::is_same_v<T, double>         ? "Float64"
+                           : std::is_same_v<T, std::int32_t> ? "Int32"
+                           : std::is_same_v<T, std::int64_t> ? "Int64"
+                                                             : "UInt8";
         return block(type, a.name, a.components, v);
       },
       a.values);
@@ -158,8 +162,8 @@ void write_vtu(std::ostream& out, const mesh::Mesh& mesh, std::span<const geomet
 }
 
 void write_vtp(std::ostream& out, const PolyData& data) {
-  const std::size_t cells = data.lines.size() + data.polygons.size();
-  for (const auto* kind : {&data.lines, &data.polygons}) {
+  const std::size_t cells = data.vertices.size() + data.lines.size() + data.polygons.size();
+  for (const auto* kind : {&data.vertices, &data.lines, &data.polygons}) {
     for (const auto& c : *kind) {
       if (std::any_of(c.begin(), c.end(), [&](std::int64_t i) { return i < 0 || std::cmp_greater_equal(i, data.points.size()); })) {
         throw std::invalid_argument("write_vtp: point index out of range");
@@ -167,27 +171,36 @@ void write_vtp(std::ostream& out, const PolyData& data) {
     }
   }
   const std::vector<double> coordinates = flat_coordinates(data.points);
+  const CellArrays vertices = cell_arrays(data.vertices);
   const CellArrays lines = cell_arrays(data.lines);
   const CellArrays polygons = cell_arrays(data.polygons);
-  std::vector<Block> cell_blocks;
+  std::vector<Block> point_blocks, cell_blocks;
+  for (const auto& a : data.point_data) point_blocks.push_back(array_block(a, data.points.size(), "point"));
   for (const auto& a : data.cell_data) cell_blocks.push_back(array_block(a, cells, "cell"));
   const Block points_block = block("Float64", "Points", 3, coordinates);
-  const Block line_blocks[] = {block("Int64", "connectivity", 1, lines.connectivity),
-                               block("Int64", "offsets", 1, lines.offsets)};
-  const Block polygon_blocks[] = {block("Int64", "connectivity", 1, polygons.connectivity),
-                                  block("Int64", "offsets", 1, polygons.offsets)};
+  const auto connectivity = [](const CellArrays& a) {
+    return std::array<Block, 2>{block("Int64", "connectivity", 1, a.connectivity), block("Int64", "offsets", 1, a.offsets)};
+  };
+  const std::array<Block, 2> vertex_blocks = connectivity(vertices);
+  const std::array<Block, 2> line_blocks = connectivity(lines);
+  const std::array<Block, 2> polygon_blocks = connectivity(polygons);
 
   AppendedArrays appended(out);
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
          "  <PolyData>\n";
-  out << "    <Piece NumberOfPoints=\"" << data.points.size() << "\" NumberOfVerts=\"0\" NumberOfLines=\""
-      << data.lines.size() << "\" NumberOfStrips=\"0\" NumberOfPolys=\"" << data.polygons.size() << "\">\n";
-  out << "      <CellData>\n";
+  out << "    <Piece NumberOfPoints=\"" << data.points.size() << "\" NumberOfVerts=\"" << data.vertices.size()
+      << "\" NumberOfLines=\"" << data.lines.size() << "\" NumberOfStrips=\"0\" NumberOfPolys=\""
+      << data.polygons.size() << "\">\n";
+  out << "      <PointData>\n";
+  for (const auto& b : point_blocks) appended.declare(b);
+  out << "      </PointData>\n      <CellData>\n";
   for (const auto& b : cell_blocks) appended.declare(b);
   out << "      </CellData>\n      <Points>\n";
   appended.declare(points_block);
-  out << "      </Points>\n      <Lines>\n";
+  out << "      </Points>\n      <Verts>\n";
+  for (const auto& b : vertex_blocks) appended.declare(b);
+  out << "      </Verts>\n      <Lines>\n";
   for (const auto& b : line_blocks) appended.declare(b);
   out << "      </Lines>\n      <Polys>\n";
   for (const auto& b : polygon_blocks) appended.declare(b);

@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Reads a .vtu or .vtp with VTK's XML readers (the readers ParaView uses), or every file a
 ParaView collection (.pvd) lists, and prints what it found as JSON: points, cells, cell types,
-and every point/cell array with its components and values.
+and every point/cell array with its components and values (NaN as null: JSON has no NaN).
 Used by hotmesh's tests to check our VTU files against an independent implementation."""
 import json
+import math
 import os
 import sys
 import xml.etree.ElementTree as ET
@@ -19,7 +20,8 @@ def arrays(data):
         out[a.GetName()] = {
             "components": a.GetNumberOfComponents(),
             "type": a.GetDataTypeAsString(),
-            "values": vtk_to_numpy(a).ravel().tolist(),
+            "values": [None if isinstance(v, float) and math.isnan(v) else v
+                       for v in vtk_to_numpy(a).ravel().tolist()],
         }
     return out
 

@@ -62,6 +62,11 @@ struct SurfaceFit {
   SurfaceFitReport report;
 };
 
+/// A face's length along u over its length along v (their means over 5 x 5 samples of S_u and
+/// S_v, times the parameter ranges), within [1e-6, 1e6]; 1 for a degenerate face: how its
+/// parameters are stretched on it (SurfaceFitOptions::aspect, and its proportions in pictures).
+double face_aspect(const BSplineSurface& face);
+
 /// d(u, v) over `domain` from `samples` (section 4.2). Samples whose (u, v) form a tensor grid
 /// (within 1e-7 of the domain's extent, at least q + 1 values each way, every pair present
 /// once) are interpolated; any others are fitted by least squares. Between the nodes and the

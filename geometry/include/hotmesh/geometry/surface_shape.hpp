@@ -67,10 +67,21 @@ struct SurfaceReconstructionReport {
   std::vector<FaceFitReport> faces;
 };
 
+/// Where one FEM node used lies on one face: a node within the tolerance of several faces (on
+/// the edge they share) has a placement on each.
+struct NodePlacement {
+  std::size_t node = 0;   ///< 0-based position in the samples
+  std::size_t face = 0;   ///< position in `faces`
+  double t = 0.0;         ///< the face parameters of its closest point
+  double s = 0.0;
+  double distance = 0.0;  ///< |Q_j - S(t, s)|
+};
+
 /// The deflection field of every face, in the order of `faces`.
 struct FaceDeflections {
   std::vector<BSplineSurface> fields;
   SurfaceReconstructionReport report;
+  std::vector<NodePlacement> placements;  ///< by node, then by face
 };
 
 /// Section 4.2 on CAD faces: FEM nodes (cartesian samples) projected onto the faces, d(t, s)

@@ -57,8 +57,9 @@ class Figure {
   void marker(PlotPoint at, Color color, double radius = 3.0);
   /// An arrow from `from` to `to` in world coordinates; head size in pixels.
   void arrow(PlotPoint from, PlotPoint to, Stroke stroke, double head = 8.0);
-  /// Text anchored at a world position (left-baseline), size in pixels.
-  void text(PlotPoint at, std::string text, double size = 14.0, Color color = colors::black);
+  /// Text anchored at a world position (left-baseline), size in pixels, moved from there by
+  /// `offset` pixels (right, up): labels at a fixed distance from what they label at any zoom.
+  void text(PlotPoint at, std::string text, double size = 14.0, Color color = colors::black, PlotPoint offset = {});
   /// A legend line: a short stroke or marker sample and its label.
   void legend(std::string label, Stroke stroke, bool as_marker = false);
   /// A colour bar for values [lo, hi] drawn with colormap().
@@ -81,6 +82,7 @@ class Figure {
     double size = 0.0;  ///< marker radius, arrow head or text size, in pixels
     bool closed = false;
     std::string text;
+    PlotPoint offset;  ///< text only: pixels right and up from the anchor
   };
 
   /// One line of the legend.

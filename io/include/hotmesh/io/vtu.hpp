@@ -19,7 +19,8 @@ namespace hotmesh::io {
 struct VtuArray {
   std::string name;
   int components = 1;
-  std::variant<std::vector<double>, std::vector<std::int32_t>, std::vector<std::uint8_t>> values;
+  std::variant<std::vector<double>, std::vector<std::int32_t>, std::vector<std::int64_t>, std::vector<std::uint8_t>>
+      values;
 };
 
 struct VtuFields {
@@ -41,12 +42,15 @@ void write_vtu(std::ostream& out, const mesh::Mesh& mesh, std::span<const geomet
 void write_vtu(const std::filesystem::path& path, const mesh::Mesh& mesh,
                std::span<const geometry::Vec3> points, const VtuFields& fields);
 
-/// Polylines and polygons through points, with one value per cell (lines first, then
-/// polygons) in each cell array: a VTK PolyData (.vtp), e.g. the deflected walls of a case.
+/// Vertices, polylines and polygons through points, with one value per point in each point
+/// array and one per cell (vertices first, then lines, then polygons) in each cell array: a VTK
+/// PolyData (.vtp), e.g. the deflected walls of a case or FEM nodes as vertices.
 struct PolyData {
   std::vector<geometry::Vec3> points;
+  std::vector<std::vector<std::int64_t>> vertices;  ///< (poly)vertices: indices into points
   std::vector<std::vector<std::int64_t>> lines;     ///< polylines: indices into points
   std::vector<std::vector<std::int64_t>> polygons;  ///< polygons: indices into points
+  std::vector<VtuArray> point_data;
   std::vector<VtuArray> cell_data;
 };
 

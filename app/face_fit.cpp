@@ -1,0 +1,28 @@
+// hotmesh app: section 4.2 on CAD faces from what a user gives (see face_fit.hpp).
+#include "face_fit.hpp"
+
+#include <algorithm>
+#include <utility>
+
+#include "hotmesh/geometry/input_error.hpp"
+
+namespace hotmesh::app {
+
+SurfaceRun fit_on_cad_faces(const geometry::CadModel& model, std::span<const int> ids,
+                            geometry::DeflectionSamples samples, const geometry::ReconstructionOptions& options) {
+  SurfaceRun run;
+  for (auto it = ids.begin(); it != ids.end(); ++it) {
+    if (std::find(ids.begin(), it, *it) != it) {
+      throw InputError::in(model.path().string(), "face " + std::to_string(*it) + " is given twice");
+    }
+    run.info.push_back(model.face(*it));
+    run.faces.push_back({*it, model.face_bspline(*it)});
+  }
+  run.fit = geometry::reconstruct_on_faces(run.faces, samples, options);
+  run.samples = std::move(samples);
+  run.unit = model.unit();
+  run.cad = model.path().string();
+  return run;
+}
+
+}  // namespace hotmesh::app
