@@ -351,7 +351,7 @@ TEST_F(CaseFile, RejectsUnknownPatchKey) {
 TEST_F(CaseFile, RejectsUnknownDeflectionKey) {
   EXPECT_EQ(error_with("  ramp:\n    role: sliding\n    deflection:\n      file: plane.csv\n      degre: 2\n"),
             at(8) + "patches.ramp.deflection.degre: unknown key (did you mean 'degree'?); allowed in "
-                    "patches.ramp.deflection: file, calculix, degree, faces, form");
+                    "patches.ramp.deflection: file, calculix, degree, faces, form, mode");
 }
 
 TEST_F(CaseFile, RejectsRepeatedKeys) {
@@ -702,6 +702,37 @@ TEST_F(CaseAgainstMesh, ChecksTableFrameAgainstMeshDimension) {
                                  "  ymin: {role: sliding, deflection: {file: ramp.csv}}\n";
   EXPECT_THAT(mesh_error(meridional, test::unit_square(2, 2)),
               StartsWith(at(7) + "patches.ymin.deflection: a meridional (r, z) table is for 3D meshes but the mesh is 2D"));
+}
+
+}  // namespace
+}  // namespace hotmesh::io
+
+namespace hotmesh::io {
+namespace {
+
+// The deflection's `mode` (how a 3D wall is built): its values, a meridional wall without the
+// axis it needs, and the key on a 2D mesh, each refused at its line.
+TEST_F(CaseFile, DeflectionModeChoosesHowA3DWallIsBuilt) {
+  EXPECT_EQ(parse(std::string(kBase) + "  ramp: {role: sliding, deflection: {file: plane.csv, mode: surface}}\n")
+                .find_patch("ramp")
+                ->deflection->mode,
+            WallMode::surface);
+  EXPECT_EQ(parse(std::string(kBase) + "  ramp: {role: sliding, deflection: {file: plane.csv}}\n")
+                .find_patch("ramp")
+                ->deflection->mode,
+            WallMode::automatic);
+  EXPECT_THAT(error_with("  ramp: {role: sliding, deflection: {file: plane.csv, mode: revolved}}\n"),
+              StartsWith(at(4) + "patches.ramp.deflection.mode: "));
+  EXPECT_THAT(error_with("  ramp: {role: sliding, deflection: {file: plane.csv, mode: meridional}}\n"),
+              StartsWith(at(4) + "patches.ramp.deflection.mode: a meridional wall is a surface of revolution about "
+                                 "the top-level axis"));
+}
+
+TEST_F(CaseAgainstMesh, DeflectionModeIsFor3DWalls) {
+  EXPECT_THAT(mesh_error("mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: slip}\n"
+                         "  ymin: {role: sliding, deflection: {file: plane.csv, mode: surface}}\n  ymax: {role: passive}\n",
+                         test::unit_square(2, 2)),
+              HasSubstr(":5: patches.ymin.deflection.mode: is for the walls of 3D meshes"));
 }
 
 }  // namespace
