@@ -166,7 +166,9 @@ WallDeviation wall_deviation(const CurveProjector& curve, std::span<const Vec3> 
 //     a dimple of the face between its samples) can be missed.
 // The cost is (face_samples + 1)^2 projections per wall face (25 by default) and about
 // 1 / shape_spacing^2 nearest-face queries per wall face (16), plus about 100 evaluations per
-// refined candidate.
+// refined candidate: measured, about 0.1 ms per wall face on one thread (10^5 quads on a wavy
+// bicubic face: 10.6 s, 3% of the faces refined). Memory: the tree, and one CAD face's sample
+// grid at a time (8 bytes a sample, at most 2^24 samples a face).
 
 /// Options of the measure against CAD faces.
 struct SurfaceWallOptions {
