@@ -192,7 +192,7 @@ std::vector<std::optional<WallCheck>> part_walls(const mesh::Patch& patch, const
 
 /// Sets `check.wall` and folds the wall tolerance into `check.passed`.
 void put_wall(DistanceCheck& check, std::optional<WallCheck> wall, const std::optional<double>& wall_tolerance) {
-  if (wall && wall_tolerance) wall->passed = wall->hausdorff <= *wall_tolerance;  // false for NaN too
+  if (wall && wall->measured() && wall_tolerance) wall->passed = wall->hausdorff <= *wall_tolerance;  // false for NaN too
   check.wall = std::move(wall);
   if (check.wall && !check.wall->passed) check.passed = false;
 }
@@ -231,9 +231,9 @@ PatchCheck check_patch(const mesh::Patch& patch, const mesh::Mesh& mesh, PatchRe
   }
   // The patch's: the largest of its parts' (a part not measured leaves the patch unmeasured).
   std::optional<WallCheck> worst = walls[0];
-  for (std::size_t k = 1; k < walls.size() && worst; ++k) {
-    if (!walls[k]) {
-      worst.reset();
+  for (std::size_t k = 1; k < walls.size() && worst && worst->measured(); ++k) {
+    if (!walls[k] || !walls[k]->measured()) {
+      worst = walls[k];
     } else if (walls[k]->hausdorff > worst->hausdorff || std::isnan(walls[k]->hausdorff)) {
       worst = walls[k];
     }
@@ -246,7 +246,8 @@ PatchCheck check_patch(const mesh::Patch& patch, const mesh::Mesh& mesh, PatchRe
 void log_patch(const PatchCheck& p) {
   spdlog::info("{}: {} nodes, max distance {:.3e} at node {}, mean {:.3e}; faces {} ({})", p.patch, p.nodes,
                p.max_distance, p.worst_node, p.mean_distance,
-               p.wall ? fmt::format("{:.3e} both ways", p.wall->hausdorff) : std::string("not measured"),
+               p.wall && p.wall->measured() ? fmt::format("{:.3e} both ways", p.wall->hausdorff)
+                                            : std::string("not measured"),
                p.passed ? "pass" : "FAIL");
 }
 

@@ -141,7 +141,9 @@ PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* c
 }
 
 /// What hotmesh deform makes of a case patch's wall, for reports; paths relative to the case.
-std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, CaseStage stage, int dimension) {
+/// `kind` is how io::set_up_case built it (a patch without table: a curve).
+std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, io::WallKind kind, CaseStage stage,
+                           int dimension) {
   const auto name = [&](const std::filesystem::path& file) {
     return file.lexically_relative(c.file.parent_path()).string();
   };
@@ -151,18 +153,37 @@ std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, CaseSta
     what = "its own undeformed nodes (a sliding wall without table keeps its shape)";
   } else {
     const io::DeflectionSpec& d = *spec.deflection;
-    const std::string fit = fmt::format("(eq. 21, {} form, degree {})",
-                                        geometry::to_string(d.form),
-                                        d.degree);
-    if (d.faces.empty()) {
-      what = fmt::format("the curve through the FEM nodes of {}{}", name(d.file),
-                         deflected ? ", deflected by them " + fit : std::string());
-    } else {
+    if (kind == io::WallKind::faces) {  // always in displacement form (io::set_up_case)
       what = fmt::format("CAD {} of {}{}", face_text(d.faces), name(*c.cad),
-                         deflected ? fmt::format(", deflected by {} {}", name(d.file), fit) : std::string());
+                         deflected ? fmt::format(", deflected by {} (a field d(t, s) on each face, degree {}, "
+                                                 "displacement form)",
+                                                 name(d.file), d.degree)
+                                   : std::string());
+    } else if (kind == io::WallKind::scattered) {
+      what = deflected ? fmt::format("the table {} interpolated over the wall (partition-of-unity RBF)", name(d.file))
+                       : fmt::format("its own undeformed nodes (no surface: the table {} moves them, interpolated "
+                                     "over the wall)",
+                                     name(d.file));
+    } else {
+      const std::string fit = fmt::format("(eq. 21, {} form, degree {})", geometry::to_string(d.form), d.degree);
+      if (d.faces.empty()) {
+        what = fmt::format("the curve through the FEM nodes of {}{}", name(d.file),
+                           deflected ? ", deflected by them " + fit : std::string());
+      } else {
+        what = fmt::format("CAD {} of {}{}", face_text(d.faces), name(*c.cad),
+                           deflected ? fmt::format(", deflected by {} {}", name(d.file), fit) : std::string());
+      }
     }
   }
-  const std::string where = dimension == 2 ? " in the x-y plane" : " about " + axis_text(*c.axis);
+  // A curve lies in the x-y plane (2D) or is the meridional curve about the case's axis (3D).
+  std::string where;
+  if (kind == io::WallKind::curve) {
+    if (dimension == 2) {
+      where = " in the x-y plane";
+    } else if (c.axis) {
+      where = " about " + axis_text(*c.axis);
+    }
+  }
   return fmt::format("the {} wall of the case ({}): {}{}", deflected ? "deflected" : "undeformed",
                      deform::to_string(spec.role), what, where);
 }
@@ -192,9 +213,14 @@ std::vector<CasePatchReference> case_references(const io::Case& c, const mesh::M
     const deform::PatchMotion& motion = setup.motions[i];
     if (!motion.shape) continue;
     const io::PatchSpec& spec = *c.find_patch(motion.patch);
+    // How io built the wall: set_up_case reports it for every patch with a table; without one
+    // the wall is a curve.
+    const auto built = std::find_if(setup.shapes.begin(), setup.shapes.end(),
+                                    [&](const io::ShapeReport& r) { return r.patch == motion.patch; });
+    const io::WallKind kind = built != setup.shapes.end() ? built->kind : io::WallKind::curve;
     references.push_back({motion.patch, single(std::make_unique<ShapeReference>(
                                             motion.shape, stage == CaseStage::deflected ? 1.0 : 0.0,
-                                            case_wall_text(c, spec, stage, case_mesh.dimension)))});
+                                            case_wall_text(c, spec, kind, stage, case_mesh.dimension)))});
   }
   return references;
 }

@@ -6,9 +6,11 @@
 // the nearest part. A patch with a deflection table is compared with the deflected shape
 // reconstructed through the FEM nodes (section 4.2, eq. 21), on the CAD curve or, without
 // faces, on the curve the nodes define; the mesh is then the deformed one. With a case file the
-// shapes are those hotmesh deform builds for the case (io::set_up_case), undeformed or deflected.
-// Shapes that are curves (in the x-y plane, or meridional curves of surfaces of revolution)
-// also measure the patch's faces, both ways (wall_deviation_report.hpp).
+// shapes are those hotmesh deform builds for the case (io::set_up_case), undeformed or deflected:
+// curves, CAD faces deflected by a field d(t, s) each, or a table interpolated over a wall
+// without CAD faces. Shapes that are curves (in the x-y plane, or meridional curves of surfaces
+// of revolution) and walls on CAD faces also measure the patch's faces, both ways
+// (wall_deviation_report.hpp).
 #pragma once
 
 #include <filesystem>
@@ -33,8 +35,9 @@ class ReferenceShape {
   virtual double distance(const geometry::Vec3& p) = 0;
   /// What the shape is, for reports: "CAD faces 1, 2: their meridional curve about ...".
   virtual std::string description() const = 0;
-  /// The two-sided distance between `faces` of `mesh` and the shape (wall_deviation_report.hpp);
-  /// nothing for a shape it is not defined for (CAD faces that are no surfaces of revolution).
+  /// The two-sided distance between `faces` of `mesh` and the shape (wall_deviation_report.hpp),
+  /// or why it is not measured; nothing for CAD faces given without a table that are no
+  /// surfaces of revolution (measured by their nodes only).
   virtual std::optional<WallCheck> wall(const mesh::Mesh& mesh, const geometry::WallFaces& faces) {
     (void)mesh;
     (void)faces;

@@ -21,7 +21,10 @@ std::string verdict(const DistanceCheck& p, double tolerance) {
 
 /// The faces' two-sided distance, and how it compares with the wall tolerance if there is one.
 std::string wall_verdict(const DistanceCheck& p, const std::optional<double>& wall_tolerance) {
-  if (!p.wall) return "faces: not measured (the reference is no curve nor surface of revolution)";
+  if (!p.wall) {
+    return "faces: not measured (CAD faces that are no surfaces of revolution, without a table: their nodes only)";
+  }
+  if (!p.wall->measured()) return "faces: " + wall_text(*p.wall);
   const std::string against = wall_tolerance ? fmt::format(", {} the wall tolerance {:.3e}",
                                                            p.wall->passed ? "within" : "ABOVE", *wall_tolerance)
                                              : std::string(" (no --wall-tol: reported only)");
@@ -168,9 +171,9 @@ std::string check_junit(const CheckResult& result) {
     } else if (!p.passed && p.wall) {
       const WallSide& w = p.wall->worst_side();
       x += fmt::format("      <failure type=\"wall tolerance\" message=\"the faces are {:.3e} from the reference shape at {} "
-                       "({}, face edge of nodes {}-{}), above the wall tolerance {:.3e}\">{}</failure>\n",
-                       p.wall->hausdorff, point_text(w.point),
-                       p.wall->worst, w.edge_nodes[0], w.edge_nodes[1], result.wall_tolerance.value_or(0.0), details);
+                       "({}, {}), above the wall tolerance {:.3e}\">{}</failure>\n",
+                       p.wall->hausdorff, point_text(w.point), p.wall->worst, xml(mesh_location(w)),
+                       result.wall_tolerance.value_or(0.0), details);
     }
     x += fmt::format("      <system-out>{}</system-out>\n", details);
     x += "    </testcase>\n";

@@ -23,8 +23,9 @@ struct DistanceCheck {
   double mean_distance = 0.0;
   std::int64_t worst_node = 0;  ///< node id in the mesh file
   geometry::Vec3 worst_point;
-  /// The two-sided distance between the faces and the reference shape; nothing for a shape it
-  /// is not defined for (CAD faces that are no surfaces of revolution).
+  /// The two-sided distance between the faces and the reference shape (or why it was not
+  /// measured: a wall without a surface); nothing for CAD faces given without a table that are
+  /// no surfaces of revolution.
   std::optional<WallCheck> wall;
   bool passed = true;           ///< max_distance <= tolerance, and the wall's within the wall tolerance
 };

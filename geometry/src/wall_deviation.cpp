@@ -311,7 +311,7 @@ class Measure {
       const auto m = std::isfinite(count) ? static_cast<std::size_t>(count) : std::size_t{1};
       for (std::size_t k = 1; k <= m; ++k) t.push_back(a + (b - a) * static_cast<double>(k) / static_cast<double>(m));
     }
-    result.curve_samples = t.size();
+    result.shape_samples = t.size();
 
     WallDeviationPoint& worst = result.shape_to_mesh;
     double best = -1.0;

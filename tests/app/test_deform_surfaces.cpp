@@ -2,9 +2,13 @@
 // channel whose floor takes an x, y, z table without CAD and without an axis (prescribed, the
 // table interpolated over the floor), and on a CAD face in B-spline form (prescribed and
 // sliding, the deflection field fitted on the face); a sliding floor without faces is refused.
+// The floor on a CAD face is measured both ways against its deflected face, in report.json and
+// by `hotmesh check --case` (which describes the wall as deform builds it); the floor without CAD
+// is said not to be measured, and why.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -223,6 +227,144 @@ TEST(DeformSurfaces, NodesOnACreaseBetweenTwoFacesSlideAlongIt) {
   EXPECT_EQ(features[0]["nodes"].size(), 5u);
   EXPECT_NEAR(features[0]["angle_deg"].get<double>(), 30.0, 1e-6);
   EXPECT_LT(features[0]["distance"].get<double>(), 1e-9);
+}
+
+/// `hotmesh check MESH --case case.yaml --format json` plus `extra`: its exit code, its report
+/// and the text it prints on its own.
+struct CheckRun {
+  int exit_code = -1;
+  nlohmann::json report;
+  std::string text;
+};
+CheckRun check(const test::TempDir& dir, const std::filesystem::path& mesh, const std::string& extra = "") {
+  const std::string arguments =
+      "check " + shell_quote(mesh.string()) + " --case " + shell_quote((dir / "case.yaml").string()) + extra;
+  CheckRun run;
+  const test::CommandResult json = hotmesh("-q " + arguments + " --format json -o " + shell_quote((dir / "check.json").string()));
+  run.exit_code = json.exit_code;
+  run.report = read_json(dir / "check.json");
+  run.text = hotmesh(arguments).output;
+  return run;
+}
+
+// A floor on a CAD face is measured against its deflected face S + d, both ways (report.json's
+// wall_deviations, hotmesh check's faces line). A linear deflection keeps the face planar and
+// the fit reproduces it, so the quads are on it: round-off. The bulge curves it: the quads are
+// off it by their faceting, a few 1e-3 (the sine's sagitta over a quarter-wide cell at the
+// hump, 0.08 x 0.07 = 5.6e-3), which --wall-tol fails when tighter. A floor node raised by 0.05
+// is found, in a face holding it.
+TEST(DeformSurfaces, AFloorOnACadFaceIsMeasuredBothWaysAgainstItsDeflectedFace) {
+  test::TempDir dir;
+  const std::string floor = "{role: prescribed, deflection: {file: floor.csv, faces: [1], degree: 3}}";
+  write_channel(dir.path(), tilt);
+  const DeformRun flat = deform(dir, channel_case(floor, "cad: floor.step\n"));
+  ASSERT_EQ(flat.result.exit_code, 0) << flat.result.output;
+  const auto flat_report = read_json(flat.out / "report.json");
+  ASSERT_EQ(flat_report["wall_deviations"].size(), 1u);
+  const auto& planar = flat_report["wall_deviations"][0];
+  EXPECT_EQ(planar["patch"], "floor");
+  EXPECT_EQ(planar["shape"], "faces");
+  EXPECT_EQ(planar["measured"], true);
+  EXPECT_EQ(planar["faces"], 64);
+  EXPECT_LT(planar["hausdorff"].get<double>(), 1e-9);
+  EXPECT_GT(planar["shape_samples"].get<int>(), 64 * 16);
+
+  std::filesystem::remove_all(flat.out);
+  write_channel(dir.path(), bulge);
+  const DeformRun hump = deform(dir, channel_case(floor, "cad: floor.step\n"));
+  ASSERT_EQ(hump.result.exit_code, 0) << hump.result.output;
+  const auto report = read_json(hump.out / "report.json");
+  ASSERT_EQ(report["wall_deviations"].size(), 1u);
+  const auto& wall = report["wall_deviations"][0];
+  EXPECT_EQ(wall["shape"], "faces");
+  EXPECT_EQ(wall["stage"], 1.0);
+  const double hausdorff = wall["hausdorff"].get<double>();
+  EXPECT_GT(hausdorff, 3e-3);
+  EXPECT_LT(hausdorff, 9e-3);
+  for (const char* side : {"mesh_to_shape", "shape_to_mesh"}) {
+    EXPECT_EQ(wall[side]["cad_face"], 1) << side;
+    EXPECT_EQ(wall[side]["face_nodes"].size(), 4u) << side;
+    EXPECT_GT(wall[side]["distance"].get<double>(), 1e-3) << side;  // both ways: faceting
+  }
+  // Near the hump's crest (x = 2, y = 0.5), between nodes across the floor (y = 0.25 ... 0.75).
+  const auto& worst = wall["worst_point"];
+  EXPECT_NEAR(worst[0].get<double>(), 2.0, 0.75);
+  EXPECT_GT(std::abs(4.0 * worst[1].get<double>() - std::round(4.0 * worst[1].get<double>())), 0.1);
+
+  // hotmesh check on the deformed mesh against the case: the same measure, and the wall
+  // described as deform builds it (no axis: the case has none).
+  const CheckRun checked = check(dir, hump.out / "deformed.msh");
+  ASSERT_EQ(checked.exit_code, 0) << checked.text;
+  const auto& patch = checked.report["patches"][0];
+  EXPECT_EQ(patch["patch"], "floor");
+  EXPECT_LT(patch["max_distance"].get<double>(), 1e-9);  // prescribed: the nodes on the face
+  EXPECT_NEAR(patch["wall"]["hausdorff"].get<double>(), hausdorff, 1e-9);
+  EXPECT_EQ(patch["wall"]["passed"], true);
+  EXPECT_EQ(patch["reference"], "the deflected wall of the case (prescribed): CAD face 1 of floor.step, deflected by "
+                                "floor.csv (a field d(t, s) on each face, degree 3, displacement form)");
+  EXPECT_THAT(checked.text, HasSubstr(fmt::format("faces: two-sided distance {:.3e} over 64 faces",
+                                                  patch["wall"]["hausdorff"].get<double>())));
+  EXPECT_THAT(checked.text, ::testing::Not(HasSubstr("axis")));
+  EXPECT_THAT(checked.text, ::testing::Not(HasSubstr("not measured")));
+  const CheckRun tight = check(dir, hump.out / "deformed.msh", fmt::format(" --wall-tol {:.3e}", 0.5 * hausdorff));
+  EXPECT_EQ(tight.exit_code, 1) << tight.text;
+  EXPECT_EQ(tight.report["patches"][0]["wall"]["passed"], false);
+  EXPECT_THAT(tight.text, HasSubstr("FAIL floor"));
+  EXPECT_EQ(check(dir, hump.out / "deformed.msh", fmt::format(" --wall-tol {:.3e}", 2.0 * hausdorff)).exit_code, 0);
+
+  // The case's own mesh against the undeformed face (flat, the mesh's floor on it).
+  const CheckRun cold = check(dir, dir / "box.msh");
+  ASSERT_EQ(cold.exit_code, 0) << cold.text;
+  EXPECT_EQ(cold.report["patches"][0]["reference"],
+            "the undeformed wall of the case (prescribed): CAD face 1 of floor.step");
+  EXPECT_LT(cold.report["patches"][0]["wall"]["hausdorff"].get<double>(), 1e-12);
+
+  // A floor node raised by 0.05: the faces are that far from the face, at the node.
+  mesh::Mesh moved = io::read_gmsh(hump.out / "deformed.msh");
+  const mesh::Mesh box = io::read_gmsh(dir / "box.msh");
+  const auto& on_floor = box.find_patch("floor")->nodes;
+  const mesh::NodeId node = *std::min_element(on_floor.begin(), on_floor.end(), [&](mesh::NodeId a, mesh::NodeId b) {
+    const geometry::Vec3 at{1.5, 0.5, 0.0};  // inside the floor, on the hump's flank
+    return distance(box.points[static_cast<std::size_t>(a)], at) < distance(box.points[static_cast<std::size_t>(b)], at);
+  });
+  geometry::Vec3& p = moved.points[static_cast<std::size_t>(node)];
+  p.z += 0.05;
+  io::write_gmsh(dir / "moved.msh", moved);
+  const CheckRun bumped = check(dir, dir / "moved.msh");
+  const auto& bump = bumped.report["patches"][0]["wall"];
+  EXPECT_NEAR(bump["mesh_to_shape"]["distance"].get<double>(), 0.05, 2e-3);  // along the face's normal
+  EXPECT_EQ(bump["worst"], "mesh_to_shape");
+  EXPECT_LT(std::hypot(bump["worst_point"][0].get<double>() - p.x, bump["worst_point"][1].get<double>() - p.y,
+                       bump["worst_point"][2].get<double>() - p.z),
+            1e-9);
+  const auto& holding = bump["mesh_to_shape"]["face_nodes"];
+  EXPECT_NE(std::find(holding.begin(), holding.end(), moved.node_id(node)), holding.end());
+}
+
+// A floor without CAD moves by the table interpolated over it: there is no surface to measure
+// its faces against, and report.json and hotmesh check say so.
+TEST(DeformSurfaces, AFloorWithoutCadIsSaidNotToBeMeasured) {
+  test::TempDir dir;
+  write_channel(dir.path(), bulge);
+  const DeformRun r = deform(dir, channel_case("{role: prescribed, deflection: {file: floor.csv}}"));
+  ASSERT_EQ(r.result.exit_code, 0) << r.result.output;
+  const auto report = read_json(r.out / "report.json");
+  ASSERT_EQ(report["wall_deviations"].size(), 1u);
+  const auto& wall = report["wall_deviations"][0];
+  EXPECT_EQ(wall["patch"], "floor");
+  EXPECT_EQ(wall["shape"], "scattered");
+  EXPECT_EQ(wall["measured"], false);
+  EXPECT_TRUE(wall["hausdorff"].is_null());
+  EXPECT_EQ(wall["reason"], "the wall has no surface, only the table's interpolated displacement");
+
+  const CheckRun checked = check(dir, r.out / "deformed.msh", " --wall-tol 1e-6");
+  EXPECT_EQ(checked.exit_code, 0) << checked.text;  // not measured: the wall tolerance does not apply
+  EXPECT_THAT(checked.text,
+              HasSubstr("faces: not measured: the wall has no surface, only the table's interpolated displacement"));
+  EXPECT_EQ(checked.report["patches"][0]["reference"],
+            "the deflected wall of the case (prescribed): the table floor.csv interpolated over the wall "
+            "(partition-of-unity RBF)");
+  EXPECT_EQ(checked.report["patches"][0]["wall"]["measured"], false);
 }
 
 TEST(DeformSurfaces, SlidingFloorWithoutFacesIsRefused) {

@@ -93,7 +93,7 @@ TEST(WallDeviation, AWallOnAPiecewiseLinearCurveIsOnIt) {
   EXPECT_LT(w.hausdorff, 1e-14);
   EXPECT_NEAR(w.first_parameter, 0.0, 1e-12);
   EXPECT_NEAR(w.last_parameter, 4.0, 1e-12);
-  EXPECT_GT(w.curve_samples, 4u * 8u);  // at least every kink and eight per edge
+  EXPECT_GT(w.shape_samples, 4u * 8u);  // at least every kink and eight per edge
 
   // Without the node on the kink (1.5, 0.8) the wall cuts it.
   std::vector<Vec2> cut = nodes;
