@@ -379,11 +379,13 @@ class SurfaceMeasure {
       if (corners.size() < 3) {
         throw std::invalid_argument("wall_deviation: a face of a wall on faces needs 3 or more corners");
       }
-      for (std::size_t k = 0; k < corners.size(); ++k) {
-        const std::int32_t a = corners[k], b = corners[(k + 1) % corners.size()];
-        if (a < 0 || static_cast<std::size_t>(a) >= points.size()) {
+      for (const std::int32_t c : corners) {
+        if (c < 0 || static_cast<std::size_t>(c) >= points.size()) {
           throw std::invalid_argument("wall_deviation: a face corner is not a point of the wall");
         }
+      }
+      for (std::size_t k = 0; k < corners.size(); ++k) {
+        const std::int32_t a = corners[k], b = corners[(k + 1) % corners.size()];
         keys.push_back(key(a, b));
         lengths.push_back(distance(points[static_cast<std::size_t>(a)], points[static_cast<std::size_t>(b)]));
         all.add(points[static_cast<std::size_t>(a)]);
