@@ -419,16 +419,18 @@ class BoundaryBuilder {
                    NodeId n, const std::vector<std::shared_ptr<const geometry::BoundaryShape>>& sides) {
     const Vec3& x = x0_[static_cast<std::size_t>(n)];
     std::vector<int> faces;
-    std::vector<Vec3> normals;
-    for (const auto& side : sides) {
-      const geometry::ShapePoint q = side->project(x, 0.0);
-      faces.push_back(q.parameter.face);
-      normals.push_back(q.normal);
-    }
-    double angle = 0.0;
-    for (std::size_t a = 0; a < normals.size(); ++a) {
-      for (std::size_t b = a + 1; b < normals.size(); ++b) {
-        angle = std::max(angle, std::acos(std::min(1.0, std::abs(dot(normals[a], normals[b])))));
+    double angle = 0.0;  // undeformed or fully deflected, as ShapeCrease::angle
+    for (const double lambda : {0.0, 1.0}) {
+      std::vector<Vec3> normals;
+      for (const auto& side : sides) {
+        const geometry::ShapePoint q = side->project(x, lambda);
+        if (lambda == 0.0) faces.push_back(q.parameter.face);
+        normals.push_back(q.normal);
+      }
+      for (std::size_t a = 0; a < normals.size(); ++a) {
+        for (std::size_t b = a + 1; b < normals.size(); ++b) {
+          angle = std::max(angle, std::acos(std::min(1.0, std::abs(dot(normals[a], normals[b])))));
+        }
       }
     }
     std::vector<const geometry::BoundaryShape*> shapes;
@@ -440,6 +442,24 @@ class BoundaryBuilder {
     WallCrease& crease = setup_.creases[it->second];
     crease.angle = std::max(crease.angle, angle);
     crease.nodes.push_back(n);
+  }
+
+  /// Adds a crease the mesh's lines miss, and the nodes given it, to the wall's record of that
+  /// crease (where nodes lie on it already, slide_along_creases made one).
+  void note_crease_given_nodes(const std::string& patch, const geometry::BoundaryShape& wall, const HeldFeature& held) {
+    if (held.nodes.empty() && held.unheld_edges == 0) return;  // the nodes on it hold it from the start
+    const std::vector<int> key{held.crease->faces[0], held.crease->faces[1]};
+    auto it = std::find_if(setup_.creases.begin(), setup_.creases.end(),
+                           [&](const WallCrease& c) { return c.patch == patch && c.faces == key; });
+    if (it == setup_.creases.end()) {
+      setup_.creases.push_back({patch, key, held.crease->angle, {}, {}});
+      it = std::prev(setup_.creases.end());
+    }
+    it->wall = &wall;
+    it->line = *held.crease;
+    it->nodes.insert(it->nodes.end(), held.nodes.begin(), held.nodes.end());
+    it->largest_offset = std::max(it->largest_offset, held.largest_offset);
+    it->unheld_edges += held.unheld_edges;
   }
 
   /// The sliding patch's motion whose shape this is, if any.
@@ -489,13 +509,13 @@ class BoundaryBuilder {
   /// Sliding node n, given the corner line at `corner` of `wall`, slides on the two paths that
   /// take it onto that line (CornerPath): in the line's cross-section it is led onto the line,
   /// along the line it is free.
-  void follow_corner_line(NodeId n, const geometry::BoundaryShape& wall, double corner) {
+  void follow_corner_line(NodeId n, const geometry::BoundaryShape& wall, const CornerLine& line) {
     SlidingNode& s = setup_.sliding[static_cast<std::size_t>(sliding_index_[static_cast<std::size_t>(n)])];
     for (std::size_t d = 0; d < 2; ++d) {
-      auto path = std::make_shared<const CornerPath>(wall, corner, x0_[static_cast<std::size_t>(n)], static_cast<int>(d));
+      auto path = std::make_shared<const CornerPath>(wall, line, x0_[static_cast<std::size_t>(n)], static_cast<int>(d));
       s.shapes[d] = path.get();
       s.segments[d] = {};
-      s.hints[d] = {.t = corner};
+      s.hints[d] = {.t = line.corner};
       setup_.corner_paths.push_back(std::move(path));
     }
     s.shape_count = 2;
@@ -518,7 +538,18 @@ class BoundaryBuilder {
                  return std::abs(dot(q - plane.origin, plane.normal)) <= on_plane;
                });
       };
-      WallFeaturePlan plan = plan_wall_features(mesh_, x0_, patch, *m.shape, m.features.angle, can_hold);
+      const auto planes_of = [&](NodeId n) {
+        std::vector<SlipPlane> planes;
+        const int i = sliding_index_[static_cast<std::size_t>(n)];
+        if (i < 0) return planes;
+        const SlidingNode& s = setup_.sliding[static_cast<std::size_t>(i)];
+        for (const int k : std::span(s.planes).first(static_cast<std::size_t>(s.plane_count))) {
+          planes.push_back(setup_.slip_planes[static_cast<std::size_t>(k)]);
+        }
+        return planes;
+      };
+      WallFeaturePlan plan =
+          plan_wall_features(mesh_, x0_, patch, *m.shape, m.features.angle, m.features.creases, can_hold, planes_of);
       for (std::size_t k = 0; k < patch.nodes.size() && !plan.features.empty(); ++k) {
         const int i = sliding_index_[static_cast<std::size_t>(patch.nodes[k])];
         if (i < 0) continue;
@@ -530,7 +561,7 @@ class BoundaryBuilder {
         for (NodeId n : held.nodes) {
           if (mesh_.dimension == 3) {  // a corner line: the node goes onto it and slides along it
             holds[static_cast<std::size_t>(n)] = kSlidesAlongCorner;
-            follow_corner_line(n, *m.shape, held.feature.parameter);
+            follow_corner_line(n, *m.shape, {held.feature.parameter, held.crease});
           } else {  // a corner point: the node is prescribed onto it
             holds[static_cast<std::size_t>(n)] = kPrescribedOntoCorner;
             setup_.prescribed.push_back({n, {.t = held.feature.parameter}, m.shape.get(), true});
@@ -538,6 +569,10 @@ class BoundaryBuilder {
           }
         }
         if (!held.note.empty()) setup_.notes.push_back(held.note);
+        if (held.crease) {
+          note_crease_given_nodes(patch.name, *m.shape, held);
+          continue;
+        }
         setup_.corners.push_back({patch.name, m.shape.get(), x0_[static_cast<std::size_t>(patch.nodes.front())], std::move(held)});
       }
     }

@@ -34,12 +34,6 @@ struct PrescribedNode {
   bool reaches_shape = false;
 };
 
-/// The plane a slip patch keeps its nodes on (u . n = 0, eq. 11).
-struct SlipPlane {
-  Vec3 origin;
-  Vec3 normal;  ///< unit
-};
-
 /// A node on a sliding boundary (section 4): u = u0s + us (eq. 13), u0s the forcing
 /// displacement of the increment, us tangential to the deformed boundary.
 struct SlidingNode {
@@ -84,9 +78,16 @@ struct WallCorner {
 struct WallCrease {
   std::string patch;
   std::vector<int> faces;  ///< the wall's face indices that meet there, increasing
-  double angle = 0.0;      ///< radians between their normals, the largest at its nodes
-  std::vector<NodeId> nodes;
+  double angle = 0.0;      ///< radians between their normals, the largest at its nodes, undeformed or deflected
+  std::vector<NodeId> nodes;  ///< the nodes on it from the start, then those given it
   std::vector<const geometry::BoundaryShape*> sides;  ///< the faces as shapes (in corner_paths)
+  /// Where the mesh's lines miss the crease (the corner pass): the wall and the crease, the
+  /// farthest of the nodes given it (the last of `nodes`) from it before the pass, and the
+  /// wall edges across it left without a node on it.
+  const geometry::BoundaryShape* wall = nullptr;
+  geometry::ShapeCrease line;
+  double largest_offset = 0.0;
+  std::size_t unheld_edges = 0;
 };
 
 struct BoundarySetup {

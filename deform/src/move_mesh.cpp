@@ -130,12 +130,17 @@ class Motion {
       result_.features.push_back(std::move(f));
     }
     for (const detail::WallCrease& c : setup_.creases) {
-      WallFeature f{c.patch, 0.0, c.angle, result_.points[static_cast<std::size_t>(c.nodes.front())], c.nodes,
-                    c.nodes.size(), 0.0, 0.0, 0, c.faces};
+      const Vec3 reference = c.nodes.empty() ? Vec3{} : result_.points[static_cast<std::size_t>(c.nodes.front())];
+      WallFeature f{c.patch,      0.0, c.angle, reference, c.nodes, c.nodes.size(), c.largest_offset, 0.0, c.unheld_edges,
+                    c.faces};
+      if (c.wall != nullptr) f.point = c.wall->crease_point(c.line, reference, result_.lambda_reached).point;
       for (NodeId n : c.nodes) {
         const Vec3& x = result_.points[static_cast<std::size_t>(n)];
         for (const geometry::BoundaryShape* side : c.sides) {
           f.distance = std::max(f.distance, side->project(x, result_.lambda_reached).distance);
+        }
+        if (c.sides.empty()) {
+          f.distance = std::max(f.distance, distance(x, c.wall->crease_point(c.line, x, result_.lambda_reached).point));
         }
       }
       result_.features.push_back(std::move(f));
@@ -424,15 +429,28 @@ class FinalStage final : public geometry::BoundaryShape {
     return shape_->at(where, 1.0, reference);
   }
   std::vector<geometry::ShapeFeature> features(double min_angle) const override { return shape_->features(min_angle); }
+  std::vector<std::shared_ptr<const geometry::BoundaryShape>> crease_sides(const geometry::ShapeParameter& where,
+                                                                         double min_angle) const override {
+    auto sides = shape_->crease_sides(where, min_angle);
+    for (auto& side : sides) side = std::make_shared<const FinalStage>(std::move(side));
+    return sides;
+  }
+  std::vector<geometry::ShapeCrease> creases(double min_angle) const override { return shape_->creases(min_angle); }
+  geometry::CreasePoint crease_point(const geometry::ShapeCrease& crease, const Vec3& p,
+                                     double /*lambda*/) const override {
+    return shape_->crease_point(crease, p, 1.0);
+  }
 
  private:
   std::shared_ptr<const geometry::BoundaryShape> shape_;
 };
 
-/// Whether a sliding wall has corners for nodes to hold.
+/// Whether a sliding wall has corners (or creases) for nodes to hold.
 bool has_corners(std::span<const PatchMotion> patches) {
   return std::any_of(patches.begin(), patches.end(), [](const PatchMotion& m) {
-    return m.role == BoundaryRole::sliding && m.features.enabled && m.shape && !m.shape->features(m.features.angle).empty();
+    return m.role == BoundaryRole::sliding && m.features.enabled && m.shape &&
+           (!m.shape->features(m.features.angle).empty() ||
+            (m.features.creases && !m.shape->creases(m.features.angle).empty()));
   });
 }
 

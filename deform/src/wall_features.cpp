@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <unordered_map>
 #include <utility>
@@ -52,11 +53,16 @@ namespace {
 class CornerPlanner {
  public:
   CornerPlanner(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch, const geometry::BoundaryShape& shape,
-                std::vector<geometry::ShapeFeature> corners)
-      : mesh_(mesh), x0_(x0), patch_(patch), shape_(shape), count_(patch.nodes.size()) {
+                std::vector<geometry::ShapeFeature> corners, std::vector<geometry::ShapeCrease> creases,
+                PlanesOf planes_of)
+      : mesh_(mesh), x0_(x0), patch_(patch), shape_(shape), planes_of_(std::move(planes_of)), count_(patch.nodes.size()) {
     for (const auto& c : corners) {
-      plan_.features.push_back({c, {}, {}, 0.0, 0, {}});
+      plan_.features.push_back({c, {}, {}, {}, 0.0, 0, {}});
       corner_parameters_.push_back(c.parameter);
+    }
+    for (const auto& c : creases) {
+      crease_of_[face_pair(c.faces[0], c.faces[1])] = plan_.features.size();
+      plan_.features.push_back({{0.0, c.angle}, c, {}, {}, 0.0, 0, {}});
     }
     plan_.segments.assign(count_, {});
     holds_.assign(count_, -1);
@@ -66,18 +72,22 @@ class CornerPlanner {
   /// Where each node of the wall lies on the shape before the motion.
   void locate_nodes() {
     plan_.parameters.resize(count_);
+    faces_.resize(count_);
     mesh::LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
 #pragma omp parallel for schedule(dynamic, 64) if (static_cast<std::ptrdiff_t>(count_) >= mesh::kParallelProjections)
     for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(count_); ++i) {
       errors.run([&] {
         const auto k = static_cast<std::size_t>(i);
-        plan_.parameters[k] = shape_.project(x(k), 0.0).parameter.t;
+        const geometry::ShapeParameter where = shape_.project(x(k), 0.0).parameter;
+        plan_.parameters[k] = where.t;
+        faces_[k] = where.face;
       });
     }
     errors.rethrow();
   }
 
-  /// The wall's edges, and those that cross a corner, nearest first.
+  /// The wall's edges, and those that cross a corner (ends on either side of its parameter)
+  /// or a crease (ends on its two faces), nearest first.
   void find_crossings() {
     std::unordered_map<NodeId, std::size_t> index;
     for (std::size_t k = 0; k < count_; ++k) index[patch_.nodes[k]] = k;
@@ -92,6 +102,11 @@ class CornerPlanner {
       for (; it != corner_parameters_.end() && *it <= hi; ++it) {
         const auto f = static_cast<std::size_t>(it - corner_parameters_.begin());
         crossings_.push_back({f, a, b, std::min(offset(f, a), offset(f, b))});
+      }
+      if (faces_[a] == faces_[b]) continue;
+      const auto crease = crease_of_.find(face_pair(faces_[a], faces_[b]));
+      if (crease != crease_of_.end()) {
+        crossings_.push_back({crease->second, a, b, std::min(offset(crease->second, a), offset(crease->second, b))});
       }
     }
     std::stable_sort(crossings_.begin(), crossings_.end(),
@@ -133,12 +148,13 @@ class CornerPlanner {
   void note_unheld_corners() {
     for (HeldFeature& held : plan_.features) {
       if (held.unheld_edges == 0) continue;
-      const Vec3 p = shape_.at({.t = held.feature.parameter}, 1.0, x(0)).point;
+      const Vec3 p = held.crease ? shape_.crease_point(*held.crease, x(0), 1.0).point
+                                 : shape_.at({.t = held.feature.parameter}, 1.0, x(0)).point;
       held.note = fmt::format(
-          "patch '{}': the corner at ({:.6g}, {:.6g}, {:.6g}) (turning {:.1f} degrees) has no node on {} of the wall "
+          "patch '{}': the {} at ({:.6g}, {:.6g}, {:.6g}) (turning {:.1f} degrees) has no node on {} of the wall "
           "edges that cross it: their ends hold other corners, lie on other patches, or would squash a wall cell "
           "(two corners within one cell); the wall cuts the corner there",
-          patch_.name, p.x, p.y, p.z, held.feature.angle * 180.0 / std::numbers::pi, held.unheld_edges);
+          patch_.name, held.crease ? "crease between two faces nearest" : "corner", p.x, p.y, p.z, held.feature.angle * 180.0 / std::numbers::pi, held.unheld_edges);
     }
   }
 
@@ -155,9 +171,29 @@ class CornerPlanner {
 
  private:
   const Vec3& x(std::size_t k) const { return x0_[static_cast<std::size_t>(patch_.nodes[k])]; }
-  /// Corner f's point in the meridional plane of node k (in 2D: the point).
+  /// Corner f's point in the meridional plane of node k (in 2D: the point); a crease's point
+  /// nearest node k, or where the crease crosses the slip plane node k is held on.
   Vec3 corner_at(std::size_t f, std::size_t k) const {
-    return shape_.at({.t = plan_.features[f].feature.parameter}, 0.0, x(k)).point;
+    const HeldFeature& held = plan_.features[f];
+    if (!held.crease) return shape_.at({.t = held.feature.parameter}, 0.0, x(k)).point;
+    geometry::CreasePoint c = shape_.crease_point(*held.crease, x(k), 0.0);
+    const std::vector<SlipPlane> planes = planes_of_(patch_.nodes[k]);
+    if (planes.empty()) return c.point;
+    // Along the crease's tangent onto the plane, and back onto the crease: Newton's method
+    // for the crossing, exact in a few steps where the crease is smooth.
+    constexpr int kSteps = 8;
+    const SlipPlane& plane = planes.front();
+    for (int step = 0; step < kSteps; ++step) {
+      const Vec3 along = cross(c.normals[0], c.normals[1]);
+      const double slope = dot(along, plane.normal);
+      const double off = dot(plane.origin - c.point, plane.normal);
+      if (std::abs(slope) <= 1e-3 * norm(along)) break;  // the crease runs along the plane
+      c = shape_.crease_point(*held.crease, c.point + (off / slope) * along, 0.0);
+    }
+    return c.point;
+  }
+  static std::uint64_t face_pair(int a, int b) {
+    return (std::uint64_t{static_cast<std::uint32_t>(std::min(a, b))} << 32) | static_cast<std::uint32_t>(std::max(a, b));
   }
   double offset(std::size_t f, std::size_t k) const { return distance(x(k), corner_at(f, k)); }
   Vec3 position(std::size_t k) const { return holds_[k] >= 0 ? moved_[k] : x(k); }
@@ -172,9 +208,12 @@ class CornerPlanner {
   std::span<const Vec3> x0_;
   const Patch& patch_;
   const geometry::BoundaryShape& shape_;
+  PlanesOf planes_of_;
   std::size_t count_;
   WallFeaturePlan plan_;
-  std::vector<double> corner_parameters_;
+  std::vector<double> corner_parameters_;  ///< of the curve's corners, the first features
+  std::unordered_map<std::uint64_t, std::size_t> crease_of_;  ///< face pair: its crease's feature
+  std::vector<int> faces_;  ///< per node (index in the patch): the face it lies on
   std::vector<std::vector<std::size_t>> neighbours_;  ///< per node (index in the patch): its wall neighbours
   std::vector<Crossing> crossings_;
   std::vector<int> holds_;    ///< per node: the corner it holds, or -1
@@ -184,10 +223,14 @@ class CornerPlanner {
 }  // namespace
 
 WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
-                                   const geometry::BoundaryShape& shape, double min_angle, const CanHold& can_hold) {
+                                   const geometry::BoundaryShape& shape, double min_angle, bool creases,
+                                   const CanHold& can_hold, const PlanesOf& planes_of) {
   std::vector<geometry::ShapeFeature> corners = shape.features(min_angle);
-  if (corners.empty() || patch.nodes.empty()) return {{}, {}, std::vector<geometry::ParameterRange>(patch.nodes.size())};
-  CornerPlanner planner(mesh, x0, patch, shape, std::move(corners));
+  std::vector<geometry::ShapeCrease> lines = creases ? shape.creases(min_angle) : std::vector<geometry::ShapeCrease>{};
+  if ((corners.empty() && lines.empty()) || patch.nodes.empty()) {
+    return {{}, {}, std::vector<geometry::ParameterRange>(patch.nodes.size())};
+  }
+  CornerPlanner planner(mesh, x0, patch, shape, std::move(corners), std::move(lines), planes_of);
   planner.locate_nodes();
   planner.find_crossings();
   planner.give_corners(can_hold);
@@ -200,20 +243,29 @@ namespace {
 constexpr double kOneSided = 1e-9;
 }  // namespace
 
-CornerPath::CornerPath(const geometry::BoundaryShape& wall, double corner, const Vec3& start, int direction)
-    : wall_(wall), corner_(corner), direction_(direction) {
+CornerPath::CornerPath(const geometry::BoundaryShape& wall, CornerLine line, const Vec3& start, int direction)
+    : wall_(wall), line_(std::move(line)), direction_(direction) {
   const Section s = section(start);
   for (std::size_t i = 0; i < 2; ++i) offset_[i] = dot(start - s.corner, s.axes[i]);
 }
 
 CornerPath::Section CornerPath::section(const Vec3& p) const {
   Section s;
-  s.corner = wall_.at({.t = corner_}, 1.0, p).point;
-  // The wall's normals on either side of the corner span its cross-section (they differ by
-  // the corner's angle); Gram-Schmidt makes them an orthonormal pair.
-  const double step = kOneSided * (1.0 + std::abs(corner_));
-  const Vec3 a = wall_.at({.t = corner_ - step}, 1.0, p).normal;
-  const Vec3 b = wall_.at({.t = corner_ + step}, 1.0, p).normal;
+  Vec3 a, b;
+  // The wall's normals on either side of the line span its cross-section (they differ by the
+  // corner's angle); Gram-Schmidt makes them an orthonormal pair.
+  if (line_.crease) {
+    const geometry::CreasePoint c = wall_.crease_point(*line_.crease, p, 1.0);
+    s.corner = c.point;
+    a = c.normals[0];
+    b = c.normals[1];
+  } else {
+    const double corner = line_.corner;
+    s.corner = wall_.at({.t = corner}, 1.0, p).point;
+    const double step = kOneSided * (1.0 + std::abs(corner));
+    a = wall_.at({.t = corner - step}, 1.0, p).normal;
+    b = wall_.at({.t = corner + step}, 1.0, p).normal;
+  }
   s.axes[0] = a / norm(a);
   const Vec3 c = b - dot(b, s.axes[0]) * s.axes[0];
   s.axes[1] = c / norm(c);
@@ -228,7 +280,7 @@ geometry::ShapePoint CornerPath::project(const Vec3& p, double lambda, const geo
   q.point = s.corner + fade * (offset_[0] * s.axes[0] + offset_[1] * s.axes[1]);
   q.distance = distance(p, q.point);
   q.normal = s.axes[static_cast<std::size_t>(direction_)];
-  q.parameter = {.t = corner_};
+  q.parameter = {.t = line_.corner};
   return q;
 }
 

@@ -12,10 +12,16 @@
 // its length (two corners within one cell): the corner is then reported as not held.
 // The other sliding nodes of the wall keep to their segment: the parameter interval between
 // the corners on either side of them.
+// A wall made of faces has creases instead (issue 20 item 2 on faces): edges where two faces
+// meet at an angle. Where the mesh has nodes on a crease they slide along it from the start
+// (BoundaryShape::crease_sides); where its lines miss it, the crease is crossed by the wall
+// edges whose ends lie on its two faces, and one end of each is given it as a corner circle
+// is: that node is led onto the crease and then slides along it.
 #pragma once
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,7 +32,10 @@ namespace hotmesh::deform::detail {
 
 /// One corner of a sliding wall and the nodes that hold it.
 struct HeldFeature {
-  geometry::ShapeFeature feature;
+  geometry::ShapeFeature feature;  ///< for a crease: its angle only
+  /// A crease between two faces of the wall (a line the mesh's lines may miss) instead of a
+  /// corner of a curve.
+  std::optional<geometry::ShapeCrease> crease;
   std::vector<NodeId> nodes;   ///< the nodes given the corner (free sliding nodes)
   std::vector<NodeId> held_by_role;  ///< nodes of other roles that lie on it already
   double largest_offset = 0.0;  ///< largest distance of a node from the corner before the motion
@@ -42,16 +51,23 @@ struct WallFeaturePlan {
   std::vector<geometry::ParameterRange> segments;
 };
 
-/// The way a node given a corner line (a circle of a surface of revolution) goes onto it in
-/// the corner pass: in the corner's cross-section (the meridional plane through the node) it
-/// moves from where it starts, `start`, straight onto the corner as the stage goes from 0 to 1;
-/// along the line it is free. Seen as a shape, it constrains one direction of that
-/// cross-section (`direction` 0 or 1, of an orthonormal pair spanning it): a node sliding on
-/// both directions' paths slides along the corner line only. `wall` is the wall at its final
-/// stage (the pass's walls), `corner` the corner's parameter.
+/// A line of a wall that nodes are led onto: a corner of its meridional curve (a circle about
+/// the axis, at parameter `corner`) or a crease between two of its faces.
+struct CornerLine {
+  double corner = 0.0;
+  std::optional<geometry::ShapeCrease> crease;
+};
+
+/// The way a node given a corner line (a circle of a surface of revolution, or a crease of a
+/// wall made of faces) goes onto it in the corner pass: in the line's cross-section through
+/// the node (for a circle, the meridional plane) it moves from where it starts, `start`,
+/// straight onto the line as the stage goes from 0 to 1; along the line it is free. Seen as a
+/// shape, it constrains one direction of that cross-section (`direction` 0 or 1, of an
+/// orthonormal pair spanning it): a node sliding on both directions' paths slides along the
+/// line only. `wall` is the wall at its final stage (the pass's walls).
 class CornerPath final : public geometry::BoundaryShape {
  public:
-  CornerPath(const geometry::BoundaryShape& wall, double corner, const Vec3& start, int direction);
+  CornerPath(const geometry::BoundaryShape& wall, CornerLine line, const Vec3& start, int direction);
 
   geometry::ShapePoint project(const Vec3& p, double lambda, const geometry::ShapeParameter& hint = geometry::kNoHint,
                                const geometry::ParameterRange& range = {}) const override;
@@ -67,7 +83,7 @@ class CornerPath final : public geometry::BoundaryShape {
   Section section(const Vec3& p) const;
 
   const geometry::BoundaryShape& wall_;
-  double corner_;
+  CornerLine line_;
   std::array<double, 2> offset_{};  ///< of `start` from the corner, along the section's axes
   int direction_;
 };
@@ -75,10 +91,21 @@ class CornerPath final : public geometry::BoundaryShape {
 /// Whether node n may be given the corner whose point (in its meridional plane) is q.
 using CanHold = std::function<bool(NodeId n, const Vec3& q)>;
 
-/// The corners of `shape` (of at least `min_angle`) on one sliding patch, and the nodes that
-/// hold them. `can_hold`: a sliding node of this wall only, free or held on planes through the
+/// The plane a slip patch keeps its nodes on (u . n = 0, eq. 11).
+struct SlipPlane {
+  Vec3 origin;
+  Vec3 normal;  ///< unit
+};
+/// The slip planes node n is held on (a side of a sector: none, one or two). A crease's point
+/// for a node on a plane is where the crease crosses it, which the node can reach.
+using PlanesOf = std::function<std::vector<SlipPlane>(NodeId n)>;
+
+/// The corners and creases of `shape` (of at least `min_angle`; the creases only if `creases`)
+/// on one sliding patch, and the nodes that hold them. A crease is crossed by the wall edges
+/// whose ends lie on its two faces. `can_hold`: a sliding node of this wall only, free or held on planes through the
 /// corner (a slip side of a sector). `x0` the positions of stage 0.
 WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
-                                   const geometry::BoundaryShape& shape, double min_angle, const CanHold& can_hold);
+                                   const geometry::BoundaryShape& shape, double min_angle, bool creases,
+                                   const CanHold& can_hold, const PlanesOf& planes_of);
 
 }  // namespace hotmesh::deform::detail

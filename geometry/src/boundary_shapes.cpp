@@ -7,6 +7,10 @@
 
 namespace hotmesh::geometry {
 
+CreasePoint BoundaryShape::crease_point(const ShapeCrease& /*crease*/, const Vec3& /*p*/, double /*lambda*/) const {
+  throw std::logic_error("BoundaryShape::crease_point: the shape has no creases");
+}
+
 ShapePoint PlanarCurveShape::project(const Vec3& p, double lambda, const ShapeParameter& hint,
                                      const ParameterRange& range) const {
   const CurveProjection q = projector_.project({p.x, p.y}, lambda, hint.t, range);

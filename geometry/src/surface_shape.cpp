@@ -501,6 +501,84 @@ std::vector<std::shared_ptr<const BoundaryShape>> SurfaceShape::crease_sides(con
   return sides;
 }
 
+int SurfaceShape::side_shared_with(int face, int other) const {
+  const auto& sides = neighbours_[static_cast<std::size_t>(face)];
+  const auto it = std::find(sides.begin(), sides.end(), other);
+  return it == sides.end() ? -1 : static_cast<int>(it - sides.begin());
+}
+
+// The side's curve C(w) (w along t on the s sides 0, 1; along s on the t sides 2, 3) minimises
+// |C(w) - p|^2: the best of uniform samples, then Newton on C'(w).(C(w) - p) = 0, kept in the
+// side's interval.
+ShapePoint SurfaceShape::project_on_side(std::size_t face, int side, const Vec3& p, double lambda) const {
+  const ParameterRectangle r = faces_[face].surface.domain();
+  const bool along_t = side < 2;
+  const double fixed = side == 0 ? r.v_first : side == 1 ? r.v_last : side == 2 ? r.u_first : r.u_last;
+  const double lo = along_t ? r.u_first : r.v_first, hi = along_t ? r.u_last : r.v_last;
+  const auto curve = [&](double w) { return along_t ? evaluate(face, w, fixed, lambda) : evaluate(face, fixed, w, lambda); };
+  constexpr int kSamples = 32;
+  double w = lo, best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= kSamples; ++k) {
+    const double v = lo + (hi - lo) * k / kSamples;
+    const double d = distance(curve(v).point, p);
+    if (d < best) best = d, w = v;
+  }
+  constexpr int kNewtonSteps = 40;
+  for (int k = 0; k < kNewtonSteps; ++k) {
+    const SurfaceDerivatives c = curve(w);
+    const Vec3 d1 = along_t ? c.du : c.dv, d2 = along_t ? c.duu : c.dvv, off = c.point - p;
+    const double g = dot(d1, off), h = dot(d2, off) + dot(d1, d1);
+    const double step = h > 0.0 ? -g / h : -g / std::max(dot(d1, d1), 1e-300);
+    const double next = std::clamp(w + step, lo, hi);
+    const bool done = std::abs(next - w) <= 1e-14 * (hi - lo);
+    w = next;
+    if (done) break;
+  }
+  const SurfaceDerivatives c = curve(w);
+  const Vec3 n = cross(c.du, c.dv);
+  const double t = along_t ? w : fixed, s_ = along_t ? fixed : w;
+  return {c.point, n / norm(n), {t, s_, static_cast<int>(face)}, distance(c.point, p)};
+}
+
+std::vector<ShapeCrease> SurfaceShape::creases(double min_angle) const {
+  std::vector<ShapeCrease> found;
+  constexpr int kSamples = 8;
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    for (int side = 0; side < 4; ++side) {
+      const int g = neighbours_[f][static_cast<std::size_t>(side)];
+      if (g <= static_cast<int>(f) || side_shared_with(static_cast<int>(f), g) != side) continue;
+      const int other_side = side_shared_with(g, static_cast<int>(f));
+      if (other_side < 0) continue;
+      const ParameterRectangle r = faces_[f].surface.domain();
+      ShapeCrease crease{{static_cast<int>(f), g}, 0.0};
+      for (const double lambda : {0.0, 1.0}) {
+        for (int k = 0; k <= kSamples; ++k) {
+          const double w = static_cast<double>(k) / kSamples;
+          const double t = side < 2 ? r.u_first + w * (r.u_last - r.u_first) : side == 2 ? r.u_first : r.u_last;
+          const double s = side >= 2 ? r.v_first + w * (r.v_last - r.v_first) : side == 0 ? r.v_first : r.v_last;
+          const SurfaceDerivatives here = evaluate(f, t, s, lambda);
+          const Vec3 n = cross(here.du, here.dv);
+          const ShapePoint there = project_on_side(static_cast<std::size_t>(g), other_side, here.point, lambda);
+          crease.angle = std::max(crease.angle, std::acos(std::min(1.0, std::abs(dot(n / norm(n), there.normal)))));
+        }
+      }
+      if (crease.angle >= min_angle) found.push_back(crease);
+    }
+  }
+  return found;
+}
+
+CreasePoint SurfaceShape::crease_point(const ShapeCrease& crease, const Vec3& p, double lambda) const {
+  const int a = crease.faces[0], b = crease.faces[1];
+  const int count = static_cast<int>(faces_.size());
+  const int side_a = a >= 0 && a < count && b >= 0 && b < count ? side_shared_with(a, b) : -1;
+  const int side_b = side_a >= 0 ? side_shared_with(b, a) : -1;
+  if (side_b < 0) throw std::logic_error("SurfaceShape::crease_point: the faces share no edge");
+  const ShapePoint on_a = project_on_side(static_cast<std::size_t>(a), side_a, p, lambda);
+  const ShapePoint on_b = project_on_side(static_cast<std::size_t>(b), side_b, on_a.point, lambda);
+  return {on_a.point, {on_a.normal, on_b.normal}};
+}
+
 SurfaceShapeFit make_surface_shape(std::vector<CadFace> faces, const DeflectionSamples& samples,
                                    const ReconstructionOptions& options, const DeflectionSamples* previous) {
   FaceDeflections after = reconstruct_on_faces(faces, samples, options);

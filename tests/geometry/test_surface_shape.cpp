@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/geometry/surface_shape.hpp"
 #include "occt_surfaces.hpp"
@@ -168,6 +169,42 @@ TEST(SurfaceShape, FacesSharingAnEdgeMeetAfterTheDeflection) {
   }
   // A point of the deflected edge lies on the deflected wall, whichever face takes it.
   EXPECT_LT(fit.shape->project(fit.shape->at({1.0, 0.5, 0}, 1.0, {}).point, 1.0).distance, 1e-12);
+}
+
+// Creases without mesh nodes (issue 20 item 2 on faces): a face rising by 30 degrees from a flat
+// one along x = 1 is a crease of 30 degrees, not one of 40; the crease's point nearest any point
+// is on the edge (1, y, 0) at the point's y, with the faces' normals there, both undeformed
+// and after a deflection that lifts the wall by 0.1 (the edge then at z = 0.1).
+TEST(SurfaceShape, ACreaseIsFoundAndItsPointsAreOnTheSharedEdge) {
+  const double rise = std::tan(M_PI / 6.0);
+  const BSplineSurface rising(1, 1, {1, 1, 2, 2}, {0, 0, 1, 1}, {{1, 0, 0}, {1, 1, 0}, {2, 0, rise}, {2, 1, rise}});
+  const std::vector<CadFace> faces{{1, flat_face(0, 1, 0, 1)}, {2, rising}};
+  std::vector<Vec3> points, deflections;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j <= 4; ++j) {
+      const double x = 0.25 * i;
+      points.push_back({x, 0.25 * j, x > 1.0 ? (x - 1.0) * rise : 0.0});
+      deflections.push_back({0.0, 0.0, 0.1});
+    }
+  }
+  const SurfaceShapeFit fit = make_surface_shape(faces, cartesian(points, deflections), {.degree = 1});
+  const auto creases = fit.shape->creases(20.0 * M_PI / 180.0);
+  ASSERT_EQ(creases.size(), 1u);
+  EXPECT_EQ(creases[0].faces, (std::array<int, 2>{0, 1}));
+  EXPECT_NEAR(creases[0].angle, M_PI / 6.0, 1e-12);
+  EXPECT_TRUE(fit.shape->creases(40.0 * M_PI / 180.0).empty());
+  for (const double lambda : {0.0, 1.0}) {
+    for (const Vec3& p : {Vec3{0.7, 0.3, 0.2}, Vec3{1.4, 0.8, -0.1}, Vec3{1.0, 0.55, 0.0}}) {
+      const CreasePoint c = fit.shape->crease_point(creases[0], p, lambda);
+      EXPECT_LT(distance(c.point, {1.0, p.y, 0.1 * lambda}), 1e-12) << p.x << " " << lambda;
+      EXPECT_NEAR(std::abs(c.normals[0].z), 1.0, 1e-12);
+      EXPECT_NEAR(std::abs(dot(c.normals[1], Vec3{-std::sin(M_PI / 6.0), 0.0, std::cos(M_PI / 6.0)})), 1.0, 1e-12);
+    }
+  }
+  // A plane has no creases.
+  const PlaneShape plane({0, 0, 0}, {0, 0, 1});
+  EXPECT_TRUE(plane.creases(0.1).empty());
+  EXPECT_THROW(plane.crease_point(creases[0], {0, 0, 0}, 0.0), std::logic_error);
 }
 
 TEST(SurfaceShape, RefusesTablesThatDoNotDescribeTheFaces) {

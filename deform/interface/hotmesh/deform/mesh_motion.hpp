@@ -85,9 +85,9 @@ struct WallFeature {
   double largest_offset = 0.0;   ///< farthest a given node was from the corner before the motion
   double distance = 0.0;         ///< farthest a holding node is from the corner at the end
   std::size_t unheld_edges = 0;  ///< wall edges across it with no node on it (the wall cuts the corner)
-  /// An edge where faces of a wall meet (its nodes slide along it from the start): the faces'
-  /// indices in the wall's shape; `parameter` and `largest_offset` are then 0. Empty for the
-  /// corners of curves.
+  /// An edge where faces of a wall meet (its nodes slide along it; those on it from the start,
+  /// then, where the mesh's lines miss it, those given it): the faces' indices in the wall's
+  /// shape; `parameter` is then 0. Empty for the corners of curves.
   std::vector<int> faces;
 };
 

@@ -10,6 +10,7 @@
 // parameter t moves by at(t, lambda) - at(t, 0).
 #pragma once
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -62,6 +63,20 @@ struct ShapeFeature {
   /// there, between the tangents on either side.
   double angle = 0.0;
 };
+/// An edge where two faces of a shape meet turning by an angle: the faces' indices (increasing)
+/// and the largest angle (radians) between their normals along the edge, undeformed or fully
+/// deflected.
+struct ShapeCrease {
+  std::array<int, 2> faces{-1, -1};
+  double angle = 0.0;
+};
+
+/// The point of a crease nearest a given point, with each face's unit normal there.
+struct CreasePoint {
+  Vec3 point;
+  std::array<Vec3, 2> normals;  ///< of faces[0] and faces[1]
+};
+
 class BoundaryShape {
  public:
   virtual ~BoundaryShape() = default;
@@ -92,6 +107,14 @@ class BoundaryShape {
                                                                          double /*min_angle*/) const {
     return {};
   }
+
+  /// The shape's creases turning by at least `min_angle` (radians); none for shapes without
+  /// faces. Unlike crease_sides they need no mesh node on them: a wall whose mesh lines miss
+  /// a crease is given nodes for it (deform's corner pass).
+  virtual std::vector<ShapeCrease> creases(double /*min_angle*/) const { return {}; }
+  /// The point of the stage-lambda crease nearest p (one of creases()). Throws
+  /// std::logic_error for shapes without creases.
+  virtual CreasePoint crease_point(const ShapeCrease& crease, const Vec3& p, double lambda) const;
 };
 
 }  // namespace hotmesh::geometry

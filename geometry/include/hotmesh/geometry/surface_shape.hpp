@@ -110,6 +110,13 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// The shape must be owned by a shared_ptr.
   std::vector<std::shared_ptr<const BoundaryShape>> crease_sides(const ShapeParameter& where,
                                                                  double min_angle) const override;
+  /// The edges two faces share where they meet turning by at least `min_angle`: the largest
+  /// angle between their normals at points along the edge, undeformed or fully deflected.
+  std::vector<ShapeCrease> creases(double min_angle) const override;
+  /// The point of the crease's edge nearest p on the stage-lambda faces: the closest point of
+  /// faces[0]'s side along it, and each face's normal there (faces[1]'s at its own side's
+  /// closest point, the same edge of the deflected wall, since the faces' fields agree there).
+  CreasePoint crease_point(const ShapeCrease& crease, const Vec3& p, double lambda) const override;
   /// The closest point of one face at stage lambda (clamped at its shared edges).
   ShapePoint project_on_face(int face, const Vec3& p, double lambda, const ShapeParameter& hint) const;
 
@@ -121,6 +128,10 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// increment's stage) and kept.
   const SurfaceProjector& stage(double lambda, int face = -1) const;
   SurfaceDerivatives evaluate(std::size_t face, double t, double s, double lambda) const;
+  /// The side (s first, s last, t first, t last) of `face` shared with `other`, or -1.
+  int side_shared_with(int face, int other) const;
+  /// The closest point to p of side `side` of `face` at stage lambda, and the face's unit normal.
+  ShapePoint project_on_side(std::size_t face, int side, const Vec3& p, double lambda) const;
 
   std::vector<CadFace> faces_;
   std::vector<BSplineSurface> after_;
