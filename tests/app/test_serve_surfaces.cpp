@@ -12,10 +12,12 @@
 
 #include <signal.h>
 
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "hotmesh/geometry/cad_export.hpp"
@@ -239,6 +241,46 @@ TEST_F(ServeSurfaces, BadRequestsNameTheField) {
   req["csv"] = "x,y,z,dx,dy,dz\n1,2\n";
   expect_error(post(req), 400, "csv: wavy.csv:2");
   expect_error(api_->post_text("/api/surfaces", "{", "application/json"), 400, "");
+}
+
+// The sample grid is bounded per direction and over all faces together, before any work.
+TEST_F(ServeSurfaces, TheGridOfAllFacesIsBounded) {
+  const Reply duct = api_->upload("duct.step", test::read_text(std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples/duct3d/duct.step"), "mm");
+  ASSERT_EQ(duct.status, 201) << duct.text;
+  const Json req = {{"model", duct.body["model"]}, {"faces", {1, 2, 3, 4, 5, 6}}, {"csv", grid_table(5)}, {"grid", 200}};
+  expect_error(api_->post("/api/surfaces", req), 400,
+               "grid: 200 x 200 points on each of 6 faces is more than the limit of 200000 points in one answer");
+}
+
+// Clients posting surfaces on one model at once, and reading them back, all get their answers;
+// the store keeps the 32 used last.
+TEST_F(ServeSurfaces, ConcurrentClientsGetTheirSurfacesAndTheStoreIsBounded) {
+  Json req = request();
+  req["grid"] = 4;
+  const Reply first = api_->post("/api/surfaces", req);
+  ASSERT_EQ(first.status, 201) << first.text;
+  std::atomic<int> failures{0};
+  std::vector<std::thread> clients;
+  for (int c = 0; c < 4; ++c) {
+    clients.emplace_back([&] {
+      Api api(server_->port());
+      for (int i = 0; i < 10; ++i) {
+        const Reply made = api.post("/api/surfaces", req);
+        if (made.status != 201 || made.body["summary"]["max_node_residual"].get<double>() > 1e-12) {
+          ++failures;
+          continue;
+        }
+        const std::string id = made.body["surface"];
+        if (api.get("/api/surfaces/" + id).status != 200) ++failures;
+        if (api.get("/api/surfaces/" + id + "/download?format=iges").status != 200) ++failures;
+      }
+    });
+  }
+  for (auto& client : clients) client.join();
+  EXPECT_EQ(failures, 0);
+  expect_error(api_->get("/api/surfaces/" + first.body["surface"].get<std::string>()), 404,
+               "dropped as the least recently used of 32");
+  EXPECT_EQ(api_->get("/api/surfaces/s41").status, 200);
 }
 
 }  // namespace
