@@ -1,7 +1,7 @@
 // hotmesh serve (internal): what the geometry service keeps between requests: loaded CAD
-// models, built curves and surfaces, each in a store that hands out shared pointers under a short lock
-// and drops the least recently used item when full; the root folder and the private upload
-// folder; the limits. Also the readers of request fields that several routes share.
+// models, built curves and surfaces, each in a store that hands out shared pointers under a
+// short lock and drops the least recently used item when full; the root folder and the private
+// upload folder; the limits. Also the readers of request fields that several routes share.
 #pragma once
 
 #include <cstdint>
