@@ -8,8 +8,7 @@
 
 namespace hotmesh::app {
 
-SurfaceRun fit_on_cad_faces(const geometry::CadModel& model, std::span<const int> ids,
-                            geometry::DeflectionSamples samples, const geometry::ReconstructionOptions& options) {
+SurfaceRun cad_faces_of(const geometry::CadModel& model, std::span<const int> ids) {
   SurfaceRun run;
   for (auto it = ids.begin(); it != ids.end(); ++it) {
     if (std::find(ids.begin(), it, *it) != it) {
@@ -18,10 +17,20 @@ SurfaceRun fit_on_cad_faces(const geometry::CadModel& model, std::span<const int
     run.info.push_back(model.face(*it));
     run.faces.push_back({*it, model.face_bspline(*it)});
   }
-  run.fit = geometry::reconstruct_on_faces(run.faces, samples, options);
-  run.samples = std::move(samples);
   run.unit = model.unit();
   run.cad = model.path().string();
+  return run;
+}
+
+void fit_deflections(SurfaceRun& run, geometry::DeflectionSamples samples, const geometry::ReconstructionOptions& options) {
+  run.fit = geometry::reconstruct_on_faces(run.faces, samples, options);
+  run.samples = std::move(samples);
+}
+
+SurfaceRun fit_on_cad_faces(const geometry::CadModel& model, std::span<const int> ids,
+                            geometry::DeflectionSamples samples, const geometry::ReconstructionOptions& options) {
+  SurfaceRun run = cad_faces_of(model, ids);
+  fit_deflections(run, std::move(samples), options);
   return run;
 }
 

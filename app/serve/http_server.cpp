@@ -63,6 +63,13 @@ void send_json(Response& res, int status, const Json& body) {
   res.set_content(json_text(body), "application/json");
 }
 
+/// A file as an attachment under its own name.
+void send_download(Response& res, Download file) {
+  res.set_header("Content-Disposition", fmt::format("attachment; filename=\"{}\"", file.filename));
+  res.status = 200;
+  res.set_content(std::move(file.content), file.content_type.c_str());
+}
+
 void send_error(Response& res, int status, const std::string& message) {
   send_json(res, status, {{"status", status}, {"error", status_reason(status)}, {"message", message}});
 }
@@ -246,10 +253,22 @@ void HttpServer::Impl::add_routes() {
   });
   add("GET", R"(/api/curves/([A-Za-z0-9]+)/download)", [&s](const Request& req, Response& res) {
     if (!req.has_param("format")) throw ApiError::bad_request("format: required: ?format=step, iges or csv");
-    Download file = s.download(id_of(req), req.get_param_value("format"));
-    res.set_header("Content-Disposition", fmt::format("attachment; filename=\"{}\"", file.filename));
+    send_download(res, s.download(id_of(req), req.get_param_value("format")));
+  });
+  add("POST", "/api/surfaces", [&s](const Request& req, Response& res) {
+    send_json(res, 201, s.create_surface(json_body(req)));
+  });
+  add("GET", R"(/api/surfaces/([A-Za-z0-9]+))", [&s](const Request& req, Response& res) {
     res.status = 200;
-    res.set_content(std::move(file.content), file.content_type.c_str());
+    res.set_content(s.surface(id_of(req)), "application/json");
+  });
+  add("DELETE", R"(/api/surfaces/([A-Za-z0-9]+))", [&s](const Request& req, Response& res) {
+    s.delete_surface(id_of(req));
+    send_json(res, 200, {{"deleted", id_of(req)}});
+  });
+  add("GET", R"(/api/surfaces/([A-Za-z0-9]+)/download)", [&s](const Request& req, Response& res) {
+    if (!req.has_param("format")) throw ApiError::bad_request("format: required: ?format=step or iges");
+    send_download(res, s.surface_download(id_of(req), req.get_param_value("format")));
   });
 }
 

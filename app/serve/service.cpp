@@ -33,15 +33,6 @@ void require_cad_extension(std::string_view name, const char* key) {
   }
 }
 
-/// `text` with every occurrence of `from` replaced by `to`.
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  if (from.empty()) return text;
-  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
-    text.replace(at, from.size(), to);
-  }
-  return text;
-}
-
 Json model_summary(const StoredModel& model) {
   return {{"model", model.id},
           {"name", model.name},
@@ -51,6 +42,23 @@ Json model_summary(const StoredModel& model) {
 }
 
 }  // namespace
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  if (from.empty()) return text;
+  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+    text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
+std::vector<int> model_faces_field(const Json& request, const char* key, const StoredModel& model, std::size_t max_faces) {
+  std::vector<int> faces = face_list_field(request, key, max_faces);
+  const auto count = static_cast<int>(model.cad.faces().size());
+  for (const int id : faces) {
+    if (id > count) throw ApiError::bad_request(fmt::format("{}: the model has {} faces; there is no face {}", key, count, id));
+  }
+  return faces;
+}
 
 GeometryService::GeometryService(const std::optional<std::filesystem::path>& root, ServiceLimits limits)
     : state_(std::make_unique<State>(root, limits)) {}
@@ -70,7 +78,10 @@ Json GeometryService::health() const {
             {"max_points", l.max_points},
             {"max_samples", l.max_samples},
             {"max_models", l.max_models},
-            {"max_curves", l.max_curves}}}};
+            {"max_curves", l.max_curves},
+            {"max_surfaces", l.max_surfaces},
+            {"max_grid", l.max_grid},
+            {"max_grid_points", l.max_grid_points}}}};
 }
 
 Json GeometryService::files() const {
@@ -157,14 +168,10 @@ void GeometryService::delete_model(std::string_view id) { state_->models.erase(i
 Json GeometryService::meridional(std::string_view model_id, const Json& request) {
   refuse_unknown_keys(request, {"faces", "axis", "samples"});
   const auto model = state_->models.get(model_id, "model");
-  const std::vector<int> faces = face_list_field(request, "faces", state_->limits.max_faces);
+  const std::vector<int> faces = model_faces_field(request, "faces", *model, state_->limits.max_faces);
   const std::optional<geometry::Axis> axis = axis_field(request, "axis");
   const auto samples = static_cast<std::size_t>(
       integer_field(request, "samples", 2, static_cast<long long>(state_->limits.max_samples), 400));
-  const auto count = static_cast<int>(model->cad.faces().size());
-  for (const int id : faces) {
-    if (id > count) throw ApiError::bad_request(fmt::format("faces: the model has {} faces; there is no face {}", count, id));
-  }
   std::optional<geometry::MeridionalCurve> curve;
   try {
     std::lock_guard lock(model->mutex);

@@ -1,12 +1,13 @@
 // hotmesh serve: the geometry service behind the HTTP API, free of HTTP. It keeps the CAD
-// models clients load (uploaded, or read from --root only) and the curves they build: meridional
-// curves of faces (eq. 20) and deflected curves reconstructed from FEM nodes (section 4.2,
-// eq. 21), and answers with JSON. Bad requests throw ApiError (status 4xx and what is wrong).
+// models clients load (uploaded, or read from --root only) and what they build of them:
+// meridional curves of faces (eq. 20), deflected curves reconstructed from FEM nodes (section
+// 4.2, eq. 21) and deflection fields d(t, s) reconstructed on faces of any shape (section 4.2 on
+// B-spline surfaces, issue 23), and answers with JSON. Bad requests throw ApiError (status 4xx and what is wrong).
 //
 // Thread safety: every method may be called from any number of threads at once. The stores
 // are guarded by one mutex held only to look up, insert or evict; a CadModel is used by one
 // thread at a time (its own mutex); OpenCASCADE's readers and writers are serialised by the
-// geometry kernel; curves are immutable once built and shared.
+// geometry kernel; curves and surfaces are immutable once built and shared.
 #pragma once
 
 #include <cstddef>
@@ -30,6 +31,10 @@ struct ServiceLimits {
   std::size_t max_models = 16;             ///< CAD models kept; loading more drops the least recently used
   std::size_t max_curves = 64;             ///< curves kept; likewise
   std::size_t max_curve_bytes = 256u << 20;  ///< memory of the curves kept (about); likewise
+  std::size_t max_surfaces = 32;           ///< surfaces (fields on faces) kept; likewise
+  std::size_t max_surface_bytes = 256u << 20;  ///< memory of the surfaces kept (about); likewise
+  std::size_t max_grid = 200;              ///< sample grid points per direction of a face in one answer
+  std::size_t max_grid_points = 200'000;   ///< sample grid points of all faces in one answer
   CadCheck cad_check;                      ///< each CAD file read by a child first (cad_check.hpp)
 };
 
@@ -75,6 +80,17 @@ class GeometryService {
   Json project(std::string_view curve_id, const Json& request) const;
   /// format "step", "iges" or "csv".
   Download download(std::string_view curve_id, std::string_view format) const;
+
+  /// {"model": "m1", "faces": [...], "csv": "x,y,z,dx,dy,dz\n...", "degree": 3, "grid": 24, ...}:
+  /// the deflection field d(t, s) of each face through the FEM nodes (as `hotmesh surface`),
+  /// kept as a surface; the answer holds the fit, the nodes' (t, s) and residuals, and each
+  /// face's grid of S(t, s) and d(t, s).
+  Json create_surface(const Json& request);
+  /// The answer create_surface gave for the surface, as JSON text.
+  std::string surface(std::string_view id) const;
+  void delete_surface(std::string_view id);
+  /// The deformed faces S + d; format "step" or "iges".
+  Download surface_download(std::string_view surface_id, std::string_view format) const;
 
   struct State;  ///< what the service keeps (service_state.hpp); internal
 

@@ -65,9 +65,6 @@ Json store_curve(GeometryService::State& state, CurveRun run, bool deflected, st
   return body;
 }
 
-namespace {
-
-/// The FEM table of a request: CSV text as in a deflection file.
 geometry::DeflectionSamples table_field(const Json& request, const ServiceLimits& limits) {
   const std::string csv = string_field(request, "csv");
   const std::string name = string_field(request, "csv_name", "csv");
@@ -101,8 +98,6 @@ geometry::ReconstructionOptions reconstruction_field(const Json& request) {
   return options;
 }
 
-}  // namespace
-
 Json GeometryService::create_curve(const Json& request) {
   refuse_unknown_keys(request, {"model", "faces", "axis", "csv", "csv_name", "degree", "form", "tolerance",
                                 "drop_far_nodes", "samples", "unit"});
@@ -121,11 +116,7 @@ Json GeometryService::create_curve(const Json& request) {
   Json extra = Json::object();
   if (with_cad) {
     const auto model = state_->models.get(string_field(request, "model"), "model");
-    const std::vector<int> faces = face_list_field(request, "faces", limits.max_faces);
-    const auto count = static_cast<int>(model->cad.faces().size());
-    for (const int id : faces) {
-      if (id > count) throw ApiError::bad_request(fmt::format("faces: the model has {} faces; there is no face {}", count, id));
-    }
+    const std::vector<int> faces = model_faces_field(request, "faces", *model, limits.max_faces);
     const geometry::DeflectionSamples table = table_field(request, limits);
     if (table.frame == geometry::SampleFrame::meridional && !axis) {
       throw ApiError::bad_request("axis: meridional (r, z) nodes need the axis their z is measured along");

@@ -1,7 +1,7 @@
 // hotmesh serve (internal): what the geometry service keeps between requests: loaded CAD
-// models and built curves, each in a store that hands out shared pointers under a short lock
-// and drops the least recently used item when full; the root folder and the private upload
-// folder; the limits.
+// models, built curves and surfaces, each in a store that hands out shared pointers under a
+// short lock and drops the least recently used item when full; the root folder and the private
+// upload folder; the limits. Also the readers of request fields that several routes share.
 #pragma once
 
 #include <cstdint>
@@ -17,9 +17,12 @@
 #include <fmt/format.h>
 
 #include "curve_fit.hpp"
+#include "face_fit.hpp"
 #include "hotmesh/geometry/boundary_shape.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
+#include "hotmesh/geometry/deformed_face.hpp"
+#include "hotmesh/geometry/reconstruction.hpp"
 #include "serve/api_error.hpp"
 #include "serve/private_folder.hpp"
 #include "serve/root_folder.hpp"
@@ -46,6 +49,15 @@ struct StoredCurve {
   std::unique_ptr<geometry::BoundaryShape> shape;       ///< for points in space
   std::string body;  ///< the answer to GET /api/curves/{id}, JSON text
   std::string frame; ///< "rz" or "xy"
+};
+
+/// Deflection fields d(t, s) clients reconstructed on CAD faces, with the deformed faces S + d
+/// for download. Immutable once stored.
+struct StoredSurface {
+  std::string id;
+  SurfaceRun run;
+  std::vector<geometry::DeformedFace> deformed;  ///< in the order of run.faces
+  std::string body;  ///< the answer to GET /api/surfaces/{id}, JSON text
 };
 
 /// Items by id ("m1", "m2", ... with prefix "m"), at most `capacity` of them and `budget`
@@ -123,7 +135,10 @@ class Store {
 
 struct GeometryService::State {
   State(const std::optional<std::filesystem::path>& root_path, ServiceLimits service_limits)
-      : limits(service_limits), models('m', service_limits.max_models), curves('c', service_limits.max_curves, service_limits.max_curve_bytes) {
+      : limits(service_limits),
+        models('m', service_limits.max_models),
+        curves('c', service_limits.max_curves, service_limits.max_curve_bytes),
+        surfaces('s', service_limits.max_surfaces, service_limits.max_surface_bytes) {
     if (root_path) root.emplace(*root_path);
   }
 
@@ -132,7 +147,22 @@ struct GeometryService::State {
   PrivateFolder uploads;
   Store<StoredModel> models;
   Store<const StoredCurve> curves;
+  Store<const StoredSurface> surfaces;
 };
+
+/// The face ids of request[key] (face_list_field), each checked to be a face of `model`.
+std::vector<int> model_faces_field(const Json& request, const char* key, const StoredModel& model, std::size_t max_faces);
+
+/// The FEM table of a request: "csv", CSV text as in a deflection file, named "csv_name"; at
+/// most limits.max_nodes nodes.
+geometry::DeflectionSamples table_field(const Json& request, const ServiceLimits& limits);
+
+/// "degree", "form", "tolerance" and "drop_far_nodes" as the reconstruction's options.
+geometry::ReconstructionOptions reconstruction_field(const Json& request);
+
+/// `text` with every occurrence of `from` replaced by `to` (a private copy's path by the name
+/// the client knows the file by).
+std::string replaced(std::string text, const std::string& from, const std::string& to);
 
 /// Stores a curve made of `run` and returns the answer about it (see curve_json.hpp).
 Json store_curve(GeometryService::State& state, CurveRun run, bool deflected, std::size_t samples, Json extra);

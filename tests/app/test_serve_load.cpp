@@ -1,7 +1,7 @@
 // Tests of `hotmesh serve` under load and abuse: 1,000 requests from 8 concurrent clients on
 // loopback (CAD work, reconstructions, projections, downloads and bad requests mixed) all
 // answered as expected with the server's memory bounded; malformed JSON, CSV and multipart
-// bodies always answered with a 4xx JSON error, never a crash.
+// bodies always answered with a 4xx JSON error, never a crash (curves and surfaces).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
@@ -215,17 +215,26 @@ TEST(ServeRobustness, MalformedJsonCsvAndMultipartNeverCrashTheServer) {
     ++answered;
   };
   const std::vector<std::string> routes{"/api/curves", "/api/models", "/api/curves/c1/project",
-                                        "/api/models/m1/meridional"};
+                                        "/api/models/m1/meridional", "/api/surfaces"};
   for (const std::string& body : malformed_json()) {
     for (const std::string& route : routes) {
       expect_client_error(http.Post(route.c_str(), body, "application/json"), "JSON to " + route);
     }
   }
+  // The tables also to a surface on the cone's faces (a model is needed to get to the table).
+  httplib::MultipartFormDataItems upload{{"file", cone_file(), "cone.igs", ""}, {"unit", "mm", "", ""}};
+  const auto loaded = http.Post("/api/models", upload);
+  ASSERT_TRUE(loaded && loaded->status == 201);
+  const std::string model = Json::parse(loaded->body)["model"];
   for (const std::string& table : malformed_csv()) {
     const Json request = {{"csv", table}, {"csv_name", "t.csv"}};
     const auto result = http.Post("/api/curves", request.dump(-1, ' ', false, Json::error_handler_t::replace),
                                   "application/json");
     expect_client_error(result, "CSV " + table.substr(0, 40));
+    const Json surface = {{"model", model}, {"faces", {1, 2}}, {"csv", table}, {"csv_name", "t.csv"}};
+    expect_client_error(http.Post("/api/surfaces", surface.dump(-1, ' ', false, Json::error_handler_t::replace),
+                                  "application/json"),
+                        "surface CSV " + table.substr(0, 40));
   }
   // Multipart bodies with broken boundaries, no file name, junk parts.
   const std::vector<std::pair<std::string, std::string>> multipart{

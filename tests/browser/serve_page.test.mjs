@@ -6,8 +6,11 @@
 // that a meridional curve and a 2D table without CAD (the ramp2d sample) are drawn too, that a
 // new curve takes the old one's tooltip away, and that the stator-well sample works as a user
 // meets it: its 44 faces scroll inside the sidebar, the axis field is prefilled from the ticked
-// faces, so that the sample's own (r, z) table fits them. Keeps two screenshots. Exit code 0
-// when every check passed.
+// faces, so that the sample's own (r, z) table fits them; and that a surface works (issue 23):
+// the duct's B-spline floor (samples/duct3d, face 1, mm) ticks "Surface (t, s)" by itself, and
+// Reconstruct with floor.csv draws the residual map over (t, s) with its tooltip and the 3D view
+// (both checked to have drawn pixels), which rotates and follows the amplification. Keeps three
+// screenshots. Exit code 0 when every check passed.
 //   node serve_page.test.mjs --hotmesh build/app/hotmesh --data tests/data --samples samples --out build/tests/browser
 import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
@@ -37,6 +40,7 @@ const work = fs.mkdtempSync(path.join(os.tmpdir(), 'hotmesh-browser-'));
 fs.mkdirSync(args.out, { recursive: true });
 const screenshot = path.join(args.out, 'serve-page.png');
 const statorScreenshot = path.join(args.out, 'serve-page-stator-well.png');
+const surfaceScreenshot = path.join(args.out, 'serve-surface.png');
 let checks = 0;
 const check = (condition, what) => {
   assert.ok(condition, what);
@@ -105,6 +109,43 @@ function pathPoints(d) {
 }
 
 const near = (a, b, tolerance) => Math.abs(a - b) <= tolerance * Math.max(1, Math.abs(b));
+
+/// Pixels of an RGBA image (an array of bytes) that are not near-white, and of those the
+/// coloured ones (not grey: the residual dots, the shaded faces).
+function countPixels(data) {
+  let drawn = 0, coloured = 0;
+  for (let i = 0; i < data.length; i += 4) {
+    const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
+    if (r < 235 || g < 235 || b < 235) drawn += 1;
+    if (Math.max(r, g, b) - Math.min(r, g, b) > 60) coloured += 1;
+  }
+  return { drawn, coloured };
+}
+
+/// The pixels of an element as the browser shows it: its screenshot decoded by the page itself.
+async function elementPixels(page, selector) {
+  const png = (await page.locator(selector).screenshot()).toString('base64');
+  const data = await page.evaluate(async (b64) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${b64}`;
+    await image.decode();
+    const canvas = document.createElement('canvas');
+    canvas.width = image.width;
+    canvas.height = image.height;
+    const g = canvas.getContext('2d');
+    g.drawImage(image, 0, 0);
+    return Array.from(g.getImageData(0, 0, image.width, image.height).data);
+  }, png);
+  return countPixels(data);
+}
+
+/// The 3D view's own pixels, and a digest of them to tell two drawings apart.
+async function canvasPixels(page) {
+  const data = await page.$eval('#view3d', (c) => Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data));
+  let digest = 0;
+  for (let i = 0; i < data.length; i += 7) digest = (digest * 31 + data[i]) % 1000000007;
+  return { ...countPixels(data), digest };
+}
 
 async function run() {
   const conePath = path.join(args.data, 'cad', 'OCC8842_cone_CATIA.igs');
@@ -355,6 +396,9 @@ async function run() {
     await page.uncheck('#faces input[value="40"]');
     check(await page.inputValue('#axis') === '0,0,0,0,0,1', 'an emptied axis field is prefilled again');
     check(!problems.some((p) => p.startsWith('page error')), `no script errors on the page: ${problems.join('; ')}`);
+
+    await checkSurface(page, url);
+    check(!problems.some((p) => p.startsWith('page error')), `no script errors on the page: ${problems.join('; ')}`);
   } finally {
     await context.close();
     server.kill('SIGTERM');
@@ -363,13 +407,91 @@ async function run() {
   check(code === 0 && signal === null, `hotmesh serve stops with code 0 on SIGTERM (code ${code}, signal ${signal})`);
 }
 
+/// The duct's B-spline floor and its FEM nodes (samples/duct3d: face 1 of duct.step, floor.csv,
+/// mm, degree 3 as duct-prescribed.yaml): Surface (t, s) on the page.
+async function checkSurface(page, url) {
+  const duct = path.join(args.samples, 'duct3d', 'duct.step');
+  const floor = path.join(args.samples, 'duct3d', 'floor.csv');
+  await page.setInputFiles('#cad-file', duct);
+  await page.selectOption('#unit', 'mm');
+  await page.click('#load-cad');
+  await page.waitForFunction(() => document.getElementById('model-info').textContent.startsWith('duct.step'));
+  check(!(await page.isChecked('#surface-mode')), 'no face ticked: the curve workflow');
+  await page.check('#faces input[value="1"]');
+  check(await page.isChecked('#surface-mode'), 'ticking the B-spline floor (no axis) ticks Surface (t, s)');
+  check(await page.isDisabled('#form'), 'surfaces have no form to choose');
+  await page.setInputFiles('#csv-file', floor);
+  await page.selectOption('#degree', '3');
+  await page.click('#reconstruct');
+  await page.waitForSelector('#residual-map-1 circle');
+  check(await page.isHidden('#error'), `the surface is reconstructed: ${await page.textContent('#error')}`);
+  check(await page.isHidden('#curve-box') && await page.isVisible('#surface-box'), 'the surface view replaces the curve view');
+
+  // The page's surface, by the id in its download link: the map and the numbers are its.
+  const stepHref = await page.getAttribute('#download-step', 'href');
+  check(/^\/api\/surfaces\/s[0-9]+\/download\?format=step$/.test(stepHref), `STEP link of the deformed faces: ${stepHref}`);
+  check(await page.getAttribute('#download-csv', 'href') === null, 'no CSV of a surface');
+  const surface = await api(url, 'GET', stepHref.replace(/\/download.*$/, ''));
+  const rows = fs.readFileSync(floor, 'utf8').split('\n').filter((line) => /^[0-9]/.test(line)).length;
+  check(surface.summary.nodes === rows && surface.summary.used_nodes === rows, `all ${rows} nodes of floor.csv are used`);
+  check(surface.summary.max_node_residual < 0.01, `degree 3 fits the floor within 0.01 mm: ${surface.summary.max_node_residual}`);
+  const shown = await page.$$eval('#summary dd', (dds) => Object.fromEntries(dds.map((dd) => [dd.dataset.key, dd.textContent])));
+  for (const key of ['nodes', 'used_nodes', 'degree', 'max_node_distance_to_cad', 'max_node_residual', 'tolerance', 'max_edge_gap']) {
+    check(shown[key] === formatNumber(surface.summary[key]), `summary ${key}: page "${shown[key]}", API ${surface.summary[key]}`);
+  }
+  const dots = await page.$$('#residual-map-1 circle.map-node');
+  check(dots.length === surface.nodes.length, `a dot per node on the map: ${dots.length}`);
+  const legend = await page.textContent('#residual-legend');
+  check(legend.includes('residual [mm]') && /1e-[0-9]+/.test(legend), `the log colour legend: ${legend}`);
+  const map = await elementPixels(page, '#residual-map-1');
+  check(map.coloured > 500, `the map drew its coloured dots: ${map.coloured} coloured pixels`);
+
+  // The tooltip of a node on the map holds the API's values.
+  const k = 57;
+  const node = surface.nodes[k];
+  await page.hover(`#residual-map-1 circle[data-k="${k}"]`, { force: true });
+  await page.waitForSelector('#surface-tooltip:not([hidden])');
+  const tip = await page.$$eval('#surface-tooltip .value', (vs) => Object.fromEntries(vs.map((v) => [v.dataset.key, v.textContent])));
+  check(tip.node === node.label && tip.line === String(node.line) && tip.face === '1', `tooltip names the node: ${JSON.stringify(tip)}`);
+  check(tip.t === formatNumber(node.t) && tip.s === formatNumber(node.s), 'tooltip t and s');
+  check(tip['distance to CAD'] === formatNumber(node.distance) && tip.residual === formatNumber(node.residual),
+    'tooltip distance and residual');
+
+  // The 3D view: drawn, redrawn when turned (drag) and with another amplification.
+  const first = await canvasPixels(page);
+  check(first.drawn > 20000 && first.coloured > 10000, `the 3D view drew the faces: ${first.drawn} pixels, ${first.coloured} coloured`);
+  check(await page.$eval('#view3d', (c) => Number(c.dataset.drawn)) === 23 * 23, 'the 24 x 24 grid gives 23 x 23 cells');
+  await page.screenshot({ path: surfaceScreenshot, fullPage: true });
+  const box = await page.locator('#view3d').boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 40, { steps: 5 });
+  await page.mouse.up();
+  const turned = await canvasPixels(page);
+  check(turned.digest !== first.digest && turned.coloured > 5000, 'dragging turns the 3D view');
+  await page.$eval('#amplification', (slider) => {
+    slider.value = '0';
+    slider.dispatchEvent(new Event('input', { bubbles: true }));
+  });
+  const flat = await canvasPixels(page);
+  check(flat.digest !== turned.digest, 'the amplification slider redraws the 3D view');
+  await page.mouse.wheel(0, -300);
+  check((await canvasPixels(page)).digest !== flat.digest, 'the wheel zooms the 3D view');
+  const download = await page.evaluate(async () => {
+    const response = await fetch(document.getElementById('download-step').href);
+    return { status: response.status, text: await response.text() };
+  });
+  check(download.status === 200 && download.text.startsWith('ISO-10303-21;') && download.text.includes("'face 1'"),
+    'STEP download holds the deformed floor');
+}
+
 const timeout = setTimeout(() => {
   console.error('browser test: timed out after 240 s');
   process.exit(1);
 }, 240000);
 try {
   await run();
-  console.log(`browser test: ${checks} checks passed; screenshots: ${screenshot}, ${statorScreenshot}`);
+  console.log(`browser test: ${checks} checks passed; screenshots: ${screenshot}, ${statorScreenshot}, ${surfaceScreenshot}`);
   clearTimeout(timeout);
 } catch (error) {
   console.error(`browser test: FAILED after ${checks} checks: ${error.message}`);

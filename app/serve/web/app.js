@@ -2,7 +2,9 @@
 // pick faces, an axis (prefilled with the faces' own) and a deflection table, asks the service
 // for the reconstructed curve (POST /api/curves) and draws in SVG the CAD curve, the FEM nodes,
 // their deflections (amplified by a slider) and the reconstructed curve, with zoom, pan, a
-// tooltip per node, the fit residual per node and download links. Plain JavaScript, no
+// tooltip per node, the fit residual per node and download links. With "Surface (t, s)" ticked
+// (by itself for faces that do not turn about an axis) Reconstruct asks for the deflection
+// field on the faces instead (POST /api/surfaces), which surface.js shows. Plain JavaScript, no
 // library: users are often offline.
 'use strict';
 
@@ -12,6 +14,7 @@ const $ = (id) => document.getElementById(id);
 const state = {
   model: null,       // answer of POST /api/models
   curve: null,       // answer of POST /api/curves or .../meridional
+  surface: null,     // answer of POST /api/surfaces (surface.js), when that is on show
   view: null,        // {x, y, w, h} in plot coordinates (y up)
   amplification: 1,
 };
@@ -111,7 +114,10 @@ function showFaces(model) {
     box.value = face.id;
     box.className = 'face';
     box.setAttribute('aria-label', `face ${face.id}`);
-    box.addEventListener('change', updateAxis);
+    box.addEventListener('change', () => {
+      updateAxis();
+      updateSurfaceMode();
+    });
     const axis = document.createElement('span');
     axis.textContent = face.axis ? `(${face.axis.direction.map(formatNumber).join(', ')})` : '–';
     if (face.axis) {
@@ -129,6 +135,7 @@ function showFaces(model) {
   $('faces-box').hidden = false;
   $('show-meridional').disabled = false;
   updateAxis();
+  updateSurfaceMode();
 }
 
 function selectedFaces() {
@@ -224,6 +231,11 @@ async function reconstruct() {
   };
   const tolerance = $('tolerance').value;
   if (tolerance !== '') request.tolerance = Number(tolerance);
+  if ($('surface-mode').checked) {
+    delete request.form;  // surfaces take the displacement form
+    await reconstructSurface(request);
+    return;
+  }
   const axis = axisRequest();
   if (axis) request.axis = axis;
   if (state.model && !$('no-cad').checked) {
@@ -240,6 +252,10 @@ async function reconstruct() {
 
 function setCurve(curve) {
   state.curve = curve;
+  state.surface = null;
+  $('curve-box').hidden = false;
+  $('surface-box').hidden = true;
+  $('downloads-what').textContent = 'Deformed curve:';
   const slider = $('amplification');
   const automatic = curve.amplification || 1;
   slider.disabled = curve.kind !== 'reconstructed';
@@ -275,9 +291,14 @@ function showDownloads(curve) {
   const links = { step: 'download-step', iges: 'download-iges', csv: 'download-csv' };
   for (const [format, id] of Object.entries(links)) {
     const link = $(id);
-    link.href = curve.downloads[format];
-    link.setAttribute('download', '');
-    link.classList.remove('disabled');
+    const href = curve.downloads[format];
+    if (href) {
+      link.href = href;
+      link.setAttribute('download', '');
+    } else {
+      link.removeAttribute('href');
+    }
+    link.classList.toggle('disabled', !href);
   }
 }
 
@@ -536,7 +557,7 @@ function setUpView() {
   svg.addEventListener('pointercancel', end);
   svg.addEventListener('dblclick', fitView);
   $('fit-view').addEventListener('click', fitView);
-  window.addEventListener('resize', () => { if (state.curve) fitView(); });
+  window.addEventListener('resize', () => { if (state.curve && !state.surface) fitView(); });
 }
 
 // ---- start -------------------------------------------------------------------------------
@@ -553,9 +574,12 @@ function start() {
   });
   $('amplification').addEventListener('input', (event) => {
     setAmplification(Math.pow(10, Number(event.target.value)));
-    if (state.view) draw();
+    if (state.surface) drawSurface3d();
+    else if (state.view) draw();
   });
+  $('surface-mode').addEventListener('change', (event) => { $('form').disabled = event.target.checked; });
   setUpView();
+  setUpSurfaceView();
   loadFiles().catch(showError);
 }
 
