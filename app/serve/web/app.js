@@ -434,6 +434,13 @@ function showTooltip(node, event) {
     ['distance to CAD', formatNumber(node.distance)],
     ['residual', node.rejected ? 'left out' : formatNumber(node.residual)],
   ];
+  placeTooltip(tip, lines, $('plot-box'), node, event);
+  highlightRow(node.index);
+}
+
+// A tooltip of key/value rows for `node`, next to the pointer inside `box` (the curve's plot
+// and the surface's map share it).
+function placeTooltip(tip, lines, box, node, event) {
   tip.replaceChildren();
   for (const [key, value] of lines) {
     const row = document.createElement('div');
@@ -447,12 +454,11 @@ function showTooltip(node, event) {
     row.append(k, v);
     tip.append(row);
   }
-  const box = $('plot-box').getBoundingClientRect();
-  tip.style.left = `${event.clientX - box.left + 12}px`;
-  tip.style.top = `${event.clientY - box.top + 12}px`;
+  const rect = box.getBoundingClientRect();
+  tip.style.left = `${event.clientX - rect.left + 12}px`;
+  tip.style.top = `${event.clientY - rect.top + 12}px`;
   tip.hidden = false;
   tip.dataset.index = node.index;
-  highlightRow(node.index);
 }
 
 function hideTooltip() {

@@ -193,24 +193,7 @@ function showSurfaceTooltip(node, event) {
     ['distance to CAD', formatNumber(node.distance)],
     ['residual', formatNumber(node.residual)],
   ];
-  tip.replaceChildren();
-  for (const [key, value] of lines) {
-    const row = document.createElement('div');
-    const k = document.createElement('span');
-    k.className = 'key';
-    k.textContent = key;
-    const v = document.createElement('span');
-    v.className = 'value';
-    v.dataset.key = key;
-    v.textContent = value;
-    row.append(k, v);
-    tip.append(row);
-  }
-  const box = $('surface-box').getBoundingClientRect();
-  tip.style.left = `${event.clientX - box.left + 12}px`;
-  tip.style.top = `${event.clientY - box.top + 12}px`;
-  tip.hidden = false;
-  tip.dataset.index = node.index;
+  placeTooltip(tip, lines, $('surface-box'), node, event);
 }
 
 function hideSurfaceTooltip() { $('surface-tooltip').hidden = true; }
