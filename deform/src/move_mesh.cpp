@@ -436,6 +436,7 @@ class FinalStage final : public geometry::BoundaryShape {
     return sides;
   }
   std::vector<geometry::ShapeCrease> creases(double min_angle) const override { return shape_->creases(min_angle); }
+  int crease_region(int face, double min_angle) const override { return shape_->crease_region(face, min_angle); }
   geometry::CreasePoint crease_point(const geometry::ShapeCrease& crease, const Vec3& p,
                                      double /*lambda*/) const override {
     return shape_->crease_point(crease, p, 1.0);

@@ -158,9 +158,11 @@ class CornerPlanner {
     }
   }
 
-  /// Each node's segment: the parameter interval between the corners on either side of it.
-  WallFeaturePlan segments() && {
+  /// Each node's segment: the parameter interval between the corners on either side of it; on
+  /// a wall with creases, the region between them that holds its face.
+  WallFeaturePlan segments(double min_angle) && {
     for (std::size_t k = 0; k < count_; ++k) {
+      if (!crease_of_.empty()) plan_.segments[k].region = shape_.crease_region(faces_[k], min_angle);
       const auto after = std::upper_bound(corner_parameters_.begin(), corner_parameters_.end(), plan_.parameters[k]);
       geometry::ParameterRange& segment = plan_.segments[k];
       if (after != corner_parameters_.begin()) segment.first = *(after - 1);
@@ -235,7 +237,7 @@ WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, c
   planner.find_crossings();
   planner.give_corners(can_hold);
   planner.note_unheld_corners();
-  return std::move(planner).segments();
+  return std::move(planner).segments(min_angle);
 }
 
 namespace {

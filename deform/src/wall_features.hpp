@@ -16,7 +16,8 @@
 // meet at an angle. Where the mesh has nodes on a crease they slide along it from the start
 // (BoundaryShape::crease_sides); where its lines miss it, the crease is crossed by the wall
 // edges whose ends lie on its two faces, and one end of each is given it as a corner circle
-// is: that node is led onto the crease and then slides along it.
+// is: that node is led onto the crease and then slides along it. The other sliding nodes of
+// such a wall keep to their region, the faces between its creases that hold theirs.
 #pragma once
 
 #include <array>

@@ -412,8 +412,18 @@ SurfaceDerivatives SurfaceShape::evaluate(std::size_t face, double t, double s, 
   return d;
 }
 
-const SurfaceProjector& SurfaceShape::stage(double lambda, int face) const {
-  const std::pair key{lambda, face};
+std::vector<int> SurfaceShape::faces_of(int key) const {
+  if (key >= 0) return {key};
+  if (key == kAllFaces) {
+    std::vector<int> all(faces_.size());
+    for (std::size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
+    return all;
+  }
+  return regions_.at(static_cast<std::size_t>(-2 - key));  // under stages_mutex_
+}
+
+const SurfaceProjector& SurfaceShape::stage(double lambda, int faces) const {
+  const std::pair key{lambda, faces};
   {
     const std::shared_lock read(stages_mutex_);
     const auto it = stages_.find(key);
@@ -423,8 +433,8 @@ const SurfaceProjector& SurfaceShape::stage(double lambda, int face) const {
   auto& slot = stages_[key];
   if (!slot) {
     std::vector<SurfacePatch> patches;
-    for (std::size_t f = 0; f < faces_.size(); ++f) {
-      if (face >= 0 && f != static_cast<std::size_t>(face)) continue;
+    for (const int index : faces_of(faces)) {
+      const auto f = static_cast<std::size_t>(index);
       const BSplineSurface& s = faces_[f].surface;
       SurfacePatch patch;
       patch.evaluate = [this, f, lambda](double t, double u) { return evaluate(f, t, u, lambda); };
@@ -443,10 +453,73 @@ const SurfaceProjector& SurfaceShape::stage(double lambda, int face) const {
 }
 
 ShapePoint SurfaceShape::project(const Vec3& p, double lambda, const ShapeParameter& hint,
-                                 const ParameterRange& /*range*/) const {
-  const SurfaceParameter start = hint.known() ? SurfaceParameter{hint.face, hint.t, hint.s} : SurfaceParameter{};
-  const SurfaceProjection q = stage(lambda).project(p, start);
-  return {q.point, q.normal, {q.where.u, q.where.v, q.where.patch}, q.distance};
+                                 const ParameterRange& range) const {
+  if (range.region < 0) {
+    const SurfaceParameter start = hint.known() ? SurfaceParameter{hint.face, hint.t, hint.s} : SurfaceParameter{};
+    const SurfaceProjection q = stage(lambda).project(p, start);
+    return {q.point, q.normal, {q.where.u, q.where.v, q.where.patch}, q.distance};
+  }
+  // Within a region: its projector's patches are the region's faces in increasing order.
+  const int key = region_key(range.region);
+  std::vector<int> faces;
+  {
+    const std::shared_lock read(stages_mutex_);
+    faces = faces_of(key);
+  }
+  const auto local = std::find(faces.begin(), faces.end(), hint.face);
+  const SurfaceParameter start = hint.known() && local != faces.end()
+                                     ? SurfaceParameter{static_cast<int>(local - faces.begin()), hint.t, hint.s}
+                                     : SurfaceParameter{};
+  const SurfaceProjection q = stage(lambda, key).project(p, start);
+  return {q.point, q.normal, {q.where.u, q.where.v, faces[static_cast<std::size_t>(q.where.patch)]}, q.distance};
+}
+
+int SurfaceShape::crease_region(int face, double min_angle) const {
+  if (face < 0 || static_cast<std::size_t>(face) >= faces_.size()) return -1;
+  {
+    const std::shared_lock read(stages_mutex_);
+    const auto it = region_of_face_.find(min_angle);
+    if (it != region_of_face_.end()) return it->second[static_cast<std::size_t>(face)];
+  }
+  // Faces joined through shared edges that are not creases, by a flood fill.
+  const std::vector<ShapeCrease> cut = creases(min_angle);
+  const auto is_crease = [&](int a, int b) {
+    return std::any_of(cut.begin(), cut.end(), [&](const ShapeCrease& c) {
+      return c.faces[0] == std::min(a, b) && c.faces[1] == std::max(a, b);
+    });
+  };
+  std::vector<int> group(faces_.size(), -1);
+  std::vector<std::vector<int>> members;
+  for (std::size_t start = 0; start < faces_.size(); ++start) {
+    if (group[start] >= 0) continue;
+    const int g = static_cast<int>(members.size());
+    members.push_back({});
+    std::vector<int> todo{static_cast<int>(start)};
+    group[start] = g;
+    while (!todo.empty()) {
+      const int f = todo.back();
+      todo.pop_back();
+      members.back().push_back(f);
+      for (const int n : neighbours_[static_cast<std::size_t>(f)]) {
+        if (n < 0 || group[static_cast<std::size_t>(n)] >= 0 || is_crease(f, n)) continue;
+        group[static_cast<std::size_t>(n)] = g;
+        todo.push_back(n);
+      }
+    }
+    std::sort(members.back().begin(), members.back().end());
+  }
+  const std::unique_lock write(stages_mutex_);
+  const auto it = region_of_face_.find(min_angle);
+  if (it != region_of_face_.end()) return it->second[static_cast<std::size_t>(face)];  // another thread's
+  std::vector<int> region(faces_.size());
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    const std::vector<int>& faces = members[static_cast<std::size_t>(group[f])];
+    const auto known = std::find(regions_.begin(), regions_.end(), faces);
+    region[f] = static_cast<int>(known - regions_.begin());
+    if (known == regions_.end()) regions_.push_back(faces);
+  }
+  region_of_face_[min_angle] = region;
+  return region[static_cast<std::size_t>(face)];
 }
 
 ShapePoint SurfaceShape::at(const ShapeParameter& where, double lambda, const Vec3& /*reference*/) const {

@@ -201,6 +201,17 @@ TEST(SurfaceShape, ACreaseIsFoundAndItsPointsAreOnTheSharedEdge) {
       EXPECT_NEAR(std::abs(dot(c.normals[1], Vec3{-std::sin(M_PI / 6.0), 0.0, std::cos(M_PI / 6.0)})), 1.0, 1e-12);
     }
   }
+  // Each face is a region of its own between creases of 20 degrees, and one region with the
+  // other under 40: a point above the rising face, projected within the flat face's region,
+  // lands on the flat face's edge; within the whole wall, on the rising face.
+  const int flat = fit.shape->crease_region(0, 20.0 * M_PI / 180.0);
+  EXPECT_NE(flat, fit.shape->crease_region(1, 20.0 * M_PI / 180.0));
+  EXPECT_EQ(fit.shape->crease_region(0, 40.0 * M_PI / 180.0), fit.shape->crease_region(1, 40.0 * M_PI / 180.0));
+  const Vec3 above{1.5, 0.5, 0.5 * rise + 0.3};
+  const ShapePoint kept = fit.shape->project(above, 0.0, {0.5, 0.5, 0}, {.region = flat});
+  EXPECT_EQ(kept.parameter.face, 0);
+  EXPECT_LT(distance(kept.point, {1.0, 0.5, 0.0}), 1e-9);
+  EXPECT_EQ(fit.shape->project(above, 0.0, {0.5, 0.5, 0}).parameter.face, 1);
   // A plane has no creases.
   const PlaneShape plane({0, 0, 0}, {0, 0, 1});
   EXPECT_TRUE(plane.creases(0.1).empty());

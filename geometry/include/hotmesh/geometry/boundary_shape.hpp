@@ -47,10 +47,12 @@ struct ShapePoint {
 
 /// A parameter interval [first, last] of a shape: the part of it between two of its features,
 /// which a sliding node may not leave (it would slide across a corner). The default is the
-/// whole shape.
+/// whole shape. On a shape of faces, `region` is instead the part between its creases
+/// (BoundaryShape::crease_region; -1: the whole shape).
 struct ParameterRange {
   double first = -std::numeric_limits<double>::infinity();
   double last = std::numeric_limits<double>::infinity();
+  int region = -1;
   bool contains(double t) const { return first <= t && t <= last; }
 };
 
@@ -87,7 +89,8 @@ class BoundaryShape {
   /// Even with a hint the result is the global closest point, except where a point moved by
   /// much more than its distance to a near branch of the curve since the hint was computed.
   /// Const and thread-safe: called from parallel loops over nodes.
-  /// `range` restricts the search to a part of a curve's parameter t (other shapes ignore it).
+  /// `range` restricts the search to a part of a curve's parameter t, or to a region of a
+  /// shape of faces (other shapes ignore it).
   virtual ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
                              const ParameterRange& range = {}) const = 0;
 
@@ -115,6 +118,10 @@ class BoundaryShape {
   /// The point of the stage-lambda crease nearest p (one of creases()). Throws
   /// std::logic_error for shapes without creases.
   virtual CreasePoint crease_point(const ShapeCrease& crease, const Vec3& p, double lambda) const;
+  /// The region of `face` between the creases of at least `min_angle`: the faces joined to it
+  /// through edges that are not such creases, as the `region` of a ParameterRange, so that a
+  /// node projected within it never crosses a crease. -1 for shapes without faces.
+  virtual int crease_region(int /*face*/, double /*min_angle*/) const { return -1; }
 };
 
 }  // namespace hotmesh::geometry

@@ -117,6 +117,9 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// faces[0]'s side along it, and each face's normal there (faces[1]'s at its own side's
   /// closest point, the same edge of the deflected wall, since the faces' fields agree there).
   CreasePoint crease_point(const ShapeCrease& crease, const Vec3& p, double lambda) const override;
+  /// Regions are numbered as they are first asked for; project() with a range of that region
+  /// searches only its faces (clamped where they meet the others).
+  int crease_region(int face, double min_angle) const override;
   /// The closest point of one face at stage lambda (clamped at its shared edges).
   ShapePoint project_on_face(int face, const Vec3& p, double lambda, const ShapeParameter& hint) const;
 
@@ -124,9 +127,14 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   const CadFace& face(std::size_t i) const { return faces_[i]; }
 
  private:
-  /// The projector of stage lambda onto every face (face -1) or one, built on first use (one per
-  /// increment's stage) and kept.
-  const SurfaceProjector& stage(double lambda, int face = -1) const;
+  /// The projector of stage lambda onto every face (`faces` kAllFaces), one face (its index)
+  /// or a crease region (region_key), built on first use (one per increment's stage) and kept.
+  /// Its patches are `faces`' faces in increasing order.
+  const SurfaceProjector& stage(double lambda, int faces = kAllFaces) const;
+  static constexpr int kAllFaces = -1;
+  static int region_key(int region) { return -2 - region; }
+  /// The faces of a stage key, increasing.
+  std::vector<int> faces_of(int key) const;
   SurfaceDerivatives evaluate(std::size_t face, double t, double s, double lambda) const;
   /// The side (s first, s last, t first, t last) of `face` shared with `other`, or -1.
   int side_shared_with(int face, int other) const;
@@ -141,6 +149,10 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// or -1.
   std::vector<std::array<int, 4>> neighbours_;
   mutable std::shared_mutex stages_mutex_;
+  /// The crease regions asked for: each one's faces (increasing), and per angle asked for,
+  /// each face's region (guarded by stages_mutex_).
+  mutable std::vector<std::vector<int>> regions_;
+  mutable std::map<double, std::vector<int>> region_of_face_;
   mutable std::map<std::pair<double, int>, std::unique_ptr<SurfaceProjector>> stages_;
 };
 
