@@ -461,11 +461,12 @@ ShapePoint SurfaceShape::project(const Vec3& p, double lambda, const ShapeParame
   }
   // Within a region: its projector's patches are the region's faces in increasing order.
   const int key = region_key(range.region);
-  std::vector<int> faces;
+  const std::vector<int>* region = nullptr;  // stays put: regions_ only grows, at its end
   {
     const std::shared_lock read(stages_mutex_);
-    faces = faces_of(key);
+    region = &regions_.at(static_cast<std::size_t>(range.region));
   }
+  const std::vector<int>& faces = *region;
   const auto local = std::find(faces.begin(), faces.end(), hint.face);
   const SurfaceParameter start = hint.known() && local != faces.end()
                                      ? SurfaceParameter{static_cast<int>(local - faces.begin()), hint.t, hint.s}

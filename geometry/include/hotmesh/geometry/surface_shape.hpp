@@ -21,6 +21,7 @@
 
 #include <array>
 #include <cstddef>
+#include <deque>
 #include <map>
 #include <memory>
 #include <shared_mutex>
@@ -151,7 +152,7 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   mutable std::shared_mutex stages_mutex_;
   /// The crease regions asked for: each one's faces (increasing), and per angle asked for,
   /// each face's region (guarded by stages_mutex_).
-  mutable std::vector<std::vector<int>> regions_;
+  mutable std::deque<std::vector<int>> regions_;  ///< a deque: its elements stay where they are
   mutable std::map<double, std::vector<int>> region_of_face_;
   mutable std::map<std::pair<double, int>, std::unique_ptr<SurfaceProjector>> stages_;
 };
