@@ -1,10 +1,12 @@
-// hotmesh deform: element stiffness matrices, eq. (28)-(30) (pointwise physics layer).
+// hotmesh deform: element stiffness matrices, eq. (28)-(30) (pointwise physics layer), for
+// Q1 cells and (issue 24, first step) the linear tri3, tet4, wedge6 and pyramid5.
 #include "hotmesh/deform/element_stiffness.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "hotmesh/geometry/input_error.hpp"
+#include "linear_elements.hpp"
 #include "q1_element.hpp"
 
 namespace hotmesh::deform {
@@ -46,15 +48,67 @@ void q1_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, 
   }
 }
 
+/// The element matrix of a linear element E of linear_elements.hpp, the same sum as
+/// q1_stiffness over E's rule: w_g B^T E B with w_g the reference weight when the Jacobian is
+/// dropped, w_g |det J_g| when kept.
+template <class E>
+void linear_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, std::span<double> k) {
+  constexpr std::size_t D = E::kDim;
+  constexpr std::size_t nodes = E::kNodes;
+  constexpr std::size_t n = nodes * D;
+  using Q = detail::Q1<D>;  // the d x d matrix helpers
+  std::fill(k.begin(), k.end(), 0.0);
+  const auto x = detail::corner_coordinates<D, nodes>(e);
+  for (const auto& q : E::quadrature()) {
+    const auto dn = E::reference_gradients(q.xi);
+    const auto j = detail::jacobian<D, nodes>(x, dn);
+    const double det = Q::determinant(j);
+    if (det == 0.0 || !std::isfinite(det)) continue;  // a collapsed point carries no stiffness
+    const auto inv = Q::inverse(j, det);
+    std::array<std::array<double, D>, nodes> g{};
+    for (std::size_t a = 0; a < nodes; ++a) {
+      for (std::size_t i = 0; i < D; ++i) {
+        for (std::size_t m = 0; m < D; ++m) g[a][i] += dn[a][m] * inv[m][i];
+      }
+    }
+    const double w = drop_jacobian ? q.weight : q.weight * std::abs(det);
+    for (std::size_t a = 0; a < nodes; ++a) {
+      for (std::size_t b = 0; b < nodes; ++b) {
+        double gg = 0.0;
+        for (std::size_t m = 0; m < D; ++m) gg += g[a][m] * g[b][m];
+        for (std::size_t i = 0; i < D; ++i) {
+          double* row = k.data() + (a * D + i) * n + b * D;
+          for (std::size_t jj = 0; jj < D; ++jj) {
+            double v = lame.lambda * g[a][i] * g[b][jj] + lame.mu * g[a][jj] * g[b][i];
+            if (i == jj) v += lame.mu * gg;
+            row[jj] += w * v;
+          }
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 int element_dofs(ElementType type) {
   switch (type) {
     case ElementType::quad4: return 8;
     case ElementType::hex8: return 24;
-    default:
-      throw InputError("the mesh-motion solver handles quad4 and hex8 cells; this mesh has " +
-                       std::string(name(type)) + " cells");
+    case ElementType::tri3: return 6;
+    case ElementType::tet4: return 12;
+    case ElementType::wedge6: return 18;
+    case ElementType::pyramid5: return 15;
+    default: throw InputError("element_dofs: " + std::string(name(type)) + " is not a cell type");
+  }
+}
+
+void require_motion_cells(const Mesh& mesh) {
+  for (ElementType t : mesh.cells.types()) {
+    if (t != ElementType::quad4 && t != ElementType::hex8) {
+      throw InputError("the mesh-motion solver handles quad4 and hex8 cells; this mesh has " + std::string(name(t)) +
+                       " cells");
+    }
   }
 }
 
@@ -64,8 +118,16 @@ void element_stiffness(ElementType type, const ElementPoints& element, const Lam
     q1_stiffness<2>(element, lame, drop_jacobian, k);
   } else if (type == ElementType::hex8) {
     q1_stiffness<3>(element, lame, drop_jacobian, k);
+  } else if (type == ElementType::tri3) {
+    linear_stiffness<detail::Tri3>(element, lame, drop_jacobian, k);
+  } else if (type == ElementType::tet4) {
+    linear_stiffness<detail::Tet4>(element, lame, drop_jacobian, k);
+  } else if (type == ElementType::wedge6) {
+    linear_stiffness<detail::Wedge6>(element, lame, drop_jacobian, k);
+  } else if (type == ElementType::pyramid5) {
+    linear_stiffness<detail::Pyramid5>(element, lame, drop_jacobian, k);
   } else {
-    element_dofs(type);  // throws the solver's message
+    element_dofs(type);  // throws: line2 is no cell
   }
 }
 
