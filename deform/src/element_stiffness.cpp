@@ -12,10 +12,30 @@
 namespace hotmesh::deform {
 namespace {
 
+/// One quadrature point's w B^T E B, added to the row-major K_e, from the physical gradients
+/// g_a = grad N_a of the N corners: K_ab,ij += w (lambda g_a,i g_b,j + G (g_a,j g_b,i + delta_ij g_a . g_b)).
+template <std::size_t D, std::size_t N>
+void add_point_stiffness(const std::array<std::array<double, D>, N>& g, const Lame& lame, double w, std::span<double> k) {
+  constexpr std::size_t n = N * D;
+  for (std::size_t a = 0; a < N; ++a) {
+    for (std::size_t b = 0; b < N; ++b) {
+      double gg = 0.0;
+      for (std::size_t m = 0; m < D; ++m) gg += g[a][m] * g[b][m];
+      for (std::size_t i = 0; i < D; ++i) {
+        double* row = k.data() + (a * D + i) * n + b * D;
+        for (std::size_t jj = 0; jj < D; ++jj) {
+          double v = lame.lambda * g[a][i] * g[b][jj] + lame.mu * g[a][jj] * g[b][i];
+          if (i == jj) v += lame.mu * gg;
+          row[jj] += w * v;
+        }
+      }
+    }
+  }
+}
+
 template <std::size_t D>
 void q1_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, std::span<double> k) {
   using Q = detail::Q1<D>;
-  constexpr std::size_t n = Q::kDofs;
   std::fill(k.begin(), k.end(), 0.0);
   for (const auto& xi : Q::gauss_points()) {
     const auto dn = Q::reference_gradients(xi);
@@ -31,20 +51,7 @@ void q1_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, 
       }
     }
     const double w = drop_jacobian ? 1.0 : std::abs(det);  // Gauss weights are all 1
-    for (std::size_t a = 0; a < Q::kNodes; ++a) {
-      for (std::size_t b = 0; b < Q::kNodes; ++b) {
-        double gg = 0.0;
-        for (std::size_t m = 0; m < D; ++m) gg += g[a][m] * g[b][m];
-        for (std::size_t i = 0; i < D; ++i) {
-          double* row = k.data() + (a * D + i) * n + b * D;
-          for (std::size_t jj = 0; jj < D; ++jj) {
-            double v = lame.lambda * g[a][i] * g[b][jj] + lame.mu * g[a][jj] * g[b][i];
-            if (i == jj) v += lame.mu * gg;
-            row[jj] += w * v;
-          }
-        }
-      }
-    }
+    add_point_stiffness<D, Q::kNodes>(g, lame, w, k);
   }
 }
 
@@ -55,7 +62,6 @@ template <class E>
 void linear_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, std::span<double> k) {
   constexpr std::size_t D = E::kDim;
   constexpr std::size_t nodes = E::kNodes;
-  constexpr std::size_t n = nodes * D;
   using Q = detail::Q1<D>;  // the d x d matrix helpers
   std::fill(k.begin(), k.end(), 0.0);
   const auto x = detail::corner_coordinates<D, nodes>(e);
@@ -72,20 +78,7 @@ void linear_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobi
       }
     }
     const double w = drop_jacobian ? q.weight : q.weight * std::abs(det);
-    for (std::size_t a = 0; a < nodes; ++a) {
-      for (std::size_t b = 0; b < nodes; ++b) {
-        double gg = 0.0;
-        for (std::size_t m = 0; m < D; ++m) gg += g[a][m] * g[b][m];
-        for (std::size_t i = 0; i < D; ++i) {
-          double* row = k.data() + (a * D + i) * n + b * D;
-          for (std::size_t jj = 0; jj < D; ++jj) {
-            double v = lame.lambda * g[a][i] * g[b][jj] + lame.mu * g[a][jj] * g[b][i];
-            if (i == jj) v += lame.mu * gg;
-            row[jj] += w * v;
-          }
-        }
-      }
-    }
+    add_point_stiffness<D, nodes>(g, lame, w, k);
   }
 }
 
