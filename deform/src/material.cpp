@@ -32,7 +32,7 @@ ElementShape q1_shape(const ElementPoints& e) {
 /// regular cell: with J and W the Jacobians of the cell and of E::ideal() at E::centre(),
 /// T = J W^-1 maps the regular cell onto this one (exactly, for tri3 and tet4), and
 ///     |phi_s| = ||T||_F ||T^-1||_F / d,   V_e = det J * (reference volume).
-/// A cell similar to the regular one (rotated, scaled, reflected) has T = s R: |phi_s| = 1.
+/// A cell similar to the regular one (rotated, scaled, shifted) has T = s R: |phi_s| = 1.
 /// For quad4/hex8 W is a multiple of I, which is q1_shape.
 template <class E>
 ElementShape linear_shape(const ElementPoints& e) {
