@@ -1,19 +1,41 @@
-// hotmesh deform: element stiffness matrices, eq. (28)-(30) (pointwise physics layer).
+// hotmesh deform: element stiffness matrices, eq. (28)-(30) (pointwise physics layer), for
+// Q1 cells and (issue 24, first step) the linear tri3, tet4, wedge6 and pyramid5.
 #include "hotmesh/deform/element_stiffness.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "hotmesh/geometry/input_error.hpp"
+#include "linear_elements.hpp"
 #include "q1_element.hpp"
 
 namespace hotmesh::deform {
 namespace {
 
+/// One quadrature point's w B^T E B, added to the row-major K_e, from the physical gradients
+/// g_a = grad N_a of the N corners: K_ab,ij += w (lambda g_a,i g_b,j + G (g_a,j g_b,i + delta_ij g_a . g_b)).
+template <std::size_t D, std::size_t N>
+void add_point_stiffness(const std::array<std::array<double, D>, N>& g, const Lame& lame, double w, std::span<double> k) {
+  constexpr std::size_t n = N * D;
+  for (std::size_t a = 0; a < N; ++a) {
+    for (std::size_t b = 0; b < N; ++b) {
+      double gg = 0.0;
+      for (std::size_t m = 0; m < D; ++m) gg += g[a][m] * g[b][m];
+      for (std::size_t i = 0; i < D; ++i) {
+        double* row = k.data() + (a * D + i) * n + b * D;
+        for (std::size_t jj = 0; jj < D; ++jj) {
+          double v = lame.lambda * g[a][i] * g[b][jj] + lame.mu * g[a][jj] * g[b][i];
+          if (i == jj) v += lame.mu * gg;
+          row[jj] += w * v;
+        }
+      }
+    }
+  }
+}
+
 template <std::size_t D>
 void q1_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, std::span<double> k) {
   using Q = detail::Q1<D>;
-  constexpr std::size_t n = Q::kDofs;
   std::fill(k.begin(), k.end(), 0.0);
   for (const auto& xi : Q::gauss_points()) {
     const auto dn = Q::reference_gradients(xi);
@@ -29,20 +51,34 @@ void q1_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, 
       }
     }
     const double w = drop_jacobian ? 1.0 : std::abs(det);  // Gauss weights are all 1
-    for (std::size_t a = 0; a < Q::kNodes; ++a) {
-      for (std::size_t b = 0; b < Q::kNodes; ++b) {
-        double gg = 0.0;
-        for (std::size_t m = 0; m < D; ++m) gg += g[a][m] * g[b][m];
-        for (std::size_t i = 0; i < D; ++i) {
-          double* row = k.data() + (a * D + i) * n + b * D;
-          for (std::size_t jj = 0; jj < D; ++jj) {
-            double v = lame.lambda * g[a][i] * g[b][jj] + lame.mu * g[a][jj] * g[b][i];
-            if (i == jj) v += lame.mu * gg;
-            row[jj] += w * v;
-          }
-        }
+    add_point_stiffness<D, Q::kNodes>(g, lame, w, k);
+  }
+}
+
+/// The element matrix of a linear element E of linear_elements.hpp, the same sum as
+/// q1_stiffness over E's rule: w_g B^T E B with w_g the reference weight when the Jacobian is
+/// dropped, w_g |det J_g| when kept.
+template <class E>
+void linear_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, std::span<double> k) {
+  constexpr std::size_t D = E::kDim;
+  constexpr std::size_t nodes = E::kNodes;
+  using Q = detail::Q1<D>;  // the d x d matrix helpers
+  std::fill(k.begin(), k.end(), 0.0);
+  const auto x = detail::corner_coordinates<D, nodes>(e);
+  for (const auto& q : E::quadrature()) {
+    const auto dn = E::reference_gradients(q.xi);
+    const auto j = detail::jacobian<D, nodes>(x, dn);
+    const double det = Q::determinant(j);
+    if (det == 0.0 || !std::isfinite(det)) continue;  // a collapsed point carries no stiffness
+    const auto inv = Q::inverse(j, det);
+    std::array<std::array<double, D>, nodes> g{};
+    for (std::size_t a = 0; a < nodes; ++a) {
+      for (std::size_t i = 0; i < D; ++i) {
+        for (std::size_t m = 0; m < D; ++m) g[a][i] += dn[a][m] * inv[m][i];
       }
     }
+    const double w = drop_jacobian ? q.weight : q.weight * std::abs(det);
+    add_point_stiffness<D, nodes>(g, lame, w, k);
   }
 }
 
@@ -52,9 +88,20 @@ int element_dofs(ElementType type) {
   switch (type) {
     case ElementType::quad4: return 8;
     case ElementType::hex8: return 24;
-    default:
-      throw InputError("the mesh-motion solver handles quad4 and hex8 cells; this mesh has " +
-                       std::string(name(type)) + " cells");
+    case ElementType::tri3: return 6;
+    case ElementType::tet4: return 12;
+    case ElementType::wedge6: return 18;
+    case ElementType::pyramid5: return 15;
+    default: throw InputError("element_dofs: " + std::string(name(type)) + " is not a cell type");
+  }
+}
+
+void require_motion_cells(const Mesh& mesh) {
+  for (ElementType t : mesh.cells.types()) {
+    if (t != ElementType::quad4 && t != ElementType::hex8) {
+      throw InputError("the mesh-motion solver handles quad4 and hex8 cells; this mesh has " + std::string(name(t)) +
+                       " cells");
+    }
   }
 }
 
@@ -64,8 +111,16 @@ void element_stiffness(ElementType type, const ElementPoints& element, const Lam
     q1_stiffness<2>(element, lame, drop_jacobian, k);
   } else if (type == ElementType::hex8) {
     q1_stiffness<3>(element, lame, drop_jacobian, k);
+  } else if (type == ElementType::tri3) {
+    linear_stiffness<detail::Tri3>(element, lame, drop_jacobian, k);
+  } else if (type == ElementType::tet4) {
+    linear_stiffness<detail::Tet4>(element, lame, drop_jacobian, k);
+  } else if (type == ElementType::wedge6) {
+    linear_stiffness<detail::Wedge6>(element, lame, drop_jacobian, k);
+  } else if (type == ElementType::pyramid5) {
+    linear_stiffness<detail::Pyramid5>(element, lame, drop_jacobian, k);
   } else {
-    element_dofs(type);  // throws the solver's message
+    element_dofs(type);  // throws: line2 is no cell
   }
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "hotmesh/geometry/input_error.hpp"
+#include "linear_elements.hpp"
 #include "q1_element.hpp"
 
 namespace hotmesh::deform {
@@ -27,15 +28,52 @@ ElementShape q1_shape(const ElementPoints& e) {
   return s;
 }
 
+/// Eq. (35)'s measures for a linear element E of linear_elements.hpp, measured against E's
+/// regular cell: with J and W the Jacobians of the cell and of E::ideal() at E::centre(),
+/// T = J W^-1 maps the regular cell onto this one (exactly, for tri3 and tet4), and
+///     |phi_s| = ||T||_F ||T^-1||_F / d,   V_e = det J * (reference volume).
+/// A cell similar to the regular one (rotated, scaled, shifted) has T = s R: |phi_s| = 1.
+/// For quad4/hex8 W is a multiple of I, which is q1_shape.
+template <class E>
+ElementShape linear_shape(const ElementPoints& e) {
+  constexpr std::size_t D = E::kDim;
+  using Q = detail::Q1<D>;
+  const auto dn = E::reference_gradients(E::centre());
+  const auto j = detail::jacobian<D, E::kNodes>(detail::corner_coordinates<D, E::kNodes>(e), dn);
+  const double det = Q::determinant(j);
+  ElementShape s;
+  s.volume = det * E::kReferenceVolume;
+  if (!(det > 0.0)) {
+    s.shape_measure = 1e12;  // as q1_shape
+    return s;
+  }
+  const auto w = detail::jacobian<D, E::kNodes>(E::ideal(), dn);
+  const auto w_inverse = Q::inverse(w, Q::determinant(w));
+  const auto j_inverse = Q::inverse(j, det);
+  typename Q::Matrix t{}, t_inverse{};
+  for (std::size_t i = 0; i < D; ++i) {
+    for (std::size_t k = 0; k < D; ++k) {
+      for (std::size_t m = 0; m < D; ++m) {
+        t[i][k] += j[i][m] * w_inverse[m][k];
+        t_inverse[i][k] += w[i][m] * j_inverse[m][k];
+      }
+    }
+  }
+  s.shape_measure = Q::frobenius(t) * Q::frobenius(t_inverse) / static_cast<double>(D);
+  return s;
+}
+
 }  // namespace
 
 ElementShape element_shape(ElementType type, const ElementPoints& element) {
   switch (type) {
     case ElementType::quad4: return q1_shape<2>(element);
     case ElementType::hex8: return q1_shape<3>(element);
-    default:
-      throw InputError("the mesh-motion solver handles quad4 and hex8 cells; this mesh has " +
-                       std::string(name(type)) + " cells");
+    case ElementType::tri3: return linear_shape<detail::Tri3>(element);
+    case ElementType::tet4: return linear_shape<detail::Tet4>(element);
+    case ElementType::wedge6: return linear_shape<detail::Wedge6>(element);
+    case ElementType::pyramid5: return linear_shape<detail::Pyramid5>(element);
+    default: throw InputError("element_shape: " + std::string(name(type)) + " is not a cell type");
   }
 }
 

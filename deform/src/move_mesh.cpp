@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "boundary_conditions.hpp"
+#include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -562,6 +563,7 @@ MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, c
                        const SolverOptions& solver, const MotionObservers& observers, const MotionStart* start,
                        const MotionCheckpoint* resume, const parallel::RankExchange& ranks) {
   const auto begin = Clock::now();
+  require_motion_cells(mesh);  // before eq. (35), which would measure the other cell types
   const bool corners = has_corners(patches);
   std::vector<PatchMotion> sliding_freely(patches.begin(), patches.end());
   for (PatchMotion& m : sliding_freely) m.features.enabled = false;  // creases stay held

@@ -2,7 +2,9 @@
 // the Gauss rule (30) with n = 2:
 //     K_e = sum_g w_g B_g^T E B_g  [* det J_g, unless the Jacobian is dropped (Stein et al.)]
 // for the bilinear quad in plane strain (2x2 points) and the trilinear hex (2x2x2 points),
-// with B from the current coordinates. At a Gauss point, with g_a = grad N_a, the isotropic
+// with B from the current coordinates. The linear triangle (plane strain), tetrahedron, prism
+// and pyramid (issue 24, first step) use the same sum over their own rules, w_g the reference
+// weights (deform/src/linear_elements.hpp); only the element level handles them so far. At a Gauss point, with g_a = grad N_a, the isotropic
 // E of eqs. (32)-(33) gives the 2x2 or 3x3 block coupling nodes a and b
 //     K_ab,ij = lambda g_a,i g_b,j + G (g_a,j g_b,i + delta_ij g_a . g_b).
 #pragma once
@@ -16,8 +18,15 @@
 
 namespace hotmesh::deform {
 
-/// Degrees of freedom of a solver cell: 8 for quad4, 24 for hex8; throws InputError otherwise.
+/// Degrees of freedom of a cell: d x corners (quad4 8, hex8 24, tri3 6, tet4 12, wedge6 18,
+/// pyramid5 15); throws InputError for line2.
 int element_dofs(ElementType type);
+
+/// The motion's entry check: throws InputError "the mesh-motion solver handles quad4 and hex8
+/// cells; this mesh has <type> cells" unless every cell is a quad4 or hex8. The element
+/// matrices and eq. (35) measures exist for every linear cell, but the solver's operators
+/// (matrix-free product, colouring, ranks) still handle Q1 cells only.
+void require_motion_cells(const Mesh& mesh);
 
 /// Writes K_e row-major into k (element_dofs(type)^2 values); dof a*d + i is component i of
 /// corner a. The determinant enters as |det J_g| when kept, so the matrix stays positive
