@@ -3,6 +3,7 @@
 // whose keys the body has:
 //   "path"   -> POST /api/models (load_path; the root holds a few small CAD files)
 //   "points" -> POST /api/curves/{id}/project (on a curve made at start-up)
+//   "grid"   -> POST /api/surfaces (create_surface; "model": "m1" is the stator-well sample)
 //   "csv"    -> POST /api/curves (create_curve; "model": "m1" is the stator-well sample)
 //   else     -> POST /api/models/m1/meridional
 // A request may fail only with ApiError (4xx) or hotmesh::InputError (422), anything else
@@ -61,6 +62,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       service.delete_model(service.load_path(request)["model"].get<std::string>());
     } else if (request.contains("points")) {
       service.project(fixture.curve, request);
+    } else if (request.contains("grid")) {
+      service.delete_surface(service.create_surface(request)["surface"].get<std::string>());
     } else if (request.contains("csv")) {
       service.delete_curve(service.create_curve(request)["curve"].get<std::string>());
     } else {
