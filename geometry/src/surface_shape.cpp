@@ -123,6 +123,33 @@ constexpr double kFreeEdgeReach = 0.05;
 /// The faces of a wall seen together: each on its own (undeformed) projector, their common
 /// size, and for each side of each face's rectangle (v first, v last, u first, u last) the face
 /// it is shared with (-1: a free edge) and whether it collapses to a point.
+/// The faces joined through the shared sides `neighbours` lists (per face and side, the face
+/// sharing it or -1) where `joined(a, b)` accepts the edge: a flood fill from each face not yet
+/// in a group, so the groups come in order of their lowest face.
+template <class Joined>
+std::vector<std::vector<std::size_t>> face_groups(std::span<const std::array<int, 4>> neighbours, Joined joined) {
+  std::vector<int> group(neighbours.size(), -1);
+  std::vector<std::vector<std::size_t>> out;
+  for (std::size_t start = 0; start < neighbours.size(); ++start) {
+    if (group[start] >= 0) continue;
+    out.emplace_back();
+    std::vector<std::size_t> stack{start};
+    group[start] = static_cast<int>(out.size() - 1);
+    while (!stack.empty()) {
+      const std::size_t f = stack.back();
+      stack.pop_back();
+      out.back().push_back(f);
+      for (const int n : neighbours[f]) {
+        if (n >= 0 && group[static_cast<std::size_t>(n)] < 0 && joined(f, static_cast<std::size_t>(n))) {
+          group[static_cast<std::size_t>(n)] = group[start];
+          stack.push_back(static_cast<std::size_t>(n));
+        }
+      }
+    }
+  }
+  return out;
+}
+
 struct FaceSet {
   std::vector<SurfaceProjector> projectors;
   std::vector<Box> boxes;
@@ -146,26 +173,7 @@ struct FaceSet {
 
   /// Groups of faces joined through shared edges.
   std::vector<std::vector<std::size_t>> groups() const {
-    std::vector<int> group(neighbours.size(), -1);
-    std::vector<std::vector<std::size_t>> out;
-    for (std::size_t start = 0; start < neighbours.size(); ++start) {
-      if (group[start] >= 0) continue;
-      out.emplace_back();
-      std::vector<std::size_t> stack{start};
-      group[start] = static_cast<int>(out.size() - 1);
-      while (!stack.empty()) {
-        const std::size_t f = stack.back();
-        stack.pop_back();
-        out.back().push_back(f);
-        for (const int n : neighbours[f]) {
-          if (n >= 0 && group[static_cast<std::size_t>(n)] < 0) {
-            group[static_cast<std::size_t>(n)] = group[start];
-            stack.push_back(static_cast<std::size_t>(n));
-          }
-        }
-      }
-    }
-    return out;
+    return face_groups(neighbours, [](std::size_t, std::size_t) { return true; });
   }
 
  private:
@@ -482,41 +490,23 @@ int SurfaceShape::crease_region(int face, double min_angle) const {
     const auto it = region_of_face_.find(min_angle);
     if (it != region_of_face_.end()) return it->second[static_cast<std::size_t>(face)];
   }
-  // Faces joined through shared edges that are not creases, by a flood fill.
+  // Faces joined through shared edges that are not creases.
   const std::vector<ShapeCrease> cut = creases(min_angle);
-  const auto is_crease = [&](int a, int b) {
-    return std::any_of(cut.begin(), cut.end(), [&](const ShapeCrease& c) {
-      return c.faces[0] == std::min(a, b) && c.faces[1] == std::max(a, b);
+  const auto joined = [&](std::size_t a, std::size_t b) {
+    return std::none_of(cut.begin(), cut.end(), [&](const ShapeCrease& c) {
+      return c.faces == std::array{static_cast<int>(std::min(a, b)), static_cast<int>(std::max(a, b))};
     });
   };
-  std::vector<int> group(faces_.size(), -1);
-  std::vector<std::vector<int>> members;
-  for (std::size_t start = 0; start < faces_.size(); ++start) {
-    if (group[start] >= 0) continue;
-    const int g = static_cast<int>(members.size());
-    members.push_back({});
-    std::vector<int> todo{static_cast<int>(start)};
-    group[start] = g;
-    while (!todo.empty()) {
-      const int f = todo.back();
-      todo.pop_back();
-      members.back().push_back(f);
-      for (const int n : neighbours_[static_cast<std::size_t>(f)]) {
-        if (n < 0 || group[static_cast<std::size_t>(n)] >= 0 || is_crease(f, n)) continue;
-        group[static_cast<std::size_t>(n)] = g;
-        todo.push_back(n);
-      }
-    }
-    std::sort(members.back().begin(), members.back().end());
-  }
+  std::vector<std::vector<std::size_t>> groups = face_groups(neighbours_, joined);
   const std::unique_lock write(stages_mutex_);
   const auto it = region_of_face_.find(min_angle);
   if (it != region_of_face_.end()) return it->second[static_cast<std::size_t>(face)];  // another thread's
   std::vector<int> region(faces_.size());
-  for (std::size_t f = 0; f < faces_.size(); ++f) {
-    const std::vector<int>& faces = members[static_cast<std::size_t>(group[f])];
+  for (std::vector<std::size_t>& group : groups) {
+    std::sort(group.begin(), group.end());
+    const std::vector<int> faces(group.begin(), group.end());
     const auto known = std::find(regions_.begin(), regions_.end(), faces);
-    region[f] = static_cast<int>(known - regions_.begin());
+    for (const std::size_t f : group) region[f] = static_cast<int>(known - regions_.begin());
     if (known == regions_.end()) regions_.push_back(faces);
   }
   region_of_face_[min_angle] = region;
@@ -581,37 +571,36 @@ int SurfaceShape::side_shared_with(int face, int other) const {
   return it == sides.end() ? -1 : static_cast<int>(it - sides.begin());
 }
 
-// The side's curve C(w) (w along t on the s sides 0, 1; along s on the t sides 2, 3) minimises
-// |C(w) - p|^2: the best of uniform samples, then Newton on C'(w).(C(w) - p) = 0, kept in the
-// side's interval.
+// The side's curve C(f) = S(on_side(f)), f in [0, 1], minimises |C(f) - p|^2: the best of
+// uniform samples, then Newton on C'(f).(C(f) - p) = 0, kept on the side.
 ShapePoint SurfaceShape::project_on_side(std::size_t face, int side, const Vec3& p, double lambda) const {
   const ParameterRectangle r = faces_[face].surface.domain();
   const bool along_t = side < 2;
-  const double fixed = side == 0 ? r.v_first : side == 1 ? r.v_last : side == 2 ? r.u_first : r.u_last;
-  const double lo = along_t ? r.u_first : r.v_first, hi = along_t ? r.u_last : r.v_last;
-  const auto curve = [&](double w) { return along_t ? evaluate(face, w, fixed, lambda) : evaluate(face, fixed, w, lambda); };
+  const double span = along_t ? r.u_last - r.u_first : r.v_last - r.v_first;
+  const auto curve = [&](double f) {
+    const auto [t, s] = on_side(r, side, f);
+    return evaluate(face, t, s, lambda);
+  };
   constexpr int kSamples = 32;
-  double w = lo, best = std::numeric_limits<double>::infinity();
+  double f = 0.0, best = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= kSamples; ++k) {
-    const double v = lo + (hi - lo) * k / kSamples;
-    const double d = distance(curve(v).point, p);
-    if (d < best) best = d, w = v;
+    const double d = distance(curve(static_cast<double>(k) / kSamples).point, p);
+    if (d < best) best = d, f = static_cast<double>(k) / kSamples;
   }
   constexpr int kNewtonSteps = 40;
   for (int k = 0; k < kNewtonSteps; ++k) {
-    const SurfaceDerivatives c = curve(w);
-    const Vec3 d1 = along_t ? c.du : c.dv, d2 = along_t ? c.duu : c.dvv, off = c.point - p;
+    const SurfaceDerivatives c = curve(f);
+    const Vec3 d1 = span * (along_t ? c.du : c.dv), d2 = span * span * (along_t ? c.duu : c.dvv), off = c.point - p;
     const double g = dot(d1, off), h = dot(d2, off) + dot(d1, d1);
-    const double step = h > 0.0 ? -g / h : -g / std::max(dot(d1, d1), 1e-300);
-    const double next = std::clamp(w + step, lo, hi);
-    const bool done = std::abs(next - w) <= 1e-14 * (hi - lo);
-    w = next;
+    const double next = std::clamp(f - g / (h > 0.0 ? h : std::max(dot(d1, d1), 1e-300)), 0.0, 1.0);
+    const bool done = std::abs(next - f) <= 1e-14;
+    f = next;
     if (done) break;
   }
-  const SurfaceDerivatives c = curve(w);
+  const SurfaceDerivatives c = curve(f);
   const Vec3 n = cross(c.du, c.dv);
-  const double t = along_t ? w : fixed, s_ = along_t ? fixed : w;
-  return {c.point, n / norm(n), {t, s_, static_cast<int>(face)}, distance(c.point, p)};
+  const auto [t, s] = on_side(r, side, f);
+  return {c.point, n / norm(n), {t, s, static_cast<int>(face)}, distance(c.point, p)};
 }
 
 std::vector<ShapeCrease> SurfaceShape::creases(double min_angle) const {
@@ -627,9 +616,7 @@ std::vector<ShapeCrease> SurfaceShape::creases(double min_angle) const {
       ShapeCrease crease{{static_cast<int>(f), g}, 0.0};
       for (const double lambda : {0.0, 1.0}) {
         for (int k = 0; k <= kSamples; ++k) {
-          const double w = static_cast<double>(k) / kSamples;
-          const double t = side < 2 ? r.u_first + w * (r.u_last - r.u_first) : side == 2 ? r.u_first : r.u_last;
-          const double s = side >= 2 ? r.v_first + w * (r.v_last - r.v_first) : side == 0 ? r.v_first : r.v_last;
+          const auto [t, s] = on_side(r, side, static_cast<double>(k) / kSamples);
           const SurfaceDerivatives here = evaluate(f, t, s, lambda);
           const Vec3 n = cross(here.du, here.dv);
           const ShapePoint there = project_on_side(static_cast<std::size_t>(g), other_side, here.point, lambda);
