@@ -5,12 +5,16 @@
 
 #include <Eigen/Dense>
 
+#include "element_matrices.hpp"
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::deform {
 namespace {
+
+using test::rigid_modes;
+using test::stiffness;
 
 ElementPoints distorted_quad() {
   ElementPoints e;
@@ -27,33 +31,7 @@ ElementPoints distorted_hex() {
   return e;
 }
 
-Eigen::MatrixXd stiffness(ElementType type, const ElementPoints& e, const Lame& lame, bool drop) {
-  const int n = element_dofs(type);
-  std::vector<double> k(static_cast<std::size_t>(n * n));
-  element_stiffness(type, e, lame, drop, k);
-  return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(k.data(), n, n);
-}
 
-/// Rigid-body displacement vectors of an element: translations and rotations.
-Eigen::MatrixXd rigid_modes(const ElementPoints& e, int d) {
-  const int modes = d == 2 ? 3 : 6;
-  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(e.count * d, modes);
-  for (int a = 0; a < e.count; ++a) {
-    const Vec3& p = e.p[static_cast<std::size_t>(a)];
-    for (int i = 0; i < d; ++i) m(a * d + i, i) = 1.0;
-    if (d == 2) {
-      m(a * 2, 2) = -p.y;
-      m(a * 2 + 1, 2) = p.x;
-    } else {
-      const Vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-      for (int r = 0; r < 3; ++r) {
-        const Vec3 v = cross(axes[r], p);
-        for (int i = 0; i < 3; ++i) m(a * 3 + i, 3 + r) = v[i];
-      }
-    }
-  }
-  return m;
-}
 
 void expect_psd_with_rigid_null_space(ElementType type, const ElementPoints& e, const Lame& lame, bool drop) {
   const int d = type == ElementType::quad4 ? 2 : 3;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "element_matrices.hpp"
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/move_mesh.hpp"
@@ -22,16 +23,12 @@
 namespace hotmesh::deform {
 namespace {
 
+using test::rigid_modes;
+using test::stiffness;
+
 constexpr std::array kTypes{ElementType::tri3, ElementType::tet4, ElementType::wedge6, ElementType::pyramid5};
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-Eigen::MatrixXd stiffness(ElementType type, const ElementPoints& e, const Lame& lame, bool drop) {
-  const int n = element_dofs(type);
-  std::vector<double> k(static_cast<std::size_t>(n * n));
-  element_stiffness(type, e, lame, drop, k);
-  return Eigen::Map<RowMajor>(k.data(), n, n);
-}
 
 ElementPoints points(std::initializer_list<Vec3> corners) {
   ElementPoints e;
@@ -65,26 +62,6 @@ ElementPoints regular(ElementType type) {
   }
 }
 
-/// Translations and infinitesimal rotations of the corners, one column each.
-Eigen::MatrixXd rigid_modes(const ElementPoints& e, int d) {
-  const int modes = d == 2 ? 3 : 6;
-  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(e.count * d, modes);
-  for (int a = 0; a < e.count; ++a) {
-    const Vec3& p = e.p[static_cast<std::size_t>(a)];
-    for (int i = 0; i < d; ++i) m(a * d + i, i) = 1.0;
-    if (d == 2) {
-      m(a * 2, 2) = -p.y;
-      m(a * 2 + 1, 2) = p.x;
-    } else {
-      const Vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-      for (int r = 0; r < 3; ++r) {
-        const Vec3 v = cross(axes[r], p);
-        for (int i = 0; i < 3; ++i) m(a * 3 + i, 3 + r) = v[i];
-      }
-    }
-  }
-  return m;
-}
 
 /// A rigid rotation about a skew axis, a scaling and a shift: the similarity a regular cell may
 /// be given without changing its shape.
