@@ -690,9 +690,7 @@ WallDeviation wall_deviation(const SurfaceShape& shape, std::span<const Vec3> po
   if (measure.empty()) return result;
   measure.wall_to_shape(result);
   measure.shape_to_wall(result);
-  const double a = result.mesh_to_shape.distance, b = result.shape_to_mesh.distance;
-  result.worst = b > a ? WallDirection::shape_to_mesh : WallDirection::mesh_to_shape;
-  result.hausdorff = std::isnan(a) || std::isnan(b) ? std::numeric_limits<double>::quiet_NaN() : std::max(a, b);
+  result.take_worst_direction();
   return result;
 }
 

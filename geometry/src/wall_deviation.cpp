@@ -404,6 +404,12 @@ void WallFaces::add(std::span<const std::int32_t> corners) {
   offsets_.push_back(corners_.size());
 }
 
+void WallDeviation::take_worst_direction() {
+  const double a = mesh_to_shape.distance, b = shape_to_mesh.distance;
+  worst = b > a ? WallDirection::shape_to_mesh : WallDirection::mesh_to_shape;
+  hausdorff = std::isnan(a) || std::isnan(b) ? std::numeric_limits<double>::quiet_NaN() : std::max(a, b);
+}
+
 const char* to_string(WallDirection direction) {
   return direction == WallDirection::mesh_to_shape ? "mesh_to_shape" : "shape_to_mesh";
 }
@@ -423,9 +429,7 @@ WallDeviation wall_deviation(const CurveProjector& curve, std::span<const Vec3> 
   Measure measure(curve, points, options, std::move(segments));
   measure.wall_to_curve(result);
   measure.curve_to_wall(result);
-  const double a = result.mesh_to_shape.distance, b = result.shape_to_mesh.distance;
-  result.worst = b > a ? WallDirection::shape_to_mesh : WallDirection::mesh_to_shape;
-  result.hausdorff = std::isnan(a) || std::isnan(b) ? std::numeric_limits<double>::quiet_NaN() : std::max(a, b);
+  result.take_worst_direction();
   return result;
 }
 

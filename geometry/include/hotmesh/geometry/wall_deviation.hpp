@@ -130,6 +130,8 @@ struct WallDeviation {
   const WallDeviationPoint& worst_point() const {
     return worst == WallDirection::mesh_to_shape ? mesh_to_shape : shape_to_mesh;
   }
+  /// `worst` and `hausdorff` from the two directions' distances (NaN if either is).
+  void take_worst_direction();
 };
 
 /// The two-sided distance between the wall made of `faces` (corners indexing `points`) and the
