@@ -7,13 +7,13 @@ namespace hotmesh::deform {
 
 Eigen::SparseMatrix<double> assemble_sparse(const StiffnessOperator& k) {
   const auto& cells = k.cells();
-  const auto n = static_cast<std::size_t>(k.kernel().element_size());
   const auto d = static_cast<std::size_t>(k.dofs_per_node());
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(cells.size() * n * n);
+  entries.reserve(cells.all_nodes().size() * d * 8 * d);
   for (std::size_t c = 0; c < cells.size(); ++c) {
     const auto ke = k.element_matrix(static_cast<CellId>(c));
     const auto nodes = cells.nodes(c);
+    const std::size_t n = nodes.size() * d;
     for (std::size_t r = 0; r < n; ++r) {
       const auto row = static_cast<Eigen::Index>(static_cast<std::size_t>(nodes[r / d]) * d + r % d);
       for (std::size_t s = 0; s < n; ++s) {

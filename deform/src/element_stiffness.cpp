@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "hotmesh/geometry/input_error.hpp"
 #include "linear_elements.hpp"
@@ -97,11 +99,27 @@ int element_dofs(ElementType type) {
 }
 
 void require_motion_cells(const Mesh& mesh) {
-  for (ElementType t : mesh.cells.types()) {
-    if (t != ElementType::quad4 && t != ElementType::hex8) {
-      throw InputError("the mesh-motion solver handles quad4 and hex8 cells; this mesh has " + std::string(name(t)) +
-                       " cells");
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    const ElementType t = mesh.cells.type(c);
+    if (dimension(t) != mesh.dimension) {
+      throw InputError("cell " + std::to_string(mesh.cell_id(static_cast<CellId>(c))) + " is a " + std::string(name(t)) +
+                       ": the mesh-motion solver moves " +
+                       (mesh.dimension == 2 ? "2D meshes of tri3 and quad4 cells"
+                                            : "3D meshes of tet4, hex8, wedge6 and pyramid5 cells"));
     }
+  }
+}
+
+void add_element_product(std::span<const NodeId> nodes, std::span<const double> ke, std::size_t d,
+                         std::span<const double> x, std::span<double> y) {
+  switch (nodes.size() * d) {
+    case 6: return add_element_product<6, 2>(nodes, ke.data(), x, y);
+    case 8: return add_element_product<8, 2>(nodes, ke.data(), x, y);
+    case 12: return add_element_product<12, 3>(nodes, ke.data(), x, y);
+    case 15: return add_element_product<15, 3>(nodes, ke.data(), x, y);
+    case 18: return add_element_product<18, 3>(nodes, ke.data(), x, y);
+    case 24: return add_element_product<24, 3>(nodes, ke.data(), x, y);
+    default: throw std::invalid_argument("add_element_product: no cell has " + std::to_string(nodes.size()) + " corners");
   }
 }
 

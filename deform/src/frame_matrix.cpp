@@ -192,9 +192,9 @@ AssemblyOrder::AssemblyOrder(const StiffnessKernel& k, const NodalFrames& frames
 
 void ElementPass::frame_element(CellId cell, const NodalFrames& frames, const BlockRows& rows, FrameElement& out) const {
   const auto d = static_cast<std::size_t>(frames.dimension());
-  const auto n = static_cast<std::size_t>(s.kernel.element_size());
-  const std::size_t corners = n / d;
   const auto nodes = s.kernel.cells().nodes(static_cast<std::size_t>(cell));
+  const std::size_t corners = nodes.size();
+  const std::size_t n = corners * d;
   std::array<double, 24 * 24> scratch{};
   const double* ke = scratch.data();
   if (stored) {
@@ -206,6 +206,7 @@ void ElementPass::frame_element(CellId cell, const NodalFrames& frames, const Bl
   std::array<std::int32_t, 8> owners{};
   frames.transform_element(nodes, {ke, n * n}, {out.values.data(), n * n}, {owners.data(), corners});
   for (std::size_t k = 0; k < corners; ++k) out.index[k] = rows[owners[k]];
+  out.corners = corners;
 }
 
 namespace {
@@ -255,13 +256,12 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
                            const AssemblyOrder& order, std::span<const CellId> local, bool first) {
   const auto d = static_cast<std::size_t>(frames.dimension());
   const auto bs = static_cast<PetscInt>(d);
-  const auto n = static_cast<std::size_t>(pass.s.kernel.element_size());
-  const auto corners = static_cast<PetscInt>(n / d);  // block rows and columns of K~_e
   if (first) {  // the sparsity only (zero blocks, no K_e): the values are added below, as every later assembly adds them
-    const std::vector<double> zeros(n * n, 0.0);
+    const std::vector<double> zeros(24 * 24, 0.0);
     std::array<PetscInt, 8> index{};
     for (const CellId cell : local) {
       const auto nodes = pass.s.kernel.cells().nodes(static_cast<std::size_t>(cell));
+      const auto corners = static_cast<PetscInt>(nodes.size());  // block rows and columns of K~_e
       for (std::size_t k = 0; k < nodes.size(); ++k) index[k] = rows[frames.owner(nodes[k])];
       check(MatSetValuesBlocked(a, corners, index.data(), corners, index.data(), zeros.data(), ADD_VALUES),
             "MatSetValuesBlocked");
@@ -289,6 +289,8 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
       FrameElement e;
       pass.frame_element(cell, frames, rows, e);
       const auto& index = e.index;
+      const auto corners = static_cast<PetscInt>(e.corners);  // block rows and columns of K~_e
+      const std::size_t n = e.corners * d;
       for (std::size_t p = 0; p < static_cast<std::size_t>(corners); ++p) {
         const PetscInt row = index[p];
         if (row < 0) continue;

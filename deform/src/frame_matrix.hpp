@@ -86,8 +86,9 @@ struct AssemblyOrder {
 /// K~_e of one cell and the block rows of its corners (negative for a node without unknowns:
 /// PETSc skips them).
 struct FrameElement {
-  std::array<double, 24 * 24> values{};
+  std::array<double, 24 * 24> values{};  ///< K~_e, (d corners)^2 values row-major
   std::array<PetscInt, 8> index{};
+  std::size_t corners = 0;
 };
 
 /// Where an element pass takes K_e from: the `stored` matrices, or the system's kernel at its

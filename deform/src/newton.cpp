@@ -11,11 +11,7 @@
 namespace hotmesh::deform::detail {
 
 void ResidualPass::add(std::span<const NodeId> nodes, std::span<const double> ke) const {
-  if (d == 3) {
-    add_element_product<24, 3>(nodes, ke.data(), u, r);
-  } else {
-    add_element_product<8, 2>(nodes, ke.data(), u, r);
-  }
+  add_element_product(nodes, ke, d, u, r);
   add_node_stiffness(nodes, ke, d, node_stiffness);
 }
 

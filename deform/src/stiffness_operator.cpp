@@ -4,12 +4,18 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 
 namespace hotmesh::deform {
+namespace {
+
+constexpr std::size_t kElementTypes = static_cast<std::size_t>(ElementType::pyramid5) + 1;
+
+}  // namespace
 
 CellColoring color_cells(const ElementList& cells, std::size_t node_count) {
   // node -> cells adjacency (CSR)
@@ -45,8 +51,15 @@ CellColoring color_cells(const ElementList& cells, std::size_t node_count) {
   for (std::size_t i = 1; i < coloring.offsets.size(); ++i) coloring.offsets[i] += coloring.offsets[i - 1];
   coloring.cells.resize(cells.size());
   std::vector<std::int64_t> next(coloring.offsets.begin(), coloring.offsets.end() - 1);
-  for (std::size_t c = 0; c < cells.size(); ++c) {
-    coloring.cells[static_cast<std::size_t>(next[static_cast<std::size_t>(color[c])]++)] = static_cast<CellId>(c);
+  // Type by type, so that each colour holds its cells grouped by type, in cell order within one.
+  std::vector<bool> present(kElementTypes, false);
+  for (ElementType t : cells.types()) present[static_cast<std::size_t>(t)] = true;
+  for (std::size_t t = 0; t < kElementTypes; ++t) {
+    if (!present[t]) continue;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (static_cast<std::size_t>(cells.type(c)) != t) continue;
+      coloring.cells[static_cast<std::size_t>(next[static_cast<std::size_t>(color[c])]++)] = static_cast<CellId>(c);
+    }
   }
   return coloring;
 }
@@ -55,18 +68,10 @@ StiffnessKernel::StiffnessKernel(const Mesh& mesh, std::vector<Lame> lame, bool 
     : cells_(&mesh.cells),
       nodes_(mesh.node_count()),
       dim_(mesh.dimension),
-      element_dofs_(0),
       lame_(std::move(lame)),
       drop_jacobian_(drop_jacobian) {
-  const ElementType expected = dim_ == 2 ? ElementType::quad4 : ElementType::hex8;
-  for (ElementType t : mesh.cells.types()) {
-    if (t != expected) {
-      throw InputError(std::string("the mesh-motion solver handles ") + (dim_ == 2 ? "2D meshes of quad4" : "3D meshes of hex8") +
-                       " cells only; this mesh has " + std::string(name(t)) + " cells");
-    }
-  }
+  require_motion_cells(mesh);
   if (lame_.size() != mesh.cell_count()) throw std::invalid_argument("StiffnessKernel: one Lame per cell");
-  element_dofs_ = element_dofs(expected);
   coloring_ = color_cells(mesh.cells, nodes_);
 }
 
@@ -82,38 +87,58 @@ void StiffnessKernel::element_matrix(CellId c, std::span<const Vec3> points, std
   element_stiffness(cells_->type(i), gather(cells_->nodes(i), points), lame_[i], drop_jacobian_, k);
 }
 
-StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kernel)
-    : kernel_(std::move(kernel)),
-      matrices_(kernel_->cells().size() * static_cast<std::size_t>(kernel_->element_size() * kernel_->element_size()), 0.0) {}
+StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kernel) : kernel_(std::move(kernel)) {
+  const ElementList& cells = kernel_->cells();
+  offsets_.resize(cells.size() + 1, 0);
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const auto n = static_cast<std::size_t>(element_dofs(cells.type(c)));
+    offsets_[c + 1] = offsets_[c] + n * n;
+  }
+  matrices_.assign(offsets_.back(), 0.0);
+}
 
 StiffnessOperator::StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian)
     : StiffnessOperator(std::make_shared<const StiffnessKernel>(mesh, std::move(lame), drop_jacobian)) {}
 
 void StiffnessOperator::update(std::span<const Vec3> points) {
   const auto n = static_cast<std::ptrdiff_t>(kernel_->cells().size());
-  const auto block = static_cast<std::size_t>(kernel_->element_size() * kernel_->element_size());
 #pragma omp parallel for schedule(static) if (n >= mesh::kParallelCells)
   for (std::ptrdiff_t c = 0; c < n; ++c) {
     const auto i = static_cast<std::size_t>(c);
-    kernel_->element_matrix(static_cast<CellId>(c), points, std::span<double>(matrices_.data() + i * block, block));
+    kernel_->element_matrix(static_cast<CellId>(c), points,
+                            std::span<double>(matrices_.data() + offsets_[i], offsets_[i + 1] - offsets_[i]));
   }
 }
 
 std::span<const double> StiffnessOperator::element_matrix(CellId c) const {
-  const auto block = static_cast<std::size_t>(kernel_->element_size() * kernel_->element_size());
-  return {matrices_.data() + static_cast<std::size_t>(c) * block, block};
+  const auto i = static_cast<std::size_t>(c);
+  return {matrices_.data() + offsets_[i], offsets_[i + 1] - offsets_[i]};
 }
 
 namespace {
 
-/// y += K_e x_e for every cell of one colour; N = element dofs, D = dofs per node.
+/// y += K_e x_e for cells of one colour and one type; N = element dofs, D = dofs per node.
 template <std::size_t N, std::size_t D>
-void apply_color(const ElementList& cells, std::span<const CellId> color, const double* matrices,
-                 std::span<const double> x, std::span<double> y) {
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(color.size() * N * N) >= mesh::kParallelProduct)
-  for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(color.size()); ++k) {
-    const auto c = static_cast<std::size_t>(color[static_cast<std::size_t>(k)]);
-    add_element_product<N, D>(cells.nodes(c), matrices + c * N * N, x, y);
+void apply_cells(const ElementList& cells, std::span<const CellId> run, const double* matrices,
+                 std::span<const std::size_t> offsets, std::span<const double> x, std::span<double> y) {
+#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(run.size() * N * N) >= mesh::kParallelProduct)
+  for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(run.size()); ++k) {
+    const auto c = static_cast<std::size_t>(run[static_cast<std::size_t>(k)]);
+    add_element_product<N, D>(cells.nodes(c), matrices + offsets[c], x, y);
+  }
+}
+
+/// The same for cells of one colour and one type, the element size chosen at run time.
+void apply_run(const ElementList& cells, ElementType type, std::span<const CellId> run, const double* matrices,
+               std::span<const std::size_t> offsets, std::span<const double> x, std::span<double> y) {
+  switch (type) {
+    case ElementType::tri3: return apply_cells<6, 2>(cells, run, matrices, offsets, x, y);
+    case ElementType::quad4: return apply_cells<8, 2>(cells, run, matrices, offsets, x, y);
+    case ElementType::tet4: return apply_cells<12, 3>(cells, run, matrices, offsets, x, y);
+    case ElementType::pyramid5: return apply_cells<15, 3>(cells, run, matrices, offsets, x, y);
+    case ElementType::wedge6: return apply_cells<18, 3>(cells, run, matrices, offsets, x, y);
+    case ElementType::hex8: return apply_cells<24, 3>(cells, run, matrices, offsets, x, y);
+    default: throw std::logic_error("StiffnessOperator::apply: a " + std::string(name(type)) + " is no cell");
   }
 }
 
@@ -123,12 +148,15 @@ void StiffnessOperator::apply(std::span<const double> x, std::span<double> y) co
   std::fill(y.begin(), y.end(), 0.0);
   const CellColoring& coloring = kernel_->coloring();
   for (std::size_t k = 0; k < coloring.colors(); ++k) {
-    const std::span<const CellId> color(coloring.cells.data() + coloring.offsets[k],
-                                        static_cast<std::size_t>(coloring.offsets[k + 1] - coloring.offsets[k]));
-    if (kernel_->dofs_per_node() == 2) {
-      apply_color<8, 2>(kernel_->cells(), color, matrices_.data(), x, y);
-    } else {
-      apply_color<24, 3>(kernel_->cells(), color, matrices_.data(), x, y);
+    const ElementList& cells = kernel_->cells();
+    auto begin = static_cast<std::size_t>(coloring.offsets[k]);
+    const auto end = static_cast<std::size_t>(coloring.offsets[k + 1]);
+    while (begin < end) {  // a run of cells of one type
+      const ElementType type = cells.type(static_cast<std::size_t>(coloring.cells[begin]));
+      auto stop = begin + 1;
+      while (stop < end && cells.type(static_cast<std::size_t>(coloring.cells[stop])) == type) ++stop;
+      apply_run(cells, type, {coloring.cells.data() + begin, stop - begin}, matrices_.data(), offsets_, x, y);
+      begin = stop;
     }
   }
 }
@@ -143,12 +171,12 @@ void StiffnessOperator::diagonal(std::span<double> d) const {
 void StiffnessOperator::diagonal_blocks(std::span<double> blocks) const {
   // Sequential in cell order: deterministic, and cheap next to a product.
   std::fill(blocks.begin(), blocks.end(), 0.0);
-  const auto n = static_cast<std::size_t>(kernel_->element_size());
   const auto dim = static_cast<std::size_t>(kernel_->dofs_per_node());
   const ElementList& cells = kernel_->cells();
   for (std::size_t c = 0; c < cells.size(); ++c) {
     const auto ke = element_matrix(static_cast<CellId>(c));
     const auto nodes = cells.nodes(c);
+    const std::size_t n = nodes.size() * dim;
     for (std::size_t a = 0; a < nodes.size(); ++a) {
       double* block = blocks.data() + static_cast<std::size_t>(nodes[a]) * dim * dim;
       for (std::size_t i = 0; i < dim; ++i) {

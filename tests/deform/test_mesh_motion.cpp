@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "hotmesh/deform/move_mesh.hpp"
+#include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/mesh/validate.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -57,6 +58,17 @@ TEST(MeshMotion, PatchTestReproducesAffineMotionInsideDistortedQuads) {
 
 TEST(MeshMotion, PatchTestReproducesAffineMotionInsideDistortedHexes) {
   expect_patch_test_passes(test::unit_cube(4), {{{0.1, 0.05, -0.03}, {-0.08, 0.12, 0.02}, {0.04, -0.05, 0.09}}});
+}
+
+TEST(MeshMotion, PatchTestReproducesAffineMotionInsideDistortedHybridCells) {
+  const std::array<Vec3, 3> g2{{{0.1, 0.05, 0}, {-0.08, 0.12, 0}, {0, 0, 0}}};
+  const std::array<Vec3, 3> g3{{{0.1, 0.05, -0.03}, {-0.08, 0.12, 0.02}, {0.04, -0.05, 0.09}}};
+  expect_patch_test_passes(test::hybrid_ring(6, 4, 0.3, 1.0, 0, 0.0, 1.0, 2), g2);       // quads, triangles
+  expect_patch_test_passes(test::hybrid_ring(4, 3, 0.3, 1.0, 2, 0.5, 1.0, 1), g3);       // prisms, tetrahedra, pyramids
+  const Mesh cube = test::unit_cube(3);
+  std::vector<mesh::CellSplit> checkerboard(cube.cell_count(), mesh::CellSplit::keep);
+  for (std::size_t c = 0; c < checkerboard.size(); c += 2) checkerboard[c] = mesh::CellSplit::tetrahedra;
+  expect_patch_test_passes(mesh::split_cells(cube, checkerboard), g3);  // hexes, pyramids, tetrahedra
 }
 
 /// The inner square of a square ring rotated by 45 degrees about z; outer boundary fixed.
@@ -106,6 +118,12 @@ TEST(MeshMotion, RotatedInnerSquareStaysValidWithGeometricNonlinearity) {
 
 TEST(MeshMotion, RotatedInnerSquareStaysValidIn3D) {
   expect_nonlinear_beats_one_linear_step(clustered_ring(2));
+}
+
+TEST(MeshMotion, RotatedInnerSquareStaysValidInHybridMeshes) {
+  // Three rings of quads (2D) or prisms (3D) on the body, triangles or tetrahedra outside.
+  expect_nonlinear_beats_one_linear_step(test::hybrid_ring(8, 12, 0.25, 1.0, 0, 0.0, 1.3, 3));
+  expect_nonlinear_beats_one_linear_step(test::hybrid_ring(6, 10, 0.25, 1.0, 2, 0.4, 1.3, 3));
 }
 
 TEST(MeshMotion, SlipNodesStayOnTheirPlane) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "hotmesh/deform/assembled_stiffness.hpp"
@@ -33,7 +34,8 @@ StiffnessOperator make_operator(const Mesh& mesh) {
 }
 
 TEST(StiffnessOperator, MatrixFreeAgreesWithAssembledMatrix) {
-  for (Mesh mesh : {test::square_ring(6, 4, 0.3, 1.0), test::square_ring(4, 3, 0.3, 1.0, 2, 0.5)}) {
+  for (Mesh mesh : {test::square_ring(6, 4, 0.3, 1.0), test::square_ring(4, 3, 0.3, 1.0, 2, 0.5),
+                    test::hybrid_ring(6, 4, 0.3, 1.0, 0, 0.0, 1.0, 2), test::hybrid_ring(4, 3, 0.3, 1.0, 2, 0.5, 1.0, 1)}) {
     test::jiggle_interior(mesh, 0.2);
     const StiffnessOperator k = make_operator(mesh);
     const auto a = assemble_sparse(k);
@@ -50,22 +52,35 @@ TEST(StiffnessOperator, MatrixFreeAgreesWithAssembledMatrix) {
   }
 }
 
-TEST(StiffnessOperator, ColoursNeverShareANode) {
-  const Mesh mesh = test::square_ring(5, 3, 0.3, 1.0, 2, 1.0);
+/// Every cell in one colour, no two cells of a colour on one node, a colour's cells grouped by
+/// type and in cell order within a type; returns the number of colours.
+std::size_t expect_valid_coloring(const Mesh& mesh) {
   const CellColoring coloring = color_cells(mesh.cells, mesh.node_count());
-  EXPECT_LE(coloring.colors(), 10u);  // a structured hex mesh needs 8
-  std::size_t total = 0;
+  std::vector<int> seen(mesh.cell_count(), 0);
   for (std::size_t k = 0; k < coloring.colors(); ++k) {
     std::vector<char> used(mesh.node_count(), 0);
     for (auto i = coloring.offsets[k]; i < coloring.offsets[k + 1]; ++i) {
-      for (NodeId n : mesh.cells.nodes(static_cast<std::size_t>(coloring.cells[static_cast<std::size_t>(i)]))) {
+      const auto c = static_cast<std::size_t>(coloring.cells[static_cast<std::size_t>(i)]);
+      ++seen[c];
+      for (NodeId n : mesh.cells.nodes(c)) {
         EXPECT_FALSE(used[static_cast<std::size_t>(n)]) << "colour " << k << " node " << n;
         used[static_cast<std::size_t>(n)] = 1;
       }
-      ++total;
+      if (i > coloring.offsets[k]) {
+        const auto before = static_cast<std::size_t>(coloring.cells[static_cast<std::size_t>(i - 1)]);
+        const bool same_type = mesh.cells.type(before) == mesh.cells.type(c);
+        EXPECT_TRUE(same_type ? before < c : mesh.cells.type(before) < mesh.cells.type(c)) << "colour " << k;
+      }
     }
   }
-  EXPECT_EQ(total, mesh.cell_count());
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<std::ptrdiff_t>(mesh.cell_count()));
+  return coloring.colors();
+}
+
+TEST(StiffnessOperator, ColoursNeverShareANode) {
+  EXPECT_LE(expect_valid_coloring(test::square_ring(5, 3, 0.3, 1.0, 2, 1.0)), 10u);  // a structured hex mesh needs 8
+  expect_valid_coloring(test::hybrid_ring(5, 3, 0.3, 1.0, 0, 0.0, 1.0, 1));
+  expect_valid_coloring(test::hybrid_ring(5, 3, 0.3, 1.0, 2, 1.0, 1.0, 1));
 }
 
 TEST(StiffnessOperator, ProductIsBitIdenticalForAnyThreadCount) {
@@ -88,11 +103,11 @@ TEST(StiffnessOperator, ProductIsBitIdenticalForAnyThreadCount) {
   }
 }
 
-TEST(StiffnessOperator, RejectsCellsTheSolverDoesNotHandle) {
+TEST(StiffnessOperator, RejectsCellsOfAnotherDimension) {
   Mesh mesh = test::unit_square(1, 1);
   mesh.cells = {};
   mesh.cells.add(ElementType::tri3, {0, 1, 2});
-  mesh.cells.add(ElementType::tri3, {0, 2, 3});
+  mesh.cells.add(ElementType::tet4, {0, 1, 2, 3});
   EXPECT_THROW(StiffnessOperator(mesh, std::vector<Lame>(2), true), InputError);
 }
 

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 
 namespace hotmesh::test {
@@ -131,6 +132,23 @@ mesh::Mesh square_ring(int per_side, int radial, double inner, double outer, int
   }
   mesh.derive_node_sets();
   return mesh;
+}
+
+mesh::Mesh hybrid_ring(int per_side, int radial, double inner, double outer, int layers, double depth, double growth,
+                       int layer_rings) {
+  const mesh::Mesh ring = square_ring(per_side, radial, inner, outer, layers, depth, growth);
+  const auto around = static_cast<std::size_t>(4 * per_side);
+  const std::size_t per_layer = around * static_cast<std::size_t>(radial);
+  std::vector<mesh::CellSplit> split(ring.cell_count());
+  for (std::size_t c = 0; c < split.size(); ++c) {
+    const bool body_layer = (c % per_layer) / around < static_cast<std::size_t>(layer_rings);  // cells run ring by ring
+    if (layers == 0) {
+      split[c] = body_layer ? mesh::CellSplit::keep : mesh::CellSplit::triangles;
+    } else {
+      split[c] = body_layer ? mesh::CellSplit::prisms : mesh::CellSplit::tetrahedra;
+    }
+  }
+  return mesh::split_cells(ring, split);
 }
 
 mesh::Mesh annular_sector(int nr, int nt, int nz, double r0, double r1, double z0, double z1, double angle_deg) {

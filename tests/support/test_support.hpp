@@ -50,6 +50,13 @@ mesh::Mesh unit_cube(int n);
 mesh::Mesh square_ring(int per_side, int radial, double inner, double outer, int layers = 0, double depth = 0.0,
                          double growth = 1.0);
 
+/// square_ring with its cells split as a hybrid mesh (mesh/split_cells.hpp): the
+/// `layer_rings` rings next to the inner square stay quads in 2D and become prisms in 3D (the
+/// body's layers), the rings outside become triangles in 2D, and tetrahedra with pyramids
+/// against the prisms' sides in 3D (the core).
+mesh::Mesh hybrid_ring(int per_side, int radial, double inner, double outer, int layers, double depth, double growth,
+                       int layer_rings);
+
 /// A sector of an annulus about the z axis: r in [r0, r1], z in [z0, z1], theta in
 /// [0, angle_deg], as nr x nt x nz hexes. Patches "inner" (r0), "outer" (r1), "per_lo"
 /// (theta 0), "per_hi" (theta angle), "bottom" (z0), "top" (z1).

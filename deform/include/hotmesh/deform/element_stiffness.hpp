@@ -3,8 +3,8 @@
 //     K_e = sum_g w_g B_g^T E B_g  [* det J_g, unless the Jacobian is dropped (Stein et al.)]
 // for the bilinear quad in plane strain (2x2 points) and the trilinear hex (2x2x2 points),
 // with B from the current coordinates. The linear triangle (plane strain), tetrahedron, prism
-// and pyramid (issue 24, first step) use the same sum over their own rules, w_g the reference
-// weights (deform/src/linear_elements.hpp); only the element level handles them so far. At a Gauss point, with g_a = grad N_a, the isotropic
+// and pyramid use the same sum over their own rules, w_g the reference weights
+// (deform/src/linear_elements.hpp). At a Gauss point, with g_a = grad N_a, the isotropic
 // E of eqs. (32)-(33) gives the 2x2 or 3x3 block coupling nodes a and b
 //     K_ab,ij = lambda g_a,i g_b,j + G (g_a,j g_b,i + delta_ij g_a . g_b).
 #pragma once
@@ -22,10 +22,8 @@ namespace hotmesh::deform {
 /// pyramid5 15); throws InputError for line2.
 int element_dofs(ElementType type);
 
-/// The motion's entry check: throws InputError "the mesh-motion solver handles quad4 and hex8
-/// cells; this mesh has <type> cells" unless every cell is a quad4 or hex8. The element
-/// matrices and eq. (35) measures exist for every linear cell, but the solver's operators
-/// (matrix-free product, colouring, ranks) still handle Q1 cells only.
+/// The motion's entry check: throws InputError naming the first cell whose type is not a
+/// cell of the mesh's dimension (tri3, quad4 in 2D; tet4, hex8, wedge6, pyramid5 in 3D).
 void require_motion_cells(const Mesh& mesh);
 
 /// Writes K_e row-major into k (element_dofs(type)^2 values); dof a*d + i is component i of
@@ -74,6 +72,11 @@ void add_element_product(std::span<const NodeId> nodes, const double* ke, std::s
     for (std::size_t i = 0; i < D; ++i) y[base + i] += ye[a * D + i];
   }
 }
+
+/// y += K_e x_e for a cell of any type: add_element_product<N, D> chosen by the cell's
+/// corners and the dofs per node d.
+void add_element_product(std::span<const NodeId> nodes, std::span<const double> ke, std::size_t d,
+                         std::span<const double> x, std::span<double> y);
 
 /// Adds to each corner of a cell its share of the node's stiffness: the trace of the corner's
 /// d x d diagonal block of K_e over d (invariant under the rotations of nodal frames and

@@ -17,13 +17,16 @@
 #include <span>
 #include <vector>
 
+#include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/linear_algebra.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/mesh_names.hpp"
 
 namespace hotmesh::deform {
 
-/// Cells grouped so that no two cells of a group share a node (greedy, in cell order).
+/// Cells grouped so that no two cells of a group share a node (greedy, in cell order); within
+/// a colour the cells are grouped by type (in cell order within a type), so that the element
+/// loops run over cells of one size at a time.
 struct CellColoring {
   std::vector<std::int64_t> offsets;  ///< colour c holds cells[offsets[c] .. offsets[c+1])
   std::vector<CellId> cells;
@@ -32,23 +35,25 @@ struct CellColoring {
 CellColoring color_cells(const ElementList& cells, std::size_t node_count);
 
 /// The element kernel over the cells of a mesh: K_e of any cell at given points, with the
-/// cell's Lamé parameters (eq. 35, material.hpp) and the Q1 element of element_stiffness.hpp.
+/// cell's Lamé parameters (eq. 35, material.hpp) and its element of element_stiffness.hpp
+/// (Q1 for quads and hexes, the linear tri3, tet4, wedge6 and pyramid5 beside them).
 /// It stores nothing per Newton step; StiffnessOperator stores the K_e, the amg solver
 /// assembles them as they come.
 class StiffnessKernel {
  public:
-  /// The mesh must have only quad4 (2D) or only hex8 (3D) cells; `lame` has one entry per
-  /// cell. Throws hotmesh::InputError otherwise. Keeps a reference to mesh.cells.
+  /// The mesh's cells must be of its dimension (tri3 and quad4 in 2D; tet4, hex8, wedge6 and
+  /// pyramid5 in 3D, mixed as they come); `lame` has one entry per cell. Throws
+  /// hotmesh::InputError otherwise. Keeps a reference to mesh.cells.
   StiffnessKernel(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian);
   /// The same cells (and colouring) with other Lamé parameters, one per cell.
   StiffnessKernel with_lame(std::vector<Lame> lame) const;
 
-  /// K_e of cell c at `points`, row-major into k (element_size()^2 values).
+  /// K_e of cell c at `points`, row-major into k (element_size(c)^2 values).
   void element_matrix(CellId c, std::span<const Vec3> points, std::span<double> k) const;
 
   std::size_t size() const { return nodes_ * static_cast<std::size_t>(dim_); }  ///< dofs of the mesh
   int dofs_per_node() const { return dim_; }
-  int element_size() const { return element_dofs_; }
+  int element_size(CellId c) const { return element_dofs(cells_->type(static_cast<std::size_t>(c))); }
   const ElementList& cells() const { return *cells_; }
   const CellColoring& coloring() const { return coloring_; }
 
@@ -56,7 +61,6 @@ class StiffnessKernel {
   const ElementList* cells_;
   std::size_t nodes_;
   int dim_;
-  int element_dofs_;
   std::vector<Lame> lame_;
   bool drop_jacobian_;
   CellColoring coloring_;
@@ -89,6 +93,7 @@ class StiffnessOperator final : public LinearOperator {
 
  private:
   std::shared_ptr<const StiffnessKernel> kernel_;
+  std::vector<std::size_t> offsets_;  ///< K_e of cell c at matrices_[offsets_[c] ..), element_size(c)^2 values
   std::vector<double> matrices_;
 };
 
