@@ -10,7 +10,9 @@
 #include <random>
 
 #include "hotmesh/deform/material.hpp"
+#include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
+#include "hotmesh/mesh/validate.hpp"
 #include "linear_solver.hpp"
 #include "newton.hpp"
 #include "nodal_frames.hpp"
@@ -25,6 +27,13 @@ using detail::ConstrainedOperator;
 using detail::ConstrainedSystem;
 using detail::NodalFrames;
 
+/// The cells of a test sector: quads (2D) or hexes (3D), or hybrid: triangles beside quads
+/// (2D), prisms on the inner wall with tetrahedra and pyramids beyond (3D).
+struct SectorCells {
+  int dimension = 2;
+  bool hybrid = false;
+};
+
 /// An annular sector about z (2D: quads in the x-y plane; 3D: hexes) with its constraints as
 /// hotmesh's set-up makes them: the inner wall fixed, the outer wall sliding along tilted
 /// radial normals, in 3D the bottom sliding too (nodes on the outer and bottom walls have two
@@ -37,10 +46,10 @@ struct SectorSystem {
   StiffnessOperator stiffness;
   std::vector<Vec3> points;
 
-  explicit SectorSystem(int dimension)
-      : mesh(make_mesh(dimension)),
-        constraints(mesh.node_count(), dimension),
-        periodic(static_cast<std::size_t>(dimension)),
+  explicit SectorSystem(SectorCells cells)
+      : mesh(make_mesh(cells)),
+        constraints(mesh.node_count(), cells.dimension),
+        periodic(static_cast<std::size_t>(cells.dimension)),
         stiffness(mesh, element_lame(mesh, {}), true),
         points(mesh.points) {
     const double angle = kAngle * std::numbers::pi / 180.0;
@@ -53,7 +62,7 @@ struct SectorSystem {
       const double tilt = 0.3 * std::sin(7.0 * p.z + 3.0 * p.y);
       constraints.constrain(n, {p.x, p.y, tilt});  // radial, tilted out of the x-y plane in 3D
     }
-    if (dimension == 3) {
+    if (cells.dimension == 3) {
       for (NodeId n : mesh.find_patch("bottom")->nodes) {
         const Vec3& p = mesh.points[static_cast<std::size_t>(n)];
         constraints.constrain(n, {0.2 * p.y, -0.1, 1.0});
@@ -61,7 +70,7 @@ struct SectorSystem {
     }
     std::mt19937 random(7);
     std::uniform_real_distribution<double> jitter(-0.02, 0.02);
-    for (Vec3& p : points) p += Vec3{jitter(random), jitter(random), dimension == 3 ? jitter(random) : 0.0};
+    for (Vec3& p : points) p += Vec3{jitter(random), jitter(random), cells.dimension == 3 ? jitter(random) : 0.0};
     stiffness.update(points);
   }
 
@@ -74,18 +83,39 @@ struct SectorSystem {
   }
 
   static constexpr double kAngle = 20.0;  // degrees
-  static Mesh make_mesh(int dimension) {
-    if (dimension == 3) {
-      Mesh m = test::annular_sector(5, 4, 3, 1.0, 2.0, 0.0, 0.5, kAngle);
-      test::jiggle_interior(m, 0.2);
-      return m;
+  static Mesh make_mesh(SectorCells cells) {
+    Mesh m;
+    if (cells.dimension == 3) {
+      m = test::annular_sector(5, 4, 3, 1.0, 2.0, 0.0, 0.5, kAngle);
+    } else {
+      const auto rs = mesh::uniform_line(1.0, 2.0, 6);
+      const auto ts = mesh::uniform_line(0.0, kAngle * std::numbers::pi / 180.0, 5);
+      m = mesh::structured_quads(rs, ts, {"inner", "outer", "per_lo", "per_hi"});
+      for (auto& p : m.points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), 0.0};
     }
-    const auto rs = mesh::uniform_line(1.0, 2.0, 6);
-    const auto ts = mesh::uniform_line(0.0, kAngle * std::numbers::pi / 180.0, 5);
-    Mesh m = mesh::structured_quads(rs, ts, {"inner", "outer", "per_lo", "per_hi"});
-    for (auto& p : m.points) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), 0.0};
+    if (cells.hybrid) m = hybrid(m);
     test::jiggle_interior(m, 0.2);
     return m;
+  }
+  /// Cells on the inner wall kept (2D) or made prisms (3D); the others split into triangles
+  /// every second cell (2D) or tetrahedra (3D).
+  static Mesh hybrid(const Mesh& m) {
+    std::vector<mesh::CellSplit> split(m.cell_count());
+    const double wall = std::hypot(m.points[0].x, m.points[0].y) + 1e-9;
+    for (std::size_t c = 0; c < split.size(); ++c) {
+      const auto nodes = m.cells.nodes(c);
+      const bool on_wall = std::any_of(nodes.begin(), nodes.end(), [&](NodeId n) {
+        return std::hypot(m.points[static_cast<std::size_t>(n)].x, m.points[static_cast<std::size_t>(n)].y) < wall;
+      });
+      if (m.dimension == 2) {
+        split[c] = on_wall || c % 2 ? mesh::CellSplit::keep : mesh::CellSplit::triangles;
+      } else {
+        split[c] = on_wall ? mesh::CellSplit::prisms : mesh::CellSplit::tetrahedra;
+      }
+    }
+    Mesh out = mesh::split_cells(m, split);
+    mesh::validate_mesh(out);
+    return out;
   }
 };
 
@@ -117,7 +147,12 @@ std::vector<double> admissible(const NodalFrames& frames, std::vector<double> x)
   return x;
 }
 
-class FramesIn : public ::testing::TestWithParam<int> {};
+class FramesIn : public ::testing::TestWithParam<SectorCells> {};
+
+std::string cells_name(SectorCells c) {
+  if (c.hybrid) return c.dimension == 2 ? "TrianglesAndQuads" : "PrismsTetrahedraAndPyramids";
+  return c.dimension == 2 ? "Quads" : "Hexes";
+}
 
 TEST_P(FramesIn, AreOrthonormalWithTheConstrainedNormalsFirstAndSlavesTurnedByTheRotation) {
   const SectorSystem s(GetParam());
@@ -299,11 +334,13 @@ TEST_P(FramesIn, AmgElementPassGivesTheResidualAndMatrixOfStoredElementMatrices)
   EXPECT_LE(max_difference(p_amg, p_jacobi), 1e-8 * max_abs(p_jacobi));
 }
 
-INSTANTIATE_TEST_SUITE_P(TwoAndThreeDimensions, FramesIn, ::testing::Values(2, 3),
-                         [](const auto& param_info) { return param_info.param == 2 ? std::string("Quads") : std::string("Hexes"); });
+INSTANTIATE_TEST_SUITE_P(TwoAndThreeDimensions, FramesIn,
+                         ::testing::Values(SectorCells{2, false}, SectorCells{3, false}, SectorCells{2, true},
+                                           SectorCells{3, true}),
+                         [](const auto& param_info) { return cells_name(param_info.param); });
 
 struct SolverCase {
-  int dimension;
+  SectorCells cells;
   LinearSolverKind linear;
   AmgPackage amg;
 };
@@ -313,7 +350,7 @@ class LinearSolverOn : public ::testing::TestWithParam<SolverCase> {};
 /// One Newton step's system solved to 1e-10 by the matrix-free Jacobi-PCG and by the solver
 /// under test: the same p, tangential at sliding nodes, zero at fixed nodes and slaves.
 TEST_P(LinearSolverOn, SolvesTheSameStepAsMatrixFreeJacobiPcg) {
-  const SectorSystem s(GetParam().dimension);
+  const SectorSystem s(GetParam().cells);
   std::vector<double> rhs = random_vector(s.stiffness.size(), 4);
   s.periodic.fold(rhs);
   s.constraints.project(rhs);
@@ -349,13 +386,15 @@ TEST_P(LinearSolverOn, SolvesTheSameStepAsMatrixFreeJacobiPcg) {
 
 INSTANTIATE_TEST_SUITE_P(
     GamgAndHypre, LinearSolverOn,
-    ::testing::Values(SolverCase{2, LinearSolverKind::amg, AmgPackage::gamg},
-                      SolverCase{3, LinearSolverKind::amg, AmgPackage::gamg},
-                      SolverCase{2, LinearSolverKind::amg, AmgPackage::hypre},
-                      SolverCase{3, LinearSolverKind::amg, AmgPackage::hypre}),
+    ::testing::Values(SolverCase{{2, false}, LinearSolverKind::amg, AmgPackage::gamg},
+                      SolverCase{{3, false}, LinearSolverKind::amg, AmgPackage::gamg},
+                      SolverCase{{2, false}, LinearSolverKind::amg, AmgPackage::hypre},
+                      SolverCase{{3, false}, LinearSolverKind::amg, AmgPackage::hypre},
+                      SolverCase{{2, true}, LinearSolverKind::amg, AmgPackage::gamg},
+                      SolverCase{{3, true}, LinearSolverKind::amg, AmgPackage::gamg}),
     [](const auto& param_info) {
       const SolverCase& c = param_info.param;
-      return std::string(c.dimension == 2 ? "Quads" : "Hexes") + (c.amg == AmgPackage::gamg ? "Gamg" : "Hypre");
+      return cells_name(c.cells) + (c.amg == AmgPackage::gamg ? "Gamg" : "Hypre");
     });
 
 /// Asked for the Newton norm (as Forcing asks for some solves), each solver stops on
