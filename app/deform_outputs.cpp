@@ -303,7 +303,7 @@ void put_motion(json& j, const mesh::Mesh& mesh, const io::CaseSetup& setup, con
   j["max_sliding_projection_distance"] = j["final_projection_distance_relative"];
   j["min_scaled_jacobian"] = result.summary.min_scaled_jacobian;
   j["inverted_cells"] = result.summary.inverted_cells;
-  j["quality"] = quality_json(mesh, result.summary);
+  j["quality"] = quality_json(mesh, result.summary, result.quality);
   j["notes"] = result.notes;
   j["features"] = features_json(mesh, setup, result);
   const auto& repair = result.corner_repair;

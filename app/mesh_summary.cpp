@@ -9,13 +9,31 @@
 
 namespace hotmesh::app {
 
-nlohmann::json quality_json(const mesh::Mesh& mesh, const mesh::QualitySummary& q) {
+nlohmann::json quality_json(const mesh::Mesh& mesh, const mesh::QualitySummary& q, std::span<const double> per_cell) {
   nlohmann::json j;
   j["min_scaled_jacobian"] = q.min_scaled_jacobian;
   j["mean_scaled_jacobian"] = q.mean_scaled_jacobian;
   j["worst_cell"] = q.worst_cell >= 0 ? mesh.cell_id(q.worst_cell) : 0;
   j["inverted_cells"] = q.inverted_cells;
   j["histogram"] = q.histogram;
+  // The same per cell type, in the order of mesh::ElementType.
+  std::map<mesh::ElementType, std::vector<double>> by_type;
+  std::map<mesh::ElementType, std::vector<mesh::CellId>> cells_of;
+  for (std::size_t c = 0; c < per_cell.size() && c < mesh.cell_count(); ++c) {
+    by_type[mesh.cells.type(c)].push_back(per_cell[c]);
+    cells_of[mesh.cells.type(c)].push_back(static_cast<mesh::CellId>(c));
+  }
+  j["by_type"] = nlohmann::json::object();
+  for (const auto& [type, values] : by_type) {
+    const mesh::QualitySummary t = mesh::summarize_quality(values);
+    const mesh::CellId worst = cells_of[type][static_cast<std::size_t>(t.worst_cell)];
+    j["by_type"][std::string(mesh::name(type))] = {{"cells", t.cells},
+                                                   {"min_scaled_jacobian", t.min_scaled_jacobian},
+                                                   {"mean_scaled_jacobian", t.mean_scaled_jacobian},
+                                                   {"worst_cell", mesh.cell_id(worst)},
+                                                   {"inverted_cells", t.inverted_cells},
+                                                   {"histogram", t.histogram}};
+  }
   return j;
 }
 
@@ -46,8 +64,8 @@ nlohmann::json mesh_summary(const io::LoadedMesh& loaded, const std::filesystem:
     j["cell_groups"].push_back({{"name", g.name}, {"tag", g.tag}, {"cells", g.cells.size()}});
   }
   j["notes"] = loaded.validation.notes;
-  const auto quality = mesh::summarize_quality(mesh::scaled_jacobians(mesh.cells, mesh.points));
-  j["quality"] = quality_json(mesh, quality);
+  const std::vector<double> per_cell = mesh::scaled_jacobians(mesh.cells, mesh.points);
+  j["quality"] = quality_json(mesh, mesh::summarize_quality(per_cell), per_cell);
   return j;
 }
 

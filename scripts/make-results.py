@@ -24,6 +24,11 @@ SAMPLES = {
         ("without sliding", "ramp2d.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
         ("sliding, features off (the paper's)", "ramp2d-sliding-nofeatures.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
         ("sliding with features", "ramp2d-sliding.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
+        ("triangles, without sliding", "ramp2d-triangles.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
+        ("triangles, sliding with features", "ramp2d-triangles-sliding.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
+        ("quads on the wall, triangles above, without sliding", "ramp2d-hybrid.yaml", "bottom", "ramp.csv", (0.975, 1.025)),
+        ("quads on the wall, triangles above, sliding with features", "ramp2d-hybrid-sliding.yaml", "bottom", "ramp.csv",
+         (0.975, 1.025)),
     ],
     "shear2d": [
         ("without sliding", "shear2d.yaml", "top", "top.csv", None),

@@ -8,7 +8,11 @@
 //
 // Run:   build/samples/ramp2d/make_ramp2d [OUTPUT_FOLDER]   (default: the current folder)
 // Writes ramp2d.msh (the undeformed mesh, Gmsh 4.1) and ramp.csv (the FEM deflection table
-// of the lower wall). The committed copies in samples/ramp2d/ are this program's output.
+// of the lower wall), and the same mesh with its quads split into triangles along a diagonal:
+// all of them (ramp2d-triangles.msh), or those above the 8 rows of quads on the lower wall
+// (ramp2d-hybrid.msh, a boundary layer of quads under triangles). The committed copies in
+// samples/ramp2d/ are this program's output.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -16,6 +20,7 @@
 
 #include <fmt/format.h>
 
+#include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
@@ -36,6 +41,7 @@ constexpr double kRampStart = 0.5 * (kLength - kRampWidth);  // corner A (lower)
 constexpr int kCellsX = 57;
 constexpr int kCellsY = 40;
 constexpr double kFirstCellY = 0.001 * kHeight;
+constexpr int kQuadRows = 8;  // the hybrid mesh's rows of quads on the lower wall
 
 /// The lower wall's deflection: 0 before the ramp, h/2 after it, linear in between.
 double ramp_deflection(double x) {
@@ -67,6 +73,11 @@ int main(int argc, char** argv) {
     const auto mesh = hotmesh::mesh::structured_quads(xs, ys, {"left", "right", "bottom", "top"});
     hotmesh::io::write_gmsh(folder / "ramp2d.msh", mesh);
     hotmesh::io::write_file_atomically(folder / "ramp.csv", deflection_table());
-    std::printf("wrote %s and %s\n", (folder / "ramp2d.msh").c_str(), (folder / "ramp.csv").c_str());
+    // Cells run row by row from the lower wall up.
+    std::vector<hotmesh::mesh::CellSplit> split(mesh.cell_count(), hotmesh::mesh::CellSplit::triangles);
+    hotmesh::io::write_gmsh(folder / "ramp2d-triangles.msh", hotmesh::mesh::split_cells(mesh, split));
+    std::fill(split.begin(), split.begin() + kCellsX * kQuadRows, hotmesh::mesh::CellSplit::keep);
+    hotmesh::io::write_gmsh(folder / "ramp2d-hybrid.msh", hotmesh::mesh::split_cells(mesh, split));
+    std::printf("wrote ramp2d.msh, ramp2d-triangles.msh, ramp2d-hybrid.msh and ramp.csv in %s\n", folder.c_str());
   });
 }

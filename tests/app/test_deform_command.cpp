@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/mesh/quality.hpp"
@@ -87,6 +88,51 @@ TEST(DeformCommand, RampSampleCompletesWithEveryOutputAndReport) {
   EXPECT_EQ(wall["shape_to_mesh"]["distance"], wall["hausdorff"]);
   EXPECT_LT(wall["mesh_to_shape"]["distance"].get<double>(), cut);
   EXPECT_EQ(wall["hausdorff_relative"].get<double>(), wall["hausdorff"].get<double>() / report["length_scale"].get<double>());
+}
+
+/// A hybrid mesh (quads on the lower wall, triangles above) through the whole command with
+/// both linear solvers: the same motion, quality per cell type in the report, the cell types
+/// kept in the deformed mesh.
+TEST(DeformCommand, HybridMeshMovesWithEitherSolverAndReportsQualityPerCellType) {
+  test::TempDir dir;
+  test::write_coarse_ramp(dir.path());
+  const mesh::Mesh quads = mesh::structured_quads(mesh::uniform_line(0.0, 2.0, 21), mesh::stretched_line(0.0, 1.0, 12, 0.004),
+                                                  {"left", "right", "bottom", "top"});
+  std::vector<mesh::CellSplit> split(quads.cell_count(), mesh::CellSplit::triangles);
+  std::fill(split.begin(), split.begin() + 21 * 3, mesh::CellSplit::keep);  // three rows of quads on the wall
+  const mesh::Mesh hybrid = mesh::split_cells(quads, split);
+  io::write_gmsh(dir / "ramp.msh", hybrid);
+  std::vector<std::vector<geometry::Vec3>> results;
+  for (const std::string linear : {"jacobi-pcg", "amg"}) {
+    SCOPED_TRACE(linear);
+    std::string yaml = test::ramp_case("full.csv", 4);
+    yaml.replace(yaml.find("solver: {"), 9, "solver: {linear: " + linear + ", ");
+    test::write_text(dir / "case.yaml", yaml);
+    const auto out = dir / ("out-" + linear);
+    const auto r = hotmesh("deform " + shell_quote((dir / "case.yaml").string()) + " -o " + shell_quote(out.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto report = read_json(out / "report.json");
+    const auto& by_type = report["quality"]["by_type"];
+    ASSERT_EQ(by_type.size(), 2u) << by_type;
+    EXPECT_EQ(by_type["quad4"]["cells"], 63);
+    EXPECT_EQ(by_type["tri3"]["cells"], 2 * (21 * 12 - 63));
+    EXPECT_EQ(by_type["tri3"]["inverted_cells"], 0);
+    const double worst = std::min(by_type["quad4"]["min_scaled_jacobian"].get<double>(),
+                                  by_type["tri3"]["min_scaled_jacobian"].get<double>());
+    EXPECT_EQ(report["quality"]["min_scaled_jacobian"].get<double>(), worst);
+    const mesh::Mesh moved = io::read_gmsh(out / "deformed.msh");
+    EXPECT_EQ(moved.cells.types().size(), hybrid.cells.types().size());
+    EXPECT_TRUE(std::equal(moved.cells.types().begin(), moved.cells.types().end(), hybrid.cells.types().begin()));
+    for (mesh::NodeId n : moved.find_patch("bottom")->nodes) {
+      const geometry::Vec3& p = moved.points[static_cast<std::size_t>(n)];
+      const double ramp = p.x <= 0.975 ? 0.0 : p.x >= 1.025 ? 0.5 : 0.5 * (p.x - 0.975) / 0.05;
+      EXPECT_NEAR(p.y, ramp, 1e-6) << "x = " << p.x;
+    }
+    results.push_back(moved.points);
+  }
+  double largest = 0.0;
+  for (std::size_t n = 0; n < results[0].size(); ++n) largest = std::max(largest, distance(results[0][n], results[1][n]));
+  EXPECT_LT(largest, 1e-4);  // both solve each Newton step to 1e-6
 }
 
 /// `linear: amg` runs PETSc inside the process, without mpirun, and leaves no MPI session
