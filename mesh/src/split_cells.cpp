@@ -31,14 +31,10 @@ std::array<NodeId, 4> hex_face(std::span<const NodeId> cell, std::size_t f) {
   return {cell[local.nodes[0]], cell[local.nodes[1]], cell[local.nodes[2]], cell[local.nodes[3]]};
 }
 
-/// Position in a hex face (0..3) of the face's corner that is the cell's corner 0 or 6: the
-/// triangulated face's diagonal runs from it.
-std::size_t diagonal_start(std::size_t f) {
-  const LocalFace& local = faces(ElementType::hex8)[f];
-  for (std::size_t i = 0; i < 4; ++i) {
-    if (local.nodes[i] == 0 || local.nodes[i] == 6) return i;
-  }
-  throw std::logic_error("split_cells: a hex face without corner 0 or 6");
+/// Position in a quad face (0..3) of its node of the smallest number: a triangulated face's
+/// diagonal runs from it, whichever cell splits it.
+std::size_t diagonal_start(std::span<const NodeId> face) {
+  return static_cast<std::size_t>(std::min_element(face.begin(), face.end()) - face.begin());
 }
 
 /// Whether a face of `split`'s cell must stay a quad: every face of a kept hex, a prism's sides.
@@ -78,8 +74,14 @@ Mesh split_cells(const Mesh& mesh, std::span<const CellSplit> split) {
       out.cells.add(ElementType::tri3, {n[0], n[1], n[2]});
       out.cells.add(ElementType::tri3, {n[0], n[2], n[3]});
     } else if (s == CellSplit::prisms && type == ElementType::hex8) {
-      out.cells.add(ElementType::wedge6, {n[0], n[1], n[2], n[4], n[5], n[6]});
-      out.cells.add(ElementType::wedge6, {n[0], n[2], n[3], n[4], n[6], n[7]});
+      const std::size_t a = diagonal_start(n.first(4)) % 2;  // the bottom's diagonal: corners a, a + 2
+      if (diagonal_start(n.subspan(4, 4)) % 2 != a) {
+        throw std::invalid_argument("split_cells: cell " + std::to_string(c) + " has crossed diagonals on its ends: "
+                                    "no two prisms split it as its neighbours split those faces");
+      }
+      const auto b = a + 1, d = (a + 2) % 4, e = (a + 3) % 4;
+      out.cells.add(ElementType::wedge6, {n[a], n[b], n[d], n[a + 4], n[b + 4], n[d + 4]});
+      out.cells.add(ElementType::wedge6, {n[a], n[d], n[e], n[a + 4], n[d + 4], n[e + 4]});
     } else if (s == CellSplit::tetrahedra && type == ElementType::hex8) {
       Vec3 centre;
       for (NodeId a : n) centre += out.points[static_cast<std::size_t>(a)];
@@ -90,7 +92,7 @@ Mesh split_cells(const Mesh& mesh, std::span<const CellSplit> split) {
         if (quad_faces.count(key_of(face))) {
           out.cells.add(ElementType::pyramid5, {face[0], face[3], face[2], face[1], apex});
         } else {
-          const std::size_t i = diagonal_start(f);
+          const std::size_t i = diagonal_start(face);
           const NodeId a = face[i], b = face[(i + 1) % 4], d = face[(i + 2) % 4], e = face[(i + 3) % 4];
           out.cells.add(ElementType::tet4, {a, d, b, apex});
           out.cells.add(ElementType::tet4, {a, e, d, apex});

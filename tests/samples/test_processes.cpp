@@ -23,7 +23,9 @@
 #include "faults.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
+#include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/io/mesh_files.hpp"
+#include "hotmesh/mesh/split_cells.hpp"
 #include "output_folders.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -206,6 +208,34 @@ TEST_F(Processes, AKilledJobResumedOnTwoRanksEndsBitForBitAsTheUninterruptedOne)
 /// of the 18 000-cell sector), so other CG iterations and other meshes, until the partitioner
 /// was given one thread. Three runs of that sector stopped after their first increment, with
 /// every core also kept half busy: the same CG iterations and the same nodes.
+/// The sector as a hybrid mesh (every second hex split about its centre into tetrahedra, with
+/// pyramids against the hexes kept), its walls sliding over their surfaces of revolution on
+/// faces of triangles and quads: two ranks move it as one process does.
+TEST_F(Processes, AHybridSectorMovesOnTwoRanksAsInOneProcess) {
+  if (test::under_sanitizers()) GTEST_SKIP() << "the hex sector's runs cover the ranks under the sanitizers";
+  mesh::Mesh hexes = io::read_mesh(*dir_ / "stator_well.msh").mesh;
+  hexes.node_ids.clear();  // numbered 1, 2, 3, ... in the file
+  hexes.cell_ids.clear();
+  std::vector<mesh::CellSplit> split(hexes.cell_count(), mesh::CellSplit::keep);
+  for (std::size_t c = 0; c < split.size(); c += 2) split[c] = mesh::CellSplit::tetrahedra;
+  io::write_gmsh(*dir_ / "hybrid.msh", mesh::split_cells(hexes, split));
+  std::string text = replaced(test::read_text(*dir_ / "tight.yaml"), "mesh: stator_well.msh", "mesh: hybrid.msh");
+  text = replaced(text, "increments: 4", "increments: 2");
+  test::write_text(*dir_ / "hybrid.yaml", text);
+  const fs::path one = *dir_ / "hybrid-1", two = *dir_ / "hybrid-2";
+  const auto r1 = deform_case(0, *dir_ / "hybrid.yaml", one);
+  ASSERT_EQ(r1.exit_code, 0) << r1.output;
+  const auto r2 = deform_case(2, *dir_ / "hybrid.yaml", two);
+  ASSERT_EQ(r2.exit_code, 0) << r2.output;
+  EXPECT_LT(largest_distance(one, two), 1e-10);
+  const nlohmann::json on_two = report(two);
+  for (const char* type : {"hex8", "tet4", "pyramid5"}) {
+    EXPECT_EQ(on_two["quality"]["by_type"][type]["inverted_cells"], 0) << type;
+  }
+  EXPECT_GT(on_two["sliding_nodes"].get<int>(), 0);
+  EXPECT_EQ(on_two["solver"]["processes"], 2);
+}
+
 TEST_F(Processes, RunsOnTwoRanksRepeatOnABusyMachine) {
   if (test::under_sanitizers()) GTEST_SKIP() << "three 18 000-cell runs under the sanitizers: minutes";
   const fs::path dir = *dir_ / "repeat";

@@ -1,15 +1,16 @@
 // hotmesh mesh: hybrid meshes made from quad and hex meshes by splitting cells, for tests,
 // samples and benchmarks of the motion on every cell type (issue 24).
 //   quads:  into two triangles along the diagonal 0-2;
-//   hexes:  into two prisms (wedge6) along the plane through the edges 0-4 and 2-6, or
-//           about a new node at the cell's centre into one pyramid per face that stays a
-//           quad and two tetrahedra per face that is triangulated.
-// A triangulated face of a hex is split along the diagonal through its corner 0 or 6 (every
-// face of a hex has exactly one of them), which is the prisms' diagonal on their end faces.
-// On a structured mesh (structured_hexes, test::square_ring: every cell numbered alike) the
-// two cells on a face then split it alike, so the result is conforming. A face of a cell
-// split about its centre stays a quad (a pyramid's base) where the cell across keeps it a
-// quad: a hex, or a prism's side. Patch faces are split as the cells beside them.
+//   hexes:  into two prisms (wedge6) standing on the faces 0-1-2-3 and 4-5-6-7, or about a
+//           new node at the cell's centre into one pyramid per face that stays a quad and
+//           two tetrahedra per face that is triangulated.
+// A triangulated face is split along the diagonal through its node of the smallest number,
+// so the two cells on a face split it alike whatever their own numbering: tetrahedra fit any
+// conforming hex mesh. Prisms need their two ends split along parallel diagonals, which holds
+// on extruded meshes (structured_hexes, test::square_ring); a cell where it does not is
+// refused. A face of a cell split about its centre stays a quad (a pyramid's base) where the
+// cell across keeps it a quad: a hex, or a prism's side. Patch faces are split as the cells
+// beside them.
 #pragma once
 
 #include <cstdint>
