@@ -25,7 +25,7 @@ Command add_convert_command(CLI::App& parent) {
   CLI::App* cmd = parent.add_subcommand(
       "convert",
       "Convert a mesh: Gmsh 2.2/4.1 (.msh), CGNS (.cgns) or OpenFOAM (a case or polyMesh folder) to Gmsh 4.1 (.msh), "
-      "CGNS (.cgns: one unstructured zone), OpenFOAM (a folder named polyMesh, or a case folder: hex meshes) or "
+      "CGNS (.cgns: one unstructured zone), OpenFOAM (a folder named polyMesh, or a case folder: 3D meshes) or "
       "ParaView (.vtu with cell quality)");
   cmd->add_option("IN", options->input, "Input mesh (.msh, .cgns, or an OpenFOAM case / polyMesh folder)")
       ->required()

@@ -19,8 +19,8 @@ void read_base(const File& file, RawMesh& raw) {
   Label name{};
   file.check(cg_base_read(file.fn(), raw.base, name, &raw.dimension, &raw.physical_dimension), "reading base 1");
   if (raw.dimension != 2 && raw.dimension != 3) {
-    throw InputError::in(file.name(), fmt::format("base '{}' has cell dimension {}: hotmesh moves 2D (quad) and 3D "
-                                                  "(hex) meshes",
+    throw InputError::in(file.name(), fmt::format("base '{}' has cell dimension {}: hotmesh moves 2D (triangle and "
+                                                  "quad) and 3D (tetrahedron, pyramid, prism and hex) meshes",
                                                   name, raw.dimension));
   }
   if (raw.physical_dimension < raw.dimension) {
@@ -36,8 +36,8 @@ void check_cell_count(const File& file, const RawMesh& raw, const ZoneRecord& zo
   std::array<cgsize_t, 9> size{};
   file.check(cg_zone_read(file.fn(), raw.base, zone.index, name, size.data()), fmt::format("reading zone '{}'", zone.name));
   if (static_cast<std::size_t>(size[1]) != zone.cell_count) {
-    spdlog::warn("{}: zone '{}' declares {} cells, its sections hold {} {} cells", file.name(), zone.name, size[1],
-                 zone.cell_count, raw.dimension == 2 ? "QUAD_4" : "HEXA_8");
+    spdlog::warn("{}: zone '{}' declares {} cells, its sections hold {} cells ({})", file.name(), zone.name, size[1],
+                 zone.cell_count, raw.dimension == 2 ? "TRI_3, QUAD_4" : "TETRA_4, PYRA_5, PENTA_6, HEXA_8");
   }
 }
 

@@ -1,11 +1,17 @@
 // hotmesh io: a mesh written as a new CGNS file (hotmesh convert): one base, one
-// unstructured zone "Zone", the cells in section "Cells" (QUAD_4 / HEXA_8), then per patch a
-// boundary section (BAR_2 / QUAD_4) and a BC (BCGeneral, a PointRange over the section's
-// elements at EdgeCenter / FaceCenter), both named as the patch. 2D meshes get physical
-// dimension 2 when they lie in z = 0, else 3.
+// unstructured zone "Zone", the cells in section "Cells", then per patch a boundary section
+// and a BC (BCGeneral, a PointRange over the section's elements at EdgeCenter / FaceCenter),
+// both named as the patch. 2D meshes get physical dimension 2 when they lie in z = 0, else 3.
+// Cells: TRI_3, QUAD_4 (2D), TETRA_4, PYRA_5, PENTA_6, HEXA_8 (3D); faces: BAR_2 (2D), TRI_3,
+// QUAD_4 (3D). A section of elements of one type is written typed (QUAD_4, HEXA_8, ...), a
+// section of several types as one MIXED section: MIXED keeps the mesh's cell (and face)
+// order, so the element numbers are the cell numbers and a file read back gives the same
+// mesh; sections per type would renumber the cells of a hybrid mesh type by type. The node
+// order of every linear type is the same in CGNS and in hotmesh (Gmsh's order).
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <functional>
 
 #include "cgns_library.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -15,13 +21,27 @@
 namespace hotmesh::io::cgns {
 namespace {
 
+/// The CGNS type of a hotmesh element type.
+CGNS_ENUMT(ElementType_t) cgns_type(mesh::ElementType type) {
+  switch (type) {
+    case mesh::ElementType::line2: return CGNS_ENUMV(BAR_2);
+    case mesh::ElementType::tri3: return CGNS_ENUMV(TRI_3);
+    case mesh::ElementType::quad4: return CGNS_ENUMV(QUAD_4);
+    case mesh::ElementType::tet4: return CGNS_ENUMV(TETRA_4);
+    case mesh::ElementType::pyramid5: return CGNS_ENUMV(PYRA_5);
+    case mesh::ElementType::wedge6: return CGNS_ENUMV(PENTA_6);
+    case mesh::ElementType::hex8: return CGNS_ENUMV(HEXA_8);
+  }
+  return CGNS_ENUMV(ElementTypeNull);
+}
+
 void check_writable(const std::string& file, const mesh::Mesh& mesh) {
-  const auto cell = mesh.dimension == 2 ? mesh::ElementType::quad4 : mesh::ElementType::hex8;
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
-    if (mesh.cells.type(c) != cell) {
-      throw InputError::in(file, fmt::format("cell {} is a {}: hotmesh writes CGNS files of {} cells only",
+    if (mesh::dimension(mesh.cells.type(c)) != mesh.dimension) {
+      throw InputError::in(file, fmt::format("cell {} is a {} in a {}D mesh: hotmesh writes CGNS cells of the mesh's "
+                                             "dimension only",
                                              mesh.cell_id(static_cast<mesh::CellId>(c)), mesh::name(mesh.cells.type(c)),
-                                             mesh::name(cell)));
+                                             mesh.dimension));
     }
   }
   for (const mesh::Patch& p : mesh.patches) {
@@ -29,10 +49,10 @@ void check_writable(const std::string& file, const mesh::Mesh& mesh) {
       throw InputError::in(file, fmt::format("patch '{}': a CGNS name has 1 to 32 characters and no '/'", p.name));
     }
     for (const auto t : p.faces.types()) {
-      if (mesh::dimension(t) != mesh.dimension - 1 || t == mesh::ElementType::tri3) {
-        throw InputError::in(file, fmt::format("patch '{}' has a {} face: hotmesh writes CGNS faces of quad and hex "
-                                               "cells only",
-                                               p.name, mesh::name(t)));
+      if (mesh::dimension(t) != mesh.dimension - 1) {
+        throw InputError::in(file, fmt::format("patch '{}' has a {} face: the boundary faces of a {}D mesh are {}",
+                                               p.name, mesh::name(t), mesh.dimension,
+                                               mesh.dimension == 2 ? "lines" : "triangles and quads"));
       }
     }
   }
@@ -52,16 +72,31 @@ void write_coordinates(const File& file, int base, int zone, std::span<const geo
   }
 }
 
-/// Writes `elements` as a section from element number `first`; returns the number after it.
-cgsize_t write_section(const File& file, int base, int zone, const std::string& name, CGNS_ENUMT(ElementType_t) type,
-                       const mesh::ElementList& elements, cgsize_t first) {
-  std::vector<cgsize_t> nodes;
-  nodes.reserve(elements.all_nodes().size());
-  for (const mesh::NodeId n : elements.all_nodes()) nodes.push_back(static_cast<cgsize_t>(n) + 1);
+/// Writes `elements` as a section from element number `first`, typed if they are of one
+/// type, else MIXED; returns the number after it.
+cgsize_t write_section(const File& file, int base, int zone, const std::string& name, const mesh::ElementList& elements,
+                       cgsize_t first) {
+  const auto types = elements.types();
+  const bool mixed = std::adjacent_find(types.begin(), types.end(), std::not_equal_to<>()) != types.end();
+  std::vector<cgsize_t> data, offsets{0};
+  data.reserve(elements.all_nodes().size() + (mixed ? elements.size() : 0));
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    if (mixed) data.push_back(static_cast<cgsize_t>(cgns_type(elements.type(e))));
+    for (const mesh::NodeId n : elements.nodes(e)) data.push_back(static_cast<cgsize_t>(n) + 1);
+    offsets.push_back(static_cast<cgsize_t>(data.size()));
+  }
   const cgsize_t last = first + static_cast<cgsize_t>(elements.size()) - 1;
+  const std::string what = fmt::format("writing section '{}'", name);
   int index = 0;
-  file.check(cg_section_write(file.fn(), base, zone, name.c_str(), type, first, last, 0, nodes.data(), &index),
-             fmt::format("writing section '{}'", name));
+  if (mixed) {
+    file.check(cg_poly_section_write(file.fn(), base, zone, name.c_str(), CGNS_ENUMV(MIXED), first, last, 0, data.data(),
+                                     offsets.data(), &index),
+               what);
+  } else {
+    file.check(cg_section_write(file.fn(), base, zone, name.c_str(), cgns_type(types.front()), first, last, 0,
+                                data.data(), &index),
+               what);
+  }
   return last + 1;
 }
 
@@ -82,12 +117,11 @@ void write_cgns(const std::filesystem::path& path, const mesh::Mesh& mesh, std::
   file.check(cg_zone_write(file.fn(), base, "Zone", size.data(), CGNS_ENUMV(Unstructured), &zone), "writing the zone");
   cgns::write_coordinates(file, base, zone, points, physical);
   const bool two_d = mesh.dimension == 2;
-  cgsize_t next = cgns::write_section(file, base, zone, "Cells", two_d ? CGNS_ENUMV(QUAD_4) : CGNS_ENUMV(HEXA_8),
-                                      mesh.cells, 1);
+  cgsize_t next = mesh.cells.empty() ? 1 : cgns::write_section(file, base, zone, "Cells", mesh.cells, 1);
   for (const mesh::Patch& p : mesh.patches) {
     if (p.faces.empty()) continue;
     const cgsize_t first = next;
-    next = cgns::write_section(file, base, zone, p.name, two_d ? CGNS_ENUMV(BAR_2) : CGNS_ENUMV(QUAD_4), p.faces, first);
+    next = cgns::write_section(file, base, zone, p.name, p.faces, first);
     const std::array<cgsize_t, 2> range{first, next - 1};
     int bc = 0;
     file.check(cg_boco_write(file.fn(), base, zone, p.name.c_str(), CGNS_ENUMV(BCGeneral), CGNS_ENUMV(PointRange), 2,

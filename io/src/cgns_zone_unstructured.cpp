@@ -1,12 +1,21 @@
 // hotmesh io: the sections and boundary conditions of an unstructured CGNS zone.
-// Cells: QUAD_4 (2D) or HEXA_8 (3D), in their own sections or in MIXED ones. Faces: BAR_2
-// (2D) or QUAD_4 (3D) sections, kept by element number for the BCs that name elements; a
-// face section no BC refers to becomes a patch of its own, named as the section. Elements of
-// a lower dimension (NODE; BAR_2 in 3D: the curves some generators export) are skipped, as
-// the Gmsh reader skips them.
+// Cells: TRI_3 and QUAD_4 (2D bases), TETRA_4, PYRA_5, PENTA_6 and HEXA_8 (3D bases), in
+// typed sections or in MIXED ones. Faces: BAR_2 (2D) or TRI_3 and QUAD_4 (3D), typed or
+// MIXED, kept by element number for the BCs that name elements; a face section no BC refers
+// to becomes a patch of its own, named as the section. Elements of a lower dimension (NODE;
+// BAR_2 in 3D: the curves some generators export) are skipped, as the Gmsh reader skips them.
+// Higher-order types (TRI_6, TETRA_10, HEXA_27, ...) are refused, naming zone, section, type.
+//
+// Node order: the CGNS SIDS numbering of the linear elements ("Unstructured Grid Element
+// Numbering Conventions") is the same as Gmsh's, which hotmesh uses (mesh/element.hpp), so
+// the nodes are taken as they are: TRI_3 / QUAD_4 counter-clockwise; TETRA_4 base N1-N2-N3
+// with N4 on the side of its right-hand normal (SIDS face F1 = N1 N3 N2 points out); PYRA_5
+// base N1..N4, apex N5 (F1 = N1 N4 N3 N2 out); PENTA_6 triangles N1-N2-N3 and N4-N5-N6
+// above them (F4 = N1 N3 N2 out); HEXA_8 N1..N4 bottom, N5..N8 above them.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <optional>
 #include <unordered_map>
 
 #include "cgns_reader.hpp"
@@ -14,6 +23,12 @@
 
 namespace hotmesh::io::cgns {
 namespace {
+
+/// The element types hotmesh reads as cells / boundary faces in a base of `dimension`.
+const char* cell_names(int dimension) {
+  return dimension == 2 ? "TRI_3 and QUAD_4" : "TETRA_4, PYRA_5, PENTA_6 and HEXA_8";
+}
+const char* face_names(int dimension) { return dimension == 2 ? "BAR_2" : "TRI_3 and QUAD_4"; }
 
 /// The faces of one zone's boundary sections, by element number.
 struct ZoneFaces {
@@ -36,11 +51,27 @@ struct SectionReader {
   std::unordered_map<std::string, std::size_t> others;  ///< unsupported element types, counted
   std::size_t skipped = 0;                               ///< lower-dimensional elements
 
-  bool is_cell(CGNS_ENUMT(ElementType_t) t) const {
-    return raw.dimension == 2 ? t == CGNS_ENUMV(QUAD_4) : t == CGNS_ENUMV(HEXA_8);
+  /// The hotmesh cell type of a CGNS element type in this base, if it is a cell.
+  std::optional<mesh::ElementType> cell_type(CGNS_ENUMT(ElementType_t) t) const {
+    if (raw.dimension == 2) {
+      if (t == CGNS_ENUMV(TRI_3)) return mesh::ElementType::tri3;
+      if (t == CGNS_ENUMV(QUAD_4)) return mesh::ElementType::quad4;
+      return std::nullopt;
+    }
+    switch (t) {
+      case CGNS_ENUMV(TETRA_4): return mesh::ElementType::tet4;
+      case CGNS_ENUMV(PYRA_5): return mesh::ElementType::pyramid5;
+      case CGNS_ENUMV(PENTA_6): return mesh::ElementType::wedge6;
+      case CGNS_ENUMV(HEXA_8): return mesh::ElementType::hex8;
+      default: return std::nullopt;
+    }
   }
-  bool is_face(CGNS_ENUMT(ElementType_t) t) const {
-    return raw.dimension == 2 ? t == CGNS_ENUMV(BAR_2) : t == CGNS_ENUMV(QUAD_4);
+  /// The hotmesh face type of a CGNS element type in this base, if it is a boundary face.
+  std::optional<mesh::ElementType> face_type(CGNS_ENUMT(ElementType_t) t) const {
+    if (raw.dimension == 2) return t == CGNS_ENUMV(BAR_2) ? std::optional(mesh::ElementType::line2) : std::nullopt;
+    if (t == CGNS_ENUMV(TRI_3)) return mesh::ElementType::tri3;
+    if (t == CGNS_ENUMV(QUAD_4)) return mesh::ElementType::quad4;
+    return std::nullopt;
   }
   bool is_lower(CGNS_ENUMT(ElementType_t) t) const {
     return t == CGNS_ENUMV(NODE) || (raw.dimension == 3 && t == CGNS_ENUMV(BAR_2));
@@ -57,11 +88,11 @@ struct SectionReader {
       ids[static_cast<std::size_t>(i)] = zone.first_node + static_cast<NodeId>(nodes[i] - 1);
     }
     const std::span<const NodeId> view(ids.data(), static_cast<std::size_t>(count));
-    if (is_cell(type)) {
-      raw.cells.add(raw.dimension == 2 ? mesh::ElementType::quad4 : mesh::ElementType::hex8, view);
-    } else if (is_face(type)) {
+    if (const auto cell = cell_type(type)) {
+      raw.cells.add(*cell, view);  // CGNS and Gmsh number linear elements alike (see the top)
+    } else if (const auto face = face_type(type)) {
       faces.by_element[element] = static_cast<std::int32_t>(faces.faces.size());
-      faces.faces.add(raw.dimension == 2 ? mesh::ElementType::line2 : mesh::ElementType::quad4, view);
+      faces.faces.add(*face, view);
       faces.section_of.push_back(static_cast<int>(faces.sections.size()) - 1);
     } else if (is_lower(type)) {
       ++skipped;
@@ -117,8 +148,11 @@ struct SectionReader {
       int npe = 0;
       if (cg_npe(type, &npe) != CG_OK || npe <= 0 || npe > 8 || at + 1 + static_cast<std::size_t>(npe) > data.size()) {
         throw InputError::in(file.name(), fmt::format("zone '{}' MIXED section '{}': element {} has type {}, which "
-                                                      "hotmesh does not read",
-                                                      zone.name, section, e, cg_ElementTypeName(type)));
+                                                      "hotmesh does not read (it reads {} cells and {} boundary faces "
+                                                      "in a {}D base)",
+                                                      zone.name, section, e, cg_ElementTypeName(type),
+                                                      cell_names(raw.dimension), face_names(raw.dimension),
+                                                      raw.dimension));
       }
       add(type, e, data.data() + at + 1, npe);
       at += 1 + static_cast<std::size_t>(npe);
@@ -129,21 +163,21 @@ struct SectionReader {
     std::string list;
     for (const auto& [type, count] : others) list += fmt::format("{}{} {}", list.empty() ? "" : ", ", count, type);
     throw InputError::in(file.name(), fmt::format("zone '{}' section '{}' holds {} elements: hotmesh reads {} cells and "
-                                                  "{} boundary faces",
-                                                  zone.name, section, list, raw.dimension == 2 ? "QUAD_4" : "HEXA_8",
-                                                  raw.dimension == 2 ? "BAR_2" : "QUAD_4"));
+                                                  "{} boundary faces in a {}D base (linear elements only)",
+                                                  zone.name, section, list, cell_names(raw.dimension),
+                                                  face_names(raw.dimension), raw.dimension));
   }
 };
 
 /// The faces an element-based BC names, from the zone's boundary sections.
-void faces_of_elements(const File& file, ZoneFaces& faces, const std::vector<cgsize_t>& elements,
+void faces_of_elements(const File& file, int file_dimension, ZoneFaces& faces, const std::vector<cgsize_t>& elements,
                        RawBc& bc) {
   for (const cgsize_t e : elements) {
     const auto it = faces.by_element.find(e);
     if (it == faces.by_element.end()) {
       throw InputError::in(file.name(), fmt::format("{} names element {}, which is in no boundary face section ({}) of "
                                                     "the zone",
-                                                    bc.where, e, faces.faces.empty() ? "there is none" : "BAR_2 / QUAD_4"));
+                                                    bc.where, e, faces.faces.empty() ? "there is none" : face_names(file_dimension)));
     }
     const auto f = static_cast<std::size_t>(it->second);
     bc.faces.add(faces.faces.type(f), faces.faces.nodes(f));
@@ -165,7 +199,7 @@ void read_bc(const File& file, RawMesh& raw, std::size_t z, ZoneFaces& faces, in
   bc.zone = z;
   const std::vector<cgsize_t> entries = expand_point_set(points.set, points.data, 1);
   if (by_elements(points.set, points.location)) {
-    faces_of_elements(file, faces, entries, bc);
+    faces_of_elements(file, raw.dimension, faces, entries, bc);
   } else {
     bc.by_points = true;
     for (const cgsize_t p : entries) {

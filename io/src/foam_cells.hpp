@@ -1,10 +1,14 @@
-// hotmesh io (internal): hexahedra recognised from the faces of an OpenFOAM polyMesh. A cell
-// is the set of faces whose owner or neighbour it is; OpenFOAM orients each face (right-hand
+// hotmesh io (internal): cells recognised from the faces of an OpenFOAM polyMesh. A cell is
+// the set of faces whose owner or neighbour it is; OpenFOAM orients each face (right-hand
 // normal) out of its owner, so a cell's faces, those it neighbours reversed, point outward.
-// A hexahedron has six quadrilateral faces and each of its twelve edges lies in exactly two
-// of them; its hex8 nodes (mesh/element.hpp) are a chosen bottom face, reversed so that its
-// right-hand normal points into the cell, then above each bottom node the one node joined to
-// it by an edge leaving the bottom face. That order has positive volume.
+// The shapes read, by their faces: tetrahedron (4 triangles), pyramid (1 quad, 4 triangles),
+// prism (2 triangles, 3 quads), hexahedron (6 quads); in each, every edge lies in exactly two
+// faces, once in each direction, and the faces use exactly 4, 5, 6 or 8 points. The nodes in
+// hotmesh's (Gmsh's) order (mesh/element.hpp) are a bottom face (tetrahedron: the first face;
+// pyramid: the quad; prism: the first triangle; hexahedron: the first face or a chosen one),
+// reversed so that its right-hand normal points into the cell, then the apex (tetrahedron,
+// pyramid) or above each bottom node the one node joined to it by an edge leaving the bottom
+// face (prism, hexahedron). That order has positive volume for a cell that is not folded.
 #pragma once
 
 #include <array>
@@ -14,6 +18,7 @@
 #include <vector>
 
 #include "foam_file.hpp"
+#include "hotmesh/mesh/element.hpp"
 
 namespace hotmesh::io::foam {
 
@@ -38,10 +43,21 @@ CellFaces cell_faces(const PolyMesh& mesh);
 
 using Hex = std::array<std::int64_t, 8>;
 
-/// The hex8 nodes of every cell. `bottom_faces` is empty (each cell's first face is its
-/// bottom) or gives one face of each cell as its bottom. Throws hotmesh::InputError naming
-/// `source` if any cell is not a hexahedron: the first such cell's number and shape, and how
-/// many there are.
+/// A cell of the polyMesh as a hotmesh element: its type and its first node_count(type) nodes.
+struct FoamCell {
+  mesh::ElementType type = mesh::ElementType::hex8;
+  std::array<std::int64_t, 8> nodes{};
+};
+
+/// The hex8, wedge6, pyramid5 or tet4 of every cell. Throws hotmesh::InputError naming
+/// `source` if any cell is another polyhedron: the first such cell's number and shape, and
+/// how many there are.
+std::vector<FoamCell> volume_cells(const PolyMesh& mesh, const CellFaces& cells, const std::string& source);
+
+/// The hex8 nodes of every cell (one-cell-thick 2D cases, foam_2d.hpp). `bottom_faces` is
+/// empty (each cell's first face is its bottom) or gives one face of each cell as its bottom.
+/// Throws hotmesh::InputError naming `source` if any cell is not a hexahedron: the first such
+/// cell's number and shape, and how many there are.
 std::vector<Hex> hexahedra(const PolyMesh& mesh, const CellFaces& cells, std::span<const std::int64_t> bottom_faces,
                            const std::string& source);
 

@@ -1,5 +1,6 @@
-// hotmesh io: a new OpenFOAM polyMesh from a hex mesh (hotmesh convert, write_mesh to a
-// polyMesh folder; see hotmesh/io/foam.hpp). Faces are found by matching the cells' faces on
+// hotmesh io: a new OpenFOAM polyMesh from a 3D mesh of hexahedra, prisms, pyramids and
+// tetrahedra (hotmesh convert, write_mesh to a polyMesh folder; see hotmesh/io/foam.hpp).
+// Each cell's faces are those of its type (mesh::faces(), outward, triangles and quads). Faces are found by matching the cells' faces on
 // their sorted nodes, bucketed by their smallest node. OpenFOAM's order: internal faces first,
 // in upper-triangular order (by owner, then neighbour; owner < neighbour; nodes ordered so
 // that the right-hand normal points from owner to neighbour), then the boundary faces patch
@@ -22,12 +23,12 @@ namespace {
 
 using mesh::CellId;
 using mesh::NodeId;
-using FaceKey = std::array<NodeId, 4>;
-constexpr int kHexFaceCount = 6;
+using FaceKey = std::array<NodeId, 4>;  ///< a face's nodes sorted, -1 first for a triangle
 
 /// A face of the polyMesh: its nodes (as OpenFOAM orders them) and its cells.
 struct FoamFace {
   std::array<NodeId, 4> nodes{};
+  std::uint8_t count = 4;
   CellId owner = 0, neighbour = -1;
 };
 
@@ -42,27 +43,44 @@ struct PolyMesh {
   std::vector<FoamPatch> patches;
 };
 
-/// The cell faces of a hex mesh, bucketed by smallest node; `partner` of cell face c*6+f is
-/// the cell on its other side (-1 on the boundary).
-class HexFaces {
+/// The faces of every cell (mesh::faces(type), outward), numbered cell after cell: cell c's
+/// are first_[c] .. first_[c+1]-1. They are bucketed by smallest node; `partner` of a cell
+/// face is the cell on its other side (-1 on the boundary).
+class CellFaces {
  public:
-  explicit HexFaces(const mesh::Mesh& m) : m_(m) {
+  explicit CellFaces(const mesh::Mesh& m) : m_(m) {
+    first_.assign(m.cell_count() + 1, 0);
+    for (std::size_t c = 0; c < m.cell_count(); ++c) first_[c + 1] = first_[c] + static_cast<std::int64_t>(mesh::faces(m.cells.type(c)).size());
+    cell_of_.resize(static_cast<std::size_t>(first_.back()));
+    for (std::size_t c = 0; c < m.cell_count(); ++c) {
+      std::fill(cell_of_.begin() + first_[c], cell_of_.begin() + first_[c + 1], static_cast<CellId>(c));
+    }
     bucket_faces();
     match_partners();
   }
 
-  std::array<NodeId, 4> nodes(std::int64_t cell_face) const {
-    const auto cell = m_.cells.nodes(static_cast<std::size_t>(cell_face / kHexFaceCount));
-    const mesh::LocalFace& local = mesh::faces(mesh::ElementType::hex8)[static_cast<std::size_t>(cell_face % kHexFaceCount)];
-    return {cell[local.nodes[0]], cell[local.nodes[1]], cell[local.nodes[2]], cell[local.nodes[3]]};
+  std::int64_t first(CellId c) const { return first_[static_cast<std::size_t>(c)]; }
+  std::int64_t count() const { return first_.back(); }
+  CellId cell(std::int64_t cell_face) const { return cell_of_[static_cast<std::size_t>(cell_face)]; }
+
+  FoamFace face(std::int64_t cell_face) const {
+    const CellId c = cell(cell_face);
+    const auto nodes = m_.cells.nodes(static_cast<std::size_t>(c));
+    const mesh::LocalFace& local =
+        mesh::faces(m_.cells.type(static_cast<std::size_t>(c)))[static_cast<std::size_t>(cell_face - first(c))];
+    FoamFace f;
+    f.count = local.count;
+    for (std::size_t i = 0; i < local.count; ++i) f.nodes[i] = nodes[local.nodes[i]];
+    f.owner = c;
+    return f;
   }
   CellId partner(std::int64_t cell_face) const { return partner_[static_cast<std::size_t>(cell_face)]; }
 
   /// The boundary cell face with these nodes (in any order), or -1.
-  std::int64_t find_boundary(std::span<const NodeId> face) const {
-    FaceKey key{face[0], face[1], face[2], face[3]};
-    std::sort(key.begin(), key.end());
-    const auto b = static_cast<std::size_t>(key[0]);
+  std::int64_t find_boundary(std::span<const NodeId> nodes) const {
+    if (nodes.size() != 3 && nodes.size() != 4) return -1;
+    const FaceKey key = sorted(nodes);
+    const auto b = static_cast<std::size_t>(key[4 - nodes.size()]);
     for (std::int64_t i = start_[b]; i < start_[b + 1]; ++i) {
       const std::int64_t cf = bucket_[static_cast<std::size_t>(i)];
       if (partner(cf) < 0 && sorted(cf) == key) return cf;
@@ -71,20 +89,29 @@ class HexFaces {
   }
 
  private:
-  FaceKey sorted(std::int64_t cell_face) const {
-    FaceKey key = nodes(cell_face);
+  static FaceKey sorted(std::span<const NodeId> nodes) {
+    FaceKey key{-1, -1, -1, -1};
+    std::copy(nodes.begin(), nodes.end(), key.begin() + static_cast<std::ptrdiff_t>(4 - nodes.size()));
     std::sort(key.begin(), key.end());
     return key;
   }
+  FaceKey sorted(std::int64_t cell_face) const {
+    const FoamFace f = face(cell_face);
+    return sorted(std::span<const NodeId>(f.nodes.data(), f.count));
+  }
+  /// The smallest node of a cell face (its bucket).
+  std::size_t smallest(std::int64_t cell_face) const {
+    const FaceKey key = sorted(cell_face);
+    return static_cast<std::size_t>(key[0] < 0 ? key[1] : key[0]);
+  }
 
   void bucket_faces() {
-    const std::int64_t count = static_cast<std::int64_t>(m_.cell_count()) * kHexFaceCount;
     start_.assign(m_.node_count() + 1, 0);
-    for (std::int64_t cf = 0; cf < count; ++cf) ++start_[static_cast<std::size_t>(sorted(cf)[0]) + 1];
+    for (std::int64_t cf = 0; cf < count(); ++cf) ++start_[smallest(cf) + 1];
     for (std::size_t n = 0; n < m_.node_count(); ++n) start_[n + 1] += start_[n];
-    bucket_.resize(static_cast<std::size_t>(count));
+    bucket_.resize(static_cast<std::size_t>(count()));
     std::vector<std::int64_t> fill(start_.begin(), start_.end() - 1);
-    for (std::int64_t cf = 0; cf < count; ++cf) bucket_[static_cast<std::size_t>(fill[static_cast<std::size_t>(sorted(cf)[0])]++)] = cf;
+    for (std::int64_t cf = 0; cf < count(); ++cf) bucket_[static_cast<std::size_t>(fill[smallest(cf)]++)] = cf;
   }
 
   void match_partners() {
@@ -101,18 +128,19 @@ class HexFaces {
         if (in_bucket[i].first != in_bucket[i + 1].first) continue;
         if (i + 2 < in_bucket.size() && in_bucket[i + 2].first == in_bucket[i].first) {
           throw InputError("a face is shared by more than two cells (cells " +
-                           std::to_string(m_.cell_id(static_cast<CellId>(in_bucket[i].second / kHexFaceCount))) +
-                           " and more)");
+                           std::to_string(m_.cell_id(cell(in_bucket[i].second))) + " and more)");
         }
         const std::int64_t a = in_bucket[i].second, c = in_bucket[i + 1].second;
-        partner_[static_cast<std::size_t>(a)] = static_cast<CellId>(c / kHexFaceCount);
-        partner_[static_cast<std::size_t>(c)] = static_cast<CellId>(a / kHexFaceCount);
+        partner_[static_cast<std::size_t>(a)] = cell(c);
+        partner_[static_cast<std::size_t>(c)] = cell(a);
         ++i;
       }
     }
   }
 
   const mesh::Mesh& m_;
+  std::vector<std::int64_t> first_;
+  std::vector<CellId> cell_of_;
   std::vector<std::int64_t> start_, bucket_;
   std::vector<CellId> partner_;
 };
@@ -127,39 +155,43 @@ std::string foam_patch_type(std::string_view name) {
   return "wall";
 }
 
-void add_internal_faces(const mesh::Mesh& m, const HexFaces& hex, PolyMesh& poly) {
-  std::vector<std::pair<CellId, int>> upper;  // (neighbour, local face) of one cell
+void add_internal_faces(const mesh::Mesh& m, const CellFaces& cf, PolyMesh& poly) {
+  std::vector<std::pair<CellId, std::int64_t>> upper;  // (neighbour, cell face) of one cell
   for (CellId c = 0; c < static_cast<CellId>(m.cell_count()); ++c) {
     upper.clear();
-    for (int f = 0; f < kHexFaceCount; ++f) {
-      const CellId other = hex.partner(std::int64_t{c} * kHexFaceCount + f);
+    for (std::int64_t f = cf.first(c); f < cf.first(c + 1); ++f) {
+      const CellId other = cf.partner(f);
       if (other > c) upper.emplace_back(other, f);
     }
     std::sort(upper.begin(), upper.end());
-    for (const auto& [other, f] : upper) poly.faces.push_back({hex.nodes(std::int64_t{c} * kHexFaceCount + f), c, other});
+    for (const auto& [other, f] : upper) {
+      FoamFace face = cf.face(f);
+      face.neighbour = other;
+      poly.faces.push_back(face);
+    }
   }
   poly.internal = poly.faces.size();
 }
 
-void add_boundary_faces(const mesh::Mesh& m, const HexFaces& hex, PolyMesh& poly) {
-  std::vector<char> taken(m.cell_count() * kHexFaceCount, 0);
+void add_boundary_faces(const mesh::Mesh& m, const CellFaces& cf, PolyMesh& poly) {
+  std::vector<char> taken(static_cast<std::size_t>(cf.count()), 0);
   for (const mesh::Patch& patch : m.patches) {
     FoamPatch fp{patch.name, foam_patch_type(patch.name), poly.faces.size(), patch.faces.size()};
     for (std::size_t i = 0; i < patch.faces.size(); ++i) {
-      const std::int64_t cf = patch.faces.nodes(i).size() == 4 ? hex.find_boundary(patch.faces.nodes(i)) : -1;
-      if (cf < 0 || taken[static_cast<std::size_t>(cf)]) {
+      const std::int64_t f = cf.find_boundary(patch.faces.nodes(i));
+      if (f < 0 || taken[static_cast<std::size_t>(f)]) {
         throw InputError(fmt::format("face {} of patch '{}' is {}", i + 1, patch.name,
-                                     cf < 0 ? "not a boundary face of a cell" : "in another patch too"));
+                                     f < 0 ? "not a boundary face of a cell" : "in another patch too"));
       }
-      taken[static_cast<std::size_t>(cf)] = 1;
-      poly.faces.push_back({hex.nodes(cf), static_cast<CellId>(cf / kHexFaceCount), -1});
+      taken[static_cast<std::size_t>(f)] = 1;
+      poly.faces.push_back(cf.face(f));
     }
     poly.patches.push_back(fp);
   }
   FoamPatch rest{"defaultFaces", "wall", poly.faces.size(), 0};
-  for (std::int64_t cf = 0; cf < static_cast<std::int64_t>(taken.size()); ++cf) {
-    if (hex.partner(cf) >= 0 || taken[static_cast<std::size_t>(cf)]) continue;
-    poly.faces.push_back({hex.nodes(cf), static_cast<CellId>(cf / kHexFaceCount), -1});
+  for (std::int64_t f = 0; f < cf.count(); ++f) {
+    if (cf.partner(f) >= 0 || taken[static_cast<std::size_t>(f)]) continue;
+    poly.faces.push_back(cf.face(f));
     ++rest.count;
   }
   if (rest.count > 0) {
@@ -169,11 +201,11 @@ void add_boundary_faces(const mesh::Mesh& m, const HexFaces& hex, PolyMesh& poly
 }
 
 PolyMesh poly_mesh(const mesh::Mesh& m) {
-  const HexFaces hex(m);
+  const CellFaces cell_faces(m);
   PolyMesh poly;
-  poly.faces.reserve(m.cell_count() * 3 + m.cell_count() / 2);
-  add_internal_faces(m, hex, poly);
-  add_boundary_faces(m, hex, poly);
+  poly.faces.reserve(static_cast<std::size_t>(cell_faces.count() / 2 + cell_faces.count() / 12));
+  add_internal_faces(m, cell_faces, poly);
+  add_boundary_faces(m, cell_faces, poly);
   return poly;
 }
 
@@ -235,15 +267,27 @@ std::string points_file(std::span<const geometry::Vec3> points, bool binary) {
 std::string faces_file(const PolyMesh& poly, bool binary) {
   if (binary) {  // faceCompactList: the offsets, then the nodes
     std::string out = header(true, "faceCompactList", "faces");
-    append_labels(out, poly.faces.size() + 1, true, [](std::size_t i) { return 4 * i; });
+    std::vector<std::size_t> offsets{0};
+    std::vector<NodeId> nodes;
+    for (const FoamFace& f : poly.faces) {
+      nodes.insert(nodes.end(), f.nodes.begin(), f.nodes.begin() + f.count);
+      offsets.push_back(nodes.size());
+    }
+    append_labels(out, offsets.size(), true, [&](std::size_t i) { return offsets[i]; });
     out.push_back('\n');
-    append_labels(out, 4 * poly.faces.size(), true, [&](std::size_t i) { return poly.faces[i / 4].nodes[i % 4]; });
+    append_labels(out, nodes.size(), true, [&](std::size_t i) { return nodes[i]; });
     return out += kTail;
   }
   std::string out = header(false, "faceList", "faces");
   auto it = std::back_inserter(out);
   fmt::format_to(it, "{}\n(\n", poly.faces.size());
-  for (const FoamFace& f : poly.faces) fmt::format_to(it, "4({} {} {} {})\n", f.nodes[0], f.nodes[1], f.nodes[2], f.nodes[3]);
+  for (const FoamFace& f : poly.faces) {
+    if (f.count == 3) {
+      fmt::format_to(it, "3({} {} {})\n", f.nodes[0], f.nodes[1], f.nodes[2]);
+    } else {
+      fmt::format_to(it, "4({} {} {} {})\n", f.nodes[0], f.nodes[1], f.nodes[2], f.nodes[3]);
+    }
+  }
   out.push_back(')');
   return out += kTail;
 }
@@ -282,13 +326,12 @@ std::string boundary_file(const PolyMesh& poly) {
 void check_writable(const fs::path& path, const mesh::Mesh& m) {
   if (m.dimension != 3) {
     throw InputError::in(path.string(),
-                         "hotmesh writes new OpenFOAM meshes from 3D hex meshes only; a 2D mesh would need "
+                         "hotmesh writes new OpenFOAM meshes from 3D meshes only; a 2D mesh would need "
                          "extruding into a one-cell-thick case (write it as .msh or .cgns instead)");
   }
   for (std::size_t c = 0; c < m.cell_count(); ++c) {
-    if (m.cells.type(c) != mesh::ElementType::hex8) {
-      throw InputError::in(path.string(), fmt::format("hotmesh writes new OpenFOAM meshes of hexahedra only; cell {} "
-                                                      "is a {}",
+    if (mesh::dimension(m.cells.type(c)) != 3) {
+      throw InputError::in(path.string(), fmt::format("cell {} is a {}: an OpenFOAM mesh is made of volume cells",
                                                       m.cell_id(static_cast<CellId>(c)), mesh::name(m.cells.type(c))));
     }
   }

@@ -1,6 +1,7 @@
 // hotmesh io: reading an OpenFOAM polyMesh folder (see hotmesh/io/foam.hpp). Each of the five
 // files is read (gunzipped if it is `name.gz`), its lists checked against the others, then
-// the cells built as hexahedra (3D) or flattened to quads (2D cases).
+// the cells built as hexahedra, prisms, pyramids and tetrahedra (3D) or flattened to quads
+// (2D cases).
 #include <algorithm>
 #include <limits>
 
@@ -168,12 +169,12 @@ PolyMesh read_poly_mesh(const fs::path& folder, PointsFile& points_file) {
 mesh::Mesh volume_mesh(PolyMesh& poly, const CellFaces& cells, const std::string& source) {
   mesh::Mesh mesh;
   mesh.dimension = 3;
-  const std::vector<Hex> hexes = hexahedra(poly, cells, {}, source);
-  mesh.cells.reserve(hexes.size(), 8 * hexes.size());
-  for (const Hex& h : hexes) {
+  const std::vector<FoamCell> elements = volume_cells(poly, cells, source);
+  mesh.cells.reserve(elements.size(), 8 * elements.size());
+  for (const FoamCell& e : elements) {
     std::array<mesh::NodeId, 8> nodes{};
-    std::transform(h.begin(), h.end(), nodes.begin(), [](std::int64_t p) { return static_cast<mesh::NodeId>(p); });
-    mesh.cells.add(mesh::ElementType::hex8, nodes);
+    std::transform(e.nodes.begin(), e.nodes.end(), nodes.begin(), [](std::int64_t p) { return static_cast<mesh::NodeId>(p); });
+    mesh.cells.add(e.type, std::span<const mesh::NodeId>(nodes.data(), static_cast<std::size_t>(mesh::node_count(e.type))));
   }
   int tag = 0;
   for (const BoundaryPatch& p : poly.patches) {
@@ -182,11 +183,12 @@ mesh::Mesh volume_mesh(PolyMesh& poly, const CellFaces& cells, const std::string
     mesh::Patch patch{.name = p.name, .tag = tag, .faces = {}, .nodes = {}};
     for (auto f = static_cast<std::size_t>(p.start_face); f < static_cast<std::size_t>(p.start_face + p.face_count);
          ++f) {
+      // A face of a cell read above: a triangle or a quad, outward (the boundary face's owner).
+      const auto begin = static_cast<std::size_t>(poly.faces.offsets[f]);
+      const auto n = static_cast<std::size_t>(poly.faces.offsets[f + 1]) - begin;
       std::array<mesh::NodeId, 4> nodes{};
-      for (std::size_t i = 0; i < 4; ++i) {
-        nodes[i] = static_cast<mesh::NodeId>(poly.faces.nodes[static_cast<std::size_t>(poly.faces.offsets[f]) + i]);
-      }
-      patch.faces.add(mesh::ElementType::quad4, nodes);  // a hexahedron's face: 4 points, outward
+      for (std::size_t i = 0; i < n; ++i) nodes[i] = static_cast<mesh::NodeId>(poly.faces.nodes[begin + i]);
+      patch.faces.add(n == 3 ? mesh::ElementType::tri3 : mesh::ElementType::quad4, std::span<const mesh::NodeId>(nodes.data(), n));
     }
     mesh.patches.push_back(std::move(patch));
   }

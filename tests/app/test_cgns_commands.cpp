@@ -127,10 +127,10 @@ TEST(CgnsCommands, StructuredZonesMoveAsOneAndTheirInterfaceStaysShared) {
 
 TEST(CgnsCommands, UnsupportedCellsAndBcsWithoutFacesExitWithCodeTwo) {
   test::TempDir dir;
-  test::write_with_triangles(dir / "tri.cgns");
+  test::write_with_quadratic_triangles(dir / "tri.cgns");
   const auto tri = hotmesh("info " + shell_quote((dir / "tri.cgns").string()));
   EXPECT_EQ(tri.exit_code, 2);
-  EXPECT_THAT(tri.output, HasSubstr((dir / "tri.cgns").string() + ": zone 'Fluid' section 'Tris' holds 2 TRI_3"));
+  EXPECT_THAT(tri.output, HasSubstr((dir / "tri.cgns").string() + ": zone 'Fluid' section 'Tris' holds 2 TRI_6"));
   test::write_bc_without_faces(dir / "lonely.cgns");
   const auto lonely = hotmesh("info " + shell_quote((dir / "lonely.cgns").string()));
   EXPECT_EQ(lonely.exit_code, 2);

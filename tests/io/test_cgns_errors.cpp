@@ -24,11 +24,12 @@ std::string read_error(const std::filesystem::path& file) {
   return "no error";
 }
 
-TEST(CgnsErrors, UnsupportedElementTypeNamesZoneSectionTypeAndCount) {
+TEST(CgnsErrors, HigherOrderElementTypeNamesZoneSectionTypeAndCount) {
   test::TempDir dir;
-  test::write_with_triangles(dir / "tri.cgns");
+  test::write_with_quadratic_triangles(dir / "tri.cgns");
   EXPECT_THAT(read_error(dir / "tri.cgns"),
-              AllOf(HasSubstr((dir / "tri.cgns").string()), HasSubstr("zone 'Fluid' section 'Tris' holds 2 TRI_3")));
+              AllOf(HasSubstr((dir / "tri.cgns").string()), HasSubstr("zone 'Fluid' section 'Tris' holds 2 TRI_6"),
+                    HasSubstr("hotmesh reads TRI_3 and QUAD_4 cells and BAR_2 boundary faces in a 2D base")));
 }
 
 TEST(CgnsErrors, BcNamingNoBoundaryFace) {
@@ -66,17 +67,18 @@ TEST(CgnsErrors, TruncatedFileIsAnInputError) {
   EXPECT_THAT(read_error(dir / "cut.cgns"), HasSubstr((dir / "cut.cgns").string()));
 }
 
-TEST(CgnsErrors, WritingTrianglesIsRefused) {
+TEST(CgnsErrors, WritingAVolumeCellInA2dMeshIsRefused) {
   test::TempDir dir;
   mesh::Mesh m;
   m.dimension = 2;
-  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   m.cells.add(mesh::ElementType::tri3, {0, 1, 2});
+  m.cells.add(mesh::ElementType::tet4, {0, 1, 2, 3});
   try {
     write_cgns(dir / "t.cgns", m, m.points);
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("cell 1 is a tri3"));
+    EXPECT_THAT(e.what(), HasSubstr("cell 2 is a tet4 in a 2D mesh"));
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "t.cgns"));
 }

@@ -107,12 +107,12 @@ TEST(FoamReader, ReadsUniformListsCommentsAndTypedLists) {
   EXPECT_DOUBLE_EQ(mesh::scaled_jacobians(loaded.mesh.cells, loaded.mesh.points)[0], 1.0);
 }
 
-TEST(FoamReaderErrors, APrismCellIsNamedWithItsShapeAndTheCount) {
+TEST(FoamReaderErrors, APolyhedronCellIsNamedWithItsShapeAndTheCount) {
   test::TempDir dir;
-  write_poly_mesh(dir / "p", test::foam::one_prism());
+  write_poly_mesh(dir / "p", test::foam::split_top_cube());
   const std::string error = read_error(dir / "p");
-  EXPECT_THAT(error, HasSubstr("cell 0 has 5 faces (a prism)"));
-  EXPECT_THAT(error, HasSubstr("1 of the 1 cells are not hexahedra"));
+  EXPECT_THAT(error, HasSubstr("cell 0 has 7 faces (a polyhedron, faces of 4, 3, 3, 4, 4, 4, 4 points)"));
+  EXPECT_THAT(error, HasSubstr("1 of the 1 cells are none of these"));
 }
 
 TEST(FoamReaderErrors, APointIndexOutOfRangeNamesTheFaceAndTheFile) {

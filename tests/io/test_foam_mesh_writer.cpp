@@ -138,7 +138,7 @@ TEST(FoamMeshWriter, RefusesTwoDimensionalMeshesAndFacesInNoCellNamingTheFolder)
     ADD_FAILURE() << "2D mesh written";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("flat/polyMesh"));
-    EXPECT_THAT(e.what(), HasSubstr("3D hex meshes only"));
+    EXPECT_THAT(e.what(), HasSubstr("3D meshes only"));
   }
   mesh::Mesh m = sheared_block(2, 1, 1);
   m.patches[0].faces.add(mesh::ElementType::quad4, {0, 4, 10, 6});  // a diagonal quad through a cell

@@ -276,11 +276,12 @@ void write_structured_periodic_2d(const std::filesystem::path& path) {
   out.bc(z, "outlet", CGNS_ENUMV(PointRange), {4, 1, 4, 3}, 2);
 }
 
-void write_with_triangles(const std::filesystem::path& path) {
+void write_with_quadratic_triangles(const std::filesystem::path& path) {
   Out out(path, 2, 2);
-  const int z = out.unstructured("Fluid", 4, 2);
-  out.coordinates(z, grid(2, 2, 1, 0.0, 1.0), 2, false);
-  out.section(z, "Tris", CGNS_ENUMV(TRI_3), 1, 2, {1, 2, 4, 1, 4, 3});
+  const int z = out.unstructured("Fluid", 9, 2);
+  out.coordinates(z, grid(3, 3, 1, 0.0, 0.5), 2, false);
+  // Corners 1 3 9 and 1 9 7, then the mid-edge nodes.
+  out.section(z, "Tris", CGNS_ENUMV(TRI_6), 1, 2, {1, 3, 9, 2, 6, 5, 1, 9, 7, 5, 8, 4});
 }
 
 void write_bc_without_faces(const std::filesystem::path& path) {

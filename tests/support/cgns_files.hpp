@@ -53,7 +53,7 @@ void write_unstructured_two_zones(const std::filesystem::path& path, bool connec
 void write_structured_periodic_2d(const std::filesystem::path& path);
 
 /// Variants for error cases.
-void write_with_triangles(const std::filesystem::path& path);   ///< 2D, section "Tris" of 2 TRI_3
+void write_with_quadratic_triangles(const std::filesystem::path& path);  ///< 2D, section "Tris" of 2 TRI_6
 void write_bc_without_faces(const std::filesystem::path& path); ///< 2D, BC "lonely" of 1 node
 
 /// The coordinates of every zone of base 1, zone after zone, as doubles (CoordinateX, Y[, Z]

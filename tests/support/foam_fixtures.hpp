@@ -58,6 +58,37 @@ inline PolyMeshData one_prism() {
   return m;
 }
 
+/// One tetrahedron (0, 1, 2 at z = 0, 3 above 0), all faces on "walls".
+inline PolyMeshData one_tetrahedron() {
+  PolyMeshData m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  m.owner = {0, 0, 0, 0};
+  m.patches = {{"walls", "wall", 0, 4}};
+  return m;
+}
+
+/// One pyramid (the unit square 0-1-2-3 at z = 0, apex 4 above its centre), patches "base"
+/// (the square) and "sides" (the four triangles).
+inline PolyMeshData one_pyramid() {
+  PolyMeshData m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 0.8}};
+  m.faces = {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  m.owner = {0, 0, 0, 0, 0};
+  m.patches = {{"base", "wall", 0, 1}, {"sides", "wall", 1, 4}};
+  return m;
+}
+
+/// The unit cube with its top split into two triangles: a polyhedron of 7 faces, no hexahedron.
+inline PolyMeshData split_top_cube() {
+  PolyMeshData m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  m.faces = {{0, 3, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  m.owner = {0, 0, 0, 0, 0, 0, 0};
+  m.patches = {{"walls", "wall", 0, 7}};
+  return m;
+}
+
 struct Layout {
   bool binary = false;
   bool gzip = false;
@@ -213,6 +244,12 @@ inline std::string block_mesh_command() {
   // Debian's OpenFOAM finds its etc/ folder through WM_PROJECT_DIR.
   const char* dir = std::getenv("WM_PROJECT_DIR");
   return dir ? "blockMesh" : "WM_PROJECT_DIR=/usr/share/openfoam blockMesh";
+}
+/// gmshToFoam (Debian's OpenFOAM), or an empty string if it is not installed.
+inline std::string gmsh_to_foam_command() {
+  if (!std::filesystem::exists("/usr/bin/gmshToFoam")) return {};
+  const char* dir = std::getenv("WM_PROJECT_DIR");
+  return dir ? "gmshToFoam" : "WM_PROJECT_DIR=/usr/share/openfoam gmshToFoam";
 }
 inline std::string check_mesh_command() {
   const char* dir = std::getenv("WM_PROJECT_DIR");

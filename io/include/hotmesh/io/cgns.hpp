@@ -1,6 +1,7 @@
-// hotmesh io: CGNS files (docs/cgns.md). Read: the first base, its unstructured zones (QUAD_4
-// cells in 2D, HEXA_8 in 3D, MIXED sections of them, BAR_2 / QUAD_4 boundary sections) and
-// structured zones (i x j quads, i x j x k hexes), joined into one conforming mesh through
+// hotmesh io: CGNS files (docs/cgns.md). Read: the first base, its unstructured zones (TRI_3
+// and QUAD_4 cells in 2D, TETRA_4, PYRA_5, PENTA_6 and HEXA_8 in 3D, typed or MIXED sections;
+// BAR_2 / TRI_3 and QUAD_4 boundary sections) and structured zones (i x j quads,
+// i x j x k hexes), joined into one conforming mesh through
 // their connectivity (or coincident boundary nodes); patches from ZoneBC. Written back: a
 // copy of the input with only the grid coordinates replaced. Written new (convert): one
 // unstructured zone with a section and a BC per patch.
@@ -29,7 +30,8 @@ CgnsMesh read_cgns(const std::filesystem::path& path);
 
 /// Writes `mesh` with its nodes at `points` as a new CGNS (HDF5) file, atomically: one
 /// base, one unstructured zone, a cell section, and per patch a face section and a BC
-/// (FaceCenter / EdgeCenter point range over that section) named as the patch.
+/// (FaceCenter / EdgeCenter point range over that section) named as the patch. A section
+/// holding one element type is typed (HEXA_8, TRI_3, ...), one holding several is MIXED.
 void write_cgns(const std::filesystem::path& path, const mesh::Mesh& mesh, std::span<const geometry::Vec3> points);
 
 /// What a CGNS file holds, for `hotmesh info`.
