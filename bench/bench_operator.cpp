@@ -17,6 +17,9 @@
 //        connectivity   cells x (4 n + 8 + 4) (n node ids, one 64-bit offset, the colour list)
 //        vectors        dofs x 8 x 4          (x read; y zeroed, then read and written)
 //    and that rate over the triad's with the same number of threads.
+// 3b. The product per cell type (`--types N`): a hex block of N^3 cells as hexes, prisms,
+//    pyramids and tetrahedra (mesh::split_cells), a quad block of (25 N)^2 as quads and
+//    triangles: time per node against the hexes (quads) and the ratio of the stencils.
 // 4. One Jacobi-PCG solve (the solver's inner solve, tolerance 1e-3, from p = 0) on a hex
 //    block `--pcg` cells on a side, stretched towards z = 0, with a bump prescribed on z = 0
 //    and every other boundary node fixed: iterations, time per iteration, the share of it
@@ -51,6 +54,7 @@
 #include "hotmesh/deform/pcg.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"  // the OpenMP thresholds under test in part 5
+#include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "machine_load.hpp"
 #include "timing.hpp"
@@ -105,6 +109,7 @@ struct Settings {
   std::vector<int> quad = {250, 1000, 2000};
   int triad_mib = 1024;
   int pcg_cells = 40;
+  int types = 40;  ///< hex block of types^3 cells and quad block of (25 types)^2 split per cell type; 0: none
 };
 
 Settings parse_arguments(int argc, char** argv) {
@@ -120,13 +125,15 @@ Settings parse_arguments(int argc, char** argv) {
       s.triad_mib = std::atoi(argv[i + 1]);
     } else if (key == "--pcg") {
       s.pcg_cells = std::atoi(argv[i + 1]);
+    } else if (key == "--types") {
+      s.types = std::atoi(argv[i + 1]);
     } else {
       std::fprintf(stderr, "bench_operator: unknown option %s\n", argv[i]);
       std::exit(2);
     }
   }
   if (argc % 2 == 0) {
-    std::fprintf(stderr, "usage: bench_operator [--hex 20,40,...] [--quad 250,...] [--triad-mib M] [--pcg N]\n");
+    std::fprintf(stderr, "usage: bench_operator [--hex 20,40,...] [--quad 250,...] [--triad-mib M] [--pcg N] [--types N]\n");
     std::exit(2);
   }
   return s;
@@ -241,6 +248,68 @@ Mesh hex_block(int n) {
 Mesh quad_block(int n) {
   const auto line = uniform_line(0.0, 1.0, n);
   return structured_quads(line, line);
+}
+
+/// The mean number of nodes a node shares a cell with, itself included: the blocks in a row
+/// of the assembled K, the stencil of the product per node.
+double mean_stencil(const Mesh& mesh) {
+  std::vector<std::vector<NodeId>> around(mesh.node_count());
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    const auto nodes = mesh.cells.nodes(c);
+    for (NodeId a : nodes) around[static_cast<std::size_t>(a)].insert(around[static_cast<std::size_t>(a)].end(), nodes.begin(), nodes.end());
+  }
+  double sum = 0.0;
+  for (auto& list : around) {
+    std::sort(list.begin(), list.end());
+    sum += static_cast<double>(std::unique(list.begin(), list.end()) - list.begin());
+  }
+  return sum / static_cast<double>(mesh.node_count());
+}
+
+/// 3b. The product on meshes of each cell type made from one hex block (and one quad block) by
+/// mesh::split_cells, per node against the block of hexes (quads): the element type's cost
+/// next to the ratio of the stencils.
+void types_section(int n, const std::vector<int>& thread_counts, const std::vector<double>& memory_rate) {
+  struct TypeMesh {
+    std::string label;
+    Mesh mesh;
+  };
+  const Mesh hexes = hex_block(n);
+  const Mesh quads = quad_block(25 * n);
+  const auto split = [](const Mesh& m, CellSplit how) { return split_cells(m, std::vector<CellSplit>(m.cell_count(), how)); };
+  std::vector<TypeMesh> meshes;
+  meshes.push_back({fmt::format("hex8 ({}^3 hexes)", n), hexes});
+  meshes.push_back({"wedge6 (2 per hex)", split(hexes, CellSplit::prisms)});
+  meshes.push_back({"pyramid5 (6 per hex, centre node)", split(hexes, CellSplit::pyramids)});
+  meshes.push_back({"tet4 (12 per hex, centre node)", split(hexes, CellSplit::tetrahedra)});
+  meshes.push_back({fmt::format("quad4 ({}^2 quads)", 25 * n), quads});
+  meshes.push_back({"tri3 (2 per quad)", split(quads, CellSplit::triangles)});
+  fmt::print("\n### Product per cell type (StiffnessOperator::apply)\n\n");
+  fmt::print("| mesh | cells | nodes | stencil | threads | ms | ns per node | per node / hex or quad | stencil / hex or quad "
+             "| GB/s | of triad | other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<double> reference_ns(thread_counts.size());
+  double reference_stencil = 0.0;
+  for (TypeMesh& m : meshes) {
+    const double stencil = mean_stencil(m.mesh);
+    const bool reference = m.mesh.cells.type(0) == ElementType::hex8 || m.mesh.cells.type(0) == ElementType::quad4;
+    if (reference) reference_stencil = stencil;
+    StiffnessOperator k(m.mesh, element_lame(m.mesh, MaterialOptions{}), true);
+    k.update(m.mesh.points);
+    const ProductModel model = product_model(k);
+    const auto x = random_vector(k.size());
+    std::vector<double> y(k.size());
+    for (std::size_t t = 0; t < thread_counts.size(); ++t) {
+      omp_set_num_threads(thread_counts[t]);
+      const Timing apply = time_runs([&] { k.apply(x, y); }, 1, 5, 1.0);
+      const double ns = 1e9 * apply.seconds / static_cast<double>(m.mesh.node_count());
+      if (reference) reference_ns[t] = ns;
+      const double gbs = model.bytes / apply.seconds * 1e-9;
+      fmt::print("| {} | {} | {} | {:.1f} | {} | {:.2f} | {:.1f} | {:.2f} | {:.2f} | {:.2f} | {:.0f} % | {:.2f} |\n", m.label,
+                 m.mesh.cell_count(), m.mesh.node_count(), stencil, thread_counts[t], 1e3 * apply.seconds, ns,
+                 ns / reference_ns[t], stencil / reference_stencil, gbs, 100.0 * gbs / memory_rate[t], apply.others);
+      std::fflush(stdout);
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -474,6 +543,8 @@ int main(int argc, char** argv) {
                static_cast<double>(r.cells) / s, r.model.flops / s * 1e-9, gbs, 100.0 * gbs / memory_rate[t],
                r.rates.apply.others);
   }
+
+  if (settings.types > 0) types_section(settings.types, thread_counts, memory_rate);
 
   // 4. A Jacobi-PCG solve.
   if (settings.pcg_cells > 0) pcg_section(settings.pcg_cells, thread_counts);

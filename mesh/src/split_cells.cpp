@@ -37,9 +37,10 @@ std::size_t diagonal_start(std::span<const NodeId> face) {
   return static_cast<std::size_t>(std::min_element(face.begin(), face.end()) - face.begin());
 }
 
-/// Whether a face of `split`'s cell must stay a quad: every face of a kept hex, a prism's sides.
+/// Whether a face of `split`'s cell must stay a quad: every face of a kept hex or of a cell
+/// split into pyramids, a prism's sides.
 bool stays_quad(CellSplit split, std::size_t f) {
-  if (split == CellSplit::keep) return true;
+  if (split == CellSplit::keep || split == CellSplit::pyramids) return true;
   if (split == CellSplit::prisms) return f >= 2;  // faces 0 and 1 are the bottom and the top
   return false;
 }
@@ -82,7 +83,7 @@ Mesh split_cells(const Mesh& mesh, std::span<const CellSplit> split) {
       const auto b = a + 1, d = (a + 2) % 4, e = (a + 3) % 4;
       out.cells.add(ElementType::wedge6, {n[a], n[b], n[d], n[a + 4], n[b + 4], n[d + 4]});
       out.cells.add(ElementType::wedge6, {n[a], n[d], n[e], n[a + 4], n[d + 4], n[e + 4]});
-    } else if (s == CellSplit::tetrahedra && type == ElementType::hex8) {
+    } else if ((s == CellSplit::tetrahedra || s == CellSplit::pyramids) && type == ElementType::hex8) {
       Vec3 centre;
       for (NodeId a : n) centre += out.points[static_cast<std::size_t>(a)];
       const auto apex = static_cast<NodeId>(out.points.size());

@@ -96,6 +96,20 @@ TEST(SplitCells, PrismLayersUnderTetrahedraBesideHexesAreConforming) {
   EXPECT_EQ(zmax.at(ElementType::tri3), 10u);
 }
 
+TEST(SplitCells, PyramidsAboutTheCentreBesideHexesAndTetrahedraAreConforming) {
+  const Mesh hexes = test::unit_cube(3);
+  std::vector<CellSplit> split(hexes.cell_count(), CellSplit::pyramids);
+  split[13] = CellSplit::tetrahedra;  // the middle cell: all its faces meet pyramids' bases
+  split[0] = CellSplit::keep;
+  const Mesh hybrid = split_cells(hexes, split);
+  expect_valid_and_oriented(hybrid);
+  const auto counts = count_types(hybrid.cells);
+  EXPECT_EQ(counts.at(ElementType::pyramid5), 25u * 6u + 6u);  // 25 cells of six, the middle one's six
+  EXPECT_EQ(counts.count(ElementType::tet4), 0u);
+  EXPECT_EQ(counts.at(ElementType::hex8), 1u);
+  EXPECT_NEAR(total_measure(hybrid), 1.0, 1e-14);
+}
+
 TEST(SplitCells, AHexBesideAPrismsEndIsNotConforming) {
   const Mesh hexes = test::unit_cube(2);
   std::vector<CellSplit> split(hexes.cell_count(), CellSplit::keep);

@@ -3,7 +3,8 @@
 //   quads:  into two triangles along the diagonal 0-2;
 //   hexes:  into two prisms (wedge6) standing on the faces 0-1-2-3 and 4-5-6-7, or about a
 //           new node at the cell's centre into one pyramid per face that stays a quad and
-//           two tetrahedra per face that is triangulated.
+//           two tetrahedra per face that is triangulated (or into six pyramids, every face
+//           kept a quad).
 // A triangulated face is split along the diagonal through its node of the smallest number,
 // so the two cells on a face split it alike whatever their own numbering: tetrahedra fit any
 // conforming hex mesh. Prisms need their two ends split along parallel diagonals, which holds
@@ -25,6 +26,7 @@ enum class CellSplit : std::uint8_t {
   triangles,   ///< a quad4 into two tri3
   prisms,      ///< a hex8 into two wedge6
   tetrahedra,  ///< a hex8 about its centre into tet4, and pyramid5 on the faces that stay quads
+  pyramids,    ///< a hex8 about its centre into six pyramid5, one on each face (all stay quads)
 };
 
 /// `mesh` with cell c split as `split[c]` says (one entry per cell). The new nodes (centres)
