@@ -10,6 +10,7 @@
 
 #include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
+#include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 
 namespace hotmesh::deform {
@@ -170,6 +171,32 @@ TEST(WallCorners, OnASurfaceOfRevolutionEveryMeridionalRowHoldsEachCornerCircle)
     EXPECT_NEAR(thetas.back(), kSector, 1e-12);
   }
   EXPECT_LT(largest_corner_gap(mesh, r, rz), 1e-12);
+}
+
+TEST(WallCorners, OnATriangulatedSurfaceOfRevolutionEveryCornerCircleIsHeld) {
+  // The sector above as prisms (the wall's faces triangles, the slip sides quads) and as
+  // tetrahedra (every face a triangle): the wall's edges now run along diagonals too.
+  const geometry::Axis axis({0, 0, 0}, {0, 0, 1});
+  const auto wall = std::make_shared<geometry::RevolvedShape>(bump_wall(), axis);
+  const auto rz = [&](const Vec3& p) {
+    const auto c = axis.to_cylindrical(p);
+    return Vec2{c.r, c.z};
+  };
+  const mesh::Mesh hexes = sector_mesh(0.0);
+  for (const mesh::CellSplit how : {mesh::CellSplit::prisms, mesh::CellSplit::tetrahedra}) {
+    SCOPED_TRACE(how == mesh::CellSplit::prisms ? "prisms" : "tetrahedra");
+    const mesh::Mesh mesh = mesh::split_cells(hexes, std::vector<mesh::CellSplit>(hexes.cell_count(), how));
+    const MotionResult r = move_mesh(mesh, motions(wall, true, {"side0", "side1"}), {}, {});
+    ASSERT_TRUE(r.success) << r.message;
+    EXPECT_EQ(r.summary.inverted_cells, 0u);
+    ASSERT_EQ(r.features.size(), 4u);
+    for (const WallFeature& f : r.features) {
+      EXPECT_GE(f.given_nodes, 4u) << f.parameter;  // at least one per row of nodes in theta
+      EXPECT_EQ(f.unheld_edges, 0u);
+      EXPECT_LT(f.distance, 1e-12);
+    }
+    EXPECT_LT(largest_corner_gap(mesh, r, rz), 1e-12);
+  }
 }
 
 TEST(WallCorners, OnASurfaceOfRevolutionTheHoldingNodesSlideAlongTheCornerCircle) {
