@@ -18,6 +18,7 @@
 #include "hotmesh/geometry/cad_export.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -179,7 +180,8 @@ geometry::Vec3 bent_floor(double x, double y, double crease = 2.0) {
 }
 geometry::Vec3 crease_shift(const geometry::Vec3& x) { return {0.1 + 0.02 * x.y, 0.0, 0.05 + 0.02 * x.y}; }
 
-void write_bent_channel(const std::filesystem::path& dir, double crease = 2.0) {
+/// The channel of hexes, or with every hex split (mesh/split_cells.hpp) as `cells` says.
+void write_bent_channel(const std::filesystem::path& dir, double crease = 2.0, mesh::CellSplit cells = mesh::CellSplit::keep) {
   mesh::Mesh m = mesh::structured_hexes(mesh::uniform_line(0.0, 4.0, 16), mesh::uniform_line(0.0, 1.0, 4),
                                         mesh::uniform_line(0.0, 2.0, 8),
                                         {"inlet", "outlet", "side_a", "side_b", "floor", "ceiling"});
@@ -187,6 +189,7 @@ void write_bent_channel(const std::filesystem::path& dir, double crease = 2.0) {
     const double floor = bent_floor(p.x, p.y, crease).z;
     p.z = floor + p.z * (2.0 - floor) / 2.0;
   }
+  if (cells != mesh::CellSplit::keep) m = mesh::split_cells(m, std::vector<mesh::CellSplit>(m.cell_count(), cells));
   io::write_gmsh(dir / "box.msh", m);
   std::string table = "x,y,z,dx,dy,dz\n";
   for (int i = 0; i <= 8; ++i) {
@@ -283,6 +286,27 @@ TEST(DeformSurfaces, ACreaseTheMeshLinesMissIsGivenTheNearestRowOfNodes) {
   const auto cut = read_json(off.out / "report.json");
   EXPECT_TRUE(cut["features"].empty()) << cut["features"].dump();
   EXPECT_GT(cut["wall_deviations"][0]["hausdorff"].get<double>(), 0.01);
+}
+
+// The same crease on a mesh of tetrahedra (every hex split about its centre): the floor's faces
+// are triangles, its edges run along diagonals too, and the crease is held as on hexes.
+TEST(DeformSurfaces, ACreaseOnAFloorOfTrianglesIsHeldAsOnQuads) {
+  constexpr double kCrease = 2.1;
+  test::TempDir dir;
+  write_bent_channel(dir.path(), kCrease, mesh::CellSplit::tetrahedra);
+  const DeformRun r =
+      deform(dir, channel_case("{role: sliding, deflection: {file: floor.csv, faces: [1, 2]}}", "cad: floor.step\n"));
+  ASSERT_EQ(r.result.exit_code, 0) << r.result.output;
+  const auto report = read_json(r.out / "report.json");
+  EXPECT_EQ(report["quality"]["by_type"]["tet4"]["inverted_cells"], 0);
+  const auto& features = report["features"];
+  ASSERT_EQ(features.size(), 1u) << features.dump();
+  EXPECT_EQ(features[0]["kind"], "crease");
+  EXPECT_GE(features[0]["nodes"].size(), 5u);
+  EXPECT_EQ(features[0]["unheld_edges"], 0);
+  EXPECT_LT(features[0]["distance"].get<double>(), 1e-9);
+  ASSERT_EQ(report["wall_deviations"].size(), 1u);
+  EXPECT_LT(report["wall_deviations"][0]["hausdorff"].get<double>(), 1e-6);
 }
 
 /// `hotmesh check MESH --case case.yaml --format json` plus `extra`: its exit code, its report
