@@ -285,8 +285,8 @@ void types_section(int n, const std::vector<int>& thread_counts, const std::vect
   meshes.push_back({fmt::format("quad4 ({}^2 quads)", 25 * n), quads});
   meshes.push_back({"tri3 (2 per quad)", split(quads, CellSplit::triangles)});
   fmt::print("\n### Product per cell type (StiffnessOperator::apply)\n\n");
-  fmt::print("| mesh | cells | nodes | stencil | threads | ms | ns per node | per node / hex or quad | stencil / hex or quad "
-             "| GB/s | of triad | other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  fmt::print("| mesh | cells | nodes | colours | stencil | K_e bytes per node | threads | ms | ns per node | per node / hex or quad "
+             "| stencil / hex or quad | GB/s | of triad | other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<double> reference_ns(thread_counts.size());
   double reference_stencil = 0.0;
   for (TypeMesh& m : meshes) {
@@ -304,8 +304,9 @@ void types_section(int n, const std::vector<int>& thread_counts, const std::vect
       const double ns = 1e9 * apply.seconds / static_cast<double>(m.mesh.node_count());
       if (reference) reference_ns[t] = ns;
       const double gbs = model.bytes / apply.seconds * 1e-9;
-      fmt::print("| {} | {} | {} | {:.1f} | {} | {:.2f} | {:.1f} | {:.2f} | {:.2f} | {:.2f} | {:.0f} % | {:.2f} |\n", m.label,
-                 m.mesh.cell_count(), m.mesh.node_count(), stencil, thread_counts[t], 1e3 * apply.seconds, ns,
+      fmt::print("| {} | {} | {} | {} | {:.1f} | {:.0f} | {} | {:.2f} | {:.1f} | {:.2f} | {:.2f} | {:.2f} | {:.0f} % | {:.2f} |\n",
+                 m.label, m.mesh.cell_count(), m.mesh.node_count(), k.kernel().coloring().colors(), stencil,
+                 matrix_bytes(k) / static_cast<double>(m.mesh.node_count()), thread_counts[t], 1e3 * apply.seconds, ns,
                  ns / reference_ns[t], stencil / reference_stencil, gbs, 100.0 * gbs / memory_rate[t], apply.others);
       std::fflush(stdout);
     }
