@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "read_error.hpp"
 #include "cgns_files.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
@@ -15,14 +16,7 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-std::string read_error(const std::filesystem::path& file) {
-  try {
-    read_mesh(file);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using test_io::read_error;
 
 TEST(CgnsErrors, HigherOrderElementTypeNamesZoneSectionTypeAndCount) {
   test::TempDir dir;

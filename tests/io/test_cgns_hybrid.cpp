@@ -13,6 +13,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "read_error.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
 #include "hotmesh/io/mesh_files.hpp"
@@ -371,14 +372,7 @@ TEST(CgnsHybrid, WriteBackOfAHybridTwoZoneFileMovesSharedNodesAsOne) {
 
 // ---- refused ------------------------------------------------------------------------------
 
-std::string read_error(const std::filesystem::path& file) {
-  try {
-    read_mesh(file);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using test_io::read_error;
 
 /// A 3D zone "Fluid" of one quadratic tetrahedron (10 nodes), in a typed TETRA_10 section or
 /// in a MIXED section after a TETRA_4.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 
+#include "read_error.hpp"
 #include "foam_fixtures.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/foam.hpp"
@@ -23,14 +24,7 @@ using test::foam::write_poly_mesh;
 using ::testing::HasSubstr;
 
 /// The message of the InputError that reading `folder` throws ("" if none).
-std::string read_error(const std::filesystem::path& folder) {
-  try {
-    read_mesh(folder);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_io::read_error;
 
 TEST(FoamReader, ReadsTheBlockAsTwoUnitCubesWithItsPatches) {
   test::TempDir dir;

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "read_error.hpp"
 #include "foam_fixtures.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/foam.hpp"
@@ -81,14 +82,7 @@ TEST(FoamHybrid, CellsOwnedAcrossAnInternalTriangleAreReadFromTheirReversedFaces
   test::expect_positively_oriented(loaded.mesh);
 }
 
-std::string read_error(const std::filesystem::path& folder) {
-  try {
-    read_mesh(folder);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using test_io::read_error;
 
 TEST(FoamHybrid, PolyhedraAndFacesThatDoNotCloseAreRefusedNamingTheCell) {
   test::TempDir dir;
