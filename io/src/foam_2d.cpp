@@ -1,4 +1,5 @@
-// hotmesh io: one-cell-thick OpenFOAM cases flattened to 2D quad meshes (see foam_2d.hpp).
+// hotmesh io: one-cell-thick OpenFOAM cases flattened to 2D meshes of quads and triangles
+// (see foam_2d.hpp).
 //
 // The two planes and their 2D frames (origin, u, v; a 2D point (x, y) is origin + x u + y v):
 //   empty, normal to z: (x, y) as they are; normal to x: (y, z); normal to y: (z, x) (a cyclic
@@ -210,13 +211,81 @@ std::vector<std::int64_t> back_faces(const PolyMesh& m, const CellFaces& cells, 
   return back;
 }
 
+/// A cell of a one-cell-thick case as a column between the planes: its back face's points
+/// and, for each, the front point a side edge of the cell joins it to (the point itself for
+/// a point on the axis, where a wedge case's cells collapse).
+struct Column {
+  std::size_t count = 0;  ///< 3 (a prism) or 4 (a hexahedron, or a cell collapsed on the axis)
+  std::array<std::int64_t, 4> back{};
+  std::array<std::int64_t, 4> front{};
+};
+
+/// Each cell's column. Throws hotmesh::InputError naming the first cell that is none (a back
+/// point joined to no front point or to two, front points other than the front face's) and
+/// how many there are.
+std::vector<Column> columns(const PolyMesh& m, const CellFaces& cells, const std::vector<std::int64_t>& back_face,
+                            const Planes& planes, const std::string& source) {
+  std::vector<Column> out(m.cell_count);
+  std::size_t others = 0;
+  std::string first;
+  for (std::size_t c = 0; c < m.cell_count; ++c) {
+    const auto back = face_points(m, static_cast<std::size_t>(back_face[c]));
+    std::span<const std::int64_t> front;
+    std::vector<std::array<std::int64_t, 2>> side_edges;
+    for (auto i = cells.offsets[c]; i < cells.offsets[c + 1]; ++i) {
+      const auto f = static_cast<std::size_t>(cells.faces[static_cast<std::size_t>(i)]);
+      const auto points = face_points(m, f);
+      if (planes.plane_of_face[f] == 1) front = points;
+      if (planes.plane_of_face[f] >= 0) continue;
+      for (std::size_t k = 0; k < points.size(); ++k) side_edges.push_back({points[k], points[(k + 1) % points.size()]});
+    }
+    const auto in = [](std::span<const std::int64_t> face, std::int64_t q) {
+      return std::find(face.begin(), face.end(), q) != face.end();
+    };
+    Column column;
+    column.count = back.size();
+    bool ok = back.size() == 3 || back.size() == 4;
+    for (std::size_t k = 0; ok && k < back.size(); ++k) {
+      column.back[k] = back[k];
+      std::int64_t partner = in(front, back[k]) ? back[k] : -1;  // on the axis: on both planes
+      for (const auto& [a, b] : side_edges) {
+        if (partner == back[k]) break;
+        const std::int64_t other = a == back[k] ? b : (b == back[k] ? a : -1);
+        if (other < 0 || in(back, other)) continue;
+        ok = ok && (partner < 0 || partner == other) && in(front, other);
+        partner = other;
+      }
+      ok = ok && partner >= 0;
+      column.front[k] = partner;
+    }
+    for (std::size_t k = 0; ok && k < front.size(); ++k) {
+      ok = std::find(column.front.begin(), column.front.begin() + static_cast<std::ptrdiff_t>(column.count), front[k]) !=
+           column.front.begin() + static_cast<std::ptrdiff_t>(column.count);
+    }
+    if (ok) {
+      out[c] = column;
+    } else if (others++ == 0) {
+      first = fmt::format("cell {} (back face of {} points, front face of {}) is not a prism or hexahedron standing on "
+                          "the back plane",
+                          c, back.size(), front.size());
+    }
+  }
+  if (others > 0) {
+    throw InputError::in(source, fmt::format("{}; a one-cell-thick (2D) case has cells that join each back point to one "
+                                             "front point (quadrilaterals and triangles in 2D), and {} of the {} cells do "
+                                             "not",
+                                             first, others, m.cell_count));
+  }
+  return out;
+}
+
 /// Each point's plane and the back point it is joined to (itself for a back point).
 struct Pairing {
   std::vector<std::int8_t> plane;
   std::vector<std::int64_t> back_point;
 };
 
-Pairing pair_points(const PolyMesh& m, const std::vector<Hex>& hexes, const std::string& source) {
+Pairing pair_points(const PolyMesh& m, const std::vector<Column>& cells, const std::string& source) {
   Pairing p{std::vector<std::int8_t>(m.points.size(), -1), std::vector<std::int64_t>(m.points.size(), -1)};
   const auto mark = [&](std::int64_t point, int plane, std::int64_t back, std::size_t cell) {
     const auto i = static_cast<std::size_t>(point);
@@ -228,10 +297,10 @@ Pairing pair_points(const PolyMesh& m, const std::vector<Hex>& hexes, const std:
     p.plane[i] = static_cast<std::int8_t>(plane);
     p.back_point[i] = back;
   };
-  for (std::size_t c = 0; c < hexes.size(); ++c) {
-    for (std::size_t i = 0; i < 4; ++i) {
-      mark(hexes[c][i], 0, hexes[c][i], c);
-      mark(hexes[c][i + 4], 1, hexes[c][i], c);
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    for (std::size_t i = 0; i < cells[c].count; ++i) {
+      mark(cells[c].back[i], 0, cells[c].back[i], c);
+      if (cells[c].front[i] != cells[c].back[i]) mark(cells[c].front[i], 1, cells[c].back[i], c);
     }
   }
   const auto unused = std::find(p.plane.begin(), p.plane.end(), std::int8_t{-1});
@@ -241,13 +310,13 @@ Pairing pair_points(const PolyMesh& m, const std::vector<Hex>& hexes, const std:
   return p;
 }
 
-double signed_area(const std::array<Vec3, 4>& q) {
+double signed_area(std::span<const Vec3> q) {
   double a = 0.0;
-  for (std::size_t i = 0; i < 4; ++i) a += q[i].x * q[(i + 1) % 4].y - q[(i + 1) % 4].x * q[i].y;
+  for (std::size_t i = 0; i < q.size(); ++i) a += q[i].x * q[(i + 1) % q.size()].y - q[(i + 1) % q.size()].x * q[i].y;
   return 0.5 * a;
 }
 
-/// The 2D edge of a side face: its two back points, in the order the owner's quad runs.
+/// The 2D edge of a side face: its two back points, in the order the owner's cell runs.
 std::array<mesh::NodeId, 2> side_edge(const PolyMesh& m, const Pairing& pairing, const PointMap& map,
                                       const mesh::Mesh& flat, std::size_t f, const std::string& patch,
                                       const std::string& source) {
@@ -260,9 +329,9 @@ std::array<mesh::NodeId, 2> side_edge(const PolyMesh& m, const Pairing& pairing,
                                              "one-cell-thick case has 2)",
                                              f, patch, ends.size()));
   }
-  const auto quad = flat.cells.nodes(static_cast<std::size_t>(m.owner[f]));
-  for (std::size_t i = 0; i < 4; ++i) {
-    if (quad[i] == ends[1] && quad[(i + 1) % 4] == ends[0]) return {ends[1], ends[0]};
+  const auto cell = flat.cells.nodes(static_cast<std::size_t>(m.owner[f]));
+  for (std::size_t i = 0; i < cell.size(); ++i) {
+    if (cell[i] == ends[1] && cell[(i + 1) % cell.size()] == ends[0]) return {ends[1], ends[0]};
   }
   return {ends[0], ends[1]};
 }
@@ -284,18 +353,19 @@ void add_back_points(const PolyMesh& m, const Pairing& pairing, FlatMesh& flat) 
   }
 }
 
-/// Each cell's back face as a quad, counter-clockwise in the 2D plane.
-void add_quads(const std::vector<Hex>& hexes, FlatMesh& flat) {
-  flat.mesh.cells.reserve(hexes.size(), 4 * hexes.size());
-  for (const Hex& h : hexes) {
-    std::array<mesh::NodeId, 4> quad{};
+/// Each cell's back face as a quad or a triangle, counter-clockwise in the 2D plane.
+void add_cells(const std::vector<Column>& columns, FlatMesh& flat) {
+  flat.mesh.cells.reserve(columns.size(), 4 * columns.size());
+  for (const Column& column : columns) {
+    std::array<mesh::NodeId, 4> nodes{};
     std::array<Vec3, 4> corners{};
-    for (std::size_t i = 0; i < 4; ++i) {
-      quad[i] = flat.map.node[static_cast<std::size_t>(h[i])];
-      corners[i] = flat.mesh.points[static_cast<std::size_t>(quad[i])];
+    for (std::size_t i = 0; i < column.count; ++i) {
+      nodes[i] = flat.map.node[static_cast<std::size_t>(column.back[i])];
+      corners[i] = flat.mesh.points[static_cast<std::size_t>(nodes[i])];
     }
-    if (signed_area(corners) < 0) std::swap(quad[1], quad[3]);
-    flat.mesh.cells.add(mesh::ElementType::quad4, quad);
+    if (signed_area({corners.data(), column.count}) < 0) std::reverse(nodes.begin() + 1, nodes.begin() + static_cast<std::ptrdiff_t>(column.count));
+    flat.mesh.cells.add(column.count == 3 ? mesh::ElementType::tri3 : mesh::ElementType::quad4,
+                        std::span<const mesh::NodeId>(nodes.data(), column.count));
   }
 }
 
@@ -313,6 +383,39 @@ void add_side_patches(const PolyMesh& m, const Pairing& pairing, FlatMesh& flat,
   }
 }
 
+/// A wedge case's cells that reach the axis have an edge on it (their face there collapsed, so
+/// OpenFOAM has no face for it): those edges as a patch, named as the case's empty patch
+/// without faces (blockMesh's "axis") or "axis", for the case file to give a role (slip).
+void add_axis_patch(const PolyMesh& m, const std::vector<Column>& columns, FlatMesh& flat) {
+  mesh::Patch axis{.name = "axis", .tag = 0, .faces = {}, .nodes = {}};
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const Column& column = columns[c];
+    const auto cell = flat.mesh.cells.nodes(c);
+    for (std::size_t i = 0; i < cell.size(); ++i) {
+      const mesh::NodeId a = cell[i], b = cell[(i + 1) % cell.size()];
+      const auto on_axis = [&](mesh::NodeId n) {
+        for (std::size_t k = 0; k < column.count; ++k) {
+          if (flat.map.node[static_cast<std::size_t>(column.back[k])] == n) return column.front[k] == column.back[k];
+        }
+        return false;
+      };
+      if (on_axis(a) && on_axis(b)) axis.faces.add(mesh::ElementType::line2, {a, b});
+    }
+  }
+  if (axis.faces.empty()) return;
+  int tag = 0;
+  for (const BoundaryPatch& p : m.patches) {
+    ++tag;
+    if (p.type == "empty" && p.face_count == 0) {
+      axis.name = p.name;
+      axis.tag = tag;
+      break;
+    }
+  }
+  if (axis.tag == 0) axis.tag = static_cast<int>(m.patches.size()) + 1;
+  flat.mesh.patches.push_back(std::move(axis));
+}
+
 }  // namespace
 
 bool is_2d(const PolyMesh& mesh) {
@@ -325,15 +428,16 @@ FlatMesh flatten(const PolyMesh& m, const CellFaces& cells, const std::string& s
   const Planes planes =
       patches.front()->type == "empty" ? empty_planes(m, patches, source) : wedge_planes(m, patches, source);
   const std::vector<std::int64_t> back = back_faces(m, cells, planes, source);
-  const std::vector<Hex> hexes = hexahedra(m, cells, back, source);
-  const Pairing pairing = pair_points(m, hexes, source);
+  const std::vector<Column> cells_2d = columns(m, cells, back, planes, source);
+  const Pairing pairing = pair_points(m, cells_2d, source);
   FlatMesh flat;
   flat.mesh.dimension = 2;
   flat.map.frames = planes.frames;
   flat.map.plane.assign(pairing.plane.begin(), pairing.plane.end());
   add_back_points(m, pairing, flat);
-  add_quads(hexes, flat);
+  add_cells(cells_2d, flat);
   add_side_patches(m, pairing, flat, source);
+  if (planes.kind == "wedge") add_axis_patch(m, cells_2d, flat);
   flat.mesh.derive_node_sets();
   return flat;
 }

@@ -1,8 +1,9 @@
-// hotmesh io (internal): one-cell-thick OpenFOAM cases as 2D quad meshes. The faces on the
-// `empty` patches (two planes normal to x, y or z) or on the two `wedge` patches (two planes
-// through the symmetry axis) split every cell into a back and a front quad; the back quads,
-// in the 2D frame of the back plane, are the 2D mesh, and each front point follows the back
-// point it is joined to by a cell edge.
+// hotmesh io (internal): one-cell-thick OpenFOAM cases as 2D meshes of quads and triangles.
+// The faces on the `empty` patches (two planes normal to x, y or z) or on the two `wedge`
+// patches (two planes through the symmetry axis) give every cell a back and a front face; the
+// back faces, in the 2D frame of the back plane, are the 2D mesh, and each front point
+// follows the back point it is joined to by a cell edge (a point on a wedge's axis, on both
+// planes, follows itself).
 #pragma once
 
 #include "foam_cells.hpp"

@@ -15,7 +15,6 @@
 namespace hotmesh::io::foam {
 namespace {
 
-using Quad = std::array<std::int64_t, 4>;
 
 /// The faces of one cell, each with its points in outward order (for messages).
 struct OutwardFaces {
@@ -59,92 +58,6 @@ std::string shape_of(const OutwardFaces& cell) {
   }
   return fmt::format("{} faces ({})", n, shape);
 }
-
-/// The six faces of a cell of six quadrilaterals, each with its points in outward order.
-using CellQuads = std::array<Quad, 6>;
-
-std::optional<CellQuads> outward_quads(const PolyMesh& mesh, const CellFaces& cells, std::size_t c) {
-  if (cells.offsets[c + 1] - cells.offsets[c] != 6) return std::nullopt;
-  CellQuads out{};
-  for (std::size_t k = 0; k < 6; ++k) {
-    const auto i = static_cast<std::size_t>(cells.offsets[c]) + k;
-    const auto f = static_cast<std::size_t>(cells.faces[i]);
-    const auto begin = static_cast<std::size_t>(mesh.faces.offsets[f]);
-    if (static_cast<std::size_t>(mesh.faces.offsets[f + 1]) - begin != 4) return std::nullopt;
-    std::copy_n(mesh.faces.nodes.begin() + static_cast<std::ptrdiff_t>(begin), 4, out[k].begin());
-    if (!cells.owned[i]) std::reverse(out[k].begin(), out[k].end());
-  }
-  return out;
-}
-
-/// The node joined to `node` by an edge of the cell that is not in `bottom`, if exactly one.
-std::optional<std::int64_t> node_above(const CellQuads& cell, std::int64_t node, const Quad& bottom) {
-  std::optional<std::int64_t> above;
-  for (const auto& f : cell) {
-    for (std::size_t i = 0; i < 4; ++i) {
-      if (f[i] != node) continue;
-      for (const std::int64_t other : {f[(i + 1) % 4], f[(i + 3) % 4]}) {
-        if (std::find(bottom.begin(), bottom.end(), other) != bottom.end()) continue;
-        if (above && *above != other) return std::nullopt;
-        above = other;
-      }
-    }
-  }
-  return above;
-}
-
-/// Each of the cell's edges must lie in exactly two of its faces, once in each direction.
-/// The cell's (at most 8) points get local numbers, its directed edges are bits i * 8 + j of
-/// a mask: no bit set twice, and the mask equal to its transpose.
-bool edges_close(const CellQuads& cell) {
-  std::array<std::int64_t, 8> points{};
-  std::size_t count = 0;
-  const auto local = [&](std::int64_t p) -> int {
-    for (std::size_t i = 0; i < count; ++i) {
-      if (points[i] == p) return static_cast<int>(i);
-    }
-    if (count == points.size()) return -1;
-    points[count] = p;
-    return static_cast<int>(count++);
-  };
-  std::uint64_t edges = 0;
-  for (const auto& f : cell) {
-    std::array<int, 4> q{};
-    for (std::size_t i = 0; i < 4; ++i) {
-      q[i] = local(f[i]);
-      if (q[i] < 0) return false;
-    }
-    for (std::size_t i = 0; i < 4; ++i) {
-      const std::uint64_t bit = std::uint64_t{1} << (q[i] * 8 + q[(i + 1) % 4]);
-      if (edges & bit) return false;
-      edges |= bit;
-    }
-  }
-  for (int i = 0; i < 8; ++i) {
-    for (int j = 0; j < 8; ++j) {
-      if (((edges >> (i * 8 + j)) & 1U) != ((edges >> (j * 8 + i)) & 1U)) return false;
-    }
-  }
-  return true;
-}
-
-std::optional<Hex> hex_from(const CellQuads& cell, std::size_t bottom_face) {
-  if (!edges_close(cell)) return std::nullopt;
-  const auto& b = cell[bottom_face];
-  const Quad bottom{b[0], b[3], b[2], b[1]};  // right-hand normal into the cell
-  Hex hex{};
-  for (std::size_t i = 0; i < 4; ++i) {
-    const auto above = node_above(cell, bottom[i], bottom);
-    if (!above) return std::nullopt;
-    hex[i] = bottom[i];
-    hex[i + 4] = *above;
-  }
-  Hex sorted = hex;
-  std::sort(sorted.begin(), sorted.end());
-  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return std::nullopt;
-  return hex;
-}
-
 
 /// The faces of a cell with at most 6 faces of 3 or 4 points, each in outward order.
 struct SmallCell {
@@ -292,33 +205,6 @@ CellFaces cell_faces(const PolyMesh& mesh) {
   for (std::size_t f = 0; f < mesh.owner.size(); ++f) add(mesh.owner[f], f, true);
   for (std::size_t f = 0; f < mesh.neighbour.size(); ++f) add(mesh.neighbour[f], f, false);
   return cells;
-}
-
-std::vector<Hex> hexahedra(const PolyMesh& mesh, const CellFaces& cells, std::span<const std::int64_t> bottom_faces,
-                           const std::string& source) {
-  std::vector<Hex> hexes(mesh.cell_count);
-  std::size_t others = 0;
-  std::string first;
-  for (std::size_t c = 0; c < mesh.cell_count; ++c) {
-    const std::optional<CellQuads> quads = outward_quads(mesh, cells, c);
-    std::size_t bottom = 0;
-    if (!bottom_faces.empty()) {
-      const auto begin = cells.faces.begin() + cells.offsets[c], end = cells.faces.begin() + cells.offsets[c + 1];
-      bottom = static_cast<std::size_t>(std::find(begin, end, bottom_faces[c]) - begin);
-    }
-    const auto hex = quads && bottom < 6 ? hex_from(*quads, bottom) : std::nullopt;
-    if (hex) {
-      hexes[c] = *hex;
-    } else if (others++ == 0) {
-      first = fmt::format("cell {} has {}", c, shape_of(outward_faces(mesh, cells, c)));
-    }
-  }
-  if (others > 0) {
-    throw InputError::in(source, fmt::format("{}; hotmesh reads one-cell-thick (2D) cases of hexahedra only "
-                                             "(quadrilaterals in 2D), and {} of the {} cells are not hexahedra",
-                                             first, others, mesh.cell_count));
-  }
-  return hexes;
 }
 
 std::vector<FoamCell> volume_cells(const PolyMesh& mesh, const CellFaces& cells, const std::string& source) {

@@ -41,8 +41,6 @@ struct CellFaces {
 };
 CellFaces cell_faces(const PolyMesh& mesh);
 
-using Hex = std::array<std::int64_t, 8>;
-
 /// A cell of the polyMesh as a hotmesh element: its type and its first node_count(type) nodes.
 struct FoamCell {
   mesh::ElementType type = mesh::ElementType::hex8;
@@ -53,12 +51,5 @@ struct FoamCell {
 /// `source` if any cell is another polyhedron: the first such cell's number and shape, and
 /// how many there are.
 std::vector<FoamCell> volume_cells(const PolyMesh& mesh, const CellFaces& cells, const std::string& source);
-
-/// The hex8 nodes of every cell (one-cell-thick 2D cases, foam_2d.hpp). `bottom_faces` is
-/// empty (each cell's first face is its bottom) or gives one face of each cell as its bottom.
-/// Throws hotmesh::InputError naming `source` if any cell is not a hexahedron: the first such
-/// cell's number and shape, and how many there are.
-std::vector<Hex> hexahedra(const PolyMesh& mesh, const CellFaces& cells, std::span<const std::int64_t> bottom_faces,
-                           const std::string& source);
 
 }  // namespace hotmesh::io::foam

@@ -1,7 +1,7 @@
 // hotmesh io: reading an OpenFOAM polyMesh folder (see hotmesh/io/foam.hpp). Each of the five
 // files is read (gunzipped if it is `name.gz`), its lists checked against the others, then
 // the cells built as hexahedra, prisms, pyramids and tetrahedra (3D) or flattened to quads
-// (2D cases).
+// and triangles (2D cases).
 #include <algorithm>
 #include <limits>
 

@@ -15,6 +15,8 @@
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/mesh/split_cells.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
 
@@ -255,9 +257,50 @@ TEST(FoamBlockMesh, WedgeAboutAnyAxisGivesTheSameMeridionalMesh) {
   EXPECT_EQ(turned.cells, plain.cells);
 }
 
-TEST(FoamBlockMesh, CellsThatAreNotHexahedraAreCountedInTheError) {
+TEST(FoamBlockMesh, AOneCellThickCaseOfPrismsIsATriangleMesh) {
+  SKIP_WITHOUT_BLOCKMESH();  // for checkMesh
+  // Triangles extruded one cell in z (prisms, written by hotmesh), the ends made empty.
+  const auto xs = mesh::uniform_line(0.0, 2.0, 6), ys = mesh::uniform_line(0.0, 1.0, 3);
+  const mesh::Mesh hexes = mesh::structured_hexes(xs, ys, std::vector<double>{0.0, 0.1},
+                                                  {"inlet", "outlet", "bottom", "top", "back", "front"});
+  const mesh::Mesh prisms = mesh::split_cells(hexes, std::vector<mesh::CellSplit>(hexes.cell_count(), mesh::CellSplit::prisms));
+  test::TempDir dir;
+  tf::write_block_mesh_case(dir / "case", "");  // the system folder checkMesh needs
+  write_foam(dir / "case", prisms, prisms.points);
+  const auto boundary = dir / "case" / "constant" / "polyMesh" / "boundary";
+  std::string text = test::read_text(boundary);
+  for (const char* plane : {"back", "front"}) {
+    text = std::regex_replace(text, std::regex(std::string(plane) + R"((\s*\{\s*type\s+)wall)"), std::string(plane) + "$1empty");
+  }
+  test::write_text(boundary, text);
+  const LoadedMesh loaded = read_mesh(dir / "case");
+  const mesh::Mesh& m = loaded.mesh;
+  EXPECT_EQ(m.dimension, 2);
+  ASSERT_EQ(m.cell_count(), 2u * 6u * 3u);
+  for (std::size_t c = 0; c < m.cell_count(); ++c) EXPECT_EQ(m.cells.type(c), mesh::ElementType::tri3);
+  EXPECT_EQ(loaded.validation.reoriented_cells, 0u);
+  EXPECT_TRUE(all_cells_valid(m));
+  ASSERT_EQ(m.patches.size(), 4u);
+  EXPECT_EQ(m.find_patch("inlet")->faces.size(), 3u);
+  std::vector<Vec3> moved = m.points;
+  for (Vec3& p : moved) p = {p.x + 0.1 * p.y * p.y, p.y, 0.0};
+  loaded.write_back->write(dir / "out", moved, {});
+  const auto after = tf::ascii_points(dir / "out" / "polyMesh" / "points");
+  const auto before = tf::ascii_points(boundary.parent_path() / "points");
+  for (std::size_t q = 0; q < after.size(); ++q) {
+    EXPECT_NEAR(after[q].x, before[q].x + 0.1 * before[q].y * before[q].y, 1e-14) << q;  // both planes follow
+    EXPECT_EQ(after[q].z, before[q].z);
+  }
+  const auto r = tf::check_mesh(dir / "case", dir / "out" / "polyMesh", dir / "check");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("Mesh OK.")) << r.output;
+}
+
+TEST(FoamBlockMesh, AWedgeReachingTheAxisGetsAnAxisPatchAndWritesBackOnIt) {
   SKIP_WITHOUT_BLOCKMESH();
-  // A wedge that reaches the axis: blockMesh collapses the cells at r = 0 into prisms.
+  // A wedge that reaches the axis: blockMesh collapses the cells at r = 0 (their face there
+  // vanishes, the points on the axis are on both wedge planes). Their edges on the axis become
+  // the 2D patch "axis", named as the case's empty patch without faces.
   test::TempDir dir;
   std::string dict = wedge_2d();
   dict =
@@ -266,13 +309,28 @@ TEST(FoamBlockMesh, CellsThatAreNotHexahedraAreCountedInTheError) {
   dict = std::regex_replace(dict, std::regex(R"(inner \{type wall; faces \(\(0 1 5 4\)\);\})"),
                             "axis {type empty; faces ((0 1 5 4));}");
   const auto folder = block_mesh(dir, "axis", dict);
-  try {
-    read_mesh(folder);
-    ADD_FAILURE() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("has 5 faces (a prism)"));
-    EXPECT_THAT(e.what(), HasSubstr("6 of the 24 cells are not hexahedra"));
+  const LoadedMesh loaded = read_mesh(folder);
+  const mesh::Mesh& m = loaded.mesh;
+  EXPECT_EQ(m.dimension, 2);
+  EXPECT_EQ(m.cell_count(), 24u);
+  for (double q : mesh::scaled_jacobians(m.cells, m.points)) EXPECT_GT(q, 0.0);
+  const mesh::Patch* axis = m.find_patch("axis");
+  ASSERT_NE(axis, nullptr);
+  EXPECT_EQ(axis->faces.size(), 6u);  // one edge per cell along the axis
+  for (mesh::NodeId n : axis->nodes) EXPECT_NEAR(m.points[static_cast<std::size_t>(n)].y, 0.0, 1e-14);
+  // Moved along the axis and outwards: the points on the axis stay on it, in the file too.
+  std::vector<Vec3> moved = m.points;
+  for (Vec3& p : moved) p = {p.x + 0.05 * (1.0 + p.y), 1.1 * p.y, 0.0};
+  loaded.write_back->write(dir / "out", moved, {});
+  const auto after = tf::ascii_points(dir / "out" / "polyMesh" / "points");
+  for (std::size_t n = 0; n < m.node_count(); ++n) {
+    const Vec3& p = after[static_cast<std::size_t>(m.node_id(static_cast<mesh::NodeId>(n)) - 1)];
+    EXPECT_NEAR(p.x, moved[n].x, 1e-14);
+    EXPECT_NEAR(std::hypot(p.y, p.z), moved[n].y, 1e-14);
   }
+  const auto r = tf::check_mesh(folder, dir / "out" / "polyMesh", dir / "check");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("Mesh OK.")) << r.output;
 }
 
 }  // namespace

@@ -63,12 +63,16 @@ struct FoamMesh {
 ///   become patches (tri3 / quad4, outward), in the order of `boundary`; patches without
 ///   faces are left out.
 /// - 2D: a mesh with faces on `empty` patches (front and back planes normal to x, y or z) or
-///   on two `wedge` patches is one cell thick: the result is the quad mesh of the back plane
+///   on two `wedge` patches is one cell thick: the result is the mesh of the back plane
 ///   (the lower coordinate for `empty`, the first wedge patch for `wedge`) in the x-y plane:
 ///   empty normal to z: (x, y); normal to x: (y, z); normal to y: (z, x); wedge: (axial
 ///   coordinate, radius) about the line where the wedge planes meet. Its node ids are the
 ///   OpenFOAM point labels + 1. The empty/wedge patches are dropped, the others become line2
-///   patches. The cells of a 2D case must be hexahedra (quads in 2D).
+///   patches. The cells of a 2D case must stand on the back plane, each back point joined by
+///   one edge to a front point: hexahedra and prisms (quads and triangles in 2D), and in a
+///   wedge case the cells collapsed on the axis (their points there on both planes), whose
+///   edges on the axis become the patch named as the case's empty patch without faces, or
+///   "axis".
 /// Throws hotmesh::InputError naming the file and line (or byte offset) for every problem.
 FoamMesh read_foam(const std::filesystem::path& path);
 
