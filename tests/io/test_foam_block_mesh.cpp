@@ -186,6 +186,22 @@ TEST(FoamBlockMesh, EmptyCaseWrittenBackKeepsBothPlanesAndPassesCheckMesh) {
   EXPECT_THAT(r.output, HasSubstr("Mesh OK."));
 }
 
+/// The points of a wedge case written back into dir/out: each 2D node's point at its moved
+/// (axial coordinate, radius); and checkMesh's "Mesh OK." on them (OpenFOAM checks that the
+/// wedge planes are planar when it reads the mesh).
+void expect_wedge_written_back(const mesh::Mesh& m, std::span<const Vec3> moved, const std::filesystem::path& folder,
+                               const test::TempDir& dir) {
+  const auto after = tf::ascii_points(dir / "out" / "polyMesh" / "points");
+  for (std::size_t n = 0; n < m.node_count(); ++n) {
+    const Vec3& p = after[static_cast<std::size_t>(m.node_id(static_cast<mesh::NodeId>(n)) - 1)];
+    EXPECT_NEAR(p.x, moved[n].x, 1e-14);
+    EXPECT_NEAR(std::hypot(p.y, p.z), moved[n].y, 1e-14);
+  }
+  const auto r = tf::check_mesh(folder, dir / "out" / "polyMesh", dir / "check");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("Mesh OK.")) << r.output;
+}
+
 TEST(FoamBlockMesh, WedgeCaseIsTheMeridionalMeshAndWritesBackOntoBothWedgePlanes) {
   SKIP_WITHOUT_BLOCKMESH();
   test::TempDir dir;
@@ -222,15 +238,7 @@ TEST(FoamBlockMesh, WedgeCaseIsTheMeridionalMeshAndWritesBackOntoBothWedgePlanes
     EXPECT_NEAR(std::hypot(p.y, p.z), std::hypot(partner.y, partner.z), 1e-14);
   }
   EXPECT_EQ(on_back, after.size() / 2);
-  for (std::size_t n = 0; n < m.node_count(); ++n) {
-    const Vec3& p = after[static_cast<std::size_t>(m.node_id(static_cast<mesh::NodeId>(n)) - 1)];
-    EXPECT_NEAR(p.x, moved[n].x, 1e-14);
-    EXPECT_NEAR(std::hypot(p.y, p.z), moved[n].y, 1e-14);
-  }
-  // OpenFOAM takes the wedge planes as planar (it checks them when it reads the mesh).
-  const auto r = tf::check_mesh(folder, dir / "out" / "polyMesh", dir / "check");
-  EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("Mesh OK.")) << r.output;
+  expect_wedge_written_back(m, moved, folder, dir);
 }
 
 TEST(FoamBlockMesh, WedgeAboutAnyAxisGivesTheSameMeridionalMesh) {
@@ -322,15 +330,7 @@ TEST(FoamBlockMesh, AWedgeReachingTheAxisGetsAnAxisPatchAndWritesBackOnIt) {
   std::vector<Vec3> moved = m.points;
   for (Vec3& p : moved) p = {p.x + 0.05 * (1.0 + p.y), 1.1 * p.y, 0.0};
   loaded.write_back->write(dir / "out", moved, {});
-  const auto after = tf::ascii_points(dir / "out" / "polyMesh" / "points");
-  for (std::size_t n = 0; n < m.node_count(); ++n) {
-    const Vec3& p = after[static_cast<std::size_t>(m.node_id(static_cast<mesh::NodeId>(n)) - 1)];
-    EXPECT_NEAR(p.x, moved[n].x, 1e-14);
-    EXPECT_NEAR(std::hypot(p.y, p.z), moved[n].y, 1e-14);
-  }
-  const auto r = tf::check_mesh(folder, dir / "out" / "polyMesh", dir / "check");
-  EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("Mesh OK.")) << r.output;
+  expect_wedge_written_back(m, moved, folder, dir);
 }
 
 }  // namespace
