@@ -18,15 +18,18 @@ namespace hotmesh::samples::duct3d {
 namespace {
 
 /// A floor face of the mesh: the bilinear patch through its corners p[0..3] (in the face's
-/// cyclic order), with its bounding box.
+/// cyclic order), or for a triangle (corners == 3) the flat triangle p[0..2], with its bounding
+/// box.
 struct Quad {
   std::array<Vec3, 4> p;
   Vec3 lo, hi;
+  int corners = 4;
 };
 
-Quad make_quad(const std::array<Vec3, 4>& p) {
-  Quad q{p, p[0], p[0]};
-  for (const Vec3& c : p) {
+Quad make_quad(const std::array<Vec3, 4>& p, int corners = 4) {
+  Quad q{p, p[0], p[0], corners};
+  for (int i = 0; i < corners; ++i) {
+    const Vec3& c = p[static_cast<std::size_t>(i)];
     q.lo = {std::min(q.lo.x, c.x), std::min(q.lo.y, c.y), std::min(q.lo.z, c.z)};
     q.hi = {std::max(q.hi.x, c.x), std::max(q.hi.y, c.y), std::max(q.hi.z, c.z)};
   }
@@ -40,7 +43,33 @@ FloorPoint bilinear(const Quad& q, double a, double b) {
           (1.0 - b) * (p[1] - p[0]) + b * (p[2] - p[3]), (1.0 - a) * (p[3] - p[0]) + a * (p[2] - p[1])};
 }
 
+/// The closest point of the triangle a, b, c to x (Ericson, Real-Time Collision Detection,
+/// 5.1.5: the Voronoi regions of the vertices, the edges and the face).
+Vec3 closest_on_triangle(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = x - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vec3 bp = x - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = x - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + (vb * denominator) * ab + (vc * denominator) * ac;
+}
+
 double quad_distance(const Quad& q, const Vec3& x, Vec3& nearest) {
+  if (q.corners == 3) {
+    nearest = closest_on_triangle(x, q.p[0], q.p[1], q.p[2]);
+    return distance(nearest, x);
+  }
   const auto evaluate = [&q](double a, double b) { return bilinear(q, a, b); };
   const Closest c = detail::closest_on_patch(evaluate, x, 0.5, 0.5, {0.0, 1.0, 0.0, 1.0});
   nearest = c.point;
@@ -101,26 +130,41 @@ FloorDistance floor_distance(const mesh::Mesh& m, const DeflectedFloor& floor, c
   std::vector<Quad> quads;
   for (std::size_t f = 0; f < patch->faces.size(); ++f) {
     const auto nodes = patch->faces.nodes(f);
-    if (patch->faces.type(f) != mesh::ElementType::quad4) {
-      throw std::invalid_argument(fmt::format("patch '{}' has a face that is not a quad", options.patch));
+    const auto type = patch->faces.type(f);
+    if (type != mesh::ElementType::quad4 && type != mesh::ElementType::tri3) {
+      throw std::invalid_argument(fmt::format("patch '{}' has a face that is neither a quad nor a triangle", options.patch));
     }
+    const std::size_t n = nodes.size();
     std::array<Vec3, 4> corners;
     std::array<std::array<double, 2>, 4> starts;
-    for (std::size_t c = 0; c < 4; ++c) {
+    for (std::size_t c = 0; c < n; ++c) {
       corners[c] = m.points[static_cast<std::size_t>(nodes[c])];
       starts[c] = parameters[static_cast<std::size_t>(nodes[c])];
     }
-    const Quad q = make_quad(corners);
+    const Quad q = make_quad(corners, static_cast<int>(n));
     quads.push_back(q);
     for (int i = 0; i <= k; ++i) {
       for (int j = 0; j <= k; ++j) {
         const double a = static_cast<double>(i) / k, b = static_cast<double>(j) / k;
-        const Vec3 x = bilinear(q, a, b).x;
-        const auto blend = [&](std::size_t w) {
-          return (1 - a) * (1 - b) * starts[0][w] + a * (1 - b) * starts[1][w] + a * b * starts[2][w] +
-                 (1 - a) * b * starts[3][w];
-        };
-        const Closest c = floor.closest(x, blend(0), blend(1));
+        // The point and the blend of its corners' parameters (start of the closest point):
+        // bilinear weights on a quad, barycentric ones (1 - a - b, a, b) on a triangle, where
+        // the (k + 1)(k + 2) / 2 points with i + j <= k are sampled.
+        std::array<double, 4> w{};
+        if (n == 4) {
+          w = {(1 - a) * (1 - b), a * (1 - b), a * b, (1 - a) * b};
+        } else {
+          if (i + j > k) continue;
+          w = {1.0 - a - b, a, b, 0.0};
+        }
+        Vec3 x{0.0, 0.0, 0.0};
+        std::array<double, 2> start{0.0, 0.0};
+        for (std::size_t c = 0; c < n; ++c) {
+          x = x + w[c] * corners[c];
+          start[0] += w[c] * starts[c][0];
+          start[1] += w[c] * starts[c][1];
+        }
+        if (n == 4) x = bilinear(q, a, b).x;
+        const Closest c = floor.closest(x, start[0], start[1]);
         keep_worst(d.mesh_to_floor, c.distance, x, c.point);
       }
     }

@@ -1,16 +1,18 @@
 // hotmesh sample duct3d: how far a (deformed) mesh's floor is from the exact deflected floor
 // X(t, s) = S(t, s) + delta(t, s) of a load (duct_floor.hpp), for the results page and tests.
 //
-// The mesh's floor is its patch's quads, each the bilinear patch through its four nodes. Three
-// measures:
+// The mesh's floor is its patch's faces: each quad the bilinear patch through its four nodes,
+// each triangle (a hybrid mesh's floor) the flat triangle through its three. Three measures:
 //   nodes          max over the patch's nodes of the distance to X (closest point by
 //                  Gauss-Newton on (t, s), started at the node's x and y): the nodes on the wall;
-//   mesh_to_floor  max over points of the quads (each sampled on a (k+1) x (k+1) grid of its
-//                  bilinear parameters) of the distance to X: the faces off the wall (faceting,
-//                  a cell's sagitta, plus the nodes' error);
+//   mesh_to_floor  max over points of the faces (each quad sampled on a (k+1) x (k+1) grid of
+//                  its bilinear parameters, each triangle on the (k+1)(k+2)/2 points of its
+//                  barycentric grid) of the distance to X: the faces off the wall (faceting, a
+//                  cell's sagitta, plus the nodes' error);
 //   floor_to_mesh  max over points of X (a grid in (t, s) about k times finer than the quads) of
-//                  the distance to the nearest quad (closest point of each candidate bilinear
-//                  patch, candidates pruned by their bounding boxes): the wall off the faces.
+//                  the distance to the nearest face (closest point of each candidate bilinear
+//                  patch or triangle, candidates pruned by their bounding boxes): the wall off
+//                  the faces.
 // The two-sided (Hausdorff) distance is the larger of the last two. With the undeformed mesh
 // too, material_point_error: max over the nodes of |x_i - X(t_i, s_i)|, (t_i, s_i) the node's
 // parameters in the undeformed mesh: how far each node is from where the FEM field carries its
@@ -54,7 +56,8 @@ struct FloorDistanceOptions {
 
 /// The measures above for `mesh`'s patch against `floor`; `undeformed` (the same mesh before
 /// the motion, same node order) adds material_point. Throws std::invalid_argument for a patch
-/// that the mesh lacks, that has faces other than quads, or meshes whose node counts differ.
+/// that the mesh lacks, that has faces other than quads and triangles, or meshes whose node
+/// counts differ.
 FloorDistance floor_distance(const mesh::Mesh& mesh, const DeflectedFloor& floor, const FloorDistanceOptions& options = {},
                              const mesh::Mesh* undeformed = nullptr);
 
