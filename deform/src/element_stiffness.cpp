@@ -112,15 +112,7 @@ void require_motion_cells(const Mesh& mesh) {
 
 void add_element_product(std::span<const NodeId> nodes, std::span<const double> ke, std::size_t d,
                          std::span<const double> x, std::span<double> y) {
-  switch (nodes.size() * d) {
-    case 6: return add_element_product<6, 2>(nodes, ke.data(), x, y);
-    case 8: return add_element_product<8, 2>(nodes, ke.data(), x, y);
-    case 12: return add_element_product<12, 3>(nodes, ke.data(), x, y);
-    case 15: return add_element_product<15, 3>(nodes, ke.data(), x, y);
-    case 18: return add_element_product<18, 3>(nodes, ke.data(), x, y);
-    case 24: return add_element_product<24, 3>(nodes, ke.data(), x, y);
-    default: throw std::invalid_argument("add_element_product: no cell has " + std::to_string(nodes.size()) + " corners");
-  }
+  with_element_size(nodes.size(), d, [&](auto n, auto dofs) { add_element_product<n, dofs>(nodes, ke.data(), x, y); });
 }
 
 void element_stiffness(ElementType type, const ElementPoints& element, const Lame& lame, bool drop_jacobian,

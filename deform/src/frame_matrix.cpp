@@ -195,7 +195,7 @@ void ElementPass::frame_element(CellId cell, const NodalFrames& frames, const Bl
   const auto nodes = s.kernel.cells().nodes(static_cast<std::size_t>(cell));
   const std::size_t corners = nodes.size();
   const std::size_t n = corners * d;
-  std::array<double, 24 * 24> scratch{};
+  std::array<double, kMaxElementDofs * kMaxElementDofs> scratch{};
   const double* ke = scratch.data();
   if (stored) {
     ke = stored->element_matrix(cell).data();
@@ -203,7 +203,7 @@ void ElementPass::frame_element(CellId cell, const NodalFrames& frames, const Bl
     s.kernel.element_matrix(cell, s.points, {scratch.data(), n * n});
   }
   if (residual) residual->add(nodes, {ke, n * n});
-  std::array<std::int32_t, 8> owners{};
+  std::array<std::int32_t, mesh::kMaxElementNodes> owners{};
   frames.transform_element(nodes, {ke, n * n}, {out.values.data(), n * n}, {owners.data(), corners});
   for (std::size_t k = 0; k < corners; ++k) out.index[k] = rows[owners[k]];
   out.corners = corners;
@@ -257,8 +257,8 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
   const auto d = static_cast<std::size_t>(frames.dimension());
   const auto bs = static_cast<PetscInt>(d);
   if (first) {  // the sparsity only (zero blocks, no K_e): the values are added below, as every later assembly adds them
-    const std::vector<double> zeros(24 * 24, 0.0);
-    std::array<PetscInt, 8> index{};
+    const std::vector<double> zeros(kMaxElementDofs * kMaxElementDofs, 0.0);
+    std::array<PetscInt, mesh::kMaxElementNodes> index{};
     for (const CellId cell : local) {
       const auto nodes = pass.s.kernel.cells().nodes(static_cast<std::size_t>(cell));
       const auto corners = static_cast<PetscInt>(nodes.size());  // block rows and columns of K~_e

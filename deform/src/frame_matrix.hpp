@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/parallel/processes.hpp"
 #include "linear_solver.hpp"
 #include "newton.hpp"
@@ -86,8 +87,8 @@ struct AssemblyOrder {
 /// K~_e of one cell and the block rows of its corners (negative for a node without unknowns:
 /// PETSc skips them).
 struct FrameElement {
-  std::array<double, 24 * 24> values{};  ///< K~_e, (d corners)^2 values row-major
-  std::array<PetscInt, 8> index{};
+  std::array<double, kMaxElementDofs * kMaxElementDofs> values{};  ///< K~_e, (d corners)^2 values row-major
+  std::array<PetscInt, mesh::kMaxElementNodes> index{};
   std::size_t corners = 0;
 };
 

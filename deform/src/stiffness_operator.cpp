@@ -128,19 +128,6 @@ void apply_cells(const ElementList& cells, std::span<const CellId> run, const do
   }
 }
 
-/// The same for cells of one colour and one type, the element size chosen at run time.
-void apply_run(const ElementList& cells, ElementType type, std::span<const CellId> run, const double* matrices,
-               std::span<const std::size_t> offsets, std::span<const double> x, std::span<double> y) {
-  switch (type) {
-    case ElementType::tri3: return apply_cells<6, 2>(cells, run, matrices, offsets, x, y);
-    case ElementType::quad4: return apply_cells<8, 2>(cells, run, matrices, offsets, x, y);
-    case ElementType::tet4: return apply_cells<12, 3>(cells, run, matrices, offsets, x, y);
-    case ElementType::pyramid5: return apply_cells<15, 3>(cells, run, matrices, offsets, x, y);
-    case ElementType::wedge6: return apply_cells<18, 3>(cells, run, matrices, offsets, x, y);
-    case ElementType::hex8: return apply_cells<24, 3>(cells, run, matrices, offsets, x, y);
-    default: throw std::logic_error("StiffnessOperator::apply: a " + std::string(name(type)) + " is no cell");
-  }
-}
 
 }  // namespace
 
@@ -155,7 +142,9 @@ void StiffnessOperator::apply(std::span<const double> x, std::span<double> y) co
       const ElementType type = cells.type(static_cast<std::size_t>(coloring.cells[begin]));
       auto stop = begin + 1;
       while (stop < end && cells.type(static_cast<std::size_t>(coloring.cells[stop])) == type) ++stop;
-      apply_run(cells, type, {coloring.cells.data() + begin, stop - begin}, matrices_.data(), offsets_, x, y);
+      const std::span<const CellId> run(coloring.cells.data() + begin, stop - begin);
+      with_element_size(static_cast<std::size_t>(node_count(type)), static_cast<std::size_t>(kernel_->dofs_per_node()),
+                        [&](auto n, auto d) { apply_cells<n, d>(cells, run, matrices_.data(), offsets_, x, y); });
       begin = stop;
     }
   }

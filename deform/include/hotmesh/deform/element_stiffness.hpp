@@ -12,6 +12,9 @@
 #include <array>
 #include <cstddef>
 #include <span>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/mesh_names.hpp"
@@ -71,6 +74,27 @@ void add_element_product(std::span<const NodeId> nodes, const double* ke, std::s
   for (std::size_t a = 0; a < kCorners; ++a) {
     const auto base = static_cast<std::size_t>(nodes[a]) * D;
     for (std::size_t i = 0; i < D; ++i) y[base + i] += ye[a * D + i];
+  }
+}
+
+/// Dofs of the largest cell (hex8): the size of scratch storage for any K_e.
+inline constexpr std::size_t kMaxElementDofs = 3 * static_cast<std::size_t>(mesh::kMaxElementNodes);
+
+/// Calls f(std::integral_constant<std::size_t, N>{}, std::integral_constant<std::size_t, D>{})
+/// with the element dofs N and dofs per node D of a cell of `corners` corners, D = d: the one
+/// place where a run-time cell size becomes the compile-time one of add_element_product.
+/// Throws std::invalid_argument for a size no cell has.
+template <class F>
+void with_element_size(std::size_t corners, std::size_t d, F&& f) {
+  using std::integral_constant;
+  switch (corners * d) {
+    case 6: return f(integral_constant<std::size_t, 6>{}, integral_constant<std::size_t, 2>{});    // tri3
+    case 8: return f(integral_constant<std::size_t, 8>{}, integral_constant<std::size_t, 2>{});    // quad4
+    case 12: return f(integral_constant<std::size_t, 12>{}, integral_constant<std::size_t, 3>{});  // tet4
+    case 15: return f(integral_constant<std::size_t, 15>{}, integral_constant<std::size_t, 3>{});  // pyramid5
+    case 18: return f(integral_constant<std::size_t, 18>{}, integral_constant<std::size_t, 3>{});  // wedge6
+    case 24: return f(integral_constant<std::size_t, 24>{}, integral_constant<std::size_t, 3>{});  // hex8
+    default: throw std::invalid_argument("no cell has " + std::to_string(corners) + " corners of " + std::to_string(d) + " dofs");
   }
 }
 
