@@ -11,6 +11,7 @@
 #include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/validate.hpp"
+#include "hybrid_meshes.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::mesh {
@@ -43,17 +44,12 @@ double total_measure(const Mesh& mesh) {
   return sum;
 }
 
-std::map<ElementType, std::size_t> count_types(const ElementList& list) {
-  std::map<ElementType, std::size_t> counts;
-  for (ElementType t : list.types()) ++counts[t];
-  return counts;
-}
 
 /// Valid as validate_mesh sees it, nothing reoriented, every corner Jacobian positive.
 void expect_valid_and_oriented(Mesh mesh) {
   const ValidationReport report = validate_mesh(mesh);
   EXPECT_EQ(report.reoriented_cells, 0u);
-  for (double q : scaled_jacobians(mesh.cells, mesh.points)) EXPECT_GT(q, 0.0);
+  test::expect_positively_oriented(mesh);
 }
 
 TEST(SplitCells, QuadsIntoTrianglesAnywhereKeepTheAreaAndTheEdges) {
@@ -62,7 +58,7 @@ TEST(SplitCells, QuadsIntoTrianglesAnywhereKeepTheAreaAndTheEdges) {
   for (std::size_t c = 0; c < split.size(); c += 2) split[c] = CellSplit::triangles;
   const Mesh hybrid = split_cells(quads, split);
   expect_valid_and_oriented(hybrid);
-  EXPECT_EQ(count_types(hybrid.cells), (std::map<ElementType, std::size_t>{{ElementType::tri3, 12}, {ElementType::quad4, 6}}));
+  EXPECT_EQ(test::type_counts(hybrid.cells), (std::map<ElementType, std::size_t>{{ElementType::tri3, 12}, {ElementType::quad4, 6}}));
   EXPECT_NEAR(total_measure(hybrid), 1.0, 1e-14);
   EXPECT_EQ(hybrid.patches, quads.patches);  // boundary edges are not split
 }
@@ -80,7 +76,7 @@ TEST(SplitCells, PrismLayersUnderTetrahedraBesideHexesAreConforming) {
   }
   const Mesh hybrid = split_cells(hexes, split);
   expect_valid_and_oriented(hybrid);
-  const auto counts = count_types(hybrid.cells);
+  const auto counts = test::type_counts(hybrid.cells);
   EXPECT_EQ(counts.at(ElementType::wedge6), 18u);
   EXPECT_EQ(counts.at(ElementType::hex8), 4u);
   // 14 cells about a centre, 6 faces each: 2 tetrahedra per triangulated face, 1 pyramid per quad.
@@ -89,9 +85,9 @@ TEST(SplitCells, PrismLayersUnderTetrahedraBesideHexesAreConforming) {
   EXPECT_EQ(hybrid.node_count(), hexes.node_count() + 14u);
   EXPECT_NEAR(total_measure(hybrid), 1.0, 1e-14);
   // Patches keep their area: zmin all triangles (the prisms' ends), zmax quads and triangles.
-  const auto zmin = count_types(hybrid.find_patch("zmin")->faces);
+  const auto zmin = test::type_counts(hybrid.find_patch("zmin")->faces);
   EXPECT_EQ(zmin, (std::map<ElementType, std::size_t>{{ElementType::tri3, 18}}));
-  const auto zmax = count_types(hybrid.find_patch("zmax")->faces);
+  const auto zmax = test::type_counts(hybrid.find_patch("zmax")->faces);
   EXPECT_EQ(zmax.at(ElementType::quad4), 4u);
   EXPECT_EQ(zmax.at(ElementType::tri3), 10u);
 }
@@ -103,7 +99,7 @@ TEST(SplitCells, PyramidsAboutTheCentreBesideHexesAndTetrahedraAreConforming) {
   split[0] = CellSplit::keep;
   const Mesh hybrid = split_cells(hexes, split);
   expect_valid_and_oriented(hybrid);
-  const auto counts = count_types(hybrid.cells);
+  const auto counts = test::type_counts(hybrid.cells);
   EXPECT_EQ(counts.at(ElementType::pyramid5), 25u * 6u + 6u);  // 25 cells of six, the middle one's six
   EXPECT_EQ(counts.count(ElementType::tet4), 0u);
   EXPECT_EQ(counts.at(ElementType::hex8), 1u);
