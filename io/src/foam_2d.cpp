@@ -228,10 +228,11 @@ std::vector<Column> columns(const PolyMesh& m, const CellFaces& cells, const std
   std::vector<Column> out(m.cell_count);
   std::size_t others = 0;
   std::string first;
+  std::vector<std::array<std::int64_t, 2>> side_edges;  // of one cell, reused
   for (std::size_t c = 0; c < m.cell_count; ++c) {
     const auto back = face_points(m, static_cast<std::size_t>(back_face[c]));
     std::span<const std::int64_t> front;
-    std::vector<std::array<std::int64_t, 2>> side_edges;
+    side_edges.clear();
     for (auto i = cells.offsets[c]; i < cells.offsets[c + 1]; ++i) {
       const auto f = static_cast<std::size_t>(cells.faces[static_cast<std::size_t>(i)]);
       const auto points = face_points(m, f);
