@@ -17,20 +17,19 @@ nlohmann::json quality_json(const mesh::Mesh& mesh, const mesh::QualitySummary& 
   j["inverted_cells"] = q.inverted_cells;
   j["histogram"] = q.histogram;
   // The same per cell type, in the order of mesh::ElementType.
-  std::map<mesh::ElementType, std::vector<double>> by_type;
   std::map<mesh::ElementType, std::vector<mesh::CellId>> cells_of;
   for (std::size_t c = 0; c < per_cell.size() && c < mesh.cell_count(); ++c) {
-    by_type[mesh.cells.type(c)].push_back(per_cell[c]);
     cells_of[mesh.cells.type(c)].push_back(static_cast<mesh::CellId>(c));
   }
   j["by_type"] = nlohmann::json::object();
-  for (const auto& [type, values] : by_type) {
+  for (const auto& [type, cells] : cells_of) {
+    std::vector<double> values(cells.size());
+    for (std::size_t i = 0; i < cells.size(); ++i) values[i] = per_cell[static_cast<std::size_t>(cells[i])];
     const mesh::QualitySummary t = mesh::summarize_quality(values);
-    const mesh::CellId worst = cells_of[type][static_cast<std::size_t>(t.worst_cell)];
     j["by_type"][std::string(mesh::name(type))] = {{"cells", t.cells},
                                                    {"min_scaled_jacobian", t.min_scaled_jacobian},
                                                    {"mean_scaled_jacobian", t.mean_scaled_jacobian},
-                                                   {"worst_cell", mesh.cell_id(worst)},
+                                                   {"worst_cell", mesh.cell_id(cells[static_cast<std::size_t>(t.worst_cell)])},
                                                    {"inverted_cells", t.inverted_cells},
                                                    {"histogram", t.histogram}};
   }
