@@ -1,5 +1,5 @@
 // hotmesh benchmark: the two linear solvers of the Newton steps on whole motions — the
-// paper's matrix-free Jacobi-PCG against the system assembled in nodal frames and solved with
+// paper's Jacobi-PCG against the system assembled in nodal frames and solved with
 // algebraic multigrid (PETSc's GAMG), each with the fixed inner tolerance and with the
 // Eisenstat-Walker forcing term (inexact Newton).
 //

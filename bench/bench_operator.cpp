@@ -1,5 +1,6 @@
-// hotmesh benchmark: the matrix-free stiffness operator (section 3, eqs. 9-10) against the
-// memory bandwidth of the machine it runs on.
+// hotmesh benchmark: the stiffness operator (K summed from the element matrices into d x d node
+// blocks, stiffness_operator.hpp) against the memory bandwidth of the machine it runs on, and
+// against the paper's storage of every element matrix (section 3, eqs. 9-10).
 //
 //   ninja -C build bench_operator && build/bench/bench_operator [--hex 20,40,60,80,100]
 //       [--quad 250,1000,2000] [--triad-mib 1024] [--pcg 40]
@@ -10,16 +11,19 @@
 // 1. Memory bandwidth: a STREAM triad a[i] = b[i] + s c[i] on three arrays of `--triad-mib`
 //    MiB each (far larger than the caches; STREAM's count of 24 bytes per entry, no
 //    write-allocate traffic), and for reference on arrays that fit in L2 and in L3.
-// 2. Element matrices: StiffnessOperator::update (every K_e at the given points), cells/s.
-// 3. Product: StiffnessOperator::apply (y = K x), cells/s, GFLOP/s (2 N^2 per cell) and
+// 2. Update: StiffnessOperator::update (every K_e at the given points, summed into the node
+//    blocks), cells/s.
+// 3. Product: StiffnessOperator::apply (y = K x), cells/s, GFLOP/s (2 d^2 per block) and
 //    effective GB/s over the bytes a product must move at least:
-//        K_e            cells x N^2 x 8       (N = 24 for hex8, 8 for quad4)
-//        connectivity   cells x (4 n + 8 + 4) (n node ids, one 64-bit offset, the colour list)
-//        vectors        dofs x 8 x 4          (x read; y zeroed, then read and written)
+//        blocks         blocks x (d^2 x 8 + 4)  (the values and a 32-bit column)
+//        row starts     nodes x 8
+//        vectors        dofs x 8 x 2            (x read, y written)
 //    and that rate over the triad's with the same number of threads.
 // 3b. The product per cell type (`--types N`): a hex block of N^3 cells as hexes, prisms,
 //    pyramids and tetrahedra (mesh::split_cells), a quad block of (25 N)^2 as quads and
-//    triangles: time per node against the hexes (quads) and the ratio of the stencils.
+//    triangles: time per node against the hexes (quads) and the ratio of the stencils; and
+//    the same product with the paper's storage, every K_e stored and y = K x an element loop
+//    colour by colour (ElementStorage below), for comparison.
 // 4. One Jacobi-PCG solve (the solver's inner solve, tolerance 1e-3, from p = 0) on a hex
 //    block `--pcg` cells on a side, stretched towards z = 0, with a bump prescribed on z = 0
 //    and every other boundary node fixed: iterations, time per iteration, the share of it
@@ -31,7 +35,8 @@
 // (from /proc/stat): on a shared machine, rows with all threads and other load well above 0
 // are not the machine's speed.
 //
-// Memory: the stored K_e take 4.6 kB per hex (4.6 GB at 100^3) and 0.5 kB per quad; the
+// Memory: the node blocks take 2.3 kB per hex node (2.3 GB at 100^3, with the cells' block
+// positions), the paper's stored K_e (part 3b only, at most 40^3 hexes) 4.6 kB per hex; the
 // triad 3 x `--triad-mib` MiB. One mesh is alive at a time.
 #include <omp.h>
 
@@ -49,6 +54,7 @@
 
 #include <fmt/format.h>
 
+#include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/linear_algebra.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/pcg.hpp"
@@ -185,24 +191,50 @@ struct ProductModel {
   double flops = 0.0;
 };
 
-/// Bytes of the stored element matrices.
-double matrix_bytes(const StiffnessOperator& k) {
-  double bytes = 0.0;
-  for (std::size_t c = 0; c < k.cells().size(); ++c) bytes += static_cast<double>(k.element_matrix(static_cast<CellId>(c)).size()) * 8.0;
-  return bytes;
+ProductModel product_model(const StiffnessOperator& k) {
+  const auto d = static_cast<double>(k.dofs_per_node());
+  const auto blocks = static_cast<double>(k.block_count());
+  const double nodes = static_cast<double>(k.size()) / d;
+  return {blocks * (d * d * 8.0 + 4.0) + nodes * 8.0 + static_cast<double>(k.size()) * 8.0 * 2.0, 2.0 * d * d * blocks};
 }
 
-ProductModel product_model(const StiffnessOperator& k) {
-  ProductModel m;
-  for (std::size_t c = 0; c < k.cells().size(); ++c) {
-    const auto n = static_cast<double>(k.kernel().element_size(static_cast<CellId>(c)));
-    const double nodes = n / k.dofs_per_node();
-    m.bytes += n * n * 8.0 + 4.0 * nodes + 8.0 + 4.0;
-    m.flops += 2.0 * n * n;
+/// The paper's storage (section 3, eqs. 9-10), for comparison: every K_e stored, y = K x an
+/// element loop, colour by colour, the cells of a colour in parallel. Meshes of one cell type.
+class ElementStorage {
+ public:
+  ElementStorage(const StiffnessKernel& kernel, std::span<const Vec3> points) : kernel_(kernel) {
+    const ElementList& cells = kernel.cells();
+    const auto n = static_cast<std::size_t>(kernel.element_size(0));
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (cells.type(c) != cells.type(0)) throw std::invalid_argument("ElementStorage: cells of one type");
+    }
+    matrices_.resize(cells.size() * n * n);
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      kernel.element_matrix(static_cast<CellId>(c), points, {matrices_.data() + c * n * n, n * n});
+    }
   }
-  m.bytes += static_cast<double>(k.size()) * 8.0 * 4.0;
-  return m;
-}
+  double bytes() const { return static_cast<double>(matrices_.size()) * 8.0; }
+  void apply(std::span<const double> x, std::span<double> y) const {
+    std::fill(y.begin(), y.end(), 0.0);
+    const ElementList& cells = kernel_.cells();
+    const CellColoring& coloring = kernel_.coloring();
+    const auto d = static_cast<std::size_t>(kernel_.dofs_per_node());
+    with_element_size(cells.nodes(0).size(), d, [&](auto n, auto dofs) {
+      for (std::size_t k = 0; k < coloring.colors(); ++k) {
+        const auto begin = coloring.offsets[k], end = coloring.offsets[k + 1];
+#pragma omp parallel for schedule(static) if ((end - begin) * static_cast<std::int64_t>(n * n) >= kParallelProduct)
+        for (std::int64_t i = begin; i < end; ++i) {
+          const auto c = static_cast<std::size_t>(coloring.cells[static_cast<std::size_t>(i)]);
+          add_element_product<n, dofs>(cells.nodes(c), matrices_.data() + c * n * n, x, y);
+        }
+      }
+    });
+  }
+
+ private:
+  const StiffnessKernel& kernel_;
+  std::vector<double> matrices_;
+};
 
 std::vector<double> random_vector(std::size_t n) {
   std::mt19937 random(7);
@@ -222,17 +254,17 @@ struct Row {
   std::string mesh;
   std::size_t cells = 0;
   std::size_t dofs = 0;
-  std::size_t colors = 0;
+  double stencil = 0.0;  ///< blocks per row
   int threads = 0;
   ProductModel model;
   OperatorRates rates;
-  double matrix_bytes = 0.0;
+  double bytes = 0.0;  ///< held by the operator
 };
 
 OperatorRates measure_operator(StiffnessOperator& k, const Mesh& mesh, int threads) {
   omp_set_num_threads(threads);
   OperatorRates r;
-  // update() rewrites every K_e; the matrices are already allocated and touched.
+  // update() recomputes every K_e into the blocks, already allocated and touched.
   r.update = time_runs([&] { k.update(mesh.points); }, 0, 3, 1.0);
   const auto x = random_vector(k.size());
   std::vector<double> y(k.size());
@@ -250,25 +282,10 @@ Mesh quad_block(int n) {
   return structured_quads(line, line);
 }
 
-/// The mean number of nodes a node shares a cell with, itself included: the blocks in a row
-/// of the assembled K, the stencil of the product per node.
-double mean_stencil(const Mesh& mesh) {
-  std::vector<std::vector<NodeId>> around(mesh.node_count());
-  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
-    const auto nodes = mesh.cells.nodes(c);
-    for (NodeId a : nodes) around[static_cast<std::size_t>(a)].insert(around[static_cast<std::size_t>(a)].end(), nodes.begin(), nodes.end());
-  }
-  double sum = 0.0;
-  for (auto& list : around) {
-    std::sort(list.begin(), list.end());
-    sum += static_cast<double>(std::unique(list.begin(), list.end()) - list.begin());
-  }
-  return sum / static_cast<double>(mesh.node_count());
-}
-
 /// 3b. The product on meshes of each cell type made from one hex block (and one quad block) by
 /// mesh::split_cells, per node against the block of hexes (quads): the element type's cost
-/// next to the ratio of the stencils.
+/// next to the ratio of the stencils (the mean blocks per row: the nodes a node shares a cell
+/// with, itself included), for the node blocks and for the paper's stored K_e.
 void types_section(int n, const std::vector<int>& thread_counts, const std::vector<double>& memory_rate) {
   struct TypeMesh {
     std::string label;
@@ -284,30 +301,39 @@ void types_section(int n, const std::vector<int>& thread_counts, const std::vect
   meshes.push_back({"tet4 (12 per hex, centre node)", split(hexes, CellSplit::tetrahedra)});
   meshes.push_back({fmt::format("quad4 ({}^2 quads)", 25 * n), quads});
   meshes.push_back({"tri3 (2 per quad)", split(quads, CellSplit::triangles)});
-  fmt::print("\n### Product per cell type (StiffnessOperator::apply)\n\n");
-  fmt::print("| mesh | cells | nodes | colours | stencil | K_e bytes per node | threads | ms | ns per node | per node / hex or quad "
-             "| stencil / hex or quad | GB/s | of triad | other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  std::vector<double> reference_ns(thread_counts.size());
+  fmt::print("\n### Product per cell type (StiffnessOperator::apply, and the paper's stored K_e)\n\n");
+  fmt::print("| mesh | cells | nodes | stencil | threads | bytes per node | ns per node | per node / hex or quad "
+             "| stencil / hex or quad | GB/s | of triad | stored K_e: colours | bytes per node | ns per node "
+             "| per node / hex or quad | other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<double> reference_ns(thread_counts.size()), reference_element_ns(thread_counts.size());
   double reference_stencil = 0.0;
   for (TypeMesh& m : meshes) {
-    const double stencil = mean_stencil(m.mesh);
     const bool reference = m.mesh.cells.type(0) == ElementType::hex8 || m.mesh.cells.type(0) == ElementType::quad4;
-    if (reference) reference_stencil = stencil;
     StiffnessOperator k(m.mesh, element_lame(m.mesh, MaterialOptions{}), true);
     k.update(m.mesh.points);
+    const ElementStorage stored(k.kernel(), m.mesh.points);
+    const auto nodes = static_cast<double>(m.mesh.node_count());
+    const double stencil = static_cast<double>(k.block_count()) / nodes;
+    if (reference) reference_stencil = stencil;
     const ProductModel model = product_model(k);
     const auto x = random_vector(k.size());
     std::vector<double> y(k.size());
     for (std::size_t t = 0; t < thread_counts.size(); ++t) {
       omp_set_num_threads(thread_counts[t]);
       const Timing apply = time_runs([&] { k.apply(x, y); }, 1, 5, 1.0);
-      const double ns = 1e9 * apply.seconds / static_cast<double>(m.mesh.node_count());
-      if (reference) reference_ns[t] = ns;
+      const Timing element = time_runs([&] { stored.apply(x, y); }, 1, 5, 1.0);
+      const double ns = 1e9 * apply.seconds / nodes, element_ns = 1e9 * element.seconds / nodes;
+      if (reference) {
+        reference_ns[t] = ns;
+        reference_element_ns[t] = element_ns;
+      }
       const double gbs = model.bytes / apply.seconds * 1e-9;
-      fmt::print("| {} | {} | {} | {} | {:.1f} | {:.0f} | {} | {:.2f} | {:.1f} | {:.2f} | {:.2f} | {:.2f} | {:.0f} % | {:.2f} |\n",
-                 m.label, m.mesh.cell_count(), m.mesh.node_count(), k.kernel().coloring().colors(), stencil,
-                 matrix_bytes(k) / static_cast<double>(m.mesh.node_count()), thread_counts[t], 1e3 * apply.seconds, ns,
-                 ns / reference_ns[t], stencil / reference_stencil, gbs, 100.0 * gbs / memory_rate[t], apply.others);
+      fmt::print("| {} | {} | {} | {:.1f} | {} | {:.0f} | {:.1f} | {:.2f} | {:.2f} | {:.2f} | {:.0f} % | {} | {:.0f} | {:.1f} "
+                 "| {:.2f} | {:.2f} |\n",
+                 m.label, m.mesh.cell_count(), m.mesh.node_count(), stencil, thread_counts[t],
+                 static_cast<double>(k.bytes()) / nodes, ns, ns / reference_ns[t], stencil / reference_stencil, gbs,
+                 100.0 * gbs / memory_rate[t], k.kernel().coloring().colors(), stored.bytes() / nodes, element_ns,
+                 element_ns / reference_element_ns[t], std::max(apply.others, element.others));
       std::fflush(stdout);
     }
   }
@@ -503,8 +529,8 @@ int main(int argc, char** argv) {
     k.update(mesh.points);  // touch the matrices once before timing
     const ProductModel model = product_model(k);
     for (int t : thread_counts) {
-      Row row{label, mesh.cell_count(), k.size(), k.kernel().coloring().colors(), t, model, measure_operator(k, mesh, t),
-              matrix_bytes(k)};
+      Row row{label, mesh.cell_count(), k.size(), static_cast<double>(k.block_count()) * k.dofs_per_node() / static_cast<double>(k.size()), t, model, measure_operator(k, mesh, t),
+              static_cast<double>(k.bytes())};
       std::fprintf(stderr, "%s, %d threads: update %.3f s, apply %.4f s\n", label.c_str(), t,
                    row.rates.update.seconds, row.rates.apply.seconds);
       if (t == 1) {
@@ -521,26 +547,25 @@ int main(int argc, char** argv) {
   for (int n : settings.hex) run_mesh(fmt::format("hex {}^3", n), hex_block(n));
   for (int n : settings.quad) run_mesh(fmt::format("quad {}^2", n), quad_block(n));
 
-  fmt::print("\n### Element matrices (StiffnessOperator::update)\n\n");
-  fmt::print("| mesh | cells | K_e MB | threads | s | cells/s | GB/s written | other load |\n"
-             "|---|---|---|---|---|---|---|---|\n");
+  fmt::print("\n### Update: every K_e into the node blocks (StiffnessOperator::update)\n\n");
+  fmt::print("| mesh | cells | MB held | threads | s | cells/s | other load |\n"
+             "|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows) {
     const Timing& u = r.rates.update;
-    fmt::print("| {} | {} | {:.0f} | {} | {:.3f} | {:.3g} | {:.2f} | {:.2f} |\n", r.mesh, r.cells,
-               r.matrix_bytes * 1e-6, r.threads, u.seconds, static_cast<double>(r.cells) / u.seconds,
-               r.matrix_bytes / u.seconds * 1e-9, u.others);
+    fmt::print("| {} | {} | {:.0f} | {} | {:.3f} | {:.3g} | {:.2f} |\n", r.mesh, r.cells, r.bytes * 1e-6, r.threads,
+               u.seconds, static_cast<double>(r.cells) / u.seconds, u.others);
   }
 
   fmt::print("\n### Product y = K x (StiffnessOperator::apply)\n\n");
-  fmt::print("| mesh | cells | dofs | colours | MB moved | threads | ms | cells/s | GFLOP/s | GB/s | of triad | "
+  fmt::print("| mesh | cells | dofs | blocks per row | MB moved | threads | ms | cells/s | GFLOP/s | GB/s | of triad | "
              "other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows) {
     const double s = r.rates.apply.seconds;
     const double gbs = r.model.bytes / s * 1e-9;
     const auto t = static_cast<std::size_t>(std::find(thread_counts.begin(), thread_counts.end(), r.threads) -
                                             thread_counts.begin());
-    fmt::print("| {} | {} | {} | {} | {:.0f} | {} | {:.2f} | {:.3g} | {:.2f} | {:.2f} | {:.0f} % | {:.2f} |\n",
-               r.mesh, r.cells, r.dofs, r.colors, r.model.bytes * 1e-6, r.threads, 1e3 * s,
+    fmt::print("| {} | {} | {} | {:.1f} | {:.0f} | {} | {:.2f} | {:.3g} | {:.2f} | {:.2f} | {:.0f} % | {:.2f} |\n",
+               r.mesh, r.cells, r.dofs, r.stencil, r.model.bytes * 1e-6, r.threads, 1e3 * s,
                static_cast<double>(r.cells) / s, r.model.flops / s * 1e-9, gbs, 100.0 * gbs / memory_rate[t],
                r.rates.apply.others);
   }
@@ -567,7 +592,7 @@ int main(int argc, char** argv) {
     };
     using namespace hotmesh::mesh;
     if (product_ns_per_madd > 0.0) {
-      line("kParallelProduct (multiply-adds per colour)", kParallelProduct,
+      line("kParallelProduct (multiply-adds of a product)", kParallelProduct,
            static_cast<double>(kParallelProduct) * product_ns_per_madd * 1e-9);
     }
     if (update_hex_seconds > 0.0) {

@@ -6,7 +6,7 @@
 //
 // Run:   ninja -C build bench_stator_solve && build/bench/bench_stator_solve [CELLS,...]
 //            [--linear jacobi-pcg|amg] [--forcing fixed|eisenstat-walker]
-// Default 5000,18000,50000 with the case's solver (the paper's matrix-free Jacobi-PCG, fixed
+// Default 5000,18000,50000 with the case's solver (the paper's Jacobi-PCG, fixed
 // inner tolerance); each size runs in its own process. The paper's size (2700000) with
 // `--linear amg --forcing eisenstat-walker` takes about an hour and a half and 13 GB.
 #include <cstdio>

@@ -12,16 +12,6 @@
 
 namespace hotmesh::deform::detail {
 
-NodeCells::NodeCells(const ElementList& list, std::size_t nodes) : start(nodes + 1, 0) {
-  for (NodeId n : list.all_nodes()) ++start[static_cast<std::size_t>(n) + 1];
-  for (std::size_t i = 1; i <= nodes; ++i) start[i] += start[i - 1];
-  std::vector<std::int64_t> fill(start.begin(), start.end() - 1);
-  cells.resize(static_cast<std::size_t>(start.back()));
-  for (std::size_t c = 0; c < list.size(); ++c) {
-    for (NodeId n : list.nodes(c)) cells[static_cast<std::size_t>(fill[static_cast<std::size_t>(n)]++)] = static_cast<CellId>(c);
-  }
-}
-
 namespace {
 
 /// A copy in memory from PetscMalloc, for PETSc to free.
@@ -197,11 +187,7 @@ void ElementPass::frame_element(CellId cell, const NodalFrames& frames, const Bl
   const std::size_t n = corners * d;
   std::array<double, kMaxElementDofs * kMaxElementDofs> scratch{};
   const double* ke = scratch.data();
-  if (stored) {
-    ke = stored->element_matrix(cell).data();
-  } else {
-    s.kernel.element_matrix(cell, s.points, {scratch.data(), n * n});
-  }
+  s.kernel.element_matrix(cell, s.points, {scratch.data(), n * n});
   if (residual) residual->add(nodes, {ke, n * n});
   std::array<std::int32_t, mesh::kMaxElementNodes> owners{};
   frames.transform_element(nodes, {ke, n * n}, {out.values.data(), n * n}, {owners.data(), corners});

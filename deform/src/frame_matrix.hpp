@@ -28,17 +28,6 @@ inline void check(PetscErrorCode code, const char* what) {
   if (code != 0) throw std::runtime_error(std::string("PETSc failed in ") + what + " (error code " + std::to_string(code) + ")");
 }
 
-/// The cells around each node (CSR).
-struct NodeCells {
-  std::vector<std::int64_t> start;
-  std::vector<CellId> cells;
-
-  NodeCells(const ElementList& list, std::size_t nodes);
-  std::span<const CellId> of(std::size_t node) const {
-    return {cells.data() + start[node], static_cast<std::size_t>(start[node + 1] - start[node])};
-  }
-};
-
 /// The rank that does each cell's element work. With several processes: PETSc's partitioner
 /// (PT-Scotch by default, -hotmesh_mat_partitioning_type to change) on the graph of cells
 /// that share a face (d nodes or more), each rank giving the edges of its share of the cells.
@@ -92,12 +81,11 @@ struct FrameElement {
   std::size_t corners = 0;
 };
 
-/// Where an element pass takes K_e from: the `stored` matrices, or the system's kernel at its
-/// points (no storage: 4.6 kB per hex saved, the matrices computed once per pass). With a
-/// `residual`, the pass also hands each K_e to it (the Newton loop's residual).
+/// An element pass computes each K_e from the system's kernel at its points (nothing stored:
+/// the matrices computed once per pass). With a `residual`, the pass also hands each K_e to it
+/// (the Newton loop's residual).
 struct ElementPass {
   const ConstrainedSystem& s;
-  const StiffnessOperator* stored = nullptr;
   const ResidualPass* residual = nullptr;
 
   /// K~_e of `cell` in `frames`, its corners' block rows; K_e to the residual.

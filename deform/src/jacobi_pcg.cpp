@@ -1,5 +1,6 @@
-// hotmesh deform: the paper's linear solver (section 3): matrix-free PCG on the projected
-// operator P T^T K T P (eq. 16; periodic.hpp) with nodal Jacobi, from p = 0.
+// hotmesh deform: the paper's linear solver (section 3): PCG on the projected operator
+// P T^T K T P (eq. 16; periodic.hpp) with nodal Jacobi, from p = 0, K in node blocks
+// (stiffness_operator.hpp).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -134,14 +135,14 @@ std::function<double(std::span<const double>)> residual_norm(const ConstrainedSy
 
 class JacobiPcgSolver final : public LinearSolver {
  public:
-  JacobiPcgSolver(const SolverOptions& options, const StiffnessOperator& stored)
-      : stored_(stored), max_iterations_(options.max_pcg_iterations) {}
+  JacobiPcgSolver(const SolverOptions& options, const StiffnessOperator& k)
+      : k_(k), max_iterations_(options.max_pcg_iterations) {}
 
   LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p,
                           const LinearTarget& target, MotionTimings& timings) override {
-    const ConstrainedOperator k(stored_, s.constraints, s.periodic);
+    const ConstrainedOperator k(k_, s.constraints, s.periodic);
     auto t = Clock::now();
-    const NodalJacobi m(stored_, s.constraints, s.periodic);
+    const NodalJacobi m(k_, s.constraints, s.periodic);
     timings.preconditioner += seconds_since(t);
     t = Clock::now();
     std::fill(p.begin(), p.end(), 0.0);
@@ -157,14 +158,14 @@ class JacobiPcgSolver final : public LinearSolver {
   }
 
  private:
-  const StiffnessOperator& stored_;  ///< K(n): the element matrices the Newton loop updated
+  const StiffnessOperator& k_;  ///< K(n) in node blocks, as the Newton loop updated it
   int max_iterations_;
 };
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& options, const StiffnessOperator& stored) {
-  return std::make_unique<JacobiPcgSolver>(options, stored);
+std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& options, const StiffnessOperator& k) {
+  return std::make_unique<JacobiPcgSolver>(options, k);
 }
 
 }  // namespace hotmesh::deform::detail

@@ -9,16 +9,16 @@
 namespace hotmesh::deform::detail {
 
 std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& options,
-                                                     const StiffnessOperator& stored);  // jacobi_pcg.cpp
+                                                     const StiffnessOperator& k);  // jacobi_pcg.cpp
 
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks,
-                                                 const StiffnessOperator* stored) {
-  if (options.linear == LinearSolverKind::amg) return make_amg_solver(options, ranks, stored);
-  if (!stored) throw std::invalid_argument("make_linear_solver: jacobi-pcg needs the stored element matrices");
-  return make_jacobi_pcg_solver(options, *stored);
+                                                 const StiffnessOperator* k) {
+  if (options.linear == LinearSolverKind::amg) return make_amg_solver(options, ranks);
+  if (!k) throw std::invalid_argument("make_linear_solver: jacobi-pcg needs K in node blocks");
+  return make_jacobi_pcg_solver(options, *k);
 }
 
-bool stores_element_matrices(const SolverOptions& options) { return options.linear != LinearSolverKind::amg; }
+bool solves_with_node_blocks(const SolverOptions& options) { return options.linear != LinearSolverKind::amg; }
 
 double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d) {
   double sum = 0.0;

@@ -3,7 +3,8 @@
 //     K(n) p = -R(n)  on the admissible subspace: fixed and prescribed nodes still, sliding
 //                      nodes tangential (eq. 16), periodic slaves following their masters,
 // from p = 0. Two implementations, chosen by SolverOptions::linear:
-//  - jacobi-pcg: the paper's matrix-free PCG on P T^T K T P with nodal Jacobi (section 3);
+//  - jacobi-pcg: the paper's PCG on P T^T K T P with nodal Jacobi (section 3), K in node
+//    blocks (stiffness_operator.hpp);
 //  - amg: the same operator assembled in nodal frames (nodal_frames.hpp) into a PETSc matrix,
 //    solved by CG with algebraic multigrid (petsc_solver.cpp).
 // Both see the same system and give the same p to the solver tolerance (tests/deform).
@@ -24,8 +25,8 @@
 
 namespace hotmesh::deform::detail {
 
-/// The system of one Newton step: K(n) at the current geometry (the element kernel; stored
-/// element matrices, where a solver uses them, it was made with), the directions nodes may not
+/// The system of one Newton step: K(n) at the current geometry (the element kernel; the node
+/// blocks of K, where a solver uses them, were made with it), the directions nodes may not
 /// move in (with the current normals of sliding nodes), periodic pairs, the current points (the
 /// AMG near-null space is built from them) and each node's stiffness D as newton_residual()
 /// wrote it (the Newton loop's norm ||D^-1 R||).
@@ -52,9 +53,9 @@ struct LinearSolveResult {
 
 struct ResidualPass;  // newton.hpp
 
-/// A solver that computes the element matrices itself, into a matrix of its own (amg without
-/// stored element matrices): one pass over this rank's cells gives every K_e at s.points, once
-/// per Newton step, to its matrix and to the Newton loop's `residual`.
+/// A solver that computes the element matrices itself, into a matrix of its own (amg): one
+/// pass over this rank's cells gives every K_e at s.points, once per Newton step, to its
+/// matrix and to the Newton loop's `residual`.
 class ElementAssembler {
  public:
   virtual ~ElementAssembler() = default;
@@ -75,7 +76,7 @@ class LinearSolver {
   /// A new increment (or piece of one) starts: preconditioners kept for reuse are dropped.
   virtual void begin_increment() {}
   /// The solver's element pass, if it computes the element matrices itself; null when it
-  /// solves with the stored ones.
+  /// solves with the node blocks of K.
   virtual ElementAssembler* assembler() { return nullptr; }
 };
 
@@ -87,14 +88,14 @@ class LinearSolver {
 /// and are skipped.
 double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d);
 
-/// The solver SolverOptions::linear names, for the processes of `ranks`, with the element
-/// matrices `stored` (which jacobi-pcg needs: std::invalid_argument without; amg computes them
-/// itself without). `amg` initialises PETSc (and MPI) on first use.
+/// The solver SolverOptions::linear names, for the processes of `ranks`, with K in the node
+/// blocks of `k` (which jacobi-pcg needs: std::invalid_argument without; amg assembles its own
+/// matrix and ignores it). `amg` initialises PETSc (and MPI) on first use.
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks,
-                                                 const StiffnessOperator* stored);
-/// Whether that solver wants the element matrices stored (jacobi-pcg) or computes them itself
-/// while it assembles (amg: 4.6 kB less per hex).
-bool stores_element_matrices(const SolverOptions& options);
+                                                 const StiffnessOperator* k);
+/// Whether that solver works on K in node blocks (jacobi-pcg) or assembles the element matrices
+/// into a matrix of its own (amg).
+bool solves_with_node_blocks(const SolverOptions& options);
 
 /// P T^T K T P: the stiffness restricted to the admissible subspace — periodic slaves expanded
 /// from their masters before the element loop and folded back after it (periodic.hpp), the

@@ -54,8 +54,8 @@ class Motion {
         sliding_(setup_, static_cast<std::size_t>(mesh.dimension), ranks),
         ranks_(ranks),
         kernel_(std::move(kernel)),
-        stored_(detail::stores_element_matrices(solver) ? std::optional<StiffnessOperator>(kernel_) : std::nullopt),
-        linear_(detail::make_linear_solver(solver, ranks, stored_ ? &*stored_ : nullptr)),
+        blocks_(detail::solves_with_node_blocks(solver) ? std::optional<StiffnessOperator>(kernel_) : std::nullopt),
+        linear_(detail::make_linear_solver(solver, ranks, blocks_ ? &*blocks_ : nullptr)),
         dim_(static_cast<std::size_t>(mesh.dimension)),
         size_(std::max(bounding_diagonal(mesh.points), 1e-300)) {}
 
@@ -319,7 +319,7 @@ class Motion {
       // K(n) at the current geometry (eq. 8) and R(n) = K(n) u(n) - f (eq. 7; f is K's action on
       // the boundary motion), with only its tangential part F_t at sliding nodes (eq. 17).
       const detail::ConstrainedSystem system{*kernel_, setup_.constraints, setup_.periodic, trial, node_stiffness};
-      detail::newton_residual(system, stored_ ? &*stored_ : nullptr, linear_->assembler(), ranks_, u, r, node_stiffness,
+      detail::newton_residual(system, blocks_ ? &*blocks_ : nullptr, linear_->assembler(), ranks_, u, r, node_stiffness,
                               result_.timings);
       const double residual = detail::scaled_residual_norm(r, node_stiffness, dim_);
       if (it == 0) r0 = residual;
@@ -400,7 +400,7 @@ class Motion {
   detail::SlidingNodes sliding_;
   const parallel::RankExchange& ranks_;
   std::shared_ptr<const StiffnessKernel> kernel_;  ///< K_e of any cell (eq. 35 and the Q1 element)
-  std::optional<StiffnessOperator> stored_;         ///< the K_e of each Newton step (jacobi-pcg)
+  std::optional<StiffnessOperator> blocks_;         ///< K of each Newton step in node blocks (jacobi-pcg)
   std::unique_ptr<detail::LinearSolver> linear_;
   std::size_t dim_;
   double size_;

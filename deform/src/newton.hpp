@@ -26,11 +26,11 @@ struct ResidualPass {
 
 /// The residual of a Newton step, R(n) = P T^T K(n) u(n) of eq. (7), at s.points: folded onto
 /// periodic masters, only its tangential part F_t at sliding nodes (eq. 17); and each node's
-/// stiffness D, which scales its norm (scaled_residual_norm). K(n) comes from `stored`, updated
-/// here at s.points (R = K u by its product); without stored matrices from the element pass of
-/// the solver's `assembler`, which computes each K_e once for its matrix and for R, each rank
-/// its cells, summed over `ranks`. Adds the element work to timings.assembly.
-void newton_residual(const ConstrainedSystem& s, StiffnessOperator* stored, ElementAssembler* assembler,
+/// stiffness D, which scales its norm (scaled_residual_norm). K(n) comes from the node blocks
+/// of `k`, updated here at s.points (R = K u by its product); without them from the element
+/// pass of the solver's `assembler`, which computes each K_e once for its matrix and for R,
+/// each rank its cells, summed over `ranks`. Adds the element work to timings.assembly.
+void newton_residual(const ConstrainedSystem& s, StiffnessOperator* k, ElementAssembler* assembler,
                      const parallel::RankExchange& ranks, std::span<const double> u, std::span<double> r,
                      std::span<double> node_stiffness, MotionTimings& timings);
 

@@ -15,7 +15,7 @@
 // scattered to the blocks of the owners (a slave's master). A constrained component then
 // keeps only its own stiffness on the diagonal, and a slave's own row only the diagonal of
 // its frame block: both get p~ = 0 from a zero right-hand side. On the free components K~
-// equals the projected operator P T^T K T P of the matrix-free solver (eq. 16) written in the
+// equals the projected operator P T^T K T P of Jacobi-PCG (eq. 16) written in the
 // frames; the right-hand side is r~ = T^T r, the solution p = T p~.
 #pragma once
 

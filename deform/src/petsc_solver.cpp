@@ -7,7 +7,7 @@
 // whose sparsity was preallocated once from the node graph, slaves merged into their masters
 // (MAT_NEW_NONZERO_LOCATION_ERR guards it). Then (solve()) the right-hand side is r~ = T^T r,
 // CG (KSPCG) with algebraic multigrid solves K~ p~ = r~ from p~ = 0, stopping on the norm
-// the system asks for as the matrix-free PCG does (StoppingTest), and p = T p~. PCGAMG gets the
+// the system asks for as Jacobi-PCG does (StoppingTest), and p = T p~. PCGAMG gets the
 // translations written in the frames as near-null space.
 //
 // The multigrid hierarchy is built at the first Newton step of an increment and kept for
@@ -149,8 +149,8 @@ struct StoppingTest {
 
 class AmgSolver final : public LinearSolver, public ElementAssembler {
  public:
-  AmgSolver(const SolverOptions& options, const parallel::RankExchange& ranks, const StiffnessOperator* stored)
-      : options_(options), job_{ranks.rank(), ranks.ranks()}, stored_(stored) {
+  AmgSolver(const SolverOptions& options, const parallel::RankExchange& ranks)
+      : options_(options), job_{ranks.rank(), ranks.ranks()} {
     parallel::start_petsc();
     if (options_.amg == AmgPackage::gamg) {
       // One symmetric Gauss-Seidel sweep as smoother on every level. The default Chebyshev/
@@ -186,15 +186,15 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
 
   void begin_increment() override { fresh_ = true; }
 
-  /// Without stored element matrices: one pass computes every K_e, gives it to the residual
-  /// and assembles K~ (the matrix is then ready for solve()).
+  /// One pass computes every K_e, gives it to the residual and assembles K~ (the matrix is
+  /// then ready for solve()).
   void assemble(const ConstrainedSystem& s, const ResidualPass& residual) override { assemble_matrix(s, &residual); }
-  ElementAssembler* assembler() override { return stored_ ? nullptr : this; }
+  ElementAssembler* assembler() override { return this; }
 
   LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p,
                           const LinearTarget& target, MotionTimings& timings) override {
     auto t = Clock::now();
-    if (!assembled_) assemble_matrix(s, nullptr);  // from the stored element matrices
+    if (!assembled_) assemble_matrix(s, nullptr);  // a solve without the Newton loop's pass
     assembled_ = false;
     timings.assembly += seconds_since(t);
     const auto d = static_cast<std::size_t>(s.kernel.dofs_per_node());
@@ -261,7 +261,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   void assemble_matrix(const ConstrainedSystem& s, const ResidualPass* residual) {
     if (!a_) create(s);
     frames_->update(s.constraints, s.periodic);
-    assemble_frame_matrix(a_, {s, stored_, residual}, *frames_, *rows_, *order_, local_cells_, !pattern_);
+    assemble_frame_matrix(a_, {s, residual}, *frames_, *rows_, *order_, local_cells_, !pattern_);
     pattern_ = true;
     assembled_ = true;
   }
@@ -343,7 +343,6 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
 
   SolverOptions options_;
   parallel::Processes job_;  ///< this rank, of how many
-  const StiffnessOperator* stored_;  ///< K(n) as stored element matrices; null: computed in the pass
   std::vector<CellId> local_cells_;  ///< the cells whose element work this rank does
   AmgReuse reuse_ = AmgReuse::preconditioner;  ///< never automatic
   std::optional<NodalFrames> frames_;
@@ -365,13 +364,12 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options, const parallel::RankExchange& ranks,
-                                              const StiffnessOperator* stored) {
-  return std::make_unique<AmgSolver>(options, ranks, stored);
+std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options, const parallel::RankExchange& ranks) {
+  return std::make_unique<AmgSolver>(options, ranks);
 }
 
-std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const StiffnessOperator* stored,
-                                            const NodalFrames& frames, std::span<const double> x, bool twice) {
+std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const NodalFrames& frames,
+                                            std::span<const double> x, bool twice) {
   parallel::start_petsc();
   const ElementList& cells = system.kernel.cells();
   const NodeCells around(cells, frames.node_count());
@@ -383,8 +381,8 @@ std::vector<double> assembled_frame_product(const ConstrainedSystem& system, con
   std::vector<CellId> all(cells.size());
   std::iota(all.begin(), all.end(), CellId{0});
   Mat a = create_frame_matrix(cells, around, frames, rows, one);
-  assemble_frame_matrix(a, {system, stored, nullptr}, frames, rows, order, all, true);
-  if (twice) assemble_frame_matrix(a, {system, stored, nullptr}, frames, rows, order, all, false);
+  assemble_frame_matrix(a, {system, nullptr}, frames, rows, order, all, true);
+  if (twice) assemble_frame_matrix(a, {system, nullptr}, frames, rows, order, all, false);
   Vec vx = nullptr, vy = nullptr;
   check(MatCreateVecs(a, &vx, &vy), "MatCreateVecs");
   std::vector<double> compressed(static_cast<std::size_t>(rows.count) * d);

@@ -16,15 +16,13 @@
 namespace hotmesh::deform::detail {
 
 /// With several processes in `ranks`, the matrix and the element work are distributed among them.
-/// K(n) from `stored` element matrices, or (null) computed in its element pass (ElementAssembler).
-std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options, const parallel::RankExchange& ranks,
-                                              const StiffnessOperator* stored);
+/// K(n) is computed in its element pass (ElementAssembler).
+std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options, const parallel::RankExchange& ranks);
 
 /// For tests: K~ of the system in `frames` (updated by the caller), assembled into a PETSc
-/// matrix exactly as the amg solver does it (from `stored`, or computed when null), applied to
-/// x~ (MatMult). With `twice`, assembled a second time into the same matrix, as every Newton
-/// step after the first does.
-std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const StiffnessOperator* stored,
-                                            const NodalFrames& frames, std::span<const double> x, bool twice = false);
+/// matrix exactly as the amg solver does it, applied to x~ (MatMult). With `twice`, assembled
+/// a second time into the same matrix, as every Newton step after the first does.
+std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const NodalFrames& frames,
+                                            std::span<const double> x, bool twice = false);
 
 }  // namespace hotmesh::deform::detail

@@ -153,7 +153,7 @@ TEST(DeformSurfaces, FloorOnACadFacePrescribedAndSliding) {
 }
 
 // The assembled solver (nodal frames in PETSc, algebraic multigrid) takes the deflected face's
-// normals as the matrix-free one does: both end at the same mesh, to their tolerances.
+// normals as Jacobi-PCG does: both end at the same mesh, to their tolerances.
 TEST(DeformSurfaces, SlidingOnACadFaceEndsAlikeWithEitherLinearSolver) {
   test::TempDir dir;
   write_channel(dir.path(), bulge);

@@ -1,5 +1,6 @@
-// Tests of the matrix-free stiffness operator (eqs. 9-10): agreement with the assembled
-// matrix, colouring, and bit-identical results for any number of threads.
+// Tests of the stiffness operator, K in node blocks summed from the element matrices (eqs.
+// 9-10): agreement with the textbook assembly, its block pattern, colouring, and bit-identical
+// results for any number of threads.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -33,18 +34,18 @@ StiffnessOperator make_operator(const Mesh& mesh) {
   return k;
 }
 
-TEST(StiffnessOperator, MatrixFreeAgreesWithAssembledMatrix) {
+TEST(StiffnessOperator, NodeBlocksAgreeWithTheAssemblyOfEveryEntry) {
   for (Mesh mesh : {test::square_ring(6, 4, 0.3, 1.0), test::square_ring(4, 3, 0.3, 1.0, 2, 0.5),
                     test::hybrid_ring(6, 4, 0.3, 1.0, 0, 0.0, 1.0, 2), test::hybrid_ring(4, 3, 0.3, 1.0, 2, 0.5, 1.0, 1)}) {
     test::jiggle_interior(mesh, 0.2);
     const StiffnessOperator k = make_operator(mesh);
-    const auto a = assemble_sparse(k);
+    const auto a = assemble_sparse(k.kernel(), mesh.points);
     const auto x = pseudo_random(k.size());
     std::vector<double> y(k.size());
     k.apply(x, y);
     const Eigen::VectorXd reference = a * Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
-    const Eigen::Map<const Eigen::VectorXd> matrix_free(y.data(), static_cast<Eigen::Index>(y.size()));
-    EXPECT_LT((matrix_free - reference).norm(), 1e-12 * reference.norm());
+    const Eigen::Map<const Eigen::VectorXd> product(y.data(), static_cast<Eigen::Index>(y.size()));
+    EXPECT_LT((product - reference).norm(), 1e-12 * reference.norm());
     std::vector<double> d(k.size());
     k.diagonal(d);
     for (std::size_t i = 0; i < d.size(); ++i) EXPECT_NEAR(d[i], a.coeff(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), 1e-12 * std::abs(d[i]));
@@ -83,16 +84,47 @@ TEST(StiffnessOperator, ColoursNeverShareANode) {
   expect_valid_coloring(test::hybrid_ring(5, 3, 0.3, 1.0, 2, 1.0, 1.0, 1));
 }
 
-TEST(StiffnessOperator, ProductIsBitIdenticalForAnyThreadCount) {
-  // Large enough that the element loops run in parallel (mesh/include/hotmesh/mesh/parallel_loops.hpp).
+/// Row i holds one block for each node that shares a cell with i (itself included), in
+/// increasing order; a node of a hex mesh inside the block couples with 27.
+TEST(StiffnessOperator, EachRowHoldsTheNodesThatShareACellWithItsNode) {
+  for (const Mesh& mesh : {test::square_ring(5, 3, 0.3, 1.0, 3, 1.0), test::hybrid_ring(5, 3, 0.3, 1.0, 2, 1.0, 1.0, 1)}) {
+    const StiffnessOperator k = make_operator(mesh);
+    std::vector<std::vector<NodeId>> expected(mesh.node_count());
+    for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+      for (NodeId a : mesh.cells.nodes(c)) {
+        for (NodeId b : mesh.cells.nodes(c)) expected[static_cast<std::size_t>(a)].push_back(b);
+      }
+    }
+    std::size_t blocks = 0, most = 0;
+    for (std::size_t i = 0; i < mesh.node_count(); ++i) {
+      auto& row = expected[i];
+      std::sort(row.begin(), row.end());
+      row.erase(std::unique(row.begin(), row.end()), row.end());
+      const auto columns = k.columns(static_cast<NodeId>(i));
+      EXPECT_EQ(std::vector<NodeId>(columns.begin(), columns.end()), row) << "row " << i;
+      EXPECT_EQ(k.blocks(static_cast<NodeId>(i)).size(), 9 * row.size());
+      blocks += row.size();
+      most = std::max(most, row.size());
+    }
+    EXPECT_EQ(k.block_count(), blocks);
+    if (mesh.cells.type(0) == ElementType::hex8) {
+      EXPECT_EQ(most, 27u);
+    }
+  }
+}
+
+TEST(StiffnessOperator, BlocksAndProductAreBitIdenticalForAnyThreadCount) {
+  // Large enough that the element loops run in parallel, colour by colour
+  // (mesh/include/hotmesh/mesh/parallel_loops.hpp).
   Mesh mesh = test::square_ring(16, 16, 0.3, 1.0, 4, 0.6);
   test::jiggle_interior(mesh, 0.2);
-  const StiffnessOperator k = make_operator(mesh);
+  StiffnessOperator k(mesh, element_lame(mesh, {}), true);
   const auto x = pseudo_random(k.size());
   std::vector<std::vector<double>> results;
   const int saved = omp_get_max_threads();
   for (int threads : {1, 2, 3}) {
     omp_set_num_threads(threads);
+    k.update(mesh.points);
     std::vector<double> y(k.size());
     k.apply(x, y);
     results.push_back(y);

@@ -1,5 +1,5 @@
 // The two linear solvers on the samples: `linear: amg` (assembled in nodal frames, algebraic
-// multigrid) and the paper's matrix-free Jacobi-PCG move every sample's mesh to the same place
+// multigrid) and the paper's Jacobi-PCG move every sample's mesh to the same place
 // when both solve tightly — ramp2d with and without sliding, shear2d with and without sliding,
 // and the stator-well sector (sliding, passive and periodic patches) — and the AMG runs keep
 // sliding nodes on their walls (u . n = 0 per step) and the periodic faces matched.

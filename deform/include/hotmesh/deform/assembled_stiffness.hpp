@@ -1,7 +1,9 @@
-// hotmesh deform: the global stiffness assembled into an Eigen sparse matrix from the same
-// element matrices the matrix-free operator stores. A reference for tests and small cases;
-// the assembled path of a distributed backend follows the same pattern.
+// hotmesh deform: the global stiffness assembled into an Eigen sparse matrix, entry by entry
+// from the element kernel's matrices: the textbook assembly, a reference for tests of the
+// node-block storage (stiffness_operator.hpp) on small cases.
 #pragma once
+
+#include <span>
 
 #include <Eigen/SparseCore>
 
@@ -9,7 +11,7 @@
 
 namespace hotmesh::deform {
 
-/// K as a sparse matrix with the operator's dof numbering.
-Eigen::SparseMatrix<double> assemble_sparse(const StiffnessOperator& k);
+/// K at `points` as a sparse matrix with the operator's dof numbering (node after node).
+Eigen::SparseMatrix<double> assemble_sparse(const StiffnessKernel& k, std::span<const Vec3> points);
 
 }  // namespace hotmesh::deform

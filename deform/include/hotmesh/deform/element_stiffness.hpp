@@ -35,8 +35,8 @@ void require_motion_cells(const Mesh& mesh);
 void element_stiffness(ElementType type, const ElementPoints& element, const Lame& lame, bool drop_jacobian,
                        std::span<double> k);
 
-/// y_e = K_e x_e for an element matrix of N dofs (row-major, symmetric): the product every
-/// element loop of the solver uses, the matrix-free K x and the Newton residual K u alike.
+/// y_e = K_e x_e for an element matrix of N dofs (row-major, symmetric): the element product
+/// of eqs. (9)-(10), which the amg solver's element pass gives the Newton residual K u.
 /// Hexes and prisms: a sum of columns scaled by x_j, so that the inner loop runs along
 /// contiguous memory and vectorises (column j of the symmetric K_e is its stored row j), 10 %
 /// faster than row sums for hexes and 30 % for prisms (bench_operator); for the 8x8 quad
@@ -60,8 +60,7 @@ void element_product(const double* ke, const double* xe, double* ye) {
 }
 
 /// y += K_e x_e for the cell with corners `nodes`, x and y dof vectors laid out node after node
-/// (D per node): the body of every element loop of the solver, the matrix-free K x and the
-/// Newton residual K u alike.
+/// (D per node): the body of the element loops of eqs. (9)-(10).
 template <std::size_t N, std::size_t D>
 void add_element_product(std::span<const NodeId> nodes, const double* ke, std::span<const double> x, std::span<double> y) {
   constexpr std::size_t kCorners = N / D;

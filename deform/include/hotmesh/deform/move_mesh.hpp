@@ -6,8 +6,8 @@
 // analogy with geometric nonlinearity by the paper's Newton-Raphson cycle (eqs. 7-8):
 //     R(u) = K(x + u) u - f,      K(n) p = -R(n),      u(n+1) = u(n) + p,
 // K rebuilt at the current geometry every iteration, until ||R|| <= tol ||R0||. Each linear
-// system is solved by preconditioned CG on the free degrees of freedom, matrix-free with
-// nodal Jacobi (the paper's) or assembled in nodal frames with algebraic multigrid
+// system is solved by preconditioned CG on the free degrees of freedom, with nodal Jacobi
+// (the paper's, K in node blocks) or assembled in nodal frames with algebraic multigrid
 // (SolverOptions::linear). After every
 // increment the cells are checked; an increment that inverts a cell or whose Newton cycle
 // fails is retried as two half increments (recursively, up to a limit). If it still fails,

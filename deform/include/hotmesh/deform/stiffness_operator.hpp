@@ -1,15 +1,22 @@
 // hotmesh deform: the global stiffness K of the mesh, in the paper's three layers: the
 // pointwise material law (eq. 35, material.hpp), the element kernel (Q1 with the Jacobian
 // dropped, element_stiffness.hpp, applied to the cells by StiffnessKernel), and the storage.
-// Here the storage is matrix-free (section 3): the element matrices K_e are computed once per
-// Newton iteration at the current coordinates and stored, and y = K x is an element loop over
+// The paper's solver is matrix-free (section 3): it stores the element matrices K_e, computed
+// once per Newton iteration at the current coordinates, and y = K x is an element loop over
 // the connectivity (eqs. 9-10):
 //     (K x)_i = sum_{H containing i} [B_i^H] [K^H] {x^H}
-// (the amg solver assembles the same K_e into a PETSc matrix instead, petsc_solver.cpp).
-// Elements are coloured so that no two of one colour share a node: colours run one after
-// another, the elements of a colour in parallel. Every node then receives its contributions
-// in the same order whatever the number of threads, so results are race-free and
-// bit-identical for any thread count.
+// hotmesh computes the same K_e once per Newton iteration and adds them straight into d x d
+// node blocks, K_ij = sum_{H containing i and j} K^H_ij (block CSR), and the product is a loop
+// over the nodes. The K is the same to round-off, and so are the products; the blocks take
+// less memory than the K_e for every cell type (2.1 kB against 4.6 kB per node on hexes,
+// 1.2 kB against 6.7 kB on tetrahedra) and a product moves only them, so it is faster too
+// (docs/method.md, "Storage of K"; bench_operator). The amg solver assembles the same K_e
+// into a PETSc matrix in nodal frames instead (petsc_solver.cpp).
+// Elements are coloured so that no two of one colour share a node: colours are added one
+// after another, the elements of a colour in parallel. Every block then receives its
+// contributions in the same order whatever the number of threads, and each row of a product
+// is summed by one thread in column order, so results are race-free and bit-identical for
+// any thread count.
 #pragma once
 
 #include <cstdint>
@@ -24,6 +31,17 @@
 
 namespace hotmesh::deform {
 
+/// The cells around each node (CSR), in cell order.
+struct NodeCells {
+  std::vector<std::int64_t> start;
+  std::vector<CellId> cells;
+
+  NodeCells(const ElementList& list, std::size_t nodes);
+  std::span<const CellId> of(std::size_t node) const {
+    return {cells.data() + start[node], static_cast<std::size_t>(start[node + 1] - start[node])};
+  }
+};
+
 /// Cells grouped so that no two cells of a group share a node (greedy, in cell order); within
 /// a colour the cells are grouped by type (in cell order within a type), so that the element
 /// loops run over cells of one size at a time.
@@ -37,8 +55,8 @@ CellColoring color_cells(const ElementList& cells, std::size_t node_count);
 /// The element kernel over the cells of a mesh: K_e of any cell at given points, with the
 /// cell's Lamé parameters (eq. 35, material.hpp) and its element of element_stiffness.hpp
 /// (Q1 for quads and hexes, the linear tri3, tet4, wedge6 and pyramid5 beside them).
-/// It stores nothing per Newton step; StiffnessOperator stores the K_e, the amg solver
-/// assembles them as they come.
+/// It stores nothing per Newton step; StiffnessOperator sums the K_e into node blocks, the
+/// amg solver assembles them into its matrix as they come.
 class StiffnessKernel {
  public:
   /// The mesh's cells must be of its dimension (tri3 and quad4 in 2D; tet4, hex8, wedge6 and
@@ -66,15 +84,16 @@ class StiffnessKernel {
   CellColoring coloring_;
 };
 
-/// K matrix-free with stored element matrices (the paper's section 3): update() computes every
-/// K_e at the current points, apply() is the element loop of eqs. (9)-(10).
+/// K in d x d node blocks (block CSR): update() computes every K_e at the current points and
+/// adds it into the blocks of its corners, apply() multiplies node row by node row.
 class StiffnessOperator final : public LinearOperator {
  public:
   explicit StiffnessOperator(std::shared_ptr<const StiffnessKernel> kernel);
-  /// The kernel of `mesh` (see StiffnessKernel), with storage for its element matrices.
+  /// The kernel of `mesh` (see StiffnessKernel), with the block pattern of its cells.
   StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian);
 
-  /// Recomputes every K_e at `points` (parallel over cells).
+  /// K at `points`: every K_e recomputed and summed into the blocks (parallel over the cells
+  /// of a colour).
   void update(std::span<const Vec3> points);
 
   std::size_t size() const override { return kernel_->size(); }
@@ -85,16 +104,27 @@ class StiffnessOperator final : public LinearOperator {
   /// The d x d diagonal blocks of K, one per node, row-major, node after node.
   void diagonal_blocks(std::span<double> blocks) const;
 
-  /// K_e of cell c as update() stored it, row-major.
-  std::span<const double> element_matrix(CellId c) const;
+  /// The nodes that node i shares a cell with, itself included, in increasing order: the
+  /// columns of block row i.
+  std::span<const NodeId> columns(NodeId i) const;
+  /// The d x d blocks K_ij of row i, row-major, in the order of columns(i).
+  std::span<const double> blocks(NodeId i) const;
+  /// Blocks stored (the nonzero blocks of K).
+  std::size_t block_count() const { return columns_.size(); }
+  /// Bytes held: blocks, their column numbers and row starts, and each cell's block positions.
+  std::size_t bytes() const;
+
   const StiffnessKernel& kernel() const { return *kernel_; }
   int dofs_per_node() const { return kernel_->dofs_per_node(); }
   const ElementList& cells() const { return kernel_->cells(); }
 
  private:
   std::shared_ptr<const StiffnessKernel> kernel_;
-  std::vector<std::size_t> offsets_;  ///< K_e of cell c at matrices_[offsets_[c] ..), element_size(c)^2 values
-  std::vector<double> matrices_;
+  std::vector<std::int64_t> row_start_;    ///< row i holds blocks [row_start_[i], row_start_[i + 1])
+  std::vector<NodeId> columns_;            ///< the column (node) of each block
+  std::vector<std::size_t> cell_start_;    ///< cell c's block positions at positions_[cell_start_[c] ..)
+  std::vector<std::uint32_t> positions_;   ///< block of corners (a, b) of a cell, a * corners + b
+  std::vector<double> values_;             ///< block k at values_[k d^2 ..), row-major
 };
 
 }  // namespace hotmesh::deform

@@ -10,7 +10,7 @@ namespace hotmesh::deform {
 
 /// How each Newton step's linear system K(n) p = -R(n) is solved (docs/method.md).
 enum class LinearSolverKind {
-  jacobi_pcg,  ///< the paper's matrix-free PCG with nodal Jacobi (section 3), projected for sliding (eq. 16)
+  jacobi_pcg,  ///< the paper's PCG with nodal Jacobi (section 3), projected for sliding (eq. 16), K in node blocks
   amg,         ///< assembled in nodal frames (PETSc), CG preconditioned by algebraic multigrid
 };
 

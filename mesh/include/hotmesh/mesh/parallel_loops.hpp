@@ -20,7 +20,7 @@ inline constexpr std::ptrdiff_t kParallelVector = 1 << 16;   ///< entries of a v
 inline constexpr std::ptrdiff_t kParallelNodes = 1 << 15;    ///< nodes of a cheap nodal loop
 inline constexpr std::ptrdiff_t kParallelCells = 256;        ///< cells of an element-matrix loop
 inline constexpr std::ptrdiff_t kParallelProjections = 256;  ///< nodes projected on boundaries
-/// Multiply-adds of a product with stored element matrices (cells x dofs^2).
+/// Multiply-adds of a product y = K x (the entries of K's node blocks).
 inline constexpr std::ptrdiff_t kParallelProduct = 1 << 18;
 
 /// Carries an exception out of an OpenMP loop. One that escapes a parallel region (even one
