@@ -156,6 +156,8 @@ json deflections_json(const io::Case& c, const io::CaseSetup& setup, double scal
     deflection["wall"] = io::kWallKindNames.name(s.kind);
     if (s.faces) {
       put_length(deflection, "max_edge_gap", s.faces->max_edge_gap, scale);
+      deflection["shared_edges"] = s.faces->shared_edges;
+      deflection["joined_edges"] = s.faces->joined_edges;
       json faces = json::array();
       for (const auto& f : s.faces->faces) {
         json face{{"face", f.face},

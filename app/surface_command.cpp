@@ -50,9 +50,10 @@ int run_surface(const Options& o) {
                      ? std::string("exact")
                      : fmt::format("interpolated, within {:.3g}", face["max_deviation"].get<double>()));
   }
-  spdlog::info("{} nodes ({} used), degree {}: max node distance to the faces {:.3g}, residual {:.3g}, edge gap {:.3g}",
+  spdlog::info("{} nodes ({} used), degree {}: max node distance to the faces {:.3g}, residual {:.3g}, edge gap {:.3g} "
+               "({} of {} shared edges joined)",
                report.nodes, report.used_nodes, report.degree, report.max_node_distance_to_cad,
-               report.max_node_residual, report.max_edge_gap);
+               report.max_node_residual, report.max_edge_gap, report.joined_edges, report.shared_edges);
   spdlog::info("wrote {}: {}", folder.string(), fmt::join(kSurfaceFiles, ", "));
   return 0;
 }

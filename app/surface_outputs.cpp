@@ -277,6 +277,8 @@ nlohmann::json surface_summary(const SurfaceRun& run, std::span<const geometry::
           {"rejected_nodes", rejected},
           {"faces", faces},
           {"max_edge_gap", report.max_edge_gap},
+          {"shared_edges", report.shared_edges},
+          {"joined_edges", report.joined_edges},
           {"max_node_distance_to_cad", report.max_node_distance_to_cad},
           {"max_node_residual", report.max_node_residual}};
 }

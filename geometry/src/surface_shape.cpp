@@ -12,6 +12,7 @@
 #include <string>
 #include <utility>
 
+#include "field_joins.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "node_list.hpp"
 
@@ -205,6 +206,82 @@ struct FaceSet {
   }
 };
 
+/// The edges the faces share side to side with parameters that correspond affinely (equal
+/// fractions along both sides, or reversed), which join_fields can make the fields meet on,
+/// and the corners those sides end at, grouped by the point of the wall they lie at.
+struct EdgeJoins {
+  std::vector<detail::SharedSide> sides;
+  std::vector<std::vector<detail::FaceCorner>> corners;
+  std::size_t shared = 0;  ///< shared sides, each counted once, joinable or not
+};
+
+EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
+  const double tolerance = 1e-7 * set.size;
+  constexpr int kSamples = 9;
+  const auto point = [&](std::size_t f, int side, double fraction) {
+    const auto [u, v] = on_side(faces[f].surface.domain(), side, fraction);
+    return faces[f].surface.point(u, v);
+  };
+  const auto matches = [&](std::size_t a, int side_a, std::size_t b, int side_b, bool reversed) {
+    for (int k = 0; k <= kSamples; ++k) {
+      const double f = static_cast<double>(k) / kSamples;
+      if (distance(point(a, side_a, f), point(b, side_b, reversed ? 1.0 - f : f)) > tolerance) return false;
+    }
+    return true;
+  };
+  EdgeJoins out;
+  for (std::size_t a = 0; a < faces.size(); ++a) {
+    for (int side_a = 0; side_a < 4; ++side_a) {
+      const int n = set.neighbours[a][static_cast<std::size_t>(side_a)];
+      if (n < 0) continue;
+      const auto b = static_cast<std::size_t>(n);
+      // Counted from the side that comes first, (face, side) in order, when b's matching side
+      // points back; a side of a lying along part of b's side (no side of b matches) from a.
+      bool found = false;
+      for (int side_b = 0; side_b < 4 && !found; ++side_b) {
+        for (const bool reversed : {false, true}) {
+          if (!matches(a, side_a, b, side_b, reversed)) continue;
+          found = true;
+          if (std::pair(b, side_b) < std::pair(a, side_a) && set.neighbours[b][static_cast<std::size_t>(side_b)] == static_cast<int>(a)) break;
+          ++out.shared;
+          out.sides.push_back({{a, side_a}, {b, side_b}, reversed});
+          break;
+        }
+      }
+      if (!found) {
+        const bool counted_from_b = b < a && std::find(set.neighbours[b].begin(), set.neighbours[b].end(), static_cast<int>(a)) !=
+                                                 set.neighbours[b].end();
+        if (!counted_from_b) ++out.shared;
+      }
+    }
+  }
+  // Corner c of a rectangle: (u first | u last) + 2 (v first | v last); the ends of side k.
+  constexpr std::array<std::array<int, 2>, 4> kEnds{{{0, 1}, {2, 3}, {0, 2}, {1, 3}}};
+  std::vector<std::pair<detail::FaceCorner, Vec3>> ends;
+  for (const detail::SharedSide& s : out.sides) {
+    for (const detail::FaceSide& fs : {s.a, s.b}) {
+      for (const int c : kEnds[static_cast<std::size_t>(fs.side)]) {
+        const bool seen = std::any_of(ends.begin(), ends.end(), [&](const auto& e) { return e.first.face == fs.face && e.first.corner == c; });
+        if (seen) continue;
+        const ParameterRectangle r = faces[fs.face].surface.domain();
+        ends.push_back({{fs.face, c}, faces[fs.face].surface.point(c % 2 == 0 ? r.u_first : r.u_last, c < 2 ? r.v_first : r.v_last)});
+      }
+    }
+  }
+  std::vector<bool> grouped(ends.size(), false);
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    if (grouped[i]) continue;
+    out.corners.emplace_back();
+    for (std::size_t j = i; j < ends.size(); ++j) {
+      if (!grouped[j] && distance(ends[i].second, ends[j].second) <= tolerance) {
+        grouped[j] = true;
+        out.corners.back().push_back(ends[j].first);
+      }
+    }
+  }
+  return out;
+}
+
 /// The largest deflection a field gives (bounded by its largest pole: convex hull property).
 double largest_pole(const BSplineSurface& field) {
   double largest = 0.0;
@@ -381,6 +458,24 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
     } catch (const InputError& e) {
       throw InputError::in(samples.source, "CAD face " + std::to_string(id) + ": " + e.what());
     }
+  }
+  // The fields made to meet along the edges the faces share (field_joins.hpp), and the fit's
+  // residuals measured again on the joined fields.
+  const EdgeJoins joins = edge_joins(faces, set);
+  report.shared_edges = joins.shared;
+  report.joined_edges = joins.sides.size() - detail::join_fields(out.fields, joins.sides, joins.corners).size();
+  report.max_node_residual = 0.0;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    SurfaceFitReport& fit = report.faces[f].fit;
+    fit.max_residual = 0.0;
+    double squares = 0.0;
+    for (const FieldSample& sample : placed.on_face[f]) {
+      const double r = distance(out.fields[f].point(sample.u, sample.v), sample.value);
+      fit.max_residual = std::max(fit.max_residual, r);
+      squares += r * r;
+    }
+    fit.rms_residual = std::sqrt(squares / static_cast<double>(placed.on_face[f].size()));
+    report.max_node_residual = std::max(report.max_node_residual, fit.max_residual);
   }
   report.max_edge_gap = edge_gap(faces, projectors, out.fields, report.tolerance);
   return out;

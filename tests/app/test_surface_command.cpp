@@ -144,6 +144,8 @@ TEST(SurfaceCli, DeformedFacesReproducePolynomialDeflections) {
   EXPECT_LT(summary["max_node_residual"].get<double>(), 1e-12);
   EXPECT_LT(summary["max_node_distance_to_cad"].get<double>(), 1e-10);
   EXPECT_LT(summary["max_edge_gap"].get<double>(), 1e-12);  // both fields carry on_edge(s)
+  EXPECT_EQ(summary["shared_edges"], 1);
+  EXPECT_EQ(summary["joined_edges"], 1);
   EXPECT_GT(summary["tolerance"].get<double>(), 0.0);
   ASSERT_EQ(summary["faces"].size(), 2u);
   const nlohmann::json& f1 = summary["faces"][0];

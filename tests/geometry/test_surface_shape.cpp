@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -170,6 +171,111 @@ TEST(SurfaceShape, FacesSharingAnEdgeMeetAfterTheDeflection) {
   // A point of the deflected edge lies on the deflected wall, whichever face takes it.
   EXPECT_LT(fit.shape->project(fit.shape->at({1.0, 0.5, 0}, 1.0, {}).point, 1.0).distance, 1e-12);
 }
+
+/// The bilinear face with corners p00 (u first, v first), p10 (u last, v first), p01 and p11,
+/// parameters [u0, u1] x [v0, v1].
+BSplineSurface quad_face(Vec3 p00, Vec3 p10, Vec3 p01, Vec3 p11, double u0 = 0, double u1 = 1, double v0 = 0,
+                         double v1 = 1) {
+  return BSplineSurface(1, 1, {u0, u0, u1, u1}, {v0, v0, v1, v1}, {p00, p01, p10, p11});
+}
+
+/// FEM nodes scattered at random over the square [0, 2]^2 of the plane z = 0, none within 0.01
+/// of the lines x = 1 and y = 1 (farther than the default distance tolerance, so each lies on
+/// one face only), with deflection f(x, y).
+template <class F>
+DeflectionSamples scattered_on_square(int n, F f) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(0.0, 2.0);
+  std::vector<Vec3> points, deflections;
+  while (static_cast<int>(points.size()) < n) {
+    const Vec3 p{unit(random), unit(random), 0.0};
+    if (std::abs(p.x - 1.0) < 0.01 || std::abs(p.y - 1.0) < 0.01) continue;
+    points.push_back(p);
+    deflections.push_back(f(p.x, p.y));
+  }
+  return cartesian(points, deflections);
+}
+
+// Issue 23 item 1: four faces of the square [0, 2]^2 meeting at (1, 1), each parametrised its
+// own way (directions turned and reversed, other ranges), with FEM nodes scattered so that each
+// face's field is a least-squares fit and none of them lies on an edge. The fields are joined:
+// the deflected faces meet along every shared edge and at the common corner to round-off, while
+// the fit keeps its accuracy, and a cubic field is still reproduced exactly.
+TEST(SurfaceShape, ScatteredFitsOnFacesSharingEdgesAreJoinedSoTheDeflectedFacesMeet) {
+  const std::vector<CadFace> faces{
+      {1, quad_face({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0})},
+      {2, quad_face({2, 0, 0}, {1, 0, 0}, {2, 1, 0}, {1, 1, 0}, 3.0, 5.0)},            // u from x = 2 to x = 1
+      {3, quad_face({0, 2, 0}, {0, 1, 0}, {1, 2, 0}, {1, 1, 0}, 0.0, 1.0, -1.0, 2.0)},  // u along -y, v along x
+      {4, quad_face({2, 2, 0}, {1, 2, 0}, {2, 1, 0}, {1, 1, 0})}};
+  // A point of the wall on face f at (x, y), and the deflected point there.
+  const auto parameters = [](std::size_t f, double x, double y) -> std::array<double, 2> {
+    if (f == 0) return {x, y};
+    if (f == 1) return {3.0 + 2.0 * (2.0 - x), y};
+    if (f == 2) return {2.0 - y, -1.0 + 3.0 * x};
+    return {2.0 - x, 2.0 - y};
+  };
+  const auto smooth = [](double x, double y) {
+    return Vec3{0.01 * std::sin(2.0 * x), 0.02 * std::cos(3.0 * y), 0.05 * std::sin(2.0 * x + y)};
+  };
+  const SurfaceShapeFit fit = make_surface_shape(faces, scattered_on_square(600, smooth), {.degree = 3});
+  EXPECT_EQ(fit.report.shared_edges, 4u);
+  EXPECT_EQ(fit.report.joined_edges, 4u);
+  EXPECT_LT(fit.report.max_edge_gap, 1e-15);
+  const auto deflected = [&](std::size_t f, double x, double y) {
+    const auto [u, v] = parameters(f, x, y);
+    return fit.shape->at({u, v, static_cast<int>(f)}, 1.0, {}).point;
+  };
+  double largest_error = 0.0;
+  for (int k = 0; k <= 20; ++k) {
+    const double a = 0.05 * k;
+    EXPECT_LT(distance(deflected(0, 1.0, a), deflected(1, 1.0, a)), 1e-15) << a;        // x = 1, y < 1
+    EXPECT_LT(distance(deflected(2, 1.0, 1 + a), deflected(3, 1.0, 1 + a)), 1e-15) << a;  // x = 1, y > 1
+    EXPECT_LT(distance(deflected(0, a, 1.0), deflected(2, a, 1.0)), 1e-15) << a;        // y = 1, x < 1
+    EXPECT_LT(distance(deflected(1, 1 + a, 1.0), deflected(3, 1 + a, 1.0)), 1e-15) << a;  // y = 1, x > 1
+    for (std::size_t f = 0; f < 4; ++f) {
+      const double x = (f % 2 == 0 ? 0.0 : 1.0) + a, y = (f < 2 ? 0.0 : 1.0) + 0.5;
+      largest_error = std::max(largest_error, distance(deflected(f, x, y), Vec3{x, y, 0} + smooth(x, y)));
+    }
+  }
+  for (std::size_t f = 1; f < 4; ++f) EXPECT_LT(distance(deflected(0, 1, 1), deflected(f, 1, 1)), 1e-15) << f;
+  EXPECT_LT(largest_error, 2e-4);  // of deflections up to 0.05: the fit's accuracy, edges included
+  EXPECT_LT(fit.report.max_node_residual, 2e-4);
+  // A cubic in (x, y) is a cubic in every face's parameters: reproduced, joins and all.
+  const auto cubic = [](double x, double y) {
+    return Vec3{0.01 * x * x * y, 0.02 * (y * y * y - x), 0.03 * x * y * (x - y)};
+  };
+  const SurfaceShapeFit exact = make_surface_shape(faces, scattered_on_square(200, cubic), {.degree = 3});
+  EXPECT_EQ(exact.report.joined_edges, 4u);
+  EXPECT_LT(exact.report.max_node_residual, 1e-13);
+  for (std::size_t f = 0; f < 4; ++f) {
+    const Vec3 there{0.3 + (f % 2 == 0 ? 0.0 : 1.0), 0.7 + (f < 2 ? 0.0 : 1.0), 0.0};
+    const auto [u, v] = parameters(f, there.x, there.y);
+    EXPECT_LT(distance(exact.shape->at({u, v, static_cast<int>(f)}, 1.0, {}).point, there + cubic(there.x, there.y)), 1e-13) << f;
+  }
+}
+
+// Faces whose parameters run along their shared edge at speeds that are not in a constant ratio
+// cannot carry fields that meet exactly (one B-spline in one face's parameter is not one in
+// the other's): the edge is counted as shared, not joined, and its gap is reported.
+TEST(SurfaceShape, AnEdgeParametrisedUnevenlyByItsFacesIsReportedNotJoined) {
+  // Face 2: the square [1, 2] x [0, 1] with v running quadratically along y.
+  const BSplineSurface uneven(1, 2, {0, 0, 1, 1}, {0, 0, 0, 1, 1, 1},
+                              {{1, 0, 0}, {1, 0.8, 0}, {1, 1, 0}, {2, 0, 0}, {2, 0.8, 0}, {2, 1, 0}});
+  const std::vector<CadFace> faces{{1, quad_face({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0})}, {2, uneven}};
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Vec3> points, deflections;
+  for (int k = 0; k < 300; ++k) {
+    points.push_back({2.0 * unit(random), unit(random), 0.0});
+    deflections.push_back({0.0, 0.0, 0.05 * std::sin(3.0 * points.back().x + 2.0 * points.back().y)});
+  }
+  const SurfaceShapeFit fit = make_surface_shape(faces, cartesian(points, deflections), {.degree = 3});
+  EXPECT_EQ(fit.report.shared_edges, 1u);
+  EXPECT_EQ(fit.report.joined_edges, 0u);
+  EXPECT_GT(fit.report.max_edge_gap, 1e-8);
+  EXPECT_LT(fit.report.max_edge_gap, 1e-3);
+}
+
 
 // Creases without mesh nodes (issue 20 item 2 on faces): a face rising by 30 degrees from a flat
 // one along x = 1 is a crease of 30 degrees, not one of 40; the crease's point nearest any point
