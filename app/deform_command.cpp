@@ -194,7 +194,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
   const io::Case& c = in.c;
   spdlog::info("case {}", c.file.string());
   const parallel::Processes job = parallel::processes();
-  if (job.count > 1 && c.solver.linear != deform::LinearSolverKind::amg) {
+  if (job.count > 1 && c.solver.linear == deform::LinearSolverKind::jacobi_pcg) {
     throw InputError::in(c.file.string(), fmt::format("solver.linear: {} runs in one process; with mpirun ({} "
                                                       "processes) use `linear: amg`",
                                                       deform::to_string(c.solver.linear), job.count));
@@ -233,16 +233,20 @@ deform::MotionResult move_the_mesh(const Options& options, RunState& state, cons
   const mesh::Mesh& mesh = in.loaded.mesh;
   const parallel::Processes job = parallel::processes();
   const int increments = c.solver.increments;
+  const deform::LinearSolverChoice linear = linear_solver_of(c, mesh);
+  deform::SolverOptions solver = c.solver;
+  solver.linear = linear.kind;
   if (in.resumed) {
     const io::CheckpointInfo& info = in.resumed->info;
     spdlog::info("resuming from {} (written {}): {} of {} increments done, stage {:.4f}; on {}",
                  checkpoints.path().string(), info.written_at, info.finished_increments, info.increments, info.lambda,
                  counted(omp_get_max_threads(), "thread"));
   } else {
-    spdlog::info("moving the mesh in {} increments on {}{}, linear solver {}{}", increments,
+    spdlog::info("moving the mesh in {} increments on {}{}, linear solver {}{} ({}{})", increments,
                  job.count > 1 ? fmt::format("{} processes of ", job.count) : "", counted(omp_get_max_threads(), "thread"),
-                 deform::to_string(c.solver.linear),
-                 c.solver.linear == deform::LinearSolverKind::amg ? fmt::format(" ({})", deform::to_string(c.solver.amg)) : "");
+                 deform::to_string(linear.kind),
+                 linear.kind == deform::LinearSolverKind::amg ? fmt::format(" with {}", deform::to_string(c.solver.amg)) : "",
+                 c.solver.linear == deform::LinearSolverKind::automatic ? "auto: " : "", linear.reason);
   }
   const bool sliding = std::any_of(setup.motions.begin(), setup.motions.end(),
                                    [](const deform::PatchMotion& m) { return m.role == deform::BoundaryRole::sliding; });
@@ -262,7 +266,7 @@ deform::MotionResult move_the_mesh(const Options& options, RunState& state, cons
   };
   state.phase = "moving the mesh";
   try {
-    return deform::move_mesh(mesh, setup.motions, c.material, c.solver, observers, in.restart ? &*in.restart : nullptr,
+    return deform::move_mesh(mesh, setup.motions, c.material, solver, observers, in.restart ? &*in.restart : nullptr,
                              in.resumed ? &in.resumed->state : nullptr, parallel::job_exchange());
   } catch (const deform::FreeRigidMotion& e) {  // the roles as a whole: the case's `patches:`
     throw InputError::at(c.file.string(), c.patches_line, fmt::format("patches: {}", e.what()));

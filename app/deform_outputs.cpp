@@ -183,14 +183,16 @@ json deflections_json(const io::Case& c, const io::CaseSetup& setup, double scal
   return deflections;
 }
 
-json solver_json(const deform::SolverOptions& solver) {
+json solver_json(const deform::SolverOptions& solver, const deform::LinearSolverChoice& linear) {
   return {{"increments", solver.increments},
           {"newton_tolerance", solver.newton_tolerance},
           {"max_newton_iterations", solver.max_newton_iterations},
           {"pcg_tolerance", solver.pcg_tolerance},
           {"max_pcg_iterations", solver.max_pcg_iterations},
           {"max_increment_splits", solver.max_increment_splits},
-          {"linear", deform::to_string(solver.linear)},
+          {"linear", deform::to_string(linear.kind)},
+          {"linear_chosen_by", solver.linear == deform::LinearSolverKind::automatic ? fmt::format("auto: {}", linear.reason)
+                                                                                  : std::string(linear.reason)},
           {"amg", deform::to_string(solver.amg)},
           {"amg_reuse", deform::kAmgReuseNames.name(solver.amg_reuse)},
           {"forcing", deform::to_string(solver.forcing)},
@@ -325,6 +327,12 @@ json seconds_json(const RunTimings& timings, const deform::MotionTimings& m) {
 
 }  // namespace
 
+deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh& mesh) {
+  if (c.solver.linear != deform::LinearSolverKind::automatic) return {c.solver.linear, "the case file"};
+  const bool sliding = std::any_of(c.patches.begin(), c.patches.end(), [](const io::PatchSpec& p) { return p.role == io::PatchRole::sliding; });
+  return deform::choose_linear_solver(mesh.dimension, mesh.cell_count(), sliding, parallel::processes().count);
+}
+
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
                   const io::CaseSetup& setup, const deform::MotionResult& result, const RunTimings& timings,
                   RunOutputs& outputs, const io::CheckpointInfo* resumed) {
@@ -338,7 +346,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["patches"] = json::array();
   for (const auto& m : setup.motions) j["patches"].push_back({{"name", m.patch}, {"role", deform::to_string(m.role)}});
   j["deflections"] = deflections_json(c, setup, result.length_scale);
-  j["solver"] = solver_json(c.solver);
+  j["solver"] = solver_json(c.solver, linear_solver_of(c, loaded.mesh));
   put_increments(j, result);
   put_motion(j, loaded.mesh, setup, result);
   j["wall_deviations"] = wall_deviations_json(loaded.mesh, result.points, setup, result.lambda_reached, result.length_scale);

@@ -13,12 +13,6 @@
 #include "hotmesh/mesh/parallel_loops.hpp"
 
 namespace hotmesh::deform {
-namespace {
-
-constexpr std::size_t kElementTypes = static_cast<std::size_t>(ElementType::pyramid5) + 1;
-
-}  // namespace
-
 NodeCells::NodeCells(const ElementList& list, std::size_t nodes) : start(nodes + 1, 0) {
   for (NodeId n : list.all_nodes()) ++start[static_cast<std::size_t>(n) + 1];
   for (std::size_t i = 1; i <= nodes; ++i) start[i] += start[i - 1];
@@ -55,15 +49,8 @@ CellColoring color_cells(const ElementList& cells, std::size_t node_count) {
   for (std::size_t i = 1; i < coloring.offsets.size(); ++i) coloring.offsets[i] += coloring.offsets[i - 1];
   coloring.cells.resize(cells.size());
   std::vector<std::int64_t> next(coloring.offsets.begin(), coloring.offsets.end() - 1);
-  // Type by type, so that each colour holds its cells grouped by type, in cell order within one.
-  std::vector<bool> present(kElementTypes, false);
-  for (ElementType t : cells.types()) present[static_cast<std::size_t>(t)] = true;
-  for (std::size_t t = 0; t < kElementTypes; ++t) {
-    if (!present[t]) continue;
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      if (static_cast<std::size_t>(cells.type(c)) != t) continue;
-      coloring.cells[static_cast<std::size_t>(next[static_cast<std::size_t>(color[c])]++)] = static_cast<CellId>(c);
-    }
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    coloring.cells[static_cast<std::size_t>(next[static_cast<std::size_t>(color[c])]++)] = static_cast<CellId>(c);
   }
   return coloring;
 }

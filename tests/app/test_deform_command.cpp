@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 
@@ -135,6 +136,26 @@ TEST(DeformCommand, HybridMeshMovesWithEitherSolverAndReportsQualityPerCellType)
   EXPECT_LT(largest, 1e-4);  // both solve each Newton step to 1e-6
 }
 
+/// `linear: auto`, a case file's default, picks amg for a 2D mesh with a sliding wall and
+/// jacobi-pcg without (deform::choose_linear_solver); the log and report.json say which and why.
+TEST(DeformCommand, LinearAutoPicksTheSolverBySlidingWallsAndSaysWhy) {
+  const std::array<std::array<std::string, 3>, 2> runs{{{"ramp2d-sliding.yaml", "amg", "auto: a 2D mesh with a sliding wall"},
+                                                       {"ramp2d.yaml", "jacobi-pcg", "auto: a 2D mesh without sliding walls"}}};
+  for (const auto& [sample, linear, why] : runs) {
+    SCOPED_TRACE(sample);
+    const std::string yaml = test::read_text(kSample / sample);
+    ASSERT_EQ(yaml.find("linear:"), std::string::npos);  // the default
+    const RampCase ramp(yaml);
+    const auto r = hotmesh("deform " + ramp.case_file());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_THAT(r.output, HasSubstr("linear solver " + linear));
+    EXPECT_THAT(r.output, HasSubstr(why));
+    const auto report = read_json(ramp.dir / "case-out" / "report.json");
+    EXPECT_EQ(report["solver"]["linear"], linear);
+    EXPECT_EQ(report["solver"]["linear_chosen_by"], why);
+  }
+}
+
 /// `linear: amg` runs PETSc inside the process, without mpirun, and leaves no MPI session
 /// folder behind; the report names the solver and splits its time into phases.
 TEST(DeformCommand, AmgSolverRunsWithoutMpirunAndReportsItsPhases) {
@@ -144,7 +165,7 @@ TEST(DeformCommand, AmgSolverRunsWithoutMpirunAndReportsItsPhases) {
   test::TempDir tmp;
   const auto r = test::run_command("TMPDIR=" + shell_quote(tmp.path().string()) + " " + HOTMESH_EXE + " deform " + ramp.case_file());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("linear solver amg (gamg)"));
+  EXPECT_THAT(r.output, HasSubstr("linear solver amg with gamg (the case file)"));
   EXPECT_THAT(r.output, HasSubstr("preconditioner"));
   EXPECT_TRUE(std::filesystem::is_empty(tmp.path()));  // Open MPI's session folder removed
   const auto report = read_json(ramp.dir / "case-out" / "report.json");

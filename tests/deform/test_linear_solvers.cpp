@@ -331,6 +331,18 @@ TEST_P(FramesIn, AmgElementPassGivesTheResidualAndMatrixOfTheNodeBlocks) {
   EXPECT_LE(max_difference(p_amg, p_jacobi), 1e-8 * max_abs(p_jacobi));
 }
 
+/// `linear: auto`: amg with several processes, for 2D meshes with a sliding wall and 3D meshes
+/// beyond kJacobiPcgCells cells; jacobi-pcg otherwise.
+TEST(LinearSolverChoice, FollowsTheMeasuredRule) {
+  EXPECT_EQ(choose_linear_solver(2, 1000, true, 1).kind, LinearSolverKind::amg);
+  EXPECT_EQ(choose_linear_solver(2, 1000000, false, 1).kind, LinearSolverKind::jacobi_pcg);
+  EXPECT_EQ(choose_linear_solver(2, 1000, false, 2).kind, LinearSolverKind::amg);
+  EXPECT_EQ(choose_linear_solver(3, kJacobiPcgCells, true, 1).kind, LinearSolverKind::jacobi_pcg);
+  EXPECT_EQ(choose_linear_solver(3, kJacobiPcgCells + 1, false, 1).kind, LinearSolverKind::amg);
+  EXPECT_EQ(choose_linear_solver(3, 5000, false, 4).kind, LinearSolverKind::amg);
+  EXPECT_EQ(choose_linear_solver(3, kJacobiPcgCells + 1, true, 1).reason, "a 3D mesh of more than 500 000 cells");
+}
+
 INSTANTIATE_TEST_SUITE_P(TwoAndThreeDimensions, FramesIn,
                          ::testing::Values(SectorCells{2, false}, SectorCells{3, false}, SectorCells{2, true},
                                            SectorCells{3, true}),

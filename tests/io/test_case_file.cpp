@@ -175,7 +175,7 @@ TEST_F(CaseFile, AppliesDefaults) {
   EXPECT_EQ(c.material.law, material.law);
   EXPECT_EQ(c.material.drop_jacobian, material.drop_jacobian);
   EXPECT_EQ(c.solver.max_increment_splits, solver.max_increment_splits);
-  EXPECT_EQ(c.solver.linear, deform::LinearSolverKind::jacobi_pcg);
+  EXPECT_EQ(c.solver.linear, deform::LinearSolverKind::automatic);  // the tool picks
   EXPECT_EQ(c.solver.amg, deform::AmgPackage::gamg);
   EXPECT_EQ(c.solver.forcing, deform::ForcingTerm::fixed);
   EXPECT_TRUE(c.pictures.empty());
@@ -240,10 +240,11 @@ TEST_F(CaseFile, ReadsLinearSolverMultigridAndForcing) {
   EXPECT_EQ(c.solver.linear, deform::LinearSolverKind::amg);
   EXPECT_EQ(c.solver.amg, deform::AmgPackage::hypre);
   EXPECT_EQ(c.solver.forcing, deform::ForcingTerm::eisenstat_walker);
-  const Case matrix_free = parse(std::string(kBase) + "solver:\n  linear: jacobi-pcg\n  amg: gamg\n  forcing: fixed\n");
-  EXPECT_EQ(matrix_free.solver.linear, deform::LinearSolverKind::jacobi_pcg);
-  EXPECT_EQ(matrix_free.solver.amg, deform::AmgPackage::gamg);
-  EXPECT_EQ(matrix_free.solver.forcing, deform::ForcingTerm::fixed);
+  const Case jacobi = parse(std::string(kBase) + "solver:\n  linear: jacobi-pcg\n  amg: gamg\n  forcing: fixed\n");
+  EXPECT_EQ(jacobi.solver.linear, deform::LinearSolverKind::jacobi_pcg);
+  EXPECT_EQ(jacobi.solver.amg, deform::AmgPackage::gamg);
+  EXPECT_EQ(jacobi.solver.forcing, deform::ForcingTerm::fixed);
+  EXPECT_EQ(parse(std::string(kBase) + "solver: {linear: auto}\n").solver.linear, deform::LinearSolverKind::automatic);
 }
 
 TEST_F(CaseFile, RejectsUnknownLinearSolverMultigridAndForcing) {
@@ -252,7 +253,7 @@ TEST_F(CaseFile, RejectsUnknownLinearSolverMultigridAndForcing) {
       "  linear: cholesky\n"
       "  amg: [gamg]\n"
       "  forcing: adaptive\n");
-  EXPECT_THAT(error, HasSubstr(at(5) + "solver.linear: expected one of jacobi-pcg, amg, got 'cholesky'"));
+  EXPECT_THAT(error, HasSubstr(at(5) + "solver.linear: expected one of auto, jacobi-pcg, amg, got 'cholesky'"));
   EXPECT_THAT(error, HasSubstr(at(6) + "solver.amg: expected one of gamg, hypre, got a list"));
   EXPECT_THAT(error, HasSubstr(at(7) + "solver.forcing: expected one of fixed, eisenstat-walker, got 'adaptive'"));
 }

@@ -42,9 +42,8 @@ struct NodeCells {
   }
 };
 
-/// Cells grouped so that no two cells of a group share a node (greedy, in cell order); within
-/// a colour the cells are grouped by type (in cell order within a type), so that the element
-/// loops run over cells of one size at a time.
+/// Cells grouped so that no two cells of a group share a node (greedy, in cell order); a
+/// colour's cells in cell order.
 struct CellColoring {
   std::vector<std::int64_t> offsets;  ///< colour c holds cells[offsets[c] .. offsets[c+1])
   std::vector<CellId> cells;

@@ -2,6 +2,7 @@
 // file (io) fills them; the solver reads them. One struct per concern, no global settings.
 #pragma once
 
+#include <cstddef>
 #include <string_view>
 
 #include "hotmesh/geometry/enum_names.hpp"
@@ -10,6 +11,7 @@ namespace hotmesh::deform {
 
 /// How each Newton step's linear system K(n) p = -R(n) is solved (docs/method.md).
 enum class LinearSolverKind {
+  automatic,   ///< the faster of the two for the case, by choose_linear_solver()
   jacobi_pcg,  ///< the paper's PCG with nodal Jacobi (section 3), projected for sliding (eq. 16), K in node blocks
   amg,         ///< assembled in nodal frames (PETSc), CG preconditioned by algebraic multigrid
 };
@@ -36,8 +38,8 @@ enum class ForcingTerm {
 };
 
 /// The names the case file and report.json use.
-inline constexpr EnumNames<LinearSolverKind, 2> kLinearSolverNames{
-    {{{LinearSolverKind::jacobi_pcg, "jacobi-pcg"}, {LinearSolverKind::amg, "amg"}}}};
+inline constexpr EnumNames<LinearSolverKind, 3> kLinearSolverNames{
+    {{{LinearSolverKind::automatic, "auto"}, {LinearSolverKind::jacobi_pcg, "jacobi-pcg"}, {LinearSolverKind::amg, "amg"}}}};
 inline constexpr EnumNames<AmgPackage, 2> kAmgPackageNames{{{{AmgPackage::gamg, "gamg"}, {AmgPackage::hypre, "hypre"}}}};
 inline constexpr EnumNames<AmgReuse, 4> kAmgReuseNames{{{{AmgReuse::automatic, "auto"},
                                                         {AmgReuse::preconditioner, "preconditioner"},
@@ -49,6 +51,32 @@ constexpr std::string_view to_string(LinearSolverKind k) { return kLinearSolverN
 constexpr std::string_view to_string(AmgPackage p) { return kAmgPackageNames.name(p); }
 constexpr std::string_view to_string(ForcingTerm f) { return kForcingTermNames.name(f); }
 
+/// The linear solver `linear: auto` runs, and why, from what docs/performance.md measured on
+/// whole motions ("AMG against Jacobi-PCG", "Stator-well solve at growing sizes"):
+///  - amg with several processes: jacobi-pcg runs in one;
+///  - amg for a 2D mesh with a sliding wall: Jacobi-PCG needs 10 to 30 times the iterations
+///    there and took 1.5 to 1.8 times as long on the sliding ramp and shear;
+///  - jacobi-pcg for a 2D mesh without sliding walls: 1.7 to 2.4 times faster on the ramp and
+///    the shear;
+///  - in 3D, jacobi-pcg up to kJacobiPcgCells cells, amg beyond: on the sliding stator-well
+///    sector Jacobi-PCG was faster at 18 000, 50 000 and 200 000 cells (336 s against 388 s
+///    there, with 40 % less memory), but its time grows faster (N^1.15 against N^1.02 from
+///    50 000 to 200 000 cells): the two cross near 600 000 cells.
+inline constexpr std::size_t kJacobiPcgCells = 500000;
+struct LinearSolverChoice {
+  LinearSolverKind kind = LinearSolverKind::jacobi_pcg;
+  std::string_view reason;
+};
+constexpr LinearSolverChoice choose_linear_solver(int dimension, std::size_t cells, bool sliding, int processes) {
+  if (processes > 1) return {LinearSolverKind::amg, "several processes"};
+  if (dimension == 2) {
+    return sliding ? LinearSolverChoice{LinearSolverKind::amg, "a 2D mesh with a sliding wall"}
+                   : LinearSolverChoice{LinearSolverKind::jacobi_pcg, "a 2D mesh without sliding walls"};
+  }
+  return cells > kJacobiPcgCells ? LinearSolverChoice{LinearSolverKind::amg, "a 3D mesh of more than 500 000 cells"}
+                                 : LinearSolverChoice{LinearSolverKind::jacobi_pcg, "a 3D mesh of at most 500 000 cells"};
+}
+
 /// Increments, Newton-Raphson (eqs. 7-8) and the inner PCG solves (section 3).
 struct SolverOptions {
   int increments = 16;              ///< N: the prescribed motion is applied in N steps
@@ -59,6 +87,8 @@ struct SolverOptions {
   /// An increment that inverts a cell or whose Newton iteration fails is retried as two
   /// half increments, recursively, at most this many times in a row (0: never).
   int max_increment_splits = 4;
+  /// jacobi-pcg for callers of the library, as the paper solves; a case file's default is
+  /// `auto` (io::Case), resolved by move_mesh through choose_linear_solver().
   LinearSolverKind linear = LinearSolverKind::jacobi_pcg;
   AmgPackage amg = AmgPackage::gamg;
   AmgReuse amg_reuse = AmgReuse::automatic;

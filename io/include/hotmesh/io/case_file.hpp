@@ -96,7 +96,12 @@ struct Case {
   /// (`output: {series: true}`).
   bool series = false;
   std::optional<geometry::Axis> axis;
-  deform::SolverOptions solver;
+  /// The solver's options; `linear` defaults to auto (choose_linear_solver picks by the mesh).
+  deform::SolverOptions solver = [] {
+    deform::SolverOptions s;
+    s.linear = deform::LinearSolverKind::automatic;
+    return s;
+  }();
   /// OpenMP threads of the run, 0: all cores. The case file sets it among the solver's options
   /// (solver.threads); it is the process's, which starts its threads before reading the mesh.
   int threads = 0;
