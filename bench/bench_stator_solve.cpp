@@ -5,10 +5,11 @@
 // memory, all from report.json.
 //
 // Run:   ninja -C build bench_stator_solve && build/bench/bench_stator_solve [CELLS,...]
-//            [--linear jacobi-pcg|amg] [--forcing fixed|eisenstat-walker]
-// Default 5000,18000,50000 with the case's solver (the paper's Jacobi-PCG, fixed
-// inner tolerance); each size runs in its own process. The paper's size (2700000) with
-// `--linear amg --forcing eisenstat-walker` takes about an hour and a half and 13 GB.
+//            [--linear auto|jacobi-pcg|amg] [--forcing fixed|eisenstat-walker]
+// Default 5000,18000,50000 with the case's solver (`linear: auto`, fixed inner tolerance);
+// each size runs in its own process. The paper's size (2700000) with `--forcing
+// eisenstat-walker` (auto runs amg there) takes about an hour and a half and 13 GB:
+// `scripts/bench.sh --paper-size`.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -28,12 +29,12 @@ namespace {
 
 struct Options {
   std::vector<long> sizes;
-  std::string linear, forcing;  ///< empty: the case's own (jacobi-pcg, fixed)
+  std::string linear, forcing;  ///< empty: the case's own (auto, fixed)
 };
 
 [[noreturn]] void usage() {
   std::fprintf(stderr,
-               "usage: bench_stator_solve [CELLS,...] [--linear jacobi-pcg|amg] [--forcing fixed|eisenstat-walker]\n");
+               "usage: bench_stator_solve [CELLS,...] [--linear auto|jacobi-pcg|amg] [--forcing fixed|eisenstat-walker]\n");
   std::exit(2);
 }
 
@@ -50,7 +51,7 @@ Options parse(int argc, char** argv) {
       usage();
     }
   }
-  if (!o.linear.empty() && o.linear != "jacobi-pcg" && o.linear != "amg") usage();
+  if (!o.linear.empty() && o.linear != "auto" && o.linear != "jacobi-pcg" && o.linear != "amg") usage();
   if (!o.forcing.empty() && o.forcing != "fixed" && o.forcing != "eisenstat-walker") usage();
   std::stringstream items(list);
   for (std::string item; std::getline(items, item, ',');) o.sizes.push_back(std::stol(item));
@@ -85,11 +86,12 @@ int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
   const auto folder = std::filesystem::temp_directory_path() / "hotmesh-bench-stator";
   std::printf("### Stator-well sector, sliding on, 16 increments (`case_small.yaml` at growing sizes), linear %s, forcing %s\n\n",
-              options.linear.empty() ? "jacobi-pcg" : options.linear.c_str(),
+              options.linear.empty() ? "auto" : options.linear.c_str(),
               options.forcing.empty() ? "fixed" : options.forcing.c_str());
-  std::printf("| target cells | hex cells | nodes | sliding nodes | Newton | CG | wall s | assembly s | preconditioner s | "
-              "solve s | projection s | ms per CG iteration | peak memory (MB) | min scaled Jacobian | other load |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| target cells | hex cells | nodes | sliding nodes | solver | Newton | CG | wall s | assembly s | "
+              "preconditioner s | solve s | projection s | ms per CG iteration | peak memory (MB) | min scaled Jacobian | "
+              "other load |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const long cells : options.sizes) {
     std::filesystem::remove_all(folder);
     const auto dir = folder / std::to_string(cells);
@@ -107,9 +109,9 @@ int main(int argc, char** argv) {
     const auto& seconds = r["seconds"];
     const double solve = seconds["solve"].get<double>();
     const long pcg = r["pcg_iterations"].get<long>();
-    std::printf("| %ld | %ld | %ld | %ld | %ld | %ld | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f | %.3f | %.2f |\n", cells,
-                r["mesh"]["cells"].get<long>(), r["mesh"]["nodes"].get<long>(), r["sliding_nodes"].get<long>(),
-                r["newton_iterations"].get<long>(), pcg, r["wall_seconds"].get<double>(), seconds["assembly"].get<double>(),
+    std::printf("| %ld | %ld | %ld | %ld | %s | %ld | %ld | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f | %.3f | %.2f |\n",
+                cells, r["mesh"]["cells"].get<long>(), r["mesh"]["nodes"].get<long>(), r["sliding_nodes"].get<long>(),
+                r["solver"]["linear"].get<std::string>().c_str(), r["newton_iterations"].get<long>(), pcg, r["wall_seconds"].get<double>(), seconds["assembly"].get<double>(),
                 seconds["preconditioner"].get<double>(), solve, seconds["projection"].get<double>(),
                 1e3 * solve / static_cast<double>(pcg), r["peak_memory_bytes"].get<double>() / 1e6,
                 r["min_scaled_jacobian"].get<double>(), other);

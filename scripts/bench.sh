@@ -3,8 +3,12 @@
 # printing the machine, the load and each benchmark's Markdown tables; docs/performance.md
 # records the results. Benchmarks are not tests: ctest never runs them.
 #
-# Usage: scripts/bench.sh [--quick]
-#   --quick   small sizes only (a smoke run of a minute, numbers not worth recording)
+# Usage: scripts/bench.sh [--quick | --paper-size]
+#   --quick        small sizes only (a smoke run of a minute, numbers not worth recording)
+#   --paper-size   only the paper's stator-well sector (section 6.1): 2.7 million hexes, sliding,
+#                  16 increments, `linear: auto` (amg at this size) with the Eisenstat-Walker
+#                  forcing term, one process: time per phase, CG iterations, peak memory and
+#                  quality (bench_stator_solve). About an hour and a half and 13 GB.
 # A full run takes about twenty-five minutes on 2 cores (most of it the stator-well sector solved
 # at 50 000 cells, and both linear solvers on the stator-well sample) and needs about 5 GB of
 # memory (the 100^3 hex block's element matrices). Run it on an otherwise idle machine: the load is printed
@@ -14,15 +18,18 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 quick=0
+paper=0
 for arg in "$@"; do
   case "$arg" in
     --quick) quick=1 ;;
-    *) echo "usage: scripts/bench.sh [--quick]" >&2; exit 2 ;;
+    --paper-size) paper=1 ;;
+    *) echo "usage: scripts/bench.sh [--quick | --paper-size]" >&2; exit 2 ;;
   esac
 done
 
 benches=()
 for source in bench/bench_*.cpp; do benches+=("$(basename "$source" .cpp)"); done
+if ((paper)); then benches=(bench_stator_solve); fi
 
 echo "== hotmesh: Release build of the benchmarks (warnings are errors)"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DHOTMESH_WERROR=ON >/dev/null
@@ -68,6 +75,15 @@ linear_solvers() {
   echo
   build/bench/bench_linear_solvers --runs 1 samples/stator_well/case_small.yaml
 }
+
+if ((paper)); then
+  echo
+  echo "== bench_stator_solve 2700000 --forcing eisenstat-walker"
+  build/bench/bench_stator_solve 2700000 --forcing eisenstat-walker
+  echo
+  load
+  exit 0
+fi
 
 for bench in "${benches[@]}"; do
   echo
