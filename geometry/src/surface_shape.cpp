@@ -467,6 +467,8 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
   report.max_node_residual = 0.0;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     SurfaceFitReport& fit = report.faces[f].fit;
+    fit.u_poles = out.fields[f].u_count();  // knots inserted along joined edges add poles
+    fit.v_poles = out.fields[f].v_count();
     fit.max_residual = 0.0;
     double squares = 0.0;
     for (const FieldSample& sample : placed.on_face[f]) {

@@ -240,6 +240,12 @@ TEST(SurfaceShape, ScatteredFitsOnFacesSharingEdgesAreJoinedSoTheDeflectedFacesM
   for (std::size_t f = 1; f < 4; ++f) EXPECT_LT(distance(deflected(0, 1, 1), deflected(f, 1, 1)), 1e-15) << f;
   EXPECT_LT(largest_error, 2e-4);  // of deflections up to 0.05: the fit's accuracy, edges included
   EXPECT_LT(fit.report.max_node_residual, 2e-4);
+  // The report counts the joined fields' poles (knots were inserted along the edges).
+  const FaceDeflections fields = reconstruct_on_faces(faces, scattered_on_square(600, smooth), {.degree = 3});
+  for (std::size_t f = 0; f < 4; ++f) {
+    EXPECT_EQ(fields.report.faces[f].fit.u_poles, fields.fields[f].u_count()) << f;
+    EXPECT_EQ(fields.report.faces[f].fit.v_poles, fields.fields[f].v_count()) << f;
+  }
   // A cubic in (x, y) is a cubic in every face's parameters: reproduced, joins and all.
   const auto cubic = [](double x, double y) {
     return Vec3{0.01 * x * x * y, 0.02 * (y * y * y - x), 0.03 * x * y * (x - y)};
