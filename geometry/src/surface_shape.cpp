@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <numbers>
 #include <shared_mutex>
 #include <stdexcept>
 #include <string>
@@ -81,6 +82,24 @@ std::pair<double, double> on_side(const ParameterRectangle& r, int side, double 
   const double u = side < 2 ? r.u_first + f * (r.u_last - r.u_first) : (side == 2 ? r.u_first : r.u_last);
   const double v = side < 2 ? (side == 0 ? r.v_first : r.v_last) : r.v_first + f * (r.v_last - r.v_first);
   return {u, v};
+}
+
+/// The direction from a point of side `side` of a face into the face, across the edge: the
+/// parameter derivative that points inward, less its part along the edge, unit.
+Vec3 into_face(const SurfaceDerivatives& d, int side) {
+  const Vec3 along = side < 2 ? d.du : d.dv;
+  Vec3 w = side == 0 ? d.dv : side == 1 ? -d.dv : side == 2 ? d.du : -d.du;
+  const double length2 = dot(along, along);
+  if (length2 > 0.0) w = w - (dot(w, along) / length2) * along;
+  return w / norm(w);
+}
+
+/// How far a wall turns across an edge of two faces, from the directions into each: 0 where
+/// one face continues the other flat, pi where it folds back onto it. Unlike the angle
+/// between the faces' normals it does not depend on how each face is oriented, so turns
+/// beyond 90 degrees are told from their supplements.
+double turn_angle(const Vec3& into_a, const Vec3& into_b) {
+  return std::numbers::pi - std::acos(std::clamp(dot(into_a, into_b), -1.0, 1.0));
 }
 
 /// The largest difference between the deflections of two faces at sampled points of their
@@ -648,14 +667,15 @@ std::vector<std::shared_ptr<const BoundaryShape>> SurfaceShape::crease_sides(con
   const double on_t = 1e-9 * (r.u_last - r.u_first), on_s = 1e-9 * (r.v_last - r.v_first);
   const std::array<bool, 4> at_side{std::abs(where.s - r.v_first) <= on_s, std::abs(where.s - r.v_last) <= on_s,
                                     std::abs(where.t - r.u_first) <= on_t, std::abs(where.t - r.u_last) <= on_t};
-  const ShapePoint here = at(where, 0.0, {});
+  const SurfaceDerivatives here = evaluate(f, where.t, where.s, 0.0);
   std::vector<std::shared_ptr<const BoundaryShape>> sides;
   for (std::size_t side = 0; side < 4; ++side) {
     const int other = neighbours_[f][side];
-    if (!at_side[side] || other < 0) continue;
-    const ShapePoint there = project_on_face(other, here.point, 0.0, kNoHint);
-    const double turn = std::acos(std::min(1.0, std::abs(dot(here.normal, there.normal))));
-    if (turn < min_angle) continue;
+    const int other_side = other >= 0 ? side_shared_with(other, where.face) : -1;
+    if (!at_side[side] || other_side < 0) continue;
+    const ShapePoint there = project_on_side(static_cast<std::size_t>(other), other_side, here.point, 0.0);
+    const SurfaceDerivatives across = evaluate(static_cast<std::size_t>(other), there.parameter.t, there.parameter.s, 0.0);
+    if (turn_angle(into_face(here, static_cast<int>(side)), into_face(across, other_side)) < min_angle) continue;
     if (sides.empty()) sides.push_back(std::make_shared<FaceOfWall>(shared_from_this(), where.face));
     sides.push_back(std::make_shared<FaceOfWall>(shared_from_this(), other));
   }
@@ -715,9 +735,9 @@ std::vector<ShapeCrease> SurfaceShape::creases(double min_angle) const {
         for (int k = 0; k <= kSamples; ++k) {
           const auto [t, s] = on_side(r, side, static_cast<double>(k) / kSamples);
           const SurfaceDerivatives here = evaluate(f, t, s, lambda);
-          const Vec3 n = cross(here.du, here.dv);
           const ShapePoint there = project_on_side(static_cast<std::size_t>(g), other_side, here.point, lambda);
-          crease.angle = std::max(crease.angle, std::acos(std::min(1.0, std::abs(dot(n / norm(n), there.normal)))));
+          const SurfaceDerivatives across = evaluate(static_cast<std::size_t>(g), there.parameter.t, there.parameter.s, lambda);
+          crease.angle = std::max(crease.angle, turn_angle(into_face(here, side), into_face(across, other_side)));
         }
       }
       if (crease.angle >= min_angle) found.push_back(crease);

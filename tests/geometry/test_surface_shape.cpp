@@ -260,6 +260,41 @@ TEST(SurfaceShape, ScatteredFitsOnFacesSharingEdgesAreJoinedSoTheDeflectedFacesM
   }
 }
 
+// A wall that turns by more than 90 degrees across an edge: a second face that rises at 100
+// degrees from the first (an overhang), or folds back over it at 170 (a thin fin, a lip). The
+// turn is measured from the directions into each face, not from their normals, whose signs
+// follow each face's parametrisation: a fold of 170 degrees is not taken for one of 10.
+TEST(SurfaceShape, SharpTurnsAcrossAnEdgeAreToldFromTheirSupplements) {
+  for (const double degrees : {100.0, 170.0}) {
+    SCOPED_TRACE(degrees);
+    const double turn = degrees * M_PI / 180.0;
+    const Vec3 out{std::cos(turn), 0.0, std::sin(turn)};  // from the edge x = 1 into the second face
+    for (const bool flipped : {false, true}) {  // the second face's parameters either way round
+      const Vec3 far = Vec3{1, 0, 0} + out;
+      const BSplineSurface second =
+          flipped ? BSplineSurface(1, 1, {0, 0, 1, 1}, {0, 0, 1, 1}, {far, far + Vec3{0, 1, 0}, {1, 0, 0}, {1, 1, 0}})
+                  : BSplineSurface(1, 1, {0, 0, 1, 1}, {0, 0, 1, 1}, {{1, 0, 0}, {1, 1, 0}, far, far + Vec3{0, 1, 0}});
+      const std::vector<CadFace> faces{{1, flat_face(0, 1, 0, 1)}, {2, second}};
+      std::vector<Vec3> points, deflections;
+      for (int i = 0; i <= 4; ++i) {
+        for (int j = 0; j <= 4; ++j) {
+          points.push_back({0.25 * i, 0.25 * j, 0.0});  // x = 1: on both faces
+          deflections.push_back({0.0, 0.0, 0.01});
+          if (i == 0) continue;
+          points.push_back(Vec3{1, 0.25 * j, 0} + 0.25 * i * out);
+          deflections.push_back({0.0, 0.0, 0.01});
+        }
+      }
+      const SurfaceShapeFit fit = make_surface_shape(faces, cartesian(points, deflections), {.degree = 1});
+      const auto creases = fit.shape->creases(25.0 * M_PI / 180.0);
+      ASSERT_EQ(creases.size(), 1u) << flipped;
+      EXPECT_NEAR(creases[0].angle, turn, 1e-9) << flipped;
+      EXPECT_EQ(fit.shape->crease_sides({1.0, 0.5, 0}, 25.0 * M_PI / 180.0).size(), 2u) << flipped;
+      EXPECT_TRUE(fit.shape->crease_sides({1.0, 0.5, 0}, turn + 0.01).empty()) << flipped;
+    }
+  }
+}
+
 // Faces whose parameters run along their shared edge at speeds that are not in a constant ratio
 // cannot carry fields that meet exactly (one B-spline in one face's parameter is not one in
 // the other's): the edge is counted as shared, not joined, and its gap is reported.

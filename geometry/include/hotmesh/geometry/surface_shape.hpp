@@ -112,14 +112,15 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
                      const ParameterRange& range = {}) const override;
   ShapePoint at(const ShapeParameter& where, double lambda, const Vec3& reference) const override;
-  /// At a point of an edge where two faces meet turning by at least `min_angle` (radians; the
-  /// angle between their normals, so turns beyond 180 - min_angle are not seen): each face as a
-  /// shape of its own, the point's face first (three where it is a corner of three faces).
+  /// At a point of an edge where two faces meet turning by at least `min_angle` (radians; pi
+  /// minus the angle between the directions into each face across the edge, so a face folding
+  /// back onto the other turns by nearly pi): each face as a shape of its own, the point's face
+  /// first (three where it is a corner of three faces).
   /// The shape must be owned by a shared_ptr.
   std::vector<std::shared_ptr<const BoundaryShape>> crease_sides(const ShapeParameter& where,
                                                                  double min_angle) const override;
   /// The edges two faces share where they meet turning by at least `min_angle`: the largest
-  /// angle between their normals at points along the edge, undeformed or fully deflected.
+  /// turn (as for crease_sides) at points along the edge, undeformed or fully deflected.
   std::vector<ShapeCrease> creases(double min_angle) const override;
   /// The point of the crease's edge nearest p on the stage-lambda faces: the closest point of
   /// faces[0]'s side along it, and each face's normal there (faces[1]'s at its own side's
