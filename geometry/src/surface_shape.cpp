@@ -1,5 +1,6 @@
-// hotmesh geometry: section 4.2 on CAD faces (FEM nodes to (face, t, s), a deflection field
-// d(t, s) per face) and the shapes of 3D walls that are not surfaces of revolution.
+// hotmesh geometry: the shapes of 3D walls that are not surfaces of revolution (surface_shape.hpp):
+// CAD faces deflected by their fields d(t, s) (the reconstruction is face_reconstruction.cpp),
+// and walls moved by a scattered-data field.
 #include "hotmesh/geometry/surface_shape.hpp"
 
 #include <algorithm>
@@ -13,76 +14,15 @@
 #include <string>
 #include <utility>
 
-#include "field_joins.hpp"
-#include "hotmesh/geometry/input_error.hpp"
-#include "node_list.hpp"
+#include "cad_face_set.hpp"
 
 namespace hotmesh::geometry {
 
 namespace {
 
-using detail::format;
-
-struct Box {
-  Vec3 lo;
-  Vec3 hi;
-  bool holds(const Vec3& p, double margin) const {
-    return p.x >= lo.x - margin && p.x <= hi.x + margin && p.y >= lo.y - margin && p.y <= hi.y + margin &&
-           p.z >= lo.z - margin && p.z <= hi.z + margin;
-  }
-};
-
-/// The box of a face's poles, which holds the face (convex hull property, positive weights).
-Box pole_box(const BSplineSurface& s) {
-  Box b{s.poles().front(), s.poles().front()};
-  for (const Vec3& p : s.poles()) {
-    b.lo = {std::min(b.lo.x, p.x), std::min(b.lo.y, p.y), std::min(b.lo.z, p.z)};
-    b.hi = {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y), std::max(b.hi.z, p.z)};
-  }
-  return b;
-}
-
-void check_inputs(std::span<const CadFace> faces, const DeflectionSamples& samples,
-                  const ReconstructionOptions& options) {
-  if (samples.frame != SampleFrame::cartesian) {
-    throw InputError::in(samples.source, std::string("a wall reconstructed on CAD faces needs a cartesian (x, y, z) "
-                                                     "table, got a ") +
-                                             to_string(samples.frame) + " one");
-  }
-  if (options.degree < 1 || options.degree > kMaxReconstructionDegree) {
-    throw InputError::in(samples.source, "the degree of the deflected surface must be 1 to " +
-                                             std::to_string(kMaxReconstructionDegree) + ", got " +
-                                             std::to_string(options.degree));
-  }
-  if (!std::isfinite(options.tolerance) || options.tolerance < 0.0 || !(options.relative_tolerance > 0.0) ||
-      !std::isfinite(options.relative_tolerance)) {
-    throw InputError::in(samples.source, "the node distance tolerance must be a finite positive number");
-  }
-  if (samples.deflections.size() != samples.size()) {
-    throw InputError::in(samples.source, "every FEM node needs a deflection");
-  }
-  if (samples.size() == 0) throw InputError::in(samples.source, "there are no FEM nodes");
-  if (faces.empty()) throw InputError::in(samples.source, "no CAD faces to reconstruct the wall on");
-  for (std::size_t j = 0; j < samples.size(); ++j) {
-    if (!is_finite(samples.points[j]) || !is_finite(samples.deflections[j])) {
-      throw InputError::in(samples.source, samples.label(j) + " has a coordinate or deflection that is not finite");
-    }
-  }
-}
-
-/// Where the FEM nodes lie on the faces: per face the field samples (t_j, s_j, delta_j) and the
-/// sample indices.
-struct PlacedSamples {
-  std::vector<std::vector<FieldSample>> on_face;
-  std::vector<std::vector<std::size_t>> index;
-};
-
-/// The point at fraction f along side 0..3 of a rectangle (v first, v last, u first, u last).
-std::pair<double, double> on_side(const ParameterRectangle& r, int side, double f) {
-  const double u = side < 2 ? r.u_first + f * (r.u_last - r.u_first) : (side == 2 ? r.u_first : r.u_last);
-  const double v = side < 2 ? (side == 0 ? r.v_first : r.v_last) : r.v_first + f * (r.v_last - r.v_first);
-  return {u, v};
-}
+using detail::FaceSet;
+using detail::face_groups;
+using detail::on_side;
 
 /// The direction from a point of side `side` of a face into the face, across the edge: the
 /// parameter derivative that points inward, less its part along the edge, unit.
@@ -102,28 +42,6 @@ double turn_angle(const Vec3& into_a, const Vec3& into_b) {
   return std::numbers::pi - std::acos(std::clamp(dot(into_a, into_b), -1.0, 1.0));
 }
 
-/// The largest difference between the deflections of two faces at sampled points of their
-/// rectangles' edges that lie on the other face (its shared edges).
-double edge_gap(std::span<const CadFace> faces, const std::vector<SurfaceProjector>& projectors,
-                const std::vector<BSplineSurface>& fields, double tolerance) {
-  constexpr int kPerEdge = 32;
-  double gap = 0.0;
-  for (std::size_t a = 0; a < faces.size(); ++a) {
-    for (int k = 0; k <= 4 * kPerEdge + 3; ++k) {
-      const auto [u, v] = on_side(faces[a].surface.domain(), k / (kPerEdge + 1),
-                                  static_cast<double>(k % (kPerEdge + 1)) / kPerEdge);
-      const Vec3 p = faces[a].surface.point(u, v);
-      for (std::size_t b = 0; b < faces.size(); ++b) {
-        if (b == a) continue;
-        const SurfaceProjection q = projectors[b].project(p);
-        if (q.distance > tolerance) continue;
-        gap = std::max(gap, distance(fields[a].point(u, v), fields[b].point(q.where.u, q.where.v)));
-      }
-    }
-  }
-  return gap;
-}
-
 /// The sorted union of two lists of breakpoints.
 std::vector<double> merged(std::vector<double> a, const std::vector<double>& b) {
   a.insert(a.end(), b.begin(), b.end());
@@ -139,167 +57,6 @@ std::vector<double> merged(std::vector<double> a, const std::vector<double>& b) 
 /// twice the largest deflection beyond the edge where that is farther (reaches()). Edges it
 /// shares with another face of the wall, and collapsed edges (poles), do not reach.
 constexpr double kFreeEdgeReach = 0.05;
-
-/// The faces of a wall seen together: each on its own (undeformed) projector, their common
-/// size, and for each side of each face's rectangle (v first, v last, u first, u last) the face
-/// it is shared with (-1: a free edge) and whether it collapses to a point.
-/// The faces joined through the shared sides `neighbours` lists (per face and side, the face
-/// sharing it or -1) where `joined(a, b)` accepts the edge: a flood fill from each face not yet
-/// in a group, so the groups come in order of their lowest face.
-template <class Joined>
-std::vector<std::vector<std::size_t>> face_groups(std::span<const std::array<int, 4>> neighbours, Joined joined) {
-  std::vector<int> group(neighbours.size(), -1);
-  std::vector<std::vector<std::size_t>> out;
-  for (std::size_t start = 0; start < neighbours.size(); ++start) {
-    if (group[start] >= 0) continue;
-    out.emplace_back();
-    std::vector<std::size_t> stack{start};
-    group[start] = static_cast<int>(out.size() - 1);
-    while (!stack.empty()) {
-      const std::size_t f = stack.back();
-      stack.pop_back();
-      out.back().push_back(f);
-      for (const int n : neighbours[f]) {
-        if (n >= 0 && group[static_cast<std::size_t>(n)] < 0 && joined(f, static_cast<std::size_t>(n))) {
-          group[static_cast<std::size_t>(n)] = group[start];
-          stack.push_back(static_cast<std::size_t>(n));
-        }
-      }
-    }
-  }
-  return out;
-}
-
-struct FaceSet {
-  std::vector<SurfaceProjector> projectors;
-  std::vector<Box> boxes;
-  double size = 0.0;
-  std::vector<std::array<int, 4>> neighbours;
-  std::vector<std::array<bool, 4>> collapsed;
-
-  explicit FaceSet(std::span<const CadFace> faces) {
-    Box all = pole_box(faces.front().surface);
-    for (const CadFace& f : faces) {
-      projectors.emplace_back(std::vector<SurfacePatch>{bspline_patch(f.surface)});
-      boxes.push_back(pole_box(f.surface));
-      all.lo = {std::min(all.lo.x, boxes.back().lo.x), std::min(all.lo.y, boxes.back().lo.y),
-                std::min(all.lo.z, boxes.back().lo.z)};
-      all.hi = {std::max(all.hi.x, boxes.back().hi.x), std::max(all.hi.y, boxes.back().hi.y),
-                std::max(all.hi.z, boxes.back().hi.z)};
-    }
-    size = distance(all.lo, all.hi);
-    for (std::size_t a = 0; a < faces.size(); ++a) find_edges(faces, a);
-  }
-
-  /// Groups of faces joined through shared edges.
-  std::vector<std::vector<std::size_t>> groups() const {
-    return face_groups(neighbours, [](std::size_t, std::size_t) { return true; });
-  }
-
- private:
-  /// A side is shared when 5 points along it lie on one other face (within 1e-6 of the size),
-  /// collapsed when they are one point.
-  void find_edges(std::span<const CadFace> faces, std::size_t a) {
-    constexpr int kSamples = 5;
-    const ParameterRectangle r = faces[a].surface.domain();
-    std::array<int, 4> shared{-1, -1, -1, -1};
-    std::array<bool, 4> point{};
-    for (int side = 0; side < 4; ++side) {
-      std::vector<Vec3> along;
-      for (int k = 0; k < kSamples; ++k) {
-        const auto [u, v] = on_side(r, side, (k + 0.5) / kSamples);
-        along.push_back(faces[a].surface.point(u, v));
-      }
-      double length = 0.0;
-      for (std::size_t k = 1; k < along.size(); ++k) length += distance(along[k], along[k - 1]);
-      point[static_cast<std::size_t>(side)] = length <= 1e-9 * size;
-      for (std::size_t b = 0; b < faces.size() && shared[static_cast<std::size_t>(side)] < 0; ++b) {
-        const bool on_b = b != a && std::all_of(along.begin(), along.end(), [&](const Vec3& p) {
-                            return projectors[b].project(p).distance <= 1e-6 * size;
-                          });
-        if (on_b) shared[static_cast<std::size_t>(side)] = static_cast<int>(b);
-      }
-    }
-    neighbours.push_back(shared);
-    collapsed.push_back(point);
-  }
-};
-
-/// The edges the faces share side to side with parameters that correspond affinely (equal
-/// fractions along both sides, or reversed), which join_fields can make the fields meet on,
-/// and the corners those sides end at, grouped by the point of the wall they lie at.
-struct EdgeJoins {
-  std::vector<detail::SharedSide> sides;
-  std::vector<std::vector<detail::FaceCorner>> corners;
-  std::size_t shared = 0;  ///< shared sides, each counted once, joinable or not
-};
-
-EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
-  const double tolerance = 1e-7 * set.size;
-  constexpr int kSamples = 9;
-  const auto point = [&](std::size_t f, int side, double fraction) {
-    const auto [u, v] = on_side(faces[f].surface.domain(), side, fraction);
-    return faces[f].surface.point(u, v);
-  };
-  const auto matches = [&](std::size_t a, int side_a, std::size_t b, int side_b, bool reversed) {
-    for (int k = 0; k <= kSamples; ++k) {
-      const double f = static_cast<double>(k) / kSamples;
-      if (distance(point(a, side_a, f), point(b, side_b, reversed ? 1.0 - f : f)) > tolerance) return false;
-    }
-    return true;
-  };
-  EdgeJoins out;
-  for (std::size_t a = 0; a < faces.size(); ++a) {
-    for (int side_a = 0; side_a < 4; ++side_a) {
-      const int n = set.neighbours[a][static_cast<std::size_t>(side_a)];
-      if (n < 0) continue;
-      const auto b = static_cast<std::size_t>(n);
-      // Counted from the side that comes first, (face, side) in order, when b's matching side
-      // points back; a side of a lying along part of b's side (no side of b matches) from a.
-      bool found = false;
-      for (int side_b = 0; side_b < 4 && !found; ++side_b) {
-        for (const bool reversed : {false, true}) {
-          if (!matches(a, side_a, b, side_b, reversed)) continue;
-          found = true;
-          if (std::pair(b, side_b) < std::pair(a, side_a) && set.neighbours[b][static_cast<std::size_t>(side_b)] == static_cast<int>(a)) break;
-          ++out.shared;
-          out.sides.push_back({{a, side_a}, {b, side_b}, reversed});
-          break;
-        }
-      }
-      if (!found) {
-        const bool counted_from_b = b < a && std::find(set.neighbours[b].begin(), set.neighbours[b].end(), static_cast<int>(a)) !=
-                                                 set.neighbours[b].end();
-        if (!counted_from_b) ++out.shared;
-      }
-    }
-  }
-  // Corner c of a rectangle: (u first | u last) + 2 (v first | v last); the ends of side k.
-  constexpr std::array<std::array<int, 2>, 4> kEnds{{{0, 1}, {2, 3}, {0, 2}, {1, 3}}};
-  std::vector<std::pair<detail::FaceCorner, Vec3>> ends;
-  for (const detail::SharedSide& s : out.sides) {
-    for (const detail::FaceSide& fs : {s.a, s.b}) {
-      for (const int c : kEnds[static_cast<std::size_t>(fs.side)]) {
-        const bool seen = std::any_of(ends.begin(), ends.end(), [&](const auto& e) { return e.first.face == fs.face && e.first.corner == c; });
-        if (seen) continue;
-        const ParameterRectangle r = faces[fs.face].surface.domain();
-        ends.push_back({{fs.face, c}, faces[fs.face].surface.point(c % 2 == 0 ? r.u_first : r.u_last, c < 2 ? r.v_first : r.v_last)});
-      }
-    }
-  }
-  std::vector<bool> grouped(ends.size(), false);
-  for (std::size_t i = 0; i < ends.size(); ++i) {
-    if (grouped[i]) continue;
-    out.corners.emplace_back();
-    for (std::size_t j = i; j < ends.size(); ++j) {
-      if (!grouped[j] && distance(ends[i].second, ends[j].second) <= tolerance) {
-        grouped[j] = true;
-        out.corners.back().push_back(ends[j].first);
-      }
-    }
-  }
-  return out;
-}
 
 /// The largest deflection a field gives (bounded by its largest pole: convex hull property).
 double largest_pole(const BSplineSurface& field) {
@@ -349,158 +106,7 @@ std::vector<ParameterRectangle> reaches(std::span<const CadFace> faces, const Fa
   return out;
 }
 
-/// Faces that cannot carry a field d(t, s) are refused (item 6 of issue 23): one whose
-/// parametrisation degenerates (a pole, a collapsed edge, a point inside where S_t x S_s
-/// vanishes: (t, s) is not unique there), naming the FEM nodes nearest the degenerate spot;
-/// and faces that share no edge with the rest of the wall (a face number mistyped, or a
-/// separate part that needs its own patch).
-void refuse_faces(std::span<const CadFace> faces, const FaceSet& set, const DeflectionSamples& samples) {
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    const DegeneracyReport& report = set.projectors[f].degeneracies();
-    if (report.empty()) continue;
-    const ParameterRectangle r = faces[f].surface.domain();
-    std::pair<double, double> spot{0.5 * (r.u_first + r.u_last), 0.5 * (r.v_first + r.v_last)};
-    std::string where;
-    if (!report.edges.empty()) {
-      const auto edge = report.edges.front().edge;
-      const int side = edge == PatchEdge::v_first ? 0 : edge == PatchEdge::v_last ? 1 : edge == PatchEdge::u_first ? 2 : 3;
-      spot = on_side(r, side, 0.5);
-      where = std::string(report.edges.front().collapsed ? "an edge collapses to one point (a pole)"
-                                                         : "the surface's normal vanishes along an edge");
-    } else {
-      spot = {report.points.front().u, report.points.front().v};
-      where = "the surface's normal vanishes inside it";
-    }
-    const Vec3 p = faces[f].surface.point(spot.first, spot.second);
-    std::vector<std::size_t> order(samples.size());
-    for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
-    const std::size_t listed = std::min<std::size_t>(5, order.size());
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(listed), order.end(),
-                      [&](std::size_t i, std::size_t j) { return distance(samples.points[i], p) < distance(samples.points[j], p); });
-    std::string nodes;
-    for (std::size_t k = 0; k < listed; ++k) {
-      nodes += (k > 0 ? ", " : "") + samples.label(order[k]) + " at " + format(distance(samples.points[order[k]], p));
-    }
-    throw InputError::in(samples.source,
-                         "CAD face " + std::to_string(faces[f].id) + ": its parametrisation degenerates (" + where +
-                             ", at (" + format(p.x) + ", " + format(p.y) + ", " + format(p.z) +
-                             ")): (t, s) is not unique there, so no deflection field d(t, s) can be fitted on it. "
-                             "FEM nodes nearest that point: " + nodes +
-                             ". Split the face in the CAD system so that no face has a pole, or, if the wall is a "
-                             "surface of revolution, give the case's axis and `mode: meridional`");
-  }
-  const auto groups = set.groups();
-  if (groups.size() <= 1) return;
-  const auto ids = [&](const std::vector<std::size_t>& group) {
-    std::string text;
-    for (std::size_t k = 0; k < group.size(); ++k) text += (k > 0 ? ", " : "") + std::to_string(faces[group[k]].id);
-    return text;
-  };
-  std::string parts;
-  for (std::size_t g = 0; g < groups.size(); ++g) parts += (g > 0 ? "; " : "") + ids(groups[g]);
-  throw InputError::in(samples.source, "the CAD faces of the wall do not join: they form " +
-                                           std::to_string(groups.size()) + " separate parts (faces " + parts +
-                                           ") sharing no edge. Check the face numbers (`hotmesh cad` lists them), or "
-                                           "give each part its own patch");
-}
-
 }  // namespace
-
-FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const DeflectionSamples& samples,
-                                     const ReconstructionOptions& options) {
-  check_inputs(faces, samples, options);
-  FaceDeflections out;
-  SurfaceReconstructionReport& report = out.report;
-  report.nodes = samples.size();
-  report.degree = options.degree;
-
-  const FaceSet set(faces);
-  refuse_faces(faces, set, samples);
-  const std::vector<SurfaceProjector>& projectors = set.projectors;
-  const double size = set.size;
-  report.tolerance = options.tolerance > 0.0 ? options.tolerance : options.relative_tolerance * size;
-
-  // Every Q_j onto every face near it: a node within the tolerance of several faces (on the
-  // edge they share) is a sample of each, so their fields agree there.
-  PlacedSamples placed;
-  placed.on_face.resize(faces.size());
-  placed.index.resize(faces.size());
-  for (std::size_t j = 0; j < samples.size(); ++j) {
-    const Vec3& q = samples.points[j];
-    double nearest = std::numeric_limits<double>::infinity();
-    std::vector<std::pair<std::size_t, SurfaceProjection>> near;
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-      if (!set.boxes[f].holds(q, report.tolerance)) continue;
-      const SurfaceProjection p = projectors[f].project(q);
-      nearest = std::min(nearest, p.distance);
-      if (p.distance <= report.tolerance) near.emplace_back(f, p);
-    }
-    if (near.empty()) {  // its distance for the message, from every face
-      for (const SurfaceProjector& projector : projectors) nearest = std::min(nearest, projector.project(q).distance);
-      report.rejected_nodes.push_back({j, samples.label(j), nearest, 0.0});
-      continue;
-    }
-    ++report.used_nodes;
-    report.max_node_distance_to_cad = std::max(report.max_node_distance_to_cad, nearest);
-    for (const auto& [f, p] : near) {
-      placed.on_face[f].push_back({p.where.u, p.where.v, samples.deflections[j]});
-      placed.index[f].push_back(j);
-      out.placements.push_back({j, f, p.where.u, p.where.v, p.distance});
-    }
-  }
-  if (!report.rejected_nodes.empty() && options.far_nodes == FarNodePolicy::reject) {
-    const std::string how = options.tolerance > 0.0 ? "the given tolerance"
-                                                    : "the default tolerance, " + format(options.relative_tolerance) +
-                                                          " of the faces' size " + format(size);
-    throw InputError::in(samples.source, std::to_string(report.rejected_nodes.size()) + " of " +
-                                             std::to_string(samples.size()) + " FEM nodes are farther than " +
-                                             format(report.tolerance) + " (" + how + ") from the CAD faces: " +
-                                             detail::list_nodes(report.rejected_nodes));
-  }
-
-  // d(t, s) on each face through its nodes.
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    const int id = faces[f].id;
-    if (placed.on_face[f].empty()) {
-      throw InputError::in(samples.source, "no FEM node lies on CAD face " + std::to_string(id) + " (within " +
-                                               format(report.tolerance) +
-                                               "): give only the faces the table covers, or a table that covers them");
-    }
-    SurfaceFitOptions fit_options;
-    fit_options.degree = options.degree;
-    fit_options.aspect = face_aspect(faces[f].surface);
-    try {
-      SurfaceFit fit = fit_surface_field(placed.on_face[f], faces[f].surface.domain(), fit_options);
-      report.faces.push_back({id, placed.on_face[f].size(), fit.report});
-      report.max_node_residual = std::max(report.max_node_residual, fit.report.max_residual);
-      out.fields.push_back(std::move(fit.field));
-    } catch (const InputError& e) {
-      throw InputError::in(samples.source, "CAD face " + std::to_string(id) + ": " + e.what());
-    }
-  }
-  // The fields made to meet along the edges the faces share (field_joins.hpp), and the fit's
-  // residuals measured again on the joined fields.
-  const EdgeJoins joins = edge_joins(faces, set);
-  report.shared_edges = joins.shared;
-  report.joined_edges = joins.sides.size() - detail::join_fields(out.fields, joins.sides, joins.corners).size();
-  report.max_node_residual = 0.0;
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    SurfaceFitReport& fit = report.faces[f].fit;
-    fit.u_poles = out.fields[f].u_count();  // knots inserted along joined edges add poles
-    fit.v_poles = out.fields[f].v_count();
-    fit.max_residual = 0.0;
-    double squares = 0.0;
-    for (const FieldSample& sample : placed.on_face[f]) {
-      const double r = distance(out.fields[f].point(sample.u, sample.v), sample.value);
-      fit.max_residual = std::max(fit.max_residual, r);
-      squares += r * r;
-    }
-    fit.rms_residual = std::sqrt(squares / static_cast<double>(placed.on_face[f].size()));
-    report.max_node_residual = std::max(report.max_node_residual, fit.max_residual);
-  }
-  report.max_edge_gap = edge_gap(faces, projectors, out.fields, report.tolerance);
-  return out;
-}
 
 SurfaceShape::SurfaceShape(std::vector<CadFace> faces, std::vector<BSplineSurface> after,
                            std::vector<BSplineSurface> before)
