@@ -1,82 +1,24 @@
-// Tests of hotmesh::io::read_case / parse_case / check_case_against_mesh: a full case parses
-// into the right values with absolute paths; defaults apply; every rule of the schema gives
-// "<case file>:<line>: <key path>: ..." and all problems of a file are reported together.
+// Tests of hotmesh::io::read_case / parse_case: a full case parses into the right values with
+// absolute paths; defaults apply; every rule of the schema gives
+// "<case file>:<line>: <key path>: ..." and all problems of a file are reported together. The
+// patches (roles, deflections, axis, periodic pairs, the case against the mesh) are in
+// test_case_patches.cpp.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
-#include "hotmesh/io/case_file.hpp"
-#include "test_support.hpp"
+#include "case_file_fixture.hpp"
 
 namespace hotmesh::io {
 namespace {
 
-namespace fs = std::filesystem;
+using namespace test_case;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::SizeIs;
 using ::testing::StartsWith;
-
-/// The smallest valid case; tests append keys from line 4 on.
-constexpr std::string_view kBase =
-    "mesh: mesh.msh\n"
-    "patches:\n"
-    "  wall: {role: fixed}\n";
-
-/// The same with the axis set, for tables and periodic pairs; appended patches start on line 5.
-constexpr std::string_view kBaseWithAxis =
-    "mesh: mesh.msh\n"
-    "axis: {origin: [0, 0, 0], direction: [0, 0, 1]}\n"
-    "patches:\n"
-    "  wall: {role: fixed}\n";
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-class CaseFile : public ::testing::Test {
- protected:
-  void SetUp() override {
-    test::write_text(dir / "mesh.msh", "$MeshFormat\n");
-    test::write_text(dir / "part.step", "ISO-10303-21;\n");
-    test::write_text(dir / "part.stl", "solid\n");
-    test::write_text(dir / "ramp.csv", "r,z,dr,dz\n1,0,0,0.1\n1,1,0,0.2\n");
-    test::write_text(dir / "blade.csv",
-                     "id,x,y,z,dx,dy,dz\n1,0,0,0,0,0,0.1\n2,1,0,0,0,0,0.1\n3,2,0,0,0,0,0.1\n4,3,0,0,0,0,0.1\n");
-    test::write_text(dir / "plane.csv", "x,y,dx,dy\n0,0,0,0.1\n1,0,0,0.1\n");
-    test::write_text(dir / "bad.csv", "x,y,dq,dy\n0,0,0,0\n");
-  }
-
-  fs::path case_path() const { return dir / "case.yaml"; }
-  /// "<case file>:<line>: ", the start of every problem on that line.
-  std::string at(int line) const { return case_path().string() + ":" + std::to_string(line) + ": "; }
-
-  Case parse(std::string_view yaml) {
-    test::write_text(case_path(), yaml);
-    return read_case(case_path());
-  }
-  std::string error_of(std::string_view yaml) {
-    try {
-      parse(yaml);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "no error";
-  }
-  std::string error_with(std::string_view extra) { return error_of(std::string(kBase) + std::string(extra)); }
-  std::string error_with_axis(std::string_view extra) {
-    return error_of(std::string(kBaseWithAxis) + std::string(extra));
-  }
-
-  test::TempDir dir;
-};
 
 // The example of the project issue, with the partner per_hi added (a pair needs both sides).
 constexpr std::string_view kFullExample =
@@ -509,139 +451,6 @@ TEST_F(CaseFile, ReportsAllProblemsInFileOrder) {
   EXPECT_THAT(lines[5], StartsWith(at(6) + "extra: unknown key"));
 }
 
-TEST_F(CaseFile, ChecksRolesAndWhereDeflectionsAreAllowed) {
-  const auto lines = lines_of(error_with(
-      "  a: {}\n"                                                        // 4
-      "  b: {role: fixed, deflection: {file: plane.csv}}\n"              // 5
-      "  c: {role: slip, deflection: {file: plane.csv}}\n"               // 6
-      "  d: {role: passive, deflection: {file: plane.csv}}\n"            // 7
-      "  e: {role: sliding, partner: a}\n"                               // 8
-      "  f: {role: fixed, angle_deg: 10}\n"                              // 9
-      "  g:\n"));                                                        // 10
-  ASSERT_THAT(lines, SizeIs(7));
-  EXPECT_EQ(lines[0], at(4) + "patches.a.role: missing; expected one of fixed, prescribed, slip, sliding, passive, periodic");
-  EXPECT_EQ(lines[1], at(5) + "patches.b.deflection: not allowed for role fixed; only prescribed and sliding patches "
-                              "take a deflection table");
-  EXPECT_THAT(lines[2], StartsWith(at(6) + "patches.c.deflection: not allowed for role slip"));
-  EXPECT_THAT(lines[3], StartsWith(at(7) + "patches.d.deflection: not allowed for role passive"));
-  EXPECT_EQ(lines[4], at(8) + "patches.e.partner: only periodic patches have partner (this patch is sliding)");
-  EXPECT_EQ(lines[5], at(9) + "patches.f.angle_deg: only periodic patches have angle_deg (this patch is fixed)");
-  EXPECT_THAT(lines[6], StartsWith(at(10) + "patches.g.role: missing"));
-  // Sliding without a table slides over its own undeformed shape.
-  EXPECT_EQ(parse(std::string(kBase) + "  s: {role: sliding}\n").find_patch("s")->role, PatchRole::sliding);
-}
-
-TEST_F(CaseFile, RejectsDeflectionOnPeriodicPatch) {
-  EXPECT_THAT(error_with_axis("  p: {role: periodic, partner: q, angle_deg: 5, deflection: {file: blade.csv}}\n"
-                              "  q: {role: periodic}\n"),
-              StartsWith(at(5) + "patches.p.deflection: not allowed for role periodic"));
-}
-
-TEST_F(CaseFile, IncludesDeflectionTableErrors) {
-  EXPECT_EQ(error_with("  ramp: {role: sliding, deflection: {file: bad.csv}}\n"),
-            at(4) + "patches.ramp.deflection.file: " + (dir / "bad.csv").string() +
-                ":1: unknown column 'dq'; expected x,y,dx,dy (planar), x,y,z,dx,dy,dz (cartesian) or r,z,dr,dz "
-                "(meridional), plus an optional id");
-}
-
-TEST_F(CaseFile, FacesNeedCad) {
-  EXPECT_EQ(error_with("  blade: {role: prescribed, deflection: {file: blade.csv, faces: [1]}}\n"),
-            at(4) + "patches.blade.deflection.faces: CAD face numbers need a CAD file; add `cad: <file.step>` at the "
-                    "top level");
-}
-
-TEST_F(CaseFile, RejectsPlanarTableBesideThreeDimensionalOne) {
-  EXPECT_EQ(error_with("  a: {role: sliding, deflection: {file: blade.csv}}\n"
-                       "  b: {role: sliding, deflection: {file: plane.csv}}\n"),
-            at(5) + "patches.b.deflection: its table is planar (x, y) but the table of patch 'a' (line 4) is "
-                    "cartesian (x, y, z); planar tables are for 2D meshes, the others for 3D meshes");
-}
-
-TEST_F(CaseFile, MeridionalTableNeedsAxis) {
-  EXPECT_EQ(error_with("  disc:\n    role: sliding\n    deflection: {file: ramp.csv}\n"),
-            at(4) + "patches.disc: its deflection table is meridional (r, z), which needs the top-level axis, e.g. "
-                    "axis: {origin: [0, 0, 0], direction: [0, 0, 1]}");
-  EXPECT_NO_THROW(parse(std::string(kBaseWithAxis) + "  disc: {role: sliding, deflection: {file: ramp.csv}}\n"));
-}
-
-TEST_F(CaseFile, AxisNeedsOriginAndDirection) {
-  EXPECT_EQ(error_with("axis: {direction: [0, 0, 1]}\n"),
-            at(4) + "axis.origin: missing; the axis needs both, e.g. axis: {origin: [0, 0, 0], direction: [0, 0, 1]}");
-}
-
-TEST_F(CaseFile, PeriodicPairNeedsAxis) {
-  EXPECT_THAT(error_with("  lo: {role: periodic}\n  hi: {role: periodic, partner: lo, angle_deg: -3.6}\n"),
-              StartsWith(at(5) + "patches.hi: the periodic pair hi/lo needs the top-level axis"));
-}
-
-TEST_F(CaseFile, AcceptsPeriodicPairDeclaredEitherWay) {
-  const Case c = parse(std::string(kBaseWithAxis) +
-                       "  a: {role: periodic, partner: b, angle_deg: 180}\n"
-                       "  b: {role: periodic, partner: a}\n"
-                       "  c: {role: periodic}\n"
-                       "  d: {role: periodic, partner: c, angle_deg: -10}\n");
-  EXPECT_EQ(c.find_patch("a")->angle_deg, 180.0);
-  EXPECT_EQ(c.find_patch("b")->partner, "a");
-  EXPECT_EQ(c.find_patch("c")->partner, "d");
-  EXPECT_EQ(c.find_patch("d")->angle_deg, -10.0);
-}
-
-TEST_F(CaseFile, RejectsBadPeriodicAngles) {
-  const auto lines = lines_of(error_with_axis(
-      "  a: {role: periodic, partner: b, angle_deg: 0}\n"       // 5
-      "  b: {role: periodic}\n"                                 // 6
-      "  c: {role: periodic, partner: d, angle_deg: 190}\n"     // 7
-      "  d: {role: periodic}\n"                                 // 8
-      "  e: {role: periodic, partner: f, angle_deg: .inf}\n"    // 9
-      "  f: {role: periodic}\n"));                              // 10
-  ASSERT_THAT(lines, SizeIs(3));
-  EXPECT_EQ(lines[0], at(5) + "patches.a.angle_deg: must be a non-zero angle in degrees with |angle_deg| <= 180, got 0");
-  EXPECT_EQ(lines[1], at(7) + "patches.c.angle_deg: must be a non-zero angle in degrees with |angle_deg| <= 180, got 190");
-  EXPECT_EQ(lines[2], at(9) + "patches.e.angle_deg: must be a finite number, got .inf");
-}
-
-TEST_F(CaseFile, RejectsBrokenPeriodicPairs) {
-  const auto lines = lines_of(error_with_axis(
-      "  a: {role: periodic}\n"                                  // 5  not paired
-      "  b: {role: periodic, angle_deg: 5}\n"                    // 6  angle without partner
-      "  c: {role: periodic, partner: c, angle_deg: 5}\n"        // 7  itself
-      "  d: {role: periodic, partner: nowhere, angle_deg: 5}\n"  // 8  not a patch
-      "  e: {role: periodic, partner: wall, angle_deg: 5}\n"     // 9  not periodic
-      "  f: {role: periodic, partner: g, angle_deg: 5}\n"        // 10 both give the angle
-      "  g: {role: periodic, partner: f, angle_deg: -5}\n"       // 11
-      "  h: {role: periodic, partner: i}\n"                      // 12 no angle in the pair
-      "  i: {role: periodic}\n"));                               // 13
-  ASSERT_THAT(lines, SizeIs(7));
-  EXPECT_EQ(lines[0], at(5) + "patches.a: periodic patch without a partner; declare the pair on one side with "
-                              "`partner: <other>` and `angle_deg: <degrees>`");
-  EXPECT_EQ(lines[1], at(6) + "patches.b.angle_deg: needs `partner: <other periodic patch>` beside it");
-  EXPECT_EQ(lines[2], at(7) + "patches.c.partner: a patch cannot be its own partner; name the other side");
-  EXPECT_EQ(lines[3], at(8) + "patches.d.partner: 'nowhere' is not a patch of this case; periodic patches: a, b, c, d, "
-                              "e, f, g, h, i");
-  EXPECT_EQ(lines[4], at(9) + "patches.e.partner: 'wall' has role fixed; the partner must be periodic too");
-  EXPECT_EQ(lines[5], at(11) + "patches.g.angle_deg: 'f' gives angle_deg too; give it on one side of the pair only");
-  EXPECT_EQ(lines[6], at(12) + "patches.h: the periodic pair h/i has no angle_deg; add angle_deg (the rotation "
-                               "from one patch to the other, in degrees) on one side");
-}
-
-TEST_F(CaseFile, RejectsPatchInTwoPairsAndConflictingPartners) {
-  const auto lines = lines_of(error_with_axis(
-      "  a: {role: periodic, partner: c, angle_deg: 5}\n"   // 5
-      "  b: {role: periodic, partner: c, angle_deg: 5}\n"   // 6
-      "  c: {role: periodic}\n"                             // 7 in two pairs
-      "  d: {role: periodic, partner: e, angle_deg: 5}\n"   // 8 e points elsewhere
-      "  e: {role: periodic, partner: f}\n"                 // 9
-      "  f: {role: periodic, partner: e, angle_deg: 5}\n"    // 10
-      "  g: {role: periodic, partner: h}\n"                  // 11 h is paired with i
-      "  h: {role: periodic}\n"                              // 12
-      "  i: {role: periodic, partner: h, angle_deg: 5}\n"));  // 13
-  ASSERT_THAT(lines, SizeIs(3));
-  EXPECT_EQ(lines[0], at(7) + "patches.c: is in more than one periodic pair (with a, b); each periodic patch pairs "
-                              "with exactly one other");
-  EXPECT_EQ(lines[1], at(8) + "patches.d.partner: 'e' names 'f' as its partner, not 'd'");
-  EXPECT_EQ(lines[2], at(11) + "patches.g.partner: 'h' is already paired with 'i'");
-}
-
 TEST_F(CaseFile, ReadCaseReportsUnreadableFile) {
   EXPECT_THROW(read_case(dir / "absent.yaml"), InputError);
 }
@@ -649,91 +458,6 @@ TEST_F(CaseFile, ReadCaseReportsUnreadableFile) {
 TEST_F(CaseFile, RoleNames) {
   EXPECT_EQ(to_string(PatchRole::prescribed), "prescribed");
   EXPECT_EQ(to_string(PatchRole::periodic), "periodic");
-}
-
-class CaseAgainstMesh : public CaseFile {
- protected:
-  std::string mesh_error(std::string_view yaml, const mesh::Mesh& mesh) {
-    const Case c = parse(yaml);
-    try {
-      check_case_against_mesh(c, mesh);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "no error";
-  }
-};
-
-TEST_F(CaseAgainstMesh, AcceptsCaseCoveringEveryPatch) {
-  EXPECT_EQ(mesh_error("mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: slip}\n"
-                       "  ymin: {role: sliding, deflection: {file: plane.csv}}\n  ymax: {role: passive}\n",
-                       test::unit_square(2, 2)),
-            "no error");
-}
-
-TEST_F(CaseAgainstMesh, ReportsMeshPatchesWithoutRoleAndUnknownPatches) {
-  const auto lines = lines_of(mesh_error(
-      "mesh: mesh.msh\n"
-      "patches:\n"                       // 2
-      "  xmin: {role: fixed}\n"
-      "  outlet: {role: passive}\n"      // 4
-      "  ymin: {role: fixed}\n",
-      test::unit_square(2, 2)));
-  ASSERT_THAT(lines, SizeIs(3));
-  EXPECT_EQ(lines[0], at(2) + "patches: mesh patch 'xmax' has no role; add `xmax: {role: ...}` under patches");
-  EXPECT_EQ(lines[1], at(2) + "patches: mesh patch 'ymax' has no role; add `ymax: {role: ...}` under patches");
-  EXPECT_EQ(lines[2], at(4) + "patches.outlet: no patch 'outlet' in the mesh mesh.msh; its patches are: xmin, xmax, "
-                              "ymin, ymax");
-}
-
-TEST_F(CaseAgainstMesh, ChecksTableFrameAgainstMeshDimension) {
-  const std::string square = "mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n"
-                             "  ymax: {role: fixed}\n  ymin: {role: sliding, deflection: {file: blade.csv}}\n";
-  EXPECT_EQ(mesh_error(square, test::unit_square(2, 2)),
-            at(6) + "patches.ymin.deflection: a cartesian (x, y, z) table is for 3D meshes but the mesh is 2D; give "
-                    "its columns as x,y,dx,dy");
-  const std::string cube = "mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n"
-                           "  ymax: {role: fixed}\n  zmin: {role: fixed}\n  zmax: {role: fixed}\n"
-                           "  ymin: {role: sliding, deflection: {file: plane.csv}}\n";
-  EXPECT_EQ(mesh_error(cube, test::unit_cube(1)),
-            at(8) + "patches.ymin.deflection: a planar (x, y) table is for 2D meshes but the mesh is 3D; give its "
-                    "columns as x,y,z,dx,dy,dz or r,z,dr,dz");
-  const std::string meridional = "mesh: mesh.msh\naxis: {origin: [0, 0, 0], direction: [0, 1, 0]}\npatches:\n"
-                                 "  xmin: {role: fixed}\n  xmax: {role: fixed}\n  ymax: {role: fixed}\n"
-                                 "  ymin: {role: sliding, deflection: {file: ramp.csv}}\n";
-  EXPECT_THAT(mesh_error(meridional, test::unit_square(2, 2)),
-              StartsWith(at(7) + "patches.ymin.deflection: a meridional (r, z) table is for 3D meshes but the mesh is 2D"));
-}
-
-}  // namespace
-}  // namespace hotmesh::io
-
-namespace hotmesh::io {
-namespace {
-
-// The deflection's `mode` (how a 3D wall is built): its values, a meridional wall without the
-// axis it needs, and the key on a 2D mesh, each refused at its line.
-TEST_F(CaseFile, DeflectionModeChoosesHowA3DWallIsBuilt) {
-  EXPECT_EQ(parse(std::string(kBase) + "  ramp: {role: sliding, deflection: {file: plane.csv, mode: surface}}\n")
-                .find_patch("ramp")
-                ->deflection->mode,
-            WallMode::surface);
-  EXPECT_EQ(parse(std::string(kBase) + "  ramp: {role: sliding, deflection: {file: plane.csv}}\n")
-                .find_patch("ramp")
-                ->deflection->mode,
-            WallMode::automatic);
-  EXPECT_THAT(error_with("  ramp: {role: sliding, deflection: {file: plane.csv, mode: revolved}}\n"),
-              StartsWith(at(4) + "patches.ramp.deflection.mode: "));
-  EXPECT_THAT(error_with("  ramp: {role: sliding, deflection: {file: plane.csv, mode: meridional}}\n"),
-              StartsWith(at(4) + "patches.ramp.deflection.mode: a meridional wall is a surface of revolution about "
-                                 "the top-level axis"));
-}
-
-TEST_F(CaseAgainstMesh, DeflectionModeIsFor3DWalls) {
-  EXPECT_THAT(mesh_error("mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: slip}\n"
-                         "  ymin: {role: sliding, deflection: {file: plane.csv, mode: surface}}\n  ymax: {role: passive}\n",
-                         test::unit_square(2, 2)),
-              HasSubstr(":5: patches.ymin.deflection.mode: is for the walls of 3D meshes"));
 }
 
 }  // namespace
