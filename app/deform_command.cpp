@@ -233,7 +233,7 @@ deform::MotionResult move_the_mesh(const Options& options, RunState& state, cons
   const mesh::Mesh& mesh = in.loaded.mesh;
   const parallel::Processes job = parallel::processes();
   const int increments = c.solver.increments;
-  const deform::LinearSolverChoice linear = linear_solver_of(c, mesh);
+  const deform::LinearSolverChoice linear = linear_solver_of(c, mesh, setup);
   deform::SolverOptions solver = c.solver;
   solver.linear = linear.kind;
   if (in.resumed) {

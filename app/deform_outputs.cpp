@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/geometry/surface_shape.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/figure.hpp"
@@ -327,10 +328,9 @@ json seconds_json(const RunTimings& timings, const deform::MotionTimings& m) {
 
 }  // namespace
 
-deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh& mesh) {
+deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh& mesh, const io::CaseSetup& setup) {
   if (c.solver.linear != deform::LinearSolverKind::automatic) return {c.solver.linear, "the case file"};
-  const bool sliding = std::any_of(c.patches.begin(), c.patches.end(), [](const io::PatchSpec& p) { return p.role == io::PatchRole::sliding; });
-  return deform::choose_linear_solver(mesh.dimension, mesh.cell_count(), sliding, parallel::processes().count);
+  return deform::choose_linear_solver(mesh, setup.motions, parallel::processes().count);
 }
 
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
@@ -346,7 +346,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["patches"] = json::array();
   for (const auto& m : setup.motions) j["patches"].push_back({{"name", m.patch}, {"role", deform::to_string(m.role)}});
   j["deflections"] = deflections_json(c, setup, result.length_scale);
-  j["solver"] = solver_json(c.solver, linear_solver_of(c, loaded.mesh));
+  j["solver"] = solver_json(c.solver, linear_solver_of(c, loaded.mesh, setup));
   put_increments(j, result);
   put_motion(j, loaded.mesh, setup, result);
   j["wall_deviations"] = wall_deviations_json(loaded.mesh, result.points, setup, result.lambda_reached, result.length_scale);

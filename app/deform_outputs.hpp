@@ -47,10 +47,10 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
                   const io::CaseSetup& setup, const deform::MotionResult& result, const RunTimings& timings,
                   RunOutputs& outputs, const io::CheckpointInfo* resumed = nullptr);
 
-/// The linear solver a run of case `c` on `mesh` uses, and why: the case file's, or what
-/// `linear: auto` picks for the mesh, its sliding walls and the processes
+/// The linear solver a run of case `c` on `mesh` with `setup` uses, and why: the case file's, or
+/// what `linear: auto` picks for the mesh, its sliding walls and the processes
 /// (deform::choose_linear_solver).
-deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh& mesh);
+deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh& mesh, const io::CaseSetup& setup);
 
 /// The process's peak resident memory (VmHWM), or 0 where /proc does not tell.
 std::uint64_t peak_memory_bytes();

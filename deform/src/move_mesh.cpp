@@ -559,15 +559,17 @@ MotionResult with_corner_pass(const Mesh& mesh, MotionResult moved, MotionResult
 
 }  // namespace
 
+LinearSolverChoice choose_linear_solver(const Mesh& mesh, std::span<const PatchMotion> patches, int processes) {
+  const bool sliding = std::any_of(patches.begin(), patches.end(), [](const PatchMotion& m) { return m.role == BoundaryRole::sliding; });
+  return choose_linear_solver(mesh.dimension, mesh.cell_count(), sliding, processes);
+}
+
 MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
                        const SolverOptions& options, const MotionObservers& observers, const MotionStart* start,
                        const MotionCheckpoint* resume, const parallel::RankExchange& ranks) {
   const auto begin = Clock::now();
   SolverOptions solver = options;
-  if (solver.linear == LinearSolverKind::automatic) {
-    const bool sliding = std::any_of(patches.begin(), patches.end(), [](const PatchMotion& m) { return m.role == BoundaryRole::sliding; });
-    solver.linear = choose_linear_solver(mesh.dimension, mesh.cell_count(), sliding, ranks.ranks()).kind;
-  }
+  if (solver.linear == LinearSolverKind::automatic) solver.linear = choose_linear_solver(mesh, patches, ranks.ranks()).kind;
   require_motion_cells(mesh);  // before eq. (35), which would measure the other cell types
   const bool corners = has_corners(patches);
   std::vector<PatchMotion> sliding_freely(patches.begin(), patches.end());

@@ -37,6 +37,11 @@ namespace hotmesh::deform {
 /// the checkpoint does not fit the set-up (node counts, sliding nodes, increments).
 /// With `ranks` the processes of a job (each with the same mesh and set-up) share the work of
 /// the run (hotmesh/parallel/processes.hpp) and all end with the same result.
+/// What `linear: auto` picks for a motion of `mesh` with `patches` on `processes` processes:
+/// choose_linear_solver() with the mesh's dimension and cells and whether a patch slides.
+/// move_mesh resolves SolverOptions::linear = automatic with it.
+LinearSolverChoice choose_linear_solver(const Mesh& mesh, std::span<const PatchMotion> patches, int processes);
+
 MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, const MaterialOptions& material,
                        const SolverOptions& solver, const MotionObservers& observers = {},
                        const MotionStart* start = nullptr, const MotionCheckpoint* resume = nullptr,
