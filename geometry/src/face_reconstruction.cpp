@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -80,13 +81,80 @@ double edge_gap(std::span<const CadFace> faces, const std::vector<SurfaceProject
 }
 
 /// The edges the faces share side to side with parameters that correspond affinely (equal
-/// fractions along both sides, or reversed), which join_fields can make the fields meet on,
-/// and the corners those sides end at, grouped by the point of the wall they lie at.
+/// fractions along both sides, or reversed), which join_fields makes the fields meet on
+/// exactly; those whose parameters do not (uneven), which it makes meet to a tolerance; and
+/// the corners those sides end at, grouped by the point of the wall they lie at.
 struct EdgeJoins {
   std::vector<detail::SharedSide> sides;
+  std::vector<detail::UnevenSide> uneven;
   std::vector<std::vector<detail::FaceCorner>> corners;
   std::size_t shared = 0;  ///< shared sides, each counted once, joinable or not
 };
+
+/// The parameter along side `side` of a face (u along sides 0 and 1, v along 2 and 3) of the
+/// point of that side nearest p: Newton on |C(y) - p|^2 for the side's curve C, from `start`.
+double nearest_on_side(const BSplineSurface& s, int side, const Vec3& p, double start) {
+  const ParameterRectangle r = s.domain();
+  const bool u = side < 2;
+  const double lo = u ? r.u_first : r.v_first, hi = u ? r.u_last : r.v_last;
+  double y = std::clamp(start, lo, hi);
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const auto [su, sv] = on_side(r, side, (y - lo) / (hi - lo));
+    const SurfaceDerivatives d = s.derivatives(su, sv);
+    const Vec3 c1 = u ? d.du : d.dv, c2 = u ? d.duu : d.dvv, off = d.point - p;
+    const double slope = dot(off, c1), curvature = dot(c1, c1) + dot(off, c2);
+    if (!(curvature > 0.0)) break;
+    const double next = std::clamp(y - slope / curvature, lo, hi);
+    const bool settled = std::abs(next - y) <= 1e-15 * (hi - lo);
+    y = next;
+    if (settled) break;
+  }
+  return y;
+}
+
+/// The uneven edge where side `side_a` of face a lies on face b: the side of b it lies on
+/// (found from 5 points of a's side projected onto b), and the maps between the two sides'
+/// parameters through the points of the wall (valid while `faces` and `set` are); none if the
+/// points are not on one side of b.
+std::optional<detail::UnevenSide> uneven_side(std::span<const CadFace> faces, const FaceSet& set, std::size_t a,
+                                              int side_a, std::size_t b) {
+  const ParameterRectangle ra = faces[a].surface.domain(), rb = faces[b].surface.domain();
+  const auto range = [](const ParameterRectangle& r, int side) {
+    return side < 2 ? std::pair(r.u_first, r.u_last) : std::pair(r.v_first, r.v_last);
+  };
+  const auto across = [](const ParameterRectangle& r, int side) {  // the fixed parameter, its range
+    return side < 2 ? std::array{side == 0 ? r.v_first : r.v_last, r.v_last - r.v_first}
+                    : std::array{side == 2 ? r.u_first : r.u_last, r.u_last - r.u_first};
+  };
+  std::vector<SurfaceParameter> on_b;
+  for (int k = 0; k < 5; ++k) {
+    const auto [u, v] = on_side(ra, side_a, (k + 0.5) / 5.0);
+    on_b.push_back(set.projectors[b].project(faces[a].surface.point(u, v)).where);
+  }
+  for (int side_b = 0; side_b < 4; ++side_b) {
+    const auto [fixed, extent] = across(rb, side_b);
+    const bool on = std::all_of(on_b.begin(), on_b.end(), [&](const SurfaceParameter& w) {
+      return std::abs((side_b < 2 ? w.v : w.u) - fixed) <= 1e-7 * extent;
+    });
+    if (!on) continue;
+    const auto point = [faces, range](std::size_t f, int side, double y) {  // the point at y along a side
+      const auto [lo, hi] = range(faces[f].surface.domain(), side);
+      const auto [u, v] = on_side(faces[f].surface.domain(), side, (y - lo) / (hi - lo));
+      return faces[f].surface.point(u, v);
+    };
+    // From x along one side to the parameter of the other side's point nearest the point at x:
+    // the other face's projector, then Newton along its side.
+    const auto map = [faces, &set, point](std::size_t from, int side_from, std::size_t to, int side_to) {
+      return [faces, &set, point, from, side_from, to, side_to](double x) {
+        const Vec3 p = point(from, side_from, x);
+        const SurfaceParameter w = set.projectors[to].project(p).where;
+        return nearest_on_side(faces[to].surface, side_to, p, side_to < 2 ? w.u : w.v);
+      };
+    };
+    return detail::UnevenSide{{a, side_a}, {b, side_b}, map(a, side_a, b, side_b), map(b, side_b, a, side_a)};
+  }
+  return std::nullopt;
+}
 
 EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
   const double tolerance = 1e-7 * set.size;
@@ -124,21 +192,24 @@ EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
       if (!found) {
         const bool counted_from_b = b < a && std::find(set.neighbours[b].begin(), set.neighbours[b].end(), static_cast<int>(a)) !=
                                                  set.neighbours[b].end();
-        if (!counted_from_b) ++out.shared;
+        if (counted_from_b) continue;
+        ++out.shared;
+        if (auto s = uneven_side(faces, set, a, side_a, b)) out.uneven.push_back(std::move(*s));
       }
     }
   }
   // Corner c of a rectangle: (u first | u last) + 2 (v first | v last); the ends of side k.
   constexpr std::array<std::array<int, 2>, 4> kEnds{{{0, 1}, {2, 3}, {0, 2}, {1, 3}}};
   std::vector<std::pair<detail::FaceCorner, Vec3>> ends;
-  for (const detail::SharedSide& s : out.sides) {
-    for (const detail::FaceSide& fs : {s.a, s.b}) {
-      for (const int c : kEnds[static_cast<std::size_t>(fs.side)]) {
-        const bool seen = std::any_of(ends.begin(), ends.end(), [&](const auto& e) { return e.first.face == fs.face && e.first.corner == c; });
-        if (seen) continue;
-        const ParameterRectangle r = faces[fs.face].surface.domain();
-        ends.push_back({{fs.face, c}, faces[fs.face].surface.point(c % 2 == 0 ? r.u_first : r.u_last, c < 2 ? r.v_first : r.v_last)});
-      }
+  std::vector<detail::FaceSide> ending;
+  for (const detail::SharedSide& s : out.sides) ending.insert(ending.end(), {s.a, s.b});
+  for (const detail::UnevenSide& s : out.uneven) ending.insert(ending.end(), {s.a, s.b});
+  for (const detail::FaceSide& fs : ending) {
+    for (const int c : kEnds[static_cast<std::size_t>(fs.side)]) {
+      const bool seen = std::any_of(ends.begin(), ends.end(), [&](const auto& e) { return e.first.face == fs.face && e.first.corner == c; });
+      if (seen) continue;
+      const ParameterRectangle r = faces[fs.face].surface.domain();
+      ends.push_back({{fs.face, c}, faces[fs.face].surface.point(c % 2 == 0 ? r.u_first : r.u_last, c < 2 ? r.v_first : r.v_last)});
     }
   }
   std::vector<bool> grouped(ends.size(), false);
@@ -288,7 +359,8 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
   // residuals measured again on the joined fields.
   const EdgeJoins joins = edge_joins(faces, set);
   report.shared_edges = joins.shared;
-  report.joined_edges = joins.sides.size() - detail::join_fields(out.fields, joins.sides, joins.corners).size();
+  // Uneven edges count as joined where their fields meet to 1e-10 of the wall's size.
+  report.joined_edges = detail::join_fields(out.fields, joins.sides, joins.uneven, joins.corners, 1e-10 * size).joined;
   report.max_node_residual = 0.0;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     SurfaceFitReport& fit = report.faces[f].fit;

@@ -15,9 +15,27 @@
 // the difference of the two fits: both fields then pass through the mean of their values at
 // the edge's nodes. Fields that are polynomials of degree <= q, which both fits reproduce, are
 // left as they were.
+//
+// Where the faces run along the edge at speeds that are not in a constant ratio (x on a's side
+// is y = phi(x) on b's, phi not affine), a B-spline in x is not one in y, and the fields are
+// made to meet to a tolerance instead:
+//  3. each field takes the images phi(k) (phi^-1(k)) of the other's knots along the edge, so
+//     the breaks of the target below fall on knots of both;
+//  4. the target m(x) = (d_a(x) + d_b(phi(x))) / 2, taken at 8 points per knot span of either
+//     side, is fitted by least squares in each face's own parameter with its row of poles
+//     along the edge: the corner poles kept, the change of the others small where the samples
+//     barely reach them (a side covering part of the other's);
+//  5. where the two rows then differ by more than the tolerance, the knot spans there are
+//     halved in both fields (at x and at phi(x)) and steps 1, 2 and 4 done again, at most
+//     kMaxHalvings times.
+// Fields that meet along the edge already (polynomials of degree <= q in both parameters) keep
+// their knots, and their rows change by round-off. An edge whose fields still differ by more
+// than the tolerance after the last halving is left fitted as well as it got, and not counted
+// as joined.
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -47,10 +65,32 @@ struct FaceCorner {
   int corner = 0;
 };
 
-/// Joins the `fields` (one per face, non-rational, degree q each way) along `sides`. Corners
+/// An edge two faces share whose parameters along it are not affine to each other: the point
+/// of a's side at a's parameter x along it is the point of b's side at b's parameter to_b(x)
+/// (a monotone map). a's side may be part of b's side only (b's side is then shared with other
+/// faces too); to_a is the inverse, called on the image of a's side only.
+struct UnevenSide {
+  FaceSide a;
+  FaceSide b;
+  std::function<double(double)> to_b;
+  std::function<double(double)> to_a;
+};
+
+/// How far the joins went.
+struct JoinOutcome {
+  std::size_t joined = 0;  ///< edges whose fields meet: affine ones, and uneven ones within the tolerance
+  std::vector<SharedSide> left;  ///< affine sides not joined (their fields' degrees differ along the edge)
+  std::vector<double> uneven_gaps;  ///< per uneven side, max |d_a - d_b| along it after the join
+};
+
+/// At most this many halvings of the knot spans along an uneven edge (step 5).
+inline constexpr int kMaxHalvings = 5;
+
+/// Joins the `fields` (one per face, non-rational, degree q each way) along the affine `sides`
+/// exactly and along the `uneven` ones to `tolerance` (a distance between deflections). Corners
 /// lists the groups of face corners that lie at one point of the wall and end a shared side.
-/// Returns the sides that could not be joined (their fields' degrees differ along the edge).
-std::vector<SharedSide> join_fields(std::vector<BSplineSurface>& fields, std::span<const SharedSide> sides,
-                                    std::span<const std::vector<FaceCorner>> corners);
+JoinOutcome join_fields(std::vector<BSplineSurface>& fields, std::span<const SharedSide> sides,
+                        std::span<const UnevenSide> uneven, std::span<const std::vector<FaceCorner>> corners,
+                        double tolerance);
 
 }  // namespace hotmesh::geometry::detail
