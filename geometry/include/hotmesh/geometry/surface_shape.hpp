@@ -7,10 +7,11 @@
 // regularised least squares where they are scattered); the deflected face is
 //     S'(t, s) = S(t, s) + d(t, s)                                  (displacement form)
 // and the stages of the increments are S + lambda d (section 4.3). A node on an edge shared by
-// two faces is a sample of both, so both fields pass near its deflection there; where the two
-// faces parametrise the edge affinely to each other, the fields are then made to meet along
-// the whole edge (their rows of poles there averaged, field_joins.hpp), so the deflected faces
-// meet.
+// two faces is a sample of both, so both fields pass near its deflection there; the fields are
+// then made to meet along the whole edge (field_joins.hpp): exactly where the two faces
+// parametrise the edge affinely to each other (their rows of poles there averaged), to 1e-10
+// of the wall's size where they do not (their mean along the edge fitted in each face's
+// parameter, the knot spans there halved until the two fits agree).
 //
 // SurfaceShape is the BoundaryShape of such a wall: points are projected onto the stage's
 // deformed faces (surface_projector.hpp), parameters are (face, t, s). A restarted run goes
@@ -65,11 +66,14 @@ struct SurfaceReconstructionReport {
   /// interpolation's round-off on grids, the fit's error elsewhere.
   double max_node_residual = 0.0;
   /// Largest difference between the deflections of two faces along the edges they share
-  /// (sampled): how far apart the deflected faces are there. Round-off on joined edges.
+  /// (sampled): how far apart the deflected faces are there. Round-off on affine joined edges,
+  /// at most 1e-10 of the wall's size on uneven ones.
   double max_edge_gap = 0.0;
   std::size_t shared_edges = 0;  ///< edges two faces share
-  /// Shared edges along which the fields were made to meet exactly: those the two faces
-  /// parametrise affinely to each other (equal fractions along both sides, or reversed).
+  /// Shared edges along which the fields were made to meet: exactly where the two faces
+  /// parametrise the edge affinely to each other (equal fractions along both sides, or
+  /// reversed), to 1e-10 of the wall's size elsewhere (uneven edges the refinement brought
+  /// within it).
   std::size_t joined_edges = 0;
   std::vector<NodeDistance> rejected_nodes;  ///< dropped for distance (FarNodePolicy::drop)
   std::vector<FaceFitReport> faces;
