@@ -21,13 +21,14 @@
 // made to meet to a tolerance instead:
 //  3. each field takes the images phi(k) (phi^-1(k)) of the other's knots along the edge, so
 //     the breaks of the target below fall on knots of both;
-//  4. the target m(x) = (d_a(x) + d_b(phi(x))) / 2, taken at 8 points per knot span of either
-//     side, is fitted by least squares in each face's own parameter with its row of poles
-//     along the edge: the corner poles kept, the change of the others small where the samples
-//     barely reach them (a side covering part of the other's);
-//  5. where the two rows then differ by more than the tolerance, the knot spans there are
-//     halved in both fields (at x and at phi(x)) and steps 1, 2 and 4 done again, at most
-//     kMaxHalvings times.
+//  4. the target m(x) = (d_a(x) + d_b(phi(x))) / 2, plus a function linear in x that takes it
+//     to the corner poles' means at the ends, taken at 8 points per knot span of either side,
+//     is fitted by least squares in each face's own parameter with its row of poles along the
+//     edge: the corner poles kept, the change of the others small where the samples barely
+//     reach them (a side covering part of the other's);
+//  5. while the two rows differ by more than the tolerance somewhere, the knot spans where
+//     they differ by more than a tenth of it are halved in both fields (at x and at phi(x))
+//     and steps 1, 2 and 4 done again, at most kMaxHalvings times.
 // Fields that meet along the edge already (polynomials of degree <= q in both parameters) keep
 // their knots, and their rows change by round-off. An edge whose fields still differ by more
 // than the tolerance after the last halving is left fitted as well as it got, and not counted
