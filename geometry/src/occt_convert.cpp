@@ -50,6 +50,12 @@ BSplineCurve2d to_curve(const Handle(Geom2d_BSplineCurve)& input) {
     curve = Handle(Geom2d_BSplineCurve)::DownCast(input->Copy());
     curve->SetNotPeriodic();
   }
+  // Floating ends (IGES allows knot vectors that do not open with degree + 1 equal knots): the
+  // curve over its range, cut out with clamped ends.
+  if (curve->Multiplicity(1) <= curve->Degree() || curve->Multiplicity(curve->NbKnots()) <= curve->Degree()) {
+    if (curve == input) curve = Handle(Geom2d_BSplineCurve)::DownCast(input->Copy());
+    curve->Segment(curve->FirstParameter(), curve->LastParameter());
+  }
   std::vector<Vec2> poles;
   std::vector<double> weights;
   for (Standard_Integer i = 1; i <= curve->NbPoles(); ++i) {
@@ -99,6 +105,18 @@ BSplineSurface to_surface(const Handle(Geom_BSplineSurface)& input) {
     surface = Handle(Geom_BSplineSurface)::DownCast(input->Copy());
     if (surface->IsUPeriodic()) surface->SetUNotPeriodic();
     if (surface->IsVPeriodic()) surface->SetVNotPeriodic();
+  }
+  // Floating ends (IGES 128 allows knot vectors that do not open with degree + 1 equal knots;
+  // I-DEAS writes them): the surface over its range, cut out with clamped ends.
+  const bool u_floating = surface->UMultiplicity(1) <= surface->UDegree() ||
+                          surface->UMultiplicity(surface->NbUKnots()) <= surface->UDegree();
+  const bool v_floating = surface->VMultiplicity(1) <= surface->VDegree() ||
+                          surface->VMultiplicity(surface->NbVKnots()) <= surface->VDegree();
+  if (u_floating || v_floating) {
+    if (surface == input) surface = Handle(Geom_BSplineSurface)::DownCast(input->Copy());
+    double u0, u1, v0, v1;
+    surface->Bounds(u0, u1, v0, v1);
+    surface->Segment(u0, u1, v0, v1);
   }
   std::vector<Vec3> poles;
   std::vector<double> weights;

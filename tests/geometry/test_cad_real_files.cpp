@@ -271,5 +271,35 @@ TEST(CadRealFiles, FaceAsBSplineSurfaceMatchesTheFace) {
   }
 }
 
+// I-DEAS writes rational B-spline faces whose knot vectors float (their ends are not degree + 1
+// equal knots, as IGES 128 allows): each is cut out over its range with clamped ends, the same
+// surface. The lateral face is the cylinder r = 25 about y from y = -75 to 75, the caps the
+// planes y = +-75.
+TEST(CadRealFiles, BSplineFacesWithFloatingKnotVectorsAreTheSameSurfaceClamped) {
+  const CadModel model = read_mm("OCC8842_cylinder_Ideas.igs");
+  for (const int id : {1, 2, 3}) {
+    const BSplineSurface s = model.face_bspline(id);
+    EXPECT_EQ(s.u_knots().front(), s.u_knots()[static_cast<std::size_t>(s.u_degree())]) << id;
+    EXPECT_EQ(s.v_knots().back(), s.v_knots()[s.v_knots().size() - 1 - static_cast<std::size_t>(s.v_degree())]) << id;
+    double y_low = 1e9, y_high = -1e9;
+    for (int i = 0; i <= 6; ++i) {
+      for (int j = 0; j <= 6; ++j) {
+        const Vec3 p = s.point(s.u_first() + (s.u_last() - s.u_first()) * i / 6, s.v_first() + (s.v_last() - s.v_first()) * j / 6);
+        if (id == 1) {
+          EXPECT_NEAR(std::hypot(p.x, p.z), 25.0, 1e-6) << i << " " << j;
+        } else {
+          EXPECT_NEAR(std::abs(p.y), 75.0, 1e-6) << id;
+        }
+        y_low = std::min(y_low, p.y);
+        y_high = std::max(y_high, p.y);
+      }
+    }
+    if (id == 1) {
+      EXPECT_NEAR(y_low, -75.0, 1e-6);
+      EXPECT_NEAR(y_high, 75.0, 1e-6);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hotmesh::geometry
