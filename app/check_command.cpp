@@ -162,7 +162,7 @@ class DistanceTally {
 
 /// The two-sided distance of the faces of `patch` to each part of its reference: for one part
 /// all faces, else each face against the part nearest to its centroid.
-std::vector<std::optional<WallCheck>> part_walls(const mesh::Patch& patch, const mesh::Mesh& mesh,
+std::vector<WallCheck> part_walls(const mesh::Patch& patch, const mesh::Mesh& mesh,
                                                  PatchReference& reference) {
   const std::size_t parts = reference.parts.size();
   if (parts == 1) return {reference.parts[0]->wall(mesh, wall_faces(patch))};
@@ -181,7 +181,7 @@ std::vector<std::optional<WallCheck>> part_walls(const mesh::Patch& patch, const
       }
     }
   }
-  std::vector<std::optional<WallCheck>> walls;
+  std::vector<WallCheck> walls;
   for (std::size_t k = 0; k < parts; ++k) {
     std::vector<std::uint8_t> selected(patch.faces.size());
     for (std::size_t f = 0; f < selected.size(); ++f) selected[f] = nearest[f] == k ? 1 : 0;
@@ -191,10 +191,10 @@ std::vector<std::optional<WallCheck>> part_walls(const mesh::Patch& patch, const
 }
 
 /// Sets `check.wall` and folds the wall tolerance into `check.passed`.
-void put_wall(DistanceCheck& check, std::optional<WallCheck> wall, const std::optional<double>& wall_tolerance) {
-  if (wall && wall->measured() && wall_tolerance) wall->passed = wall->hausdorff <= *wall_tolerance;  // false for NaN too
+void put_wall(DistanceCheck& check, WallCheck wall, const std::optional<double>& wall_tolerance) {
+  if (wall.measured() && wall_tolerance) wall.passed = wall.hausdorff <= *wall_tolerance;  // false for NaN too
   check.wall = std::move(wall);
-  if (check.wall && !check.wall->passed) check.passed = false;
+  if (!check.wall.passed) check.passed = false;
 }
 
 /// The nodes of `patch` measured against its reference, each node against the nearest part;
@@ -222,7 +222,7 @@ PatchCheck check_patch(const mesh::Patch& patch, const mesh::Mesh& mesh, PatchRe
   PatchCheck check;
   static_cast<DistanceCheck&>(check) = whole.result(tolerance);
   check.patch = patch.name;
-  std::vector<std::optional<WallCheck>> walls = part_walls(patch, mesh, reference);
+  std::vector<WallCheck> walls = part_walls(patch, mesh, reference);
   if (parts.size() > 1) {
     for (std::size_t k = 0; k < parts.size(); ++k) {
       check.parts.push_back(parts[k].result(tolerance));
@@ -230,13 +230,9 @@ PatchCheck check_patch(const mesh::Patch& patch, const mesh::Mesh& mesh, PatchRe
     }
   }
   // The patch's: the largest of its parts' (a part not measured leaves the patch unmeasured).
-  std::optional<WallCheck> worst = walls[0];
-  for (std::size_t k = 1; k < walls.size() && worst && worst->measured(); ++k) {
-    if (!walls[k] || !walls[k]->measured()) {
-      worst = walls[k];
-    } else if (walls[k]->hausdorff > worst->hausdorff || std::isnan(walls[k]->hausdorff)) {
-      worst = walls[k];
-    }
+  WallCheck worst = walls[0];
+  for (std::size_t k = 1; k < walls.size() && worst.measured(); ++k) {
+    if (!walls[k].measured() || walls[k].hausdorff > worst.hausdorff || std::isnan(walls[k].hausdorff)) worst = walls[k];
   }
   put_wall(check, std::move(worst), wall_tolerance);
   check.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -246,7 +242,7 @@ PatchCheck check_patch(const mesh::Patch& patch, const mesh::Mesh& mesh, PatchRe
 void log_patch(const PatchCheck& p) {
   spdlog::info("{}: {} nodes, max distance {:.3e} at node {}, mean {:.3e}; faces {} ({})", p.patch, p.nodes,
                p.max_distance, p.worst_node, p.mean_distance,
-               p.wall && p.wall->measured() ? fmt::format("{:.3e} both ways", p.wall->hausdorff)
+               p.wall.measured() ? fmt::format("{:.3e} both ways", p.wall.hausdorff)
                                             : std::string("not measured"),
                p.passed ? "pass" : "FAIL");
 }

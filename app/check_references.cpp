@@ -12,6 +12,7 @@
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/geometry/surface_distance.hpp"
+#include "hotmesh/geometry/surface_shape.hpp"
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 
@@ -35,7 +36,7 @@ class ShapeReference final : public ReferenceShape {
       : shape_(std::move(shape)), stage_(stage), description_(std::move(description)) {}
   double distance(const geometry::Vec3& p) override { return shape_->project(p, stage_).distance; }
   std::string description() const override { return description_; }
-  std::optional<WallCheck> wall(const mesh::Mesh& mesh, const geometry::WallFaces& faces) override {
+  WallCheck wall(const mesh::Mesh& mesh, const geometry::WallFaces& faces) override {
     return measure_wall(*shape_, stage_, mesh, mesh.points, faces);
   }
 
@@ -45,16 +46,30 @@ class ShapeReference final : public ReferenceShape {
   std::string description_;
 };
 
-/// CAD faces that are no surfaces of revolution: the distance to their surfaces.
+/// CAD faces that are no surfaces of revolution: nodes measured by their distance to the
+/// surfaces within the faces' parameter bounds, the patch's faces against the undeformed wall
+/// as hotmesh deform sees it (a SurfaceShape without deflection).
 class FaceReference final : public ReferenceShape {
  public:
-  FaceReference(geometry::SurfaceDistance surfaces, std::string description)
-      : surfaces_(std::move(surfaces)), description_(std::move(description)) {}
+  FaceReference(std::vector<geometry::CadFace> faces, std::string description)
+      : surfaces_(surfaces_of(faces)),
+        wall_(geometry::undeformed_surface_shape(std::move(faces))),
+        description_(std::move(description)) {}
   double distance(const geometry::Vec3& p) override { return surfaces_.nearest(p).distance; }
   std::string description() const override { return description_; }
+  WallCheck wall(const mesh::Mesh& mesh, const geometry::WallFaces& faces) override {
+    return measure_wall(*wall_, 0.0, mesh, mesh.points, faces);
+  }
 
  private:
+  static geometry::SurfaceDistance surfaces_of(const std::vector<geometry::CadFace>& faces) {
+    std::vector<geometry::BSplineSurface> surfaces;
+    for (const geometry::CadFace& f : faces) surfaces.push_back(f.surface);
+    return geometry::SurfaceDistance(std::move(surfaces));
+  }
+
   geometry::SurfaceDistance surfaces_;
+  std::shared_ptr<const geometry::SurfaceShape> wall_;
   std::string description_;
 };
 
@@ -105,10 +120,9 @@ PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* c
                               return cad->face(id).axis.has_value();
                             });
     if (rotational) return revolved_faces(spec, *cad, options);
-    std::vector<geometry::BSplineSurface> surfaces;
-    for (const int id : spec.faces) surfaces.push_back(cad->face_bspline(id));
-    return single(std::make_unique<FaceReference>(geometry::SurfaceDistance(surfaces),
-                                                  fmt::format("CAD {}: their surfaces", faces)));
+    std::vector<geometry::CadFace> cad_faces;
+    for (const int id : spec.faces) cad_faces.push_back({id, cad->face_bspline(id)});
+    return single(std::make_unique<FaceReference>(std::move(cad_faces), fmt::format("CAD {}: their surfaces", faces)));
   }
 
   const geometry::DeflectionSamples table = io::read_deflection_csv(*spec.deflection);

@@ -9,8 +9,9 @@
 // shapes are those hotmesh deform builds for the case (io::set_up_case), undeformed or deflected:
 // curves, CAD faces deflected by a field d(t, s) each, or a table interpolated over a wall
 // without CAD faces. Shapes that are curves (in the x-y plane, or meridional curves of surfaces
-// of revolution) and walls on CAD faces also measure the patch's faces, both ways
-// (wall_deviation_report.hpp).
+// of revolution) and walls on CAD faces, deflected or not, also measure the patch's faces, both
+// ways (wall_deviation_report.hpp); the table interpolated over a wall has no surface to
+// measure them against, and says so.
 #pragma once
 
 #include <filesystem>
@@ -36,13 +37,8 @@ class ReferenceShape {
   /// What the shape is, for reports: "CAD faces 1, 2: their meridional curve about ...".
   virtual std::string description() const = 0;
   /// The two-sided distance between `faces` of `mesh` and the shape (wall_deviation_report.hpp),
-  /// or why it is not measured; nothing for CAD faces given without a table that are no
-  /// surfaces of revolution (measured by their nodes only).
-  virtual std::optional<WallCheck> wall(const mesh::Mesh& mesh, const geometry::WallFaces& faces) {
-    (void)mesh;
-    (void)faces;
-    return std::nullopt;
-  }
+  /// or why it is not measured.
+  virtual WallCheck wall(const mesh::Mesh& mesh, const geometry::WallFaces& faces) = 0;
 };
 
 /// What one patch is measured against: one shape, or one per separate part.

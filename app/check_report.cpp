@@ -21,14 +21,11 @@ std::string verdict(const DistanceCheck& p, double tolerance) {
 
 /// The faces' two-sided distance, and how it compares with the wall tolerance if there is one.
 std::string wall_verdict(const DistanceCheck& p, const std::optional<double>& wall_tolerance) {
-  if (!p.wall) {
-    return "faces: not measured (CAD faces that are no surfaces of revolution, without a table: their nodes only)";
-  }
-  if (!p.wall->measured()) return "faces: " + wall_text(*p.wall);
+  if (!p.wall.measured()) return "faces: " + wall_text(p.wall);
   const std::string against = wall_tolerance ? fmt::format(", {} the wall tolerance {:.3e}",
-                                                           p.wall->passed ? "within" : "ABOVE", *wall_tolerance)
+                                                           p.wall.passed ? "within" : "ABOVE", *wall_tolerance)
                                              : std::string(" (no --wall-tol: reported only)");
-  return "faces: " + wall_text(*p.wall) + against;
+  return "faces: " + wall_text(p.wall) + against;
 }
 
 /// Text escaped for XML attributes and content.
@@ -66,9 +63,8 @@ std::string part_lines(const PatchCheck& p, const CheckResult& result, const std
 }
 
 nlohmann::json wall_check_json(const DistanceCheck& p) {
-  if (!p.wall) return nullptr;
-  nlohmann::json wall = wall_json(*p.wall);
-  wall["passed"] = p.wall->passed;
+  nlohmann::json wall = wall_json(p.wall);
+  wall["passed"] = p.wall.passed;
   return wall;
 }
 
@@ -168,11 +164,11 @@ std::string check_junit(const CheckResult& result) {
       x += fmt::format("      <failure type=\"tolerance\" message=\"node {} is {:.3e} from the reference shape, above the "
                        "tolerance {:.3e}\">{}</failure>\n",
                        p.worst_node, p.max_distance, result.tolerance, details);
-    } else if (!p.passed && p.wall) {
-      const WallSide& w = p.wall->worst_side();
+    } else if (!p.passed) {
+      const WallSide& w = p.wall.worst_side();
       x += fmt::format("      <failure type=\"wall tolerance\" message=\"the faces are {:.3e} from the reference shape at {} "
                        "({}, {}), above the wall tolerance {:.3e}\">{}</failure>\n",
-                       p.wall->hausdorff, point_text(w.point), p.wall->worst, xml(mesh_location(w)),
+                       p.wall.hausdorff, point_text(w.point), p.wall.worst, xml(mesh_location(w)),
                        result.wall_tolerance.value_or(0.0), details);
     }
     x += fmt::format("      <system-out>{}</system-out>\n", details);

@@ -24,9 +24,8 @@ struct DistanceCheck {
   std::int64_t worst_node = 0;  ///< node id in the mesh file
   geometry::Vec3 worst_point;
   /// The two-sided distance between the faces and the reference shape (or why it was not
-  /// measured: a wall without a surface); nothing for CAD faces given without a table that are
-  /// no surfaces of revolution.
-  std::optional<WallCheck> wall;
+  /// measured: a wall without a surface).
+  WallCheck wall;
   bool passed = true;           ///< max_distance <= tolerance, and the wall's within the wall tolerance
 };
 

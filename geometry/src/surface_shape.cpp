@@ -372,6 +372,16 @@ SurfaceShapeFit make_surface_shape(std::vector<CadFace> faces, const DeflectionS
   return {std::move(shape), std::move(after.report)};
 }
 
+std::shared_ptr<SurfaceShape> undeformed_surface_shape(std::vector<CadFace> faces) {
+  std::vector<BSplineSurface> zero;
+  for (const CadFace& f : faces) {
+    const ParameterRectangle r = f.surface.domain();
+    zero.emplace_back(1, 1, std::vector<double>{r.u_first, r.u_first, r.u_last, r.u_last},
+                      std::vector<double>{r.v_first, r.v_first, r.v_last, r.v_last}, std::vector<Vec3>(4));
+  }
+  return std::make_shared<SurfaceShape>(std::move(faces), std::move(zero));
+}
+
 ScatteredShape::ScatteredShape(ScatteredField after, std::shared_ptr<const ScatteredField> before)
     : after_(std::move(after)), before_(std::move(before)) {}
 

@@ -222,7 +222,9 @@ TEST(CheckCommand, RevolvedMeshAgainstCadFacesAndTheDeflectedCylinder) {
   EXPECT_THAT(pass["patches"][1]["reference"].get<std::string>(), HasSubstr("their surfaces"));
   // The faces in the meridional plane: the quads' chords across theta are not counted.
   EXPECT_LT(pass["patches"][0]["wall"]["hausdorff"].get<double>(), 1e-9);
-  EXPECT_TRUE(pass["patches"][1]["wall"].is_null());  // a plane's surface, no curve: not measured
+  // The plane's faces in space, against the CAD face as hotmesh deform sees it.
+  EXPECT_EQ(pass["patches"][1]["wall"]["shape"], "faces");
+  EXPECT_LT(pass["patches"][1]["wall"]["hausdorff"].get<double>(), 1e-12);
 
   // One node of the inner wall 0.2 mm outwards, one of the bottom 0.3 mm down.
   mesh::Mesh perturbed = mesh;
@@ -238,6 +240,11 @@ TEST(CheckCommand, RevolvedMeshAgainstCadFacesAndTheDeflectedCylinder) {
   EXPECT_NEAR(fail["patches"][0]["max_distance"].get<double>(), 2e-4, 1e-9);
   EXPECT_EQ(fail["patches"][1]["worst_node"]["id"], mesh.node_id(bottom));
   EXPECT_NEAR(fail["patches"][1]["max_distance"].get<double>(), 3e-4, 1e-9);
+  // The bottom's faces bulge 0.3 mm off the plane at that node.
+  EXPECT_EQ(fail["patches"][1]["wall"]["worst"], "mesh_to_shape");
+  EXPECT_NEAR(fail["patches"][1]["wall"]["hausdorff"].get<double>(), 3e-4, 1e-9);
+  const std::vector<std::int64_t> around = fail["patches"][1]["wall"]["mesh_to_shape"]["face_nodes"];
+  EXPECT_NE(std::find(around.begin(), around.end(), mesh.node_id(bottom)), around.end());
 
   // Deformed: the inner wall moved out by d(z); the table samples the cylinder at 0.3 rad.
   std::ostringstream table;

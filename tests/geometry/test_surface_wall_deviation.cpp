@@ -23,13 +23,6 @@ BSplineSurface bilinear_face(const Vec3& p00, const Vec3& p01, const Vec3& p10, 
   return BSplineSurface(1, 1, {0, 0, 4, 4}, {0, 0, 1, 1}, {p00, p01, p10, p11});
 }
 
-/// The zero field over a face's rectangle.
-BSplineSurface zero_field(const BSplineSurface& face) {
-  const ParameterRectangle r = face.domain();
-  return BSplineSurface(1, 1, {r.u_first, r.u_first, r.u_last, r.u_last}, {r.v_first, r.v_first, r.v_last, r.v_last},
-                        {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
-}
-
 SurfaceShape shape_of(const BSplineSurface& face, const BSplineSurface& field) {
   return SurfaceShape({{1, face}}, {field});
 }
@@ -91,7 +84,8 @@ TEST(SurfaceWallDeviation, AWallSamplingItsFaceExactlyIsOnItBothWays) {
   EXPECT_GT(wall_deviation(shape, quads.points, quads.faces, {.lambda = 0.0}).hausdorff, 0.05);
 
   const BSplineSurface plane = bilinear_face({0, 0, 0}, {0, 1, 0.5}, {4, 0, 1}, {4, 1, 1.5});
-  const SurfaceShape flat = shape_of(plane, zero_field(plane));
+  const auto undeformed = undeformed_surface_shape({{1, plane}});
+  const SurfaceShape& flat = *undeformed;
   const Wall triangles = grid_wall(
       10, 3, [&](int i, int j) { return plane.point(0.4 * i, j / 3.0); }, true);
   const WallDeviation t = wall_deviation(flat, triangles.points, triangles.faces);
@@ -115,7 +109,8 @@ BSplineSurface quarter_cylinder(double radius) {
 TEST(SurfaceWallDeviation, ChordsOfACylinderAreASagittaOffBothWays) {
   const double radius = 2.0, step = std::numbers::pi / 2.0 / 6.0;
   const BSplineSurface cylinder = quarter_cylinder(radius);
-  const SurfaceShape shape = shape_of(cylinder, zero_field(cylinder));
+  const auto undeformed = undeformed_surface_shape({{1, cylinder}});
+  const SurfaceShape& shape = *undeformed;
   const Wall wall = grid_wall(6, 3, [&](int i, int j) {
     return Vec3{radius * std::cos(i * step), j / 3.0, radius * std::sin(i * step)};
   });
@@ -138,7 +133,8 @@ TEST(SurfaceWallDeviation, ChordsOfACylinderAreASagittaOffBothWays) {
 // A wall raised by 0.01 along the normal of its planar face is 0.01 off it both ways.
 TEST(SurfaceWallDeviation, AWallRaisedOffItsFaceIsOffByTheOffsetBothWays) {
   const BSplineSurface plane = bilinear_face({0, 0, 0}, {0, 1, 0.5}, {4, 0, 1}, {4, 1, 1.5});
-  const SurfaceShape shape = shape_of(plane, zero_field(plane));
+  const auto undeformed = undeformed_surface_shape({{1, plane}});
+  const SurfaceShape& shape = *undeformed;
   const Vec3 normal = cross(Vec3{4, 0, 1}, Vec3{0, 1, 0.5}) / norm(cross(Vec3{4, 0, 1}, Vec3{0, 1, 0.5}));
   const double offset = 0.01;
   for (const bool triangles : {false, true}) {
@@ -157,7 +153,8 @@ TEST(SurfaceWallDeviation, AWallRaisedOffItsFaceIsOffByTheOffsetBothWays) {
 // corner would be about 1.1 from the wall.
 TEST(SurfaceWallDeviation, OnlyThePartOfTheFaceTheWallCoversCounts) {
   const BSplineSurface face = bilinear_face({0, 0, 0}, {0, 1, 0}, {4, 0, 0}, {4, 1, 0.8});
-  const SurfaceShape shape = shape_of(face, zero_field(face));
+  const auto undeformed = undeformed_surface_shape({{1, face}});
+  const SurfaceShape& shape = *undeformed;
   const Wall wall = grid_wall(
       16, 4, [&](int i, int j) { return face.point(0.25 * i, 0.25 * j); }, false,
       [](int i, int j) { return i < 8 || j < 2; });
@@ -177,7 +174,8 @@ TEST(SurfaceWallDeviation, OnlyThePartOfTheFaceTheWallCoversCounts) {
 // that node, in a face holding it; the face below it is nearer to the raised faces.
 TEST(SurfaceWallDeviation, ARaisedNodeIsTheWallsLargestDistanceAndNamed) {
   const BSplineSurface face = bilinear_face({0, 0, 0}, {0, 1, 0}, {4, 0, 0}, {4, 1, 0});
-  const SurfaceShape shape = shape_of(face, zero_field(face));
+  const auto undeformed = undeformed_surface_shape({{1, face}});
+  const SurfaceShape& shape = *undeformed;
   Wall wall = grid_wall(16, 4, [&](int i, int j) { return Vec3{0.25 * i, 0.25 * j, 0.0}; });
   const std::int32_t raised = wall.node(7, 2);
   wall.points[static_cast<std::size_t>(raised)].z = 0.03;
@@ -234,7 +232,8 @@ TEST(SurfaceWallDeviation, ManyFacesAgreeWithBruteForce) {
     for (int j = 0; j < 6; ++j) wave.push_back({i / 5.0, j / 5.0, 0.1 * std::sin(1.3 * i + 0.7 * j)});
   }
   const BSplineSurface face(3, 3, {0, 0, 0, 0, 0.33, 0.67, 1, 1, 1, 1}, {0, 0, 0, 0, 0.33, 0.67, 1, 1, 1, 1}, wave);
-  const SurfaceShape shape = shape_of(face, zero_field(face));
+  const auto undeformed = undeformed_surface_shape({{1, face}});
+  const SurfaceShape& shape = *undeformed;
   const int n = 30;
   unsigned state = 12345u;
   const Wall wall = grid_wall(n, n, [&](int i, int j) {
@@ -282,7 +281,8 @@ TEST(SurfaceWallDeviation, ManyFacesAgreeWithBruteForce) {
 
 TEST(SurfaceWallDeviation, NoFacesNothingMeasuredAndBadFacesRefused) {
   const BSplineSurface face = bilinear_face({0, 0, 0}, {0, 1, 0}, {4, 0, 0}, {4, 1, 0});
-  const SurfaceShape shape = shape_of(face, zero_field(face));
+  const auto undeformed = undeformed_surface_shape({{1, face}});
+  const SurfaceShape& shape = *undeformed;
   const WallDeviation none = wall_deviation(shape, {}, WallFaces{});
   EXPECT_EQ(none.faces, 0u);
   EXPECT_EQ(none.hausdorff, 0.0);

@@ -181,6 +181,10 @@ SurfaceShapeFit make_surface_shape(std::vector<CadFace> faces, const DeflectionS
                                    const ReconstructionOptions& options = {},
                                    const DeflectionSamples* previous = nullptr);
 
+/// The faces themselves at every stage (zero deflection fields): the undeformed wall, for
+/// checking a mesh against its CAD faces as the motion sees them.
+std::shared_ptr<SurfaceShape> undeformed_surface_shape(std::vector<CadFace> faces);
+
 class ScatteredShape final : public BoundaryShape {
  public:
   /// Stage lambda moves the material point x0 to x0 + before(x0) + lambda (after(x0) -
