@@ -121,7 +121,7 @@ PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* c
                             });
     if (rotational) return revolved_faces(spec, *cad, options);
     std::vector<geometry::CadFace> cad_faces;
-    for (const int id : spec.faces) cad_faces.push_back({id, cad->face_bspline(id)});
+    for (const int id : spec.faces) cad_faces.push_back(cad->cad_face(id));
     return single(std::make_unique<FaceReference>(std::move(cad_faces), fmt::format("CAD {}: their surfaces", faces)));
   }
 

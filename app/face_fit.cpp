@@ -15,7 +15,7 @@ SurfaceRun cad_faces_of(const geometry::CadModel& model, std::span<const int> id
       throw InputError::in(model.path().string(), "face " + std::to_string(*it) + " is given twice");
     }
     run.info.push_back(model.face(*it));
-    run.faces.push_back({*it, model.face_bspline(*it)});
+    run.faces.push_back(model.cad_face(*it));
   }
   run.unit = model.unit();
   run.cad = model.path().string();

@@ -26,6 +26,7 @@ FaceSet::FaceSet(std::span<const CadFace> faces) {
   }
   size = distance(all.lo, all.hi);
   for (std::size_t a = 0; a < faces.size(); ++a) find_edges(faces, a);
+  crossing = crossing_edges(faces, projectors, 1e-6 * size);
 }
 
 void FaceSet::find_edges(std::span<const CadFace> faces, std::size_t a) {

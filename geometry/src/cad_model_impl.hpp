@@ -2,6 +2,7 @@
 // faces in id order, next to their descriptions.
 #pragma once
 
+#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 
@@ -18,6 +19,7 @@ struct CadModel::Impl {
   TopoDS_Shape shape;
   std::vector<TopoDS_Face> faces;  // faces[id - 1]
   std::vector<FaceInfo> info;      // info[id - 1]
+  TopTools_IndexedMapOfShape edges;  // every edge of the shape, numbered from 1
 };
 
 }  // namespace hotmesh::geometry

@@ -1,6 +1,7 @@
 // hotmesh geometry: reading STEP and IGES files into a CadModel: the transfer (serialised,
 // in the caller's length unit), the faces in file order with their names, kinds, bounds and
 // axes, and clear errors for files that are not CAD, are empty or hold no faces.
+#include <BRepAdaptor_Curve.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <GeomConvert.hxx>
@@ -19,6 +20,7 @@
 #include <StepRepr_RepresentationItem.hxx>
 #include <TCollection_HAsciiString.hxx>
 #include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <XSControl_TransferReader.hxx>
@@ -254,6 +256,7 @@ CadModel CadModel::read(const std::filesystem::path& path, const CadReadOptions&
       info.axis_source = axis.source;
       impl->info.push_back(std::move(info));
     }
+    TopExp::MapShapes(impl->shape, TopAbs_EDGE, impl->edges);
   } catch (const Standard_Failure& e) {
     // A fault (FaultsAsFailures) comes as OSD_SIGSEGV, or as a plain failure when it was a
     // stack overflow; either way the file, not hotmesh, is at fault.
@@ -266,6 +269,29 @@ CadModel CadModel::read(const std::filesystem::path& path, const CadReadOptions&
                                                    : "OpenCASCADE could not translate it: " + what));
   }
   return CadModel(std::move(impl));
+}
+
+CadFace CadModel::cad_face(int id) const {
+  CadFace out{id, face_bspline(id), {}};
+  const TopoDS_Face& f = impl_->faces[static_cast<std::size_t>(id - 1)];
+  for (TopExp_Explorer it(f, TopAbs_EDGE); it.More(); it.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(it.Current());
+    // A seam bounds the face on both sides of its parameter rectangle: it joins the face to
+    // itself, not to another face.
+    if (BRep_Tool::Degenerated(edge) || BRep_Tool::IsClosed(edge, f)) continue;
+    try {
+      const BRepAdaptor_Curve curve(edge);
+      const double first = curve.FirstParameter(), last = curve.LastParameter();
+      FaceEdge traced{impl_->edges.FindIndex(edge), {}};
+      for (int k = 0; k < kFaceEdgePoints; ++k) {
+        traced.points.push_back(detail::to_vec3(curve.Value(first + (last - first) * k / (kFaceEdgePoints - 1))));
+      }
+      if (traced.edge > 0) out.edges.push_back(std::move(traced));
+    } catch (const Standard_Failure&) {
+      // An edge without a curve to follow: the face keeps the edges it has.
+    }
+  }
+  return out;
 }
 
 BSplineSurface CadModel::face_bspline(int id) const {

@@ -87,6 +87,8 @@ double edge_gap(std::span<const CadFace> faces, const std::vector<SurfaceProject
 struct EdgeJoins {
   std::vector<detail::SharedSide> sides;
   std::vector<detail::UnevenSide> uneven;
+  std::vector<detail::SideOnFace> on_faces;  ///< a side of one face across the other's rectangle (trace_joins.hpp)
+  std::vector<detail::TracedEdge> across;    ///< edges across both faces' rectangles: measured, not joined
   std::vector<std::vector<detail::FaceCorner>> corners;
   std::size_t shared = 0;  ///< shared sides, each counted once, joinable or not
 };
@@ -193,9 +195,25 @@ EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
         const bool counted_from_b = b < a && std::find(set.neighbours[b].begin(), set.neighbours[b].end(), static_cast<int>(a)) !=
                                                  set.neighbours[b].end();
         if (counted_from_b) continue;
-        ++out.shared;
-        if (auto s = uneven_side(faces, set, a, side_a, b)) out.uneven.push_back(std::move(*s));
+        if (auto s = uneven_side(faces, set, a, side_a, b)) {
+          ++out.shared;
+          out.uneven.push_back(std::move(*s));
+        } else if (!set.crossed(a, b)) {  // inside b's rectangle, and the CAD file has no edge for it
+          ++out.shared;
+          out.on_faces.push_back({a, side_a, b});
+        }
       }
+    }
+  }
+  // The edges the CAD file names that cross a rectangle: along a side of one face, or across both.
+  out.shared += set.crossing.size();
+  for (const detail::TracedEdge& e : set.crossing) {
+    if (const int side = detail::side_holding(faces[e.a].surface, e.on_a); side >= 0) {
+      out.on_faces.push_back({e.a, side, e.b});
+    } else if (const int side_b = detail::side_holding(faces[e.b].surface, e.on_b); side_b >= 0) {
+      out.on_faces.push_back({e.b, side_b, e.a});
+    } else {
+      out.across.push_back(e);
     }
   }
   // Corner c of a rectangle: (u first | u last) + 2 (v first | v last); the ends of side k.
@@ -224,6 +242,14 @@ EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
     }
   }
   return out;
+}
+
+/// The sides joined to other faces' sides, which the joins across rectangles leave as they are.
+std::vector<detail::FaceSide> joined_sides(const EdgeJoins& joins) {
+  std::vector<detail::FaceSide> sides;
+  for (const detail::SharedSide& s : joins.sides) sides.insert(sides.end(), {s.a, s.b});
+  for (const detail::UnevenSide& s : joins.uneven) sides.insert(sides.end(), {s.a, s.b});
+  return sides;
 }
 
 /// Faces that cannot carry a field d(t, s) are refused (item 6 of issue 23): one whose
@@ -359,8 +385,17 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
   // residuals measured again on the joined fields.
   const EdgeJoins joins = edge_joins(faces, set);
   report.shared_edges = joins.shared;
-  // Uneven edges count as joined where their fields meet to 1e-10 of the wall's size.
-  report.joined_edges = detail::join_fields(out.fields, joins.sides, joins.uneven, joins.corners, 1e-10 * size).joined;
+  // Uneven edges, and edges across a face's rectangle, count as joined where their fields
+  // meet to 1e-10 of the wall's size. The rows joined along sides stay as they are.
+  const double join_tolerance = 1e-10 * size;
+  report.joined_edges = detail::join_fields(out.fields, joins.sides, joins.uneven, joins.corners, join_tolerance).joined;
+  double crossing_gap = 0.0;
+  for (const double gap : detail::join_sides_to_faces(out.fields, faces, projectors, joins.on_faces,
+                                                      joined_sides(joins), join_tolerance)) {
+    crossing_gap = std::max(crossing_gap, gap);
+    if (gap <= join_tolerance) ++report.joined_edges;
+  }
+  for (const detail::TracedEdge& e : joins.across) crossing_gap = std::max(crossing_gap, detail::traced_gap(out.fields, e));
   report.max_node_residual = 0.0;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     SurfaceFitReport& fit = report.faces[f].fit;
@@ -376,7 +411,7 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
     fit.rms_residual = std::sqrt(squares / static_cast<double>(placed.on_face[f].size()));
     report.max_node_residual = std::max(report.max_node_residual, fit.max_residual);
   }
-  report.max_edge_gap = edge_gap(faces, projectors, out.fields, report.tolerance);
+  report.max_edge_gap = std::max(edge_gap(faces, projectors, out.fields, 1e-6 * size), crossing_gap);
   return out;
 }
 

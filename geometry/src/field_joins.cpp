@@ -246,12 +246,6 @@ std::vector<double> pointwise_gaps(const std::vector<FieldParts>& parts, const U
   return out;
 }
 
-/// A value a field's side should take at parameter x, as the change from its value there.
-struct SideTarget {
-  double x = 0.0;
-  Vec3 change;
-};
-
 /// Step 4's targets on both sides of an uneven edge, as changes of the fields `parts` there.
 /// From the fields `before_corners` (before the corner poles took their means, which would put a bump
 /// one knot span wide into each, not a spline in the other's parameter), with the fraction
@@ -276,17 +270,18 @@ void add_targets(const std::vector<FieldParts>& before_corners, const std::vecto
   }
 }
 
-/// The change of a side's row of poles, corners kept, that fits the targets by least squares:
-/// min |N dP - r|^2 + mu |dP|^2 over the inner poles, with N_ki = N_i(x_k) and mu 1e-12 of the
-/// mean |N_i|^2, which keeps poles the targets barely reach (a side covered in part) where they
-/// were and leaves the others' fit as it is. The normal equations (N^T N + mu I) dP = N^T r are
-/// banded (half-width q): a sparse LDL^T.
-void fit_side(FieldParts& f, int side, std::span<const SideTarget> targets) {
+/// The change of a side's row of poles, corners kept (or not), that fits the targets by least
+/// squares: min |N dP - r|^2 + mu |dP|^2 over the poles that move, with N_ki = N_i(x_k) and mu
+/// 1e-12 of the mean |N_i|^2, which keeps poles the targets barely reach (a side covered in
+/// part) where they were and leaves the others' fit as it is. The normal equations
+/// (N^T N + mu I) dP = N^T r are banded (half-width q): a sparse LDL^T.
+void fit_side(FieldParts& f, int side, std::span<const SideTarget> targets, bool keep_corners = true) {
   const std::size_t n = f.side_count(side);
-  if (n <= 2 || targets.empty()) return;
+  const std::size_t kept = keep_corners ? 1 : 0;  // poles kept at each end
+  if (n <= 2 * kept || targets.empty()) return;
   const bool u = along_u(side);
   const auto p = static_cast<std::size_t>(f.degree(u));
-  const auto inner = static_cast<Eigen::Index>(n - 2);
+  const auto inner = static_cast<Eigen::Index>(n - 2 * kept);
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(inner, 3);
   double trace = 0.0;
@@ -296,13 +291,13 @@ void fit_side(FieldParts& f, int side, std::span<const SideTarget> targets) {
     basis_derivatives(f.knots(u), f.degree(u), span, t.x, 0, basis);
     for (std::size_t j = 0; j <= p; ++j) {
       const std::size_t i = span - p + j;
-      if (i < 1 || i + 1 >= n) continue;  // a corner pole: kept
-      const auto row = static_cast<Eigen::Index>(i - 1);
+      if (i < kept || i + kept >= n) continue;  // a corner pole: kept
+      const auto row = static_cast<Eigen::Index>(i - kept);
       rhs.row(row) += basis[0][j] * Eigen::RowVector3d(t.change.x, t.change.y, t.change.z);
       trace += basis[0][j] * basis[0][j];
       for (std::size_t l = 0; l <= p; ++l) {
         const std::size_t k = span - p + l;
-        if (k >= 1 && k + 1 < n) entries.emplace_back(row, static_cast<Eigen::Index>(k - 1), basis[0][j] * basis[0][l]);
+        if (k >= kept && k + kept < n) entries.emplace_back(row, static_cast<Eigen::Index>(k - kept), basis[0][j] * basis[0][l]);
       }
     }
   }
@@ -315,7 +310,7 @@ void fit_side(FieldParts& f, int side, std::span<const SideTarget> targets) {
   if (ldlt.info() != Eigen::Success) return;
   const Eigen::MatrixXd change = ldlt.solve(rhs);
   for (Eigen::Index i = 0; i < inner; ++i) {
-    f.poles[f.side_index(side, static_cast<std::size_t>(i + 1))] += Vec3{change(i, 0), change(i, 1), change(i, 2)};
+    f.poles[f.side_index(side, static_cast<std::size_t>(i) + kept)] += Vec3{change(i, 0), change(i, 1), change(i, 2)};
   }
 }
 
@@ -343,6 +338,19 @@ bool halve_spans(std::vector<FieldParts>& refined, const UnevenSide& s, std::spa
 }
 
 }  // namespace
+
+void fit_side_row(BSplineSurface& field, int side, std::span<const SideTarget> targets, bool keep_corners) {
+  FieldParts parts(field);
+  fit_side(parts, side, targets, keep_corners);
+  field = parts.surface();
+}
+
+bool insert_knot(BSplineSurface& field, bool u, double x) {
+  FieldParts parts(field);
+  if (!insert_knot(parts, u, x, 1)) return false;
+  field = parts.surface();
+  return true;
+}
 
 JoinOutcome join_fields(std::vector<BSplineSurface>& fields, std::span<const SharedSide> sides,
                         std::span<const UnevenSide> uneven, std::span<const std::vector<FaceCorner>> corners,

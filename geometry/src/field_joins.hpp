@@ -84,6 +84,21 @@ struct JoinOutcome {
   std::vector<double> uneven_gaps;  ///< per uneven side, max |d_a - d_b| along it after the join
 };
 
+/// A value a field's side should take at parameter x (u along sides 0 and 1, v along 2 and 3),
+/// as the change from its value there.
+struct SideTarget {
+  double x = 0.0;
+  Vec3 change;
+};
+
+/// Fits the row of poles along `side` of a field (non-rational) to the targets by least
+/// squares, its corner poles kept or not, the rest of the field as it was.
+void fit_side_row(BSplineSurface& field, int side, std::span<const SideTarget> targets, bool keep_corners);
+
+/// Inserts knot x once into the field along u (else v), the field unchanged (Boehm); not at
+/// an end or where the knot's multiplicity is already the degree. Returns whether it did.
+bool insert_knot(BSplineSurface& field, bool u, double x);
+
 /// At most this many halvings of the knot spans along an uneven edge (step 5).
 inline constexpr int kMaxHalvings = 5;
 

@@ -203,7 +203,7 @@ class SurfaceBuilder {
     report.reconstruction.form = options.form;
     if (!deflection.faces.empty()) {
       std::vector<geometry::CadFace> faces;
-      for (int id : deflection.faces) faces.push_back({id, cad_.model().face_bspline(id)});
+      for (int id : deflection.faces) faces.push_back(cad_.model().cad_face(id));
       geometry::SurfaceShapeFit fit =
           geometry::make_surface_shape(std::move(faces), deflection.samples, options, previous ? &previous->samples : nullptr);
       report.kind = WallKind::faces;

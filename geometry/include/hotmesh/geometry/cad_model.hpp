@@ -25,6 +25,7 @@
 #include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/bspline_curve.hpp"
 #include "hotmesh/geometry/bspline_surface.hpp"
+#include "hotmesh/geometry/cad_face.hpp"
 #include "hotmesh/geometry/enum_names.hpp"
 
 namespace hotmesh::geometry {
@@ -108,6 +109,9 @@ class CadModel {
 
   /// The face's surface as a B-spline, trimmed to the face's parameter bounds.
   BSplineSurface face_bspline(int id) const;
+  /// The face as a wall on CAD faces takes it: its B-spline (face_bspline) and the edges that
+  /// bound it (cad_face.hpp), numbered as in the whole model.
+  CadFace cad_face(int id) const;
 
   /// Section 4.2, eq. (20): the meridional curve r(t) of the faces, in (r, z) about the axis:
   /// the basis curve for surfaces of revolution (exact, rational where it is), the section by

@@ -11,7 +11,9 @@
 // then made to meet along the whole edge (field_joins.hpp): exactly where the two faces
 // parametrise the edge affinely to each other (their rows of poles there averaged), to 1e-10
 // of the wall's size where they do not (their mean along the edge fitted in each face's
-// parameter, the knot spans there halved until the two fits agree).
+// parameter, the knot spans there halved until the two fits agree), and to the same tolerance
+// where the edge is a side of one face that crosses the other's rectangle, a trimming curve
+// (that side's row fitted to the trimmed face's field, trace_joins.hpp).
 //
 // SurfaceShape is the BoundaryShape of such a wall: points are projected onto the stage's
 // deformed faces (surface_projector.hpp), parameters are (face, t, s). A restarted run goes
@@ -35,6 +37,7 @@
 
 #include "hotmesh/geometry/boundary_shape.hpp"
 #include "hotmesh/geometry/bspline_surface.hpp"
+#include "hotmesh/geometry/cad_face.hpp"
 #include "hotmesh/geometry/deflection_samples.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/geometry/scattered_field.hpp"
@@ -42,12 +45,6 @@
 #include "hotmesh/geometry/surface_projector.hpp"
 
 namespace hotmesh::geometry {
-
-/// A CAD face in B-spline form (CadModel::face_bspline) with its number in the CAD file.
-struct CadFace {
-  int id = 0;
-  BSplineSurface surface;
-};
 
 /// How the field of one face was fitted.
 struct FaceFitReport {
@@ -67,13 +64,14 @@ struct SurfaceReconstructionReport {
   double max_node_residual = 0.0;
   /// Largest difference between the deflections of two faces along the edges they share
   /// (sampled): how far apart the deflected faces are there. Round-off on affine joined edges,
-  /// at most 1e-10 of the wall's size on uneven ones.
+  /// at most 1e-10 of the wall's size on the others that are joined.
   double max_edge_gap = 0.0;
   std::size_t shared_edges = 0;  ///< edges two faces share
   /// Shared edges along which the fields were made to meet: exactly where the two faces
   /// parametrise the edge affinely to each other (equal fractions along both sides, or
-  /// reversed), to 1e-10 of the wall's size elsewhere (uneven edges the refinement brought
-  /// within it).
+  /// reversed), to 1e-10 of the wall's size elsewhere (uneven edges, and sides of one face
+  /// across the other's rectangle, that the refinement brought within it; not edges across
+  /// both faces' rectangles).
   std::size_t joined_edges = 0;
   std::vector<NodeDistance> rejected_nodes;  ///< dropped for distance (FarNodePolicy::drop)
   std::vector<FaceFitReport> faces;

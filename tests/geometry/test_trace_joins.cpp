@@ -1,0 +1,167 @@
+// Tests of deflection fields joined along edges that cross a face's parameter rectangle
+// (trimmed faces, issue 23 item 1): a curved fence standing on a plate, its foot a curve across
+// the plate's rectangle, found by geometry (the fence's side lies on the plate) or named by the
+// CAD file (CadFace::edges). The deflected faces meet along the foot where the fields fitted on
+// their own do not.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "cad_test_helpers.hpp"
+#include "hotmesh/geometry/surface_shape.hpp"
+
+namespace hotmesh::geometry {
+namespace {
+
+/// The plate z = 0 over [-1, 1]^2, parameters (x, y).
+BSplineSurface plate() {
+  return BSplineSurface(1, 1, {-1, -1, 1, 1}, {-1, -1, 1, 1}, {{-1, -1, 0}, {-1, 1, 0}, {1, -1, 0}, {1, 1, 0}});
+}
+
+/// A fence 0.5 high whose foot is the cubic Bezier curve through (-0.6, 0), (-0.2, 0.4),
+/// (0.2, 0.4), (0.6, 0) (parameter u), rising along v.
+BSplineSurface fence() {
+  const std::array<Vec3, 4> foot{Vec3{-0.6, 0, 0}, Vec3{-0.2, 0.4, 0}, Vec3{0.2, 0.4, 0}, Vec3{0.6, 0, 0}};
+  std::vector<Vec3> poles;
+  for (const Vec3& p : foot) poles.insert(poles.end(), {p, p + Vec3{0, 0, 0.5}});
+  return BSplineSurface(3, 1, {0, 0, 0, 0, 1, 1, 1, 1}, {0, 0, 1, 1}, poles);
+}
+
+Vec3 field(const Vec3& p) {
+  return {0.01 * std::sin(2.0 * p.x + p.y), 0.02 * std::cos(3.0 * p.y) + 0.01 * p.z,
+          0.03 * std::sin(p.x) * std::cos(2.0 * p.y) + 0.02 * p.z * p.z};
+}
+
+/// FEM nodes scattered over both faces, none on the foot.
+DeflectionSamples scattered_nodes() {
+  DeflectionSamples s;
+  s.frame = SampleFrame::cartesian;
+  s.source = "wall.csv";
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const BSplineSurface f = fence();
+  for (int k = 0; k < 500; ++k) s.points.push_back({2.0 * unit(random) - 1.0, 2.0 * unit(random) - 1.0, 0.0});
+  for (int k = 0; k < 200; ++k) s.points.push_back(f.point(unit(random), 0.02 + 0.98 * unit(random)));
+  for (const Vec3& p : s.points) s.deflections.push_back(field(p));
+  return s;
+}
+
+/// The largest difference between the two faces' fields along the foot, at 400 points.
+double gap_along_foot(const std::vector<BSplineSurface>& fields) {
+  const BSplineSurface f = fence();
+  double gap = 0.0;
+  for (int k = 0; k <= 400; ++k) {
+    const double u = k / 400.0;
+    const Vec3 p = f.point(u, 0.0);
+    gap = std::max(gap, distance(fields[1].point(u, 0.0), fields[0].point(p.x, p.y)));
+  }
+  return gap;
+}
+
+// The fence's foot found by geometry (its side lies inside the plate's rectangle), or named by
+// the CAD file as one edge of both faces: either way one shared edge, joined, the deflected
+// faces meeting along it to 1e-10 of the wall's size where the fields fitted on their own differ
+// by 1e-5; and the fields still as accurate as the fits beside the foot.
+TEST(TraceJoins, AFenceStandingOnAPlateMeetsItAlongItsFoot) {
+  const DeflectionSamples nodes = scattered_nodes();
+  ReconstructionOptions options{.degree = 3};
+  options.far_nodes = FarNodePolicy::drop;
+  const std::vector<BSplineSurface> alone{reconstruct_on_faces({{{1, plate()}}}, nodes, options).fields[0],
+                                          reconstruct_on_faces({{{2, fence()}}}, nodes, options).fields[0]};
+  const double unjoined = gap_along_foot(alone);
+  EXPECT_GT(unjoined, 1e-6);
+
+  FaceEdge foot{7, {}};
+  for (int k = 0; k < kFaceEdgePoints; ++k) foot.points.push_back(fence().point(k / (kFaceEdgePoints - 1.0), 0.0));
+  for (const bool named : {false, true}) {
+    SCOPED_TRACE(named ? "named by the CAD file" : "found by geometry");
+    std::vector<CadFace> faces{{1, plate(), {}}, {2, fence(), {}}};
+    if (named) {
+      faces[0].edges.push_back(foot);
+      faces[1].edges.push_back(foot);
+    }
+    const FaceDeflections joined = reconstruct_on_faces(faces, nodes, {.degree = 3});
+    EXPECT_EQ(joined.report.shared_edges, 1u);
+    EXPECT_EQ(joined.report.joined_edges, 1u);
+    const double size = std::sqrt(2.0 * 2.0 + 2.0 * 2.0 + 0.5 * 0.5);
+    EXPECT_LT(joined.report.max_edge_gap, 1e-10 * size);
+    EXPECT_LT(gap_along_foot(joined.fields), 1e-10 * size);
+    // The plate, the trimmed face, leads: its field is the one fitted alone. The fence's row
+    // along its foot follows it (its knots along the foot refined: more poles that way only),
+    // so along the foot the fence is as accurate as the plate's fit.
+    for (std::size_t i = 0; i < alone[0].poles().size(); ++i) {
+      EXPECT_EQ(joined.fields[0].poles()[i], alone[0].poles()[i]) << i;
+    }
+    EXPECT_GT(joined.fields[1].u_count(), alone[1].u_count());
+    EXPECT_EQ(joined.fields[1].v_count(), alone[1].v_count());
+    double plate_error = 0.0, fence_error = 0.0;
+    for (int k = 0; k <= 100; ++k) {
+      const Vec3 p = fence().point(k / 100.0, 0.0);
+      plate_error = std::max(plate_error, distance(joined.fields[0].point(p.x, p.y), field(p)));
+      fence_error = std::max(fence_error, distance(joined.fields[1].point(k / 100.0, 0.0), field(p)));
+    }
+    EXPECT_LT(fence_error, plate_error + 1e-10 * size);
+    EXPECT_LT(plate_error, 1e-4);  // of deflections up to 0.04
+  }
+}
+
+// A real CAD file: I-DEAS's cylinder, a B-rep solid of three rational B-spline faces, the
+// lateral face (its u around the axis) and two caps whose circles trim their square
+// rectangles. The caps meet the lateral face along its sides (circles across the caps'
+// rectangles), named by the file's edges: two shared edges, whatever the order of the faces,
+// along which the deflected faces meet a thousand times closer than the fits alone.
+TEST(TraceJoins, TheCapsOfARealCylinderMeetItsSide) {
+  const CadModel model = test::read_mm("OCC8842_cylinder_Ideas.igs");
+  DeflectionSamples nodes;
+  nodes.frame = SampleFrame::cartesian;
+  nodes.source = "cylinder.csv";
+  const auto deflection = [](const Vec3& p) {
+    return Vec3{0.1 * std::sin(0.04 * p.y) + 0.008 * p.x, 0.1 * std::cos(0.03 * p.x), 0.006 * p.z + 0.0007 * p.y};
+  };
+  for (int i = 0; i < 24; ++i) {
+    for (int j = 0; j <= 12; ++j) {
+      const double angle = 2.0 * M_PI * i / 24.0;
+      nodes.points.push_back({25.0 * std::cos(angle), -75.0 + 12.5 * j, 25.0 * std::sin(angle)});
+    }
+  }
+  for (const double y : {-75.0, 75.0}) {
+    for (const double r : {0.0, 7.5, 15.0, 22.5}) {
+      for (int i = 0; i < (r == 0.0 ? 1 : 12); ++i) {
+        nodes.points.push_back({r * std::cos(2.0 * M_PI * i / 12.0 + r), y, r * std::sin(2.0 * M_PI * i / 12.0 + r)});
+      }
+    }
+  }
+  for (const Vec3& p : nodes.points) nodes.deflections.push_back(deflection(p));
+  // The gap along both circles, between the lateral face (position `side`) and each cap.
+  const auto gap = [&](const std::vector<CadFace>& faces, const std::vector<BSplineSurface>& fields, std::size_t side) {
+    const SurfaceProjector lateral({bspline_patch(faces[side].surface)});
+    double largest = 0.0;
+    for (std::size_t cap = 0; cap < faces.size(); ++cap) {
+      if (cap == side) continue;
+      const SurfaceProjector disc({bspline_patch(faces[cap].surface)});
+      for (int k = 0; k < 360; ++k) {
+        const double angle = 2.0 * M_PI * (k + 0.5) / 360.0;
+        const Vec3 p{25.0 * std::cos(angle), faces[cap].surface.point(0.0, 0.0).y, 25.0 * std::sin(angle)};
+        const SurfaceParameter on_side = lateral.project(p).where, on_cap = disc.project(p).where;
+        largest = std::max(largest, distance(fields[side].point(on_side.u, on_side.v), fields[cap].point(on_cap.u, on_cap.v)));
+      }
+    }
+    return largest;
+  };
+  std::vector<CadFace> faces{model.cad_face(2), model.cad_face(1), model.cad_face(3)};  // a cap first
+  ReconstructionOptions options{.degree = 3};
+  options.far_nodes = FarNodePolicy::drop;
+  std::vector<BSplineSurface> alone;
+  for (const CadFace& f : faces) alone.push_back(reconstruct_on_faces({{f}}, nodes, options).fields[0]);
+  const double unjoined = gap(faces, alone, 1);
+  const FaceDeflections joined = reconstruct_on_faces(faces, nodes, {.degree = 3});
+  EXPECT_EQ(joined.report.shared_edges, 2u);
+  EXPECT_LT(gap(faces, joined.fields, 1), 1e-3 * unjoined);  // 1.6e-3 alone, 2e-7 joined
+  EXPECT_LT(joined.report.max_edge_gap, 1e-3 * unjoined);
+  EXPECT_LT(joined.report.max_edge_gap, 1e-8 * 170.0);  // of the wall's size
+}
+
+}  // namespace
+}  // namespace hotmesh::geometry
