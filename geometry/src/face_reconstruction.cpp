@@ -134,7 +134,8 @@ std::optional<detail::UnevenSide> uneven_side(std::span<const CadFace> faces, co
     on_b.push_back(set.projectors[b].project(faces[a].surface.point(u, v)).where);
   }
   for (int side_b = 0; side_b < 4; ++side_b) {
-    const auto [fixed, extent] = across(rb, side_b);
+    const std::array<double, 2> line = across(rb, side_b);  // no structured binding: lambdas capture it
+    const double fixed = line[0], extent = line[1];
     const bool on = std::all_of(on_b.begin(), on_b.end(), [&](const SurfaceParameter& w) {
       return std::abs((side_b < 2 ? w.v : w.u) - fixed) <= 1e-7 * extent;
     });

@@ -76,7 +76,8 @@ int side_holding(const BSplineSurface& face, std::span<const std::array<double, 
   const double du = 1e-9 * (r.u_last - r.u_first), dv = 1e-9 * (r.v_last - r.v_first);
   const std::array<std::pair<int, double>, 4> fixed{{{1, r.v_first}, {1, r.v_last}, {0, r.u_first}, {0, r.u_last}}};
   for (int side = 0; side < 4; ++side) {
-    const auto [c, value] = fixed[static_cast<std::size_t>(side)];
+    const int c = fixed[static_cast<std::size_t>(side)].first;  // no structured binding: the lambda captures it
+    const double value = fixed[static_cast<std::size_t>(side)].second;
     const double slack = c == 0 ? du : dv;
     const bool on = std::all_of(params.begin(), params.end(), [&](const auto& p) {
       return std::abs(p[static_cast<std::size_t>(c)] - value) <= slack;
@@ -93,7 +94,8 @@ std::vector<TracedEdge> crossing_edges(std::span<const CadFace> faces, std::span
     for (const FaceEdge& e : faces[f].edges) named[e.edge].emplace_back(f, &e);
   }
   std::vector<TracedEdge> out;
-  for (const auto& [id, on] : named) {
+  for (const auto& entry : named) {
+    const auto& on = entry.second;  // no structured binding: the lambda captures it
     const auto other = std::find_if(on.begin(), on.end(), [&](const auto& x) { return x.first != on.front().first; });
     if (other == on.end()) continue;
     TracedEdge edge{on.front().first, other->first, {}, {}, on.front().second->points};
