@@ -9,6 +9,12 @@
 // Run:   ninja -C build bench_processes hotmesh make_stator_well && build/bench/bench_processes [CELLS,...]
 // Cases: the sliding ramp (7 000 quads), and the stator-well sector (sliding, periodic,
 // passive) generated at each size in CELLS (default 18000,60000).
+//
+// Weak scaling (issue 25): build/bench/bench_processes --weak [CELLS] runs the sector with
+// CELLS (default 50000) cells per rank on 1, 2 and 4 ranks (`--oversubscribe` where the
+// machine has fewer cores), as the paper's size runs: `linear: amg`, Eisenstat-Walker forcing.
+// On fewer cores than ranks the times say little; the CG iterations per linear solve are the
+// measure: they stay flat when the multigrid scales.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -38,11 +44,13 @@ std::vector<long> sizes(int argc, char** argv) {
 bool run(const std::string& command) { return std::system(command.c_str()) == 0; }
 
 /// A copy of the case with the amg solver (the samples write `solver: {increments: 16}` or a
-/// block `solver:`).
-fs::path amg_case(const fs::path& original) {
+/// block `solver:`), and with `forcing`, if given.
+fs::path amg_case(const fs::path& original, const std::string& forcing = "") {
   std::string text = hotmesh::io::read_file(original);
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"solver: {increments: 16}", "solver: {increments: 16, linear: amg}"},
-                                 {"\nsolver:\n", "\nsolver:\n  linear: amg\n"}}) {
+  const std::string keys = forcing.empty() ? "linear: amg" : "linear: amg, forcing: " + forcing;
+  const std::string lines = forcing.empty() ? "  linear: amg\n" : "  linear: amg\n  forcing: " + forcing + "\n";
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"solver: {increments: 16}", "solver: {increments: 16, " + keys + "}"},
+                                 {"\nsolver:\n", "\nsolver:\n" + lines}}) {
     if (const auto at = text.find(from); at != std::string::npos) {
       text.replace(at, from.size(), to);
       break;
@@ -85,9 +93,51 @@ void time_case(const std::string& label, const fs::path& case_file) {
   }
 }
 
+/// Weak scaling: `per_rank` cells per rank on 1, 2 and 4 ranks.
+int weak_scaling(long per_rank) {
+  const fs::path folder = fs::temp_directory_path() / "hotmesh-bench-weak-scaling";
+  fs::remove_all(folder);
+  std::printf("### Weak scaling: the sector at %ld cells per rank (`linear: amg`, Eisenstat-Walker, 16 increments)\n\n",
+              per_rank);
+  std::printf("| ranks | cells | Newton steps | CG iterations | CG per solve | CG per solve vs 1 rank | wall s | "
+              "peak memory rank 0 (MB) | other load |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+  double first = 0.0;
+  for (const int ranks : {1, 2, 4}) {
+    const long cells = per_rank * ranks;
+    const fs::path dir = folder / fmt::format("stator-{}", cells);
+    if (!run(fmt::format("{} --cells {} '{}' > /dev/null", HOTMESH_MAKE_STATOR_WELL, cells, dir.string()))) return 1;
+    const fs::path case_file = amg_case(dir / "case_small.yaml", "eisenstat-walker");
+    const fs::path out = dir / "out";
+    const std::string launcher =
+        ranks > 1 ? fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 {} -n {} --oversubscribe "
+                                "--mca mpi_yield_when_idle 1 ",
+                                HOTMESH_MPIEXEC, ranks)
+                  : std::string();
+    const hotmesh::bench::LoadProbe load;
+    if (!run(fmt::format("OMP_WAIT_POLICY=passive OMP_NUM_THREADS=1 {}{} -q deform --threads 1 --force '{}' -o '{}'",
+                         launcher, HOTMESH_EXE, case_file.string(), out.string()))) {
+      std::printf("| %d | %ld | failed |\n", ranks, cells);
+      continue;
+    }
+    const double other = load.others();
+    const auto r = nlohmann::json::parse(hotmesh::io::read_file(out / "report.json"));
+    const long newton = r["newton_iterations"].get<long>(), cg = r["pcg_iterations"].get<long>();
+    const double per_solve = static_cast<double>(cg) / static_cast<double>(newton);
+    if (ranks == 1) first = per_solve;
+    std::printf("| %d | %ld | %ld | %ld | %.1f | %+.0f %% | %.0f | %.0f | %.2f |\n", ranks, cells, newton, cg, per_solve,
+                100.0 * (per_solve / first - 1.0), r["wall_seconds"].get<double>(),
+                r["peak_memory_bytes"].get<double>() / 1e6, other);
+    std::fflush(stdout);
+  }
+  fs::remove_all(folder);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--weak") return weak_scaling(argc > 2 ? std::stol(argv[2]) : 50000);
   const fs::path folder = fs::temp_directory_path() / "hotmesh-bench-processes";
   fs::remove_all(folder);
   std::printf("### One process against two (`linear: amg`, 16 increments)\n\n");
