@@ -371,5 +371,37 @@ TEST(SurfaceCli, BadInputIsExitCodeTwoNamingTheProblem) {
   EXPECT_FALSE(std::filesystem::exists(c.dir / "summary.json"));
 }
 
+// A real CAD file end to end: I-DEAS's cylinder (rational B-spline faces whose knot vectors
+// float, caps trimmed by the circles) with a cap given first. hotmesh surface reads every face,
+// keeps the three as one wall (the circles are edges of the file shared by the lateral face and
+// the caps) and joins the lateral face to the caps along them.
+TEST(SurfaceCli, ARealCylinderWithTrimmedCapsIsOneWallWhoseFacesMeet) {
+  Case c;
+  c.nodes = {};
+  c.nodes.frame = geometry::SampleFrame::cartesian;
+  const auto deflection = [](const Vec3& p) { return Vec3{0.002 * p.x + 1e-4, 1e-4 * std::cos(30.0 * p.x), 0.003 * p.z}; };
+  for (int i = 0; i < 24; ++i) {
+    for (int j = 0; j <= 6; ++j) {
+      const double angle = 2.0 * M_PI * i / 24.0;
+      const Vec3 p{0.025 * std::cos(angle), -0.075 + 0.025 * j, 0.025 * std::sin(angle)};
+      c.add(p, deflection(p));
+    }
+  }
+  for (const double y : {-0.075, 0.075}) {
+    for (int i = 0; i < 8; ++i) {
+      const Vec3 p{0.015 * std::cos(M_PI * i / 4.0), y, 0.015 * std::sin(M_PI * i / 4.0)};
+      c.add(p, deflection(p));
+    }
+    c.add({0.0, y, 0.0}, deflection({0.0, y, 0.0}));
+  }
+  c.write_table();
+  const std::string cylinder = shell_quote(test::data_path("cad/OCC8842_cylinder_Ideas.igs").string());
+  const auto r = hotmesh("surface --cad " + cylinder + " --faces 2,1,3 --fem " + c.table() + " --degree 3 -o " + c.out());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json summary = summary_of(c.dir / "out");
+  EXPECT_EQ(summary["shared_edges"], 2) << summary.dump(2);
+  EXPECT_LT(summary["max_edge_gap"].get<double>(), 1e-8);
+}
+
 }  // namespace
 }  // namespace hotmesh::app
