@@ -42,6 +42,17 @@ double turn_angle(const Vec3& into_a, const Vec3& into_b) {
   return std::numbers::pi - std::acos(std::clamp(dot(into_a, into_b), -1.0, 1.0));
 }
 
+/// The direction into face b across an edge that crosses b's rectangle (a side of another face
+/// lies on b there: a trimming curve of b), from b's derivatives there, the edge's direction and
+/// the direction into the other face: in b's tangent plane, across the edge, away from the side
+/// the other face leans to. The trimmed face is taken to end where the other leaves it, so the
+/// wall turns by the other face's angle to b (its mirror image, leaning the other way, alike).
+Vec3 into_trimmed_face(const SurfaceDerivatives& on_b, const Vec3& along, const Vec3& into_other) {
+  Vec3 across = cross(cross(on_b.du, on_b.dv), along);
+  across = across / norm(across);
+  return dot(into_other, across) > 0.0 ? -across : across;
+}
+
 /// The sorted union of two lists of breakpoints.
 std::vector<double> merged(std::vector<double> a, const std::vector<double>& b) {
   a.insert(a.end(), b.begin(), b.end());
@@ -125,6 +136,7 @@ SurfaceShape::SurfaceShape(std::vector<CadFace> faces, std::vector<BSplineSurfac
   }
   const FaceSet set(faces_);
   neighbours_ = set.neighbours;
+  size_ = set.size;
   std::vector<double> deflection(faces_.size());
   for (std::size_t f = 0; f < faces_.size(); ++f) {
     deflection[f] = std::max(largest_pole(after_[f]), before_.empty() ? 0.0 : largest_pole(before_[f]));
@@ -216,7 +228,7 @@ int SurfaceShape::crease_region(int face, double min_angle) const {
   const std::vector<ShapeCrease> cut = creases(min_angle);
   const auto joined = [&](std::size_t a, std::size_t b) {
     return std::none_of(cut.begin(), cut.end(), [&](const ShapeCrease& c) {
-      return c.faces == std::array{static_cast<int>(std::min(a, b)), static_cast<int>(std::max(a, b))};
+      return std::minmax(c.faces[0], c.faces[1]) == std::minmax(static_cast<int>(a), static_cast<int>(b));
     });
   };
   std::vector<std::vector<std::size_t>> groups = face_groups(neighbours_, joined);
@@ -275,17 +287,38 @@ std::vector<std::shared_ptr<const BoundaryShape>> SurfaceShape::crease_sides(con
                                     std::abs(where.t - r.u_first) <= on_t, std::abs(where.t - r.u_last) <= on_t};
   const SurfaceDerivatives here = evaluate(f, where.t, where.s, 0.0);
   std::vector<std::shared_ptr<const BoundaryShape>> sides;
-  for (std::size_t side = 0; side < 4; ++side) {
-    const int other = neighbours_[f][side];
-    const int other_side = other >= 0 ? side_shared_with(other, where.face) : -1;
-    if (!at_side[side] || other_side < 0) continue;
-    const ShapePoint there = project_on_side(static_cast<std::size_t>(other), other_side, here.point, 0.0);
-    const SurfaceDerivatives across = evaluate(static_cast<std::size_t>(other), there.parameter.t, there.parameter.s, 0.0);
-    if (turn_angle(into_face(here, static_cast<int>(side)), into_face(across, other_side)) < min_angle) continue;
+  const auto add = [&](int other) {
     if (sides.empty()) sides.push_back(std::make_shared<FaceOfWall>(shared_from_this(), where.face));
     sides.push_back(std::make_shared<FaceOfWall>(shared_from_this(), other));
+  };
+  for (std::size_t side = 0; side < 4; ++side) {
+    const int other = neighbours_[f][side];
+    if (!at_side[side] || other < 0) continue;
+    if (turn_into(f, static_cast<int>(side), here, static_cast<std::size_t>(other), 0.0) >= min_angle) add(other);
+  }
+  // A point of f on a trimming curve: a side of another face that crosses f's rectangle.
+  for (std::size_t g = 0; g < faces_.size(); ++g) {
+    const int side = side_shared_with(static_cast<int>(g), where.face);
+    if (g == f || side < 0 || side_shared_with(where.face, static_cast<int>(g)) >= 0) continue;
+    const ShapePoint on_side = project_on_side(g, side, here.point, 0.0);
+    if (on_side.distance > 1e-9 * size_) continue;
+    const SurfaceDerivatives there = evaluate(g, on_side.parameter.t, on_side.parameter.s, 0.0);
+    if (turn_into(g, side, there, f, 0.0) >= min_angle) add(static_cast<int>(g));
   }
   return sides;
+}
+
+double SurfaceShape::turn_into(std::size_t f, int side, const SurfaceDerivatives& here, std::size_t g,
+                               double lambda) const {
+  const Vec3 into_f = into_face(here, side);
+  const int other_side = side_shared_with(static_cast<int>(g), static_cast<int>(f));
+  if (other_side >= 0) {
+    const ShapePoint there = project_on_side(g, other_side, here.point, lambda);
+    return turn_angle(into_f, into_face(evaluate(g, there.parameter.t, there.parameter.s, lambda), other_side));
+  }
+  const ShapePoint there = project_on_face(static_cast<int>(g), here.point, lambda, kNoHint);
+  const SurfaceDerivatives on_g = evaluate(g, there.parameter.t, there.parameter.s, lambda);
+  return turn_angle(into_f, into_trimmed_face(on_g, side < 2 ? here.du : here.dv, into_f));
 }
 
 int SurfaceShape::side_shared_with(int face, int other) const {
@@ -332,18 +365,17 @@ std::vector<ShapeCrease> SurfaceShape::creases(double min_angle) const {
   for (std::size_t f = 0; f < faces_.size(); ++f) {
     for (int side = 0; side < 4; ++side) {
       const int g = neighbours_[f][static_cast<std::size_t>(side)];
-      if (g <= static_cast<int>(f) || side_shared_with(static_cast<int>(f), g) != side) continue;
-      const int other_side = side_shared_with(g, static_cast<int>(f));
-      if (other_side < 0) continue;
+      // Once per edge: from the lower face where the faces share sides, from the face whose
+      // side it is where that side crosses the other's rectangle (a trimming curve).
+      if (g < 0 || side_shared_with(static_cast<int>(f), g) != side) continue;
+      if (side_shared_with(g, static_cast<int>(f)) >= 0 && g <= static_cast<int>(f)) continue;
       const ParameterRectangle r = faces_[f].surface.domain();
       ShapeCrease crease{{static_cast<int>(f), g}, 0.0};
       for (const double lambda : {0.0, 1.0}) {
         for (int k = 0; k <= kSamples; ++k) {
           const auto [t, s] = on_side(r, side, static_cast<double>(k) / kSamples);
           const SurfaceDerivatives here = evaluate(f, t, s, lambda);
-          const ShapePoint there = project_on_side(static_cast<std::size_t>(g), other_side, here.point, lambda);
-          const SurfaceDerivatives across = evaluate(static_cast<std::size_t>(g), there.parameter.t, there.parameter.s, lambda);
-          crease.angle = std::max(crease.angle, turn_angle(into_face(here, side), into_face(across, other_side)));
+          crease.angle = std::max(crease.angle, turn_into(f, side, here, static_cast<std::size_t>(g), lambda));
         }
       }
       if (crease.angle >= min_angle) found.push_back(crease);
@@ -357,9 +389,11 @@ CreasePoint SurfaceShape::crease_point(const ShapeCrease& crease, const Vec3& p,
   const int count = static_cast<int>(faces_.size());
   const int side_a = a >= 0 && a < count && b >= 0 && b < count ? side_shared_with(a, b) : -1;
   const int side_b = side_a >= 0 ? side_shared_with(b, a) : -1;
-  if (side_b < 0) throw std::logic_error("SurfaceShape::crease_point: the faces share no edge");
+  if (side_a < 0) throw std::logic_error("SurfaceShape::crease_point: the faces share no edge");
   const ShapePoint on_a = project_on_side(static_cast<std::size_t>(a), side_a, p, lambda);
-  const ShapePoint on_b = project_on_side(static_cast<std::size_t>(b), side_b, on_a.point, lambda);
+  // b's side along it, or b itself where a's side crosses b's rectangle (a trimming curve).
+  const ShapePoint on_b = side_b >= 0 ? project_on_side(static_cast<std::size_t>(b), side_b, on_a.point, lambda)
+                                      : project_on_face(b, on_a.point, lambda, kNoHint);
   return {on_a.point, {on_a.normal, on_b.normal}};
 }
 

@@ -107,6 +107,52 @@ TEST(TraceJoins, AFenceStandingOnAPlateMeetsItAlongItsFoot) {
   }
 }
 
+// A fence on a plate is a crease along its foot: the plate is trimmed there, the fence's side
+// crosses the plate's rectangle. Upright it turns the wall by 90 degrees; leaning at 30 degrees
+// to the plate (or its mirror image, at 150) by 30. The crease's point nearest a point is on the
+// foot, with both faces' normals, undeformed and after a deflection that shifts the wall; a
+// point of either face on the foot lies on the crease (each face a shape of its own, so that a
+// node there slides along the foot), one beside it does not.
+TEST(TraceJoins, AFenceMeetsThePlateItStandsOnAtACrease) {
+  for (const double degrees : {90.0, 30.0, 150.0}) {
+    SCOPED_TRACE(degrees);
+    const double lean = degrees * M_PI / 180.0;
+    const Vec3 up{0.0, std::cos(lean), std::sin(lean)};
+    const BSplineSurface leaning(1, 1, {0, 0, 1, 1}, {0, 0, 1, 1},
+                                 {{-0.5, 0, 0}, Vec3{-0.5, 0, 0} + 0.5 * up, {0.5, 0, 0}, Vec3{0.5, 0, 0} + 0.5 * up});
+    std::vector<Vec3> points, deflections;
+    for (int i = 0; i <= 4; ++i) {
+      for (int j = 0; j <= 4; ++j) {
+        points.push_back({-1.0 + 0.5 * i, -1.0 + 0.5 * j, 0.0});
+        points.push_back(leaning.point(0.25 * i, 0.25 * j));
+      }
+    }
+    const Vec3 shift{0.01, 0.02, 0.03};
+    deflections.assign(points.size(), shift);
+    DeflectionSamples nodes;
+    nodes.frame = SampleFrame::cartesian;
+    nodes.source = "wall.csv";
+    nodes.points = points;
+    nodes.deflections = deflections;
+    const SurfaceShapeFit fit = make_surface_shape({{1, plate()}, {2, leaning}}, nodes, {.degree = 1});
+    const auto creases = fit.shape->creases(25.0 * M_PI / 180.0);
+    ASSERT_EQ(creases.size(), 1u);
+    EXPECT_EQ(creases[0].faces, (std::array<int, 2>{1, 0}));  // the fence's side first
+    EXPECT_NEAR(creases[0].angle, degrees == 150.0 ? M_PI / 6.0 : lean, 1e-6);
+    EXPECT_TRUE(fit.shape->creases(creases[0].angle + 0.01).empty());
+    for (const double lambda : {0.0, 1.0}) {
+      const CreasePoint c = fit.shape->crease_point(creases[0], {0.2, 0.3, 0.4}, lambda);
+      EXPECT_LT(distance(c.point, Vec3{0.2, lambda * shift.y, lambda * shift.z}), 1e-9) << lambda;
+      EXPECT_NEAR(std::abs(dot(c.normals[1], Vec3{0, 0, 1})), 1.0, 1e-12);
+      EXPECT_NEAR(dot(c.normals[0], up), 0.0, 1e-12);
+    }
+    EXPECT_EQ(fit.shape->crease_sides({0.7, 0.0, 1}, 25.0 * M_PI / 180.0).size(), 2u);  // the fence's foot
+    EXPECT_EQ(fit.shape->crease_sides({0.2, 0.0, 0}, 25.0 * M_PI / 180.0).size(), 2u);  // the plate under it
+    EXPECT_TRUE(fit.shape->crease_sides({0.2, 0.1, 0}, 25.0 * M_PI / 180.0).empty());  // the plate beside it
+    EXPECT_TRUE(fit.shape->crease_sides({0.7, 0.0, 1}, creases[0].angle + 0.01).empty());
+  }
+}
+
 // A real CAD file: I-DEAS's cylinder, a B-rep solid of three rational B-spline faces, the
 // lateral face (its u around the axis) and two caps whose circles trim their square
 // rectangles. The caps meet the lateral face along its sides (circles across the caps'

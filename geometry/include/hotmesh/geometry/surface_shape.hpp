@@ -122,11 +122,15 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   std::vector<std::shared_ptr<const BoundaryShape>> crease_sides(const ShapeParameter& where,
                                                                  double min_angle) const override;
   /// The edges two faces share where they meet turning by at least `min_angle`: the largest
-  /// turn (as for crease_sides) at points along the edge, undeformed or fully deflected.
+  /// turn (as for crease_sides) at points along the edge, undeformed or fully deflected. An
+  /// edge where a side of one face crosses the other's rectangle (a trimming curve of the
+  /// other) counts, the face whose side it is first; the trimmed face is taken to go on away
+  /// from the side the other leans to.
   std::vector<ShapeCrease> creases(double min_angle) const override;
   /// The point of the crease's edge nearest p on the stage-lambda faces: the closest point of
   /// faces[0]'s side along it, and each face's normal there (faces[1]'s at its own side's
-  /// closest point, the same edge of the deflected wall, since the faces' fields agree there).
+  /// closest point, or its closest point where the edge crosses its rectangle: the same edge of
+  /// the deflected wall, since the faces' fields agree there).
   CreasePoint crease_point(const ShapeCrease& crease, const Vec3& p, double lambda) const override;
   /// Regions are numbered as they are first asked for; project() with a range of that region
   /// searches only its faces (clamped where they meet the others).
@@ -151,6 +155,9 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   int side_shared_with(int face, int other) const;
   /// The closest point to p of side `side` of `face` at stage lambda, and the face's unit normal.
   ShapePoint project_on_side(std::size_t face, int side, const Vec3& p, double lambda) const;
+  /// How far the wall turns at `here`, a point of side `side` of face f, into face g: g's side
+  /// along it, or g itself where f's side crosses g's rectangle (a trimming curve of g).
+  double turn_into(std::size_t f, int side, const SurfaceDerivatives& here, std::size_t g, double lambda) const;
 
   std::vector<CadFace> faces_;
   std::vector<BSplineSurface> after_;
@@ -159,6 +166,7 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// Per face and side of its rectangle (s first, s last, t first, t last), the face sharing it,
   /// or -1.
   std::vector<std::array<int, 4>> neighbours_;
+  double size_ = 0.0;  ///< the faces' size (FaceSet::size)
   mutable std::shared_mutex stages_mutex_;
   /// The crease regions asked for: each one's faces (increasing), and per angle asked for,
   /// each face's region (guarded by stages_mutex_).
