@@ -159,8 +159,10 @@ std::optional<detail::UnevenSide> uneven_side(std::span<const CadFace> faces, co
   return std::nullopt;
 }
 
-EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
-  const double tolerance = 1e-7 * set.size;
+/// Phase 1: the sides that lie on another face (FaceSet::neighbours), each counted once:
+/// matched side to side affinely (`sides`), unevenly (`uneven`), or lying inside the other's
+/// rectangle where the CAD file names no edge for it (`on_faces`).
+void add_shared_sides(std::span<const CadFace> faces, const FaceSet& set, double tolerance, EdgeJoins& out) {
   constexpr int kSamples = 9;
   const auto point = [&](std::size_t f, int side, double fraction) {
     const auto [u, v] = on_side(faces[f].surface.domain(), side, fraction);
@@ -173,7 +175,6 @@ EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
     }
     return true;
   };
-  EdgeJoins out;
   for (std::size_t a = 0; a < faces.size(); ++a) {
     for (int side_a = 0; side_a < 4; ++side_a) {
       const int n = set.neighbours[a][static_cast<std::size_t>(side_a)];
@@ -192,21 +193,24 @@ EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
           break;
         }
       }
-      if (!found) {
-        const bool counted_from_b = b < a && std::find(set.neighbours[b].begin(), set.neighbours[b].end(), static_cast<int>(a)) !=
-                                                 set.neighbours[b].end();
-        if (counted_from_b) continue;
-        if (auto s = uneven_side(faces, set, a, side_a, b)) {
-          ++out.shared;
-          out.uneven.push_back(std::move(*s));
-        } else if (!set.crossed(a, b)) {  // inside b's rectangle, and the CAD file has no edge for it
-          ++out.shared;
-          out.on_faces.push_back({a, side_a, b});
-        }
+      if (found) continue;
+      const bool counted_from_b = b < a && std::find(set.neighbours[b].begin(), set.neighbours[b].end(), static_cast<int>(a)) !=
+                                               set.neighbours[b].end();
+      if (counted_from_b) continue;
+      if (auto s = uneven_side(faces, set, a, side_a, b)) {
+        ++out.shared;
+        out.uneven.push_back(std::move(*s));
+      } else if (!set.crossed(a, b)) {  // inside b's rectangle, and the CAD file has no edge for it
+        ++out.shared;
+        out.on_faces.push_back({a, side_a, b});
       }
     }
   }
-  // The edges the CAD file names that cross a rectangle: along a side of one face, or across both.
+}
+
+/// Phase 2: the edges the CAD file names that cross a rectangle: along a side of one face
+/// (`on_faces`), or across both (`across`, measured only).
+void add_crossing_edges(std::span<const CadFace> faces, const FaceSet& set, EdgeJoins& out) {
   out.shared += set.crossing.size();
   for (const detail::TracedEdge& e : set.crossing) {
     if (const int side = detail::side_holding(faces[e.a].surface, e.on_a); side >= 0) {
@@ -217,12 +221,18 @@ EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
       out.across.push_back(e);
     }
   }
+}
+
+/// Phase 3: the corners that end a side joined side to side, grouped by the point of the wall
+/// they lie at (within `tolerance`).
+std::vector<std::vector<detail::FaceCorner>> corner_groups(std::span<const CadFace> faces, const EdgeJoins& joins,
+                                                           double tolerance) {
   // Corner c of a rectangle: (u first | u last) + 2 (v first | v last); the ends of side k.
   constexpr std::array<std::array<int, 2>, 4> kEnds{{{0, 1}, {2, 3}, {0, 2}, {1, 3}}};
   std::vector<std::pair<detail::FaceCorner, Vec3>> ends;
   std::vector<detail::FaceSide> ending;
-  for (const detail::SharedSide& s : out.sides) ending.insert(ending.end(), {s.a, s.b});
-  for (const detail::UnevenSide& s : out.uneven) ending.insert(ending.end(), {s.a, s.b});
+  for (const detail::SharedSide& s : joins.sides) ending.insert(ending.end(), {s.a, s.b});
+  for (const detail::UnevenSide& s : joins.uneven) ending.insert(ending.end(), {s.a, s.b});
   for (const detail::FaceSide& fs : ending) {
     for (const int c : kEnds[static_cast<std::size_t>(fs.side)]) {
       const bool seen = std::any_of(ends.begin(), ends.end(), [&](const auto& e) { return e.first.face == fs.face && e.first.corner == c; });
@@ -231,17 +241,27 @@ EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
       ends.push_back({{fs.face, c}, faces[fs.face].surface.point(c % 2 == 0 ? r.u_first : r.u_last, c < 2 ? r.v_first : r.v_last)});
     }
   }
+  std::vector<std::vector<detail::FaceCorner>> groups;
   std::vector<bool> grouped(ends.size(), false);
   for (std::size_t i = 0; i < ends.size(); ++i) {
     if (grouped[i]) continue;
-    out.corners.emplace_back();
+    groups.emplace_back();
     for (std::size_t j = i; j < ends.size(); ++j) {
       if (!grouped[j] && distance(ends[i].second, ends[j].second) <= tolerance) {
         grouped[j] = true;
-        out.corners.back().push_back(ends[j].first);
+        groups.back().push_back(ends[j].first);
       }
     }
   }
+  return groups;
+}
+
+EdgeJoins edge_joins(std::span<const CadFace> faces, const FaceSet& set) {
+  const double tolerance = 1e-7 * set.size;
+  EdgeJoins out;
+  add_shared_sides(faces, set, tolerance, out);
+  add_crossing_edges(faces, set, out);
+  out.corners = corner_groups(faces, out, tolerance);
   return out;
 }
 
