@@ -4,6 +4,7 @@
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
+#include <Geom2d_Curve.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
 #include <IFSelect_ReturnStatus.hxx>
@@ -32,6 +33,7 @@
 #include <optional>
 #include <string>
 
+#include "cad_face_set.hpp"
 #include "cad_model_impl.hpp"
 #include "face_analysis.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -169,6 +171,58 @@ void transfer(Reader& reader, const std::filesystem::path& path, const char* for
   }
 }
 
+/// The (t, s) of the face's B-spline form `b` at the point `target` of OpenCASCADE's surface at
+/// (u, v): (u, v) itself where the face is a B-spline or a plane; near it where the conversion
+/// reparametrised (a cylinder's rational form runs at another speed between its knots), found
+/// by Gauss-Newton from (u, v) within the rectangle. At a pole every t is the point: it stays.
+Vec2 bspline_parameter(const BSplineSurface& b, const Vec3& target, Vec2 x, double tolerance) {
+  const ParameterRectangle r = b.domain();
+  x = {std::clamp(x.x, r.u_first, r.u_last), std::clamp(x.y, r.v_first, r.v_last)};
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const SurfaceDerivatives d = b.derivatives(x.x, x.y);
+    const Vec3 miss = d.point - target;
+    if (norm(miss) <= tolerance) break;
+    const double a = dot(d.du, d.du), c = dot(d.du, d.dv), e = dot(d.dv, d.dv);
+    const double g0 = dot(miss, d.du), g1 = dot(miss, d.dv);
+    const double det = a * e - c * c;
+    if (!(det > 1e-14 * a * e)) break;
+    const Vec2 step{(c * g1 - e * g0) / det, (c * g0 - a * g1) / det};
+    x = {std::clamp(x.x + step.x, r.u_first, r.u_last), std::clamp(x.y + step.y, r.v_first, r.v_last)};
+    if (norm(step.x * d.du + step.y * d.dv) <= tolerance) break;
+  }
+  return x;
+}
+
+/// The curve of `edge` on face f in the (t, s) of the face's B-spline form, in the edge's
+/// direction on the face: its pcurve sampled evenly in the edge's parameter, 64 segments
+/// doubled until the polyline's midpoints are within 1e-6 of the rectangle's extent of the
+/// pcurve's (4096 at most). `size`: the face's, for the tolerance of the mapping.
+std::vector<Vec2> trim_points(const TopoDS_Face& f, const TopoDS_Edge& edge, const BSplineSurface& b, double size) {
+  double first = 0.0, last = 0.0;
+  const Handle(Geom2d_Curve) pcurve = BRep_Tool::CurveOnSurface(edge, f, first, last);
+  if (pcurve.IsNull()) throw Standard_Failure("no curve on the face");
+  const ParameterRectangle r = b.domain();
+  const double extent = std::max(r.u_last - r.u_first, r.v_last - r.v_first);
+  const auto at = [&](int k, int n) {
+    const gp_Pnt2d p = pcurve->Value(first + (last - first) * k / n);
+    return Vec2{p.X(), p.Y()};
+  };
+  int n = 64;
+  for (; n < 4096; n *= 2) {
+    double deviation = 0.0;
+    for (int k = 0; k < n; ++k) deviation = std::max(deviation, distance(at(2 * k + 1, 2 * n), 0.5 * (at(k, n) + at(k + 1, n))));
+    if (deviation <= 1e-6 * extent) break;
+  }
+  const Handle(Geom_Surface) surface = BRep_Tool::Surface(f);
+  std::vector<Vec2> points;
+  for (int k = 0; k <= n; ++k) {
+    const Vec2 uv = at(k, n);
+    points.push_back(bspline_parameter(b, detail::to_vec3(surface->Value(uv.x, uv.y)), uv, 1e-12 * size));
+  }
+  if (edge.Orientation() == TopAbs_REVERSED) std::reverse(points.begin(), points.end());
+  return points;
+}
+
 }  // namespace
 
 const char* to_string(LengthUnit unit) { return kLengthUnitNames.name(unit).data(); }
@@ -272,17 +326,27 @@ CadModel CadModel::read(const std::filesystem::path& path, const CadReadOptions&
 }
 
 CadFace CadModel::cad_face(int id) const {
-  CadFace out{id, face_bspline(id), {}};
+  CadFace out{id, face_bspline(id), {}, {}};
   const TopoDS_Face& f = impl_->faces[static_cast<std::size_t>(id - 1)];
+  bool every_trim = true;
+  const detail::Box box = detail::pole_box(out.surface);
+  const double size = distance(box.lo, box.hi);
   for (TopExp_Explorer it(f, TopAbs_EDGE); it.More(); it.Next()) {
     const TopoDS_Edge& edge = TopoDS::Edge(it.Current());
     // A seam bounds the face on both sides of its parameter rectangle: it joins the face to
     // itself, not to another face.
-    if (BRep_Tool::Degenerated(edge) || BRep_Tool::IsClosed(edge, f)) continue;
+    const bool own = BRep_Tool::Degenerated(edge) || BRep_Tool::IsClosed(edge, f);
+    const int number = impl_->edges.FindIndex(edge);
+    try {
+      out.trims.push_back({own ? 0 : number, trim_points(f, edge, out.surface, size)});
+    } catch (const Standard_Failure&) {
+      every_trim = false;  // an edge without its curve on the face: the loops cannot close
+    }
+    if (own) continue;
     try {
       const BRepAdaptor_Curve curve(edge);
       const double first = curve.FirstParameter(), last = curve.LastParameter();
-      FaceEdge traced{impl_->edges.FindIndex(edge), {}};
+      FaceEdge traced{number, {}};
       for (int k = 0; k < kFaceEdgePoints; ++k) {
         traced.points.push_back(detail::to_vec3(curve.Value(first + (last - first) * k / (kFaceEdgePoints - 1))));
       }
@@ -291,6 +355,7 @@ CadFace CadModel::cad_face(int id) const {
       // An edge without a curve to follow: the face keeps the edges it has.
     }
   }
+  if (!every_trim) out.trims.clear();  // the whole rectangle, rather than loops with a gap
   return out;
 }
 

@@ -258,6 +258,14 @@ SurfaceProjector::SurfaceProjector(std::vector<SurfacePatch> patches, const Surf
   }
   sample(options);
   build_tree();
+  rims_.resize(patches_.size());
+  for (std::size_t i = 0; i < patches_.size(); ++i) {
+    if (!patches_[i].region) continue;
+    for (const TrimRegion::Curve& curve : patches_[i].region->curves()) {
+      std::vector<Vec3>& rim = rims_[i].emplace_back();
+      for (const Vec2& q : curve.points) rim.push_back(evaluate(static_cast<int>(i), q.x, q.y).point);
+    }
+  }
   tolerance_ = options.tolerance * scale_;
   tie_ = kTie * scale_;
 }
@@ -489,7 +497,7 @@ void SurfaceProjector::build_node(std::vector<std::uint32_t>& order, std::uint32
 // is projected onto the rectangle and halved until f does not grow. Newton stops when a step
 // would move the point by less than the tolerance, or after a full Newton step shorter than
 // kFinalStep (quadratic convergence puts the next one below rounding).
-SurfaceProjector::Local SurfaceProjector::newton(const Vec3& p, int patch, double u, double v) const {
+SurfaceProjector::Local SurfaceProjector::newton_in_rectangle(const Vec3& p, int patch, double u, double v) const {
   const ParameterRectangle& box = patches_[static_cast<std::size_t>(patch)].domain;
   const double lo[2] = {box.u_first, box.v_first};
   const double hi[2] = {box.u_last, box.v_last};
@@ -563,6 +571,70 @@ SurfaceProjector::Local SurfaceProjector::newton(const Vec3& p, int patch, doubl
   return {{patch, x[0], x[1]}, e, std::sqrt(f), iteration, converged};
 }
 
+SurfaceProjector::Local SurfaceProjector::newton(const Vec3& p, int patch, double u, double v) const {
+  const Local local = newton_in_rectangle(p, patch, u, v);
+  const TrimRegion* region = patches_[static_cast<std::size_t>(patch)].region.get();
+  if (region == nullptr || region->contains(local.where.u, local.where.v)) return local;
+  return to_rim(p, local);
+}
+
+// The nearest chord of the loops' polylines (between their vertices' points on the surface)
+// picks the curve and the place along it; a golden-section search over the spans next to it,
+// along the curve in (u, v), finds the nearest point of the surface there.
+SurfaceProjector::Local SurfaceProjector::to_rim(const Vec3& p, const Local& outside) const {
+  const auto k = static_cast<std::size_t>(outside.where.patch);
+  const std::vector<TrimRegion::Curve>& curves = patches_[k].region->curves();
+  std::size_t best_curve = 0, best_chord = 0;
+  double best = kInfinity;
+  for (std::size_t c = 0; c < rims_[k].size(); ++c) {
+    const std::vector<Vec3>& rim = rims_[k][c];
+    for (std::size_t i = 0; i + 1 < rim.size(); ++i) {
+      const Vec3 chord = rim[i + 1] - rim[i];
+      const double length2 = squared(chord);
+      const double f = length2 > 0.0 ? std::clamp(dot(p - rim[i], chord) / length2, 0.0, 1.0) : 0.0;
+      const double d2 = squared(rim[i] + f * chord - p);
+      if (d2 < best) best = d2, best_curve = c, best_chord = i;
+    }
+  }
+  if (best == kInfinity || !curves[best_curve].binding) return outside;
+  // The curve between its vertices as a Catmull-Rom spline (the vertices are even in the
+  // edge's parameter): within rounding of the edge's curve where the chords are 1e-6 of it.
+  const std::vector<Vec2>& q = curves[best_curve].points;
+  const auto along = [&](double x) {
+    const std::size_t n = q.size();
+    const auto i = std::min(static_cast<std::size_t>(x), n - 2);
+    const double f = x - static_cast<double>(i);
+    // Beyond an end, the parabola through the last three vertices (the line through two).
+    const Vec2 before = i > 0 ? q[i - 1] : n > 2 ? 3.0 * (q[0] - q[1]) + q[2] : 2.0 * q[0] - q[1];
+    const Vec2 after = i + 2 < n ? q[i + 2] : n > 2 ? 3.0 * (q[n - 1] - q[n - 2]) + q[n - 3] : 2.0 * q[n - 1] - q[n - 2];
+    const Vec2 m0 = 0.5 * (q[i + 1] - before), m1 = 0.5 * (after - q[i]);
+    const double f2 = f * f, f3 = f2 * f;
+    return (2.0 * f3 - 3.0 * f2 + 1.0) * q[i] + (f3 - 2.0 * f2 + f) * m0 + (-2.0 * f3 + 3.0 * f2) * q[i + 1] +
+           (f3 - f2) * m1;
+  };
+  const auto miss = [&](double x) {
+    const Vec2 uv = along(x);
+    return squared(evaluate(outside.where.patch, uv.x, uv.y).point - p);
+  };
+  double a = best_chord > 0 ? static_cast<double>(best_chord - 1) : 0.0;
+  double b = std::min(static_cast<double>(best_chord + 2), static_cast<double>(q.size() - 1));
+  constexpr double kGolden = 0.6180339887498949;
+  double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
+  double f1 = miss(x1), f2 = miss(x2);
+  int iterations = 2;
+  while (b - a > 1e-10 && iterations < 60) {
+    if (f1 <= f2) {
+      b = x2, x2 = x1, f2 = f1, x1 = b - kGolden * (b - a), f1 = miss(x1);
+    } else {
+      a = x1, x1 = x2, f1 = f2, x2 = a + kGolden * (b - a), f2 = miss(x2);
+    }
+    ++iterations;
+  }
+  const Vec2 uv = along(f1 <= f2 ? x1 : x2);
+  const SurfaceDerivatives value = evaluate(outside.where.patch, uv.x, uv.y);
+  return {{outside.where.patch, uv.x, uv.y}, value, distance(value.point, p), outside.iterations + iterations, true, true};
+}
+
 bool SurfaceProjector::better(const Local& a, const Local& b, int hint_patch) const {
   if (a.distance < b.distance - tie_) return true;
   if (a.distance > b.distance + tie_) return false;
@@ -632,7 +704,7 @@ SurfaceProjector::Local SurfaceProjector::global_search(const Vec3& p, const Sur
   if (seed != nullptr) {
     best = *seed;
     iterations = seed->iterations;
-    if (seed->converged) minima[found++] = {seed->where, seed->distance};
+    if (seed->converged && !seed->on_rim) minima[found++] = {seed->where, seed->distance};
   }
   const auto examine = [&](const SubPatch& sub) {
     const double bound = best.distance + tie_;
@@ -652,7 +724,7 @@ SurfaceProjector::Local SurfaceProjector::global_search(const Vec3& p, const Sur
     const double v = r.v_first + (d1 <= d2 ? t1 * hv : (s2 + t2) * hv);
     const Local local = newton(p, sub.patch, u, v);
     iterations += local.iterations;
-    if (local.converged) minima[found++ % kRememberedMinima] = {local.where, local.distance};
+    if (local.converged && !local.on_rim) minima[found++ % kRememberedMinima] = {local.where, local.distance};
     if (better(local, best, hint.patch)) best = local;
   };
   std::uint32_t stack[96];
@@ -723,7 +795,7 @@ SurfaceProjection SurfaceProjector::finish(const Vec3& p, const Local& local) co
   result.point = local.value.point;
   result.where = local.where;
   result.distance = distance(p, local.value.point);
-  result.on_boundary = on_boundary(local.where, local.value);
+  result.on_boundary = local.on_rim || on_boundary(local.where, local.value);
   result.iterations = local.iterations;
   result.normal = unit_normal(local.where, local.value, p);
   return result;
@@ -739,7 +811,7 @@ SurfaceProjection SurfaceProjector::project(const Vec3& p, const SurfaceParamete
                     std::isfinite(hint.u) && std::isfinite(hint.v);
   if (!warm) return finish(p, global_search(p, {}, nullptr));
   const Local local = newton(p, hint.patch, hint.u, hint.v);
-  if (!verify_ && local.converged && !on_boundary(local.where, local.value)) {
+  if (!verify_ && local.converged && !local.on_rim && !on_boundary(local.where, local.value)) {
     SurfaceProjection result = finish(p, local);
     result.from_hint = true;
     return result;

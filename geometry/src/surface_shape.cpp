@@ -142,6 +142,13 @@ SurfaceShape::SurfaceShape(std::vector<CadFace> faces, std::vector<BSplineSurfac
     deflection[f] = std::max(largest_pole(after_[f]), before_.empty() ? 0.0 : largest_pole(before_[f]));
   }
   reach_ = reaches(faces_, set, deflection);
+  std::map<int, int> faces_naming;  // CAD edge -> how many faces of the wall name it
+  for (const CadFace& face : faces_) {
+    for (const FaceEdge& e : face.edges) ++faces_naming[e.edge];
+  }
+  for (const CadFace& face : faces_) {
+    regions_of_faces_.push_back(trim_region(face, [&](int edge) { return faces_naming[edge] > 1; }));
+  }
 }
 
 // Stage lambda of the faces (section 4.3): S + (1 - lambda) d0 + lambda d1, d0 the deflection
@@ -181,6 +188,7 @@ const SurfaceProjector& SurfaceShape::stage(double lambda, int faces) const {
       SurfacePatch patch;
       patch.evaluate = [this, f, lambda](double t, double u) { return evaluate(f, t, u, lambda); };
       patch.domain = reach_[f];
+      patch.region = regions_of_faces_[f];
       patch.u_breaks = merged(s.u_breakpoints(), after_[f].u_breakpoints());
       patch.v_breaks = merged(s.v_breakpoints(), after_[f].v_breakpoints());
       if (!before_.empty()) {

@@ -2,8 +2,10 @@
 #include "occt_fixtures.hpp"
 
 #include <BRepAdaptor_Curve.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
@@ -68,6 +70,12 @@ TopoDS_Shape build(Primitive primitive, const Axis& axis) {
           new Geom_SurfaceOfRevolution(profile_3d(axis), gp_Ax1(pnt(axis.origin()), dir(axis.direction())));
       const Handle(Geom_Surface) nurbs = GeomConvert::SurfaceToBSplineSurface(revolved);
       return BRepBuilderAPI_MakeFace(nurbs, Precision::Confusion()).Shape();
+    }
+    case Primitive::plate_with_hole: {
+      const gp_Pnt corner = frame.Location().Translated(-5.0 * gp_Vec(frame.XDirection()) - 5.0 * gp_Vec(frame.YDirection()));
+      const TopoDS_Shape plate = BRepPrimAPI_MakeBox(gp_Ax2(corner, frame.Direction(), frame.XDirection()), 10.0, 10.0, 2.0).Shape();
+      const gp_Ax2 below(frame.Location().Translated(-gp_Vec(frame.Direction())), frame.Direction());
+      return BRepAlgoAPI_Cut(plate, BRepPrimAPI_MakeCylinder(below, 2.0, 4.0).Shape()).Shape();
     }
   }
   throw std::logic_error("unknown primitive");

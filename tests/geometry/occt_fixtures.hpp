@@ -18,6 +18,9 @@ enum class Primitive {
   torus,             ///< major radius 5, minor 1
   revolved_profile,  ///< profile() revolved by 360 degrees (a surface of revolution)
   bspline_revolved,  ///< the same surface converted to a (rational) B-spline surface
+  /// A plate 10 x 10 x 2 (x, y in [-5, 5] in the axis's frame, 0 to 2 along the axis) with a hole
+  /// of radius 2 through it on the axis: its flat faces are planes trimmed by the hole's circles.
+  plate_with_hole,
 };
 
 /// The meridional profile of the revolved primitives: (r, z) about the axis, cubic.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hotmesh/geometry/bspline_surface.hpp"
+#include "hotmesh/geometry/vec2.hpp"
 #include "hotmesh/geometry/vec3.hpp"
 
 namespace hotmesh::geometry {
@@ -21,6 +22,13 @@ struct FaceEdge {
 /// (if any) and to measure the gap between two faces' deflections along it.
 inline constexpr int kFaceEdgePoints = 65;
 
+/// An edge's curve on a face (its pcurve) in the parameters (t, s) of the face's B-spline form:
+/// together, a face's curves close the loops that trim its rectangle (trim_region.hpp).
+struct TrimCurve {
+  int edge = 0;              ///< as FaceEdge::edge; 0 for a seam or an edge collapsed to a point
+  std::vector<Vec2> points;  ///< a polyline within 1e-6 of the rectangle's size of the curve
+};
+
 /// A CAD face in B-spline form (CadModel::cad_face) with its number in the CAD file.
 struct CadFace {
   int id = 0;
@@ -29,6 +37,9 @@ struct CadFace {
   /// empty for a face given without its CAD file, whose shared edges are then the sides of its
   /// parameter rectangle that lie on another face.
   std::vector<FaceEdge> edges;
+  /// Every edge of its boundary in (t, s), seams (both sides) and poles included; empty for a
+  /// face given without its CAD file, which is its whole rectangle.
+  std::vector<TrimCurve> trims;
 };
 
 }  // namespace hotmesh::geometry

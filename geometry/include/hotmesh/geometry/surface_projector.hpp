@@ -18,6 +18,9 @@
 //    nearer are still found (SurfaceProjectorOptions::verify_warm_starts).
 // Newton minimises |S - p|^2 with the full Hessian, a line search, and the rectangle as bounds:
 // a minimum on an edge of the rectangle is found as a 1D problem along the edge, a corner ends it.
+// A trimmed patch (SurfacePatch::region) answers only inside its trimming loops: a Newton result
+// outside them moves to the nearest point of a binding loop (a golden-section search along its
+// polyline), unless the nearest loop is free, where the patch reaches on.
 //
 // project() and at() are const and keep no caches: safe to call from parallel loops over mesh
 // nodes, as long as each patch's `evaluate` is (those built here are).
@@ -27,11 +30,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "hotmesh/geometry/bspline_surface.hpp"
 #include "hotmesh/geometry/parametric_surface.hpp"
+#include "hotmesh/geometry/trim_region.hpp"
 
 namespace hotmesh::geometry {
 
@@ -44,6 +49,8 @@ struct SurfacePatch {
   /// never straddle them, so second derivatives sampled in a sub-patch are continuous there.
   std::vector<double> u_breaks;
   std::vector<double> v_breaks;
+  /// Optional: the trimming loops of a face whose surface covers only part of `domain`.
+  std::shared_ptr<const TrimRegion> region;
 };
 
 /// The patch of a B-spline surface over its whole parameter rectangle.
@@ -68,7 +75,8 @@ struct SurfaceProjection {
   SurfaceParameter where;
   double distance = 0.0;     ///< from the projected point (0 for at())
   /// The point lies on an edge of its patch's rectangle (to 1e-10 of the length scale): a
-  /// boundary of the face, a pole or collapsed edge, or the seam of a closed surface.
+  /// boundary of the face, a pole or collapsed edge, or the seam of a closed surface; or on a
+  /// binding trimming loop of its patch.
   bool on_boundary = false;
   int iterations = 0;        ///< Newton iterations, all starts together
   bool from_hint = false;    ///< the answer is the warm start's (no nearer point was found)
@@ -160,6 +168,7 @@ class SurfaceProjector {
     double distance;
     int iterations;
     bool converged;
+    bool on_rim = false;  ///< moved onto a trimming loop: not a minimum with p on its normal
   };
   /// Extreme values over the set-up samples in one cell of a patch's initial grid.
   struct CellBounds {
@@ -191,7 +200,12 @@ class SurfaceProjector {
   void build_node(std::vector<std::uint32_t>& order, std::uint32_t first, std::uint32_t count, std::uint32_t index);
 
   SurfaceDerivatives evaluate(int patch, double u, double v) const;
+  /// Newton within the patch's rectangle, then onto its region (to_rim).
   Local newton(const Vec3& p, int patch, double u, double v) const;
+  Local newton_in_rectangle(const Vec3& p, int patch, double u, double v) const;
+  /// `outside`, a point of a trimmed patch outside its loops, moved to the nearest point of the
+  /// loops, or kept where the nearest loop is free.
+  Local to_rim(const Vec3& p, const Local& outside) const;
   Local global_search(const Vec3& p, const SurfaceParameter& hint, const Local* seed) const;
   /// Whether the surface over the parameter box spanning `sub` and the minimum `m` found on its
   /// patch is a sheet curved too little to come nearer to p than m: then `sub` holds no nearer point.
@@ -208,6 +222,9 @@ class SurfaceProjector {
   std::vector<Cells> cells_;
   std::vector<SubPatch> subs_;
   std::vector<Node> tree_;
+  /// Per patch and trimming curve, the surface at the curve's polyline vertices (empty for
+  /// patches without a region).
+  std::vector<std::vector<std::vector<Vec3>>> rims_;
   DegeneracyReport report_;
   double scale_ = 1.0;
   double target_ = 0.0;     // sub-patch deviation aimed at

@@ -43,6 +43,7 @@
 #include "hotmesh/geometry/scattered_field.hpp"
 #include "hotmesh/geometry/surface_fit.hpp"
 #include "hotmesh/geometry/surface_projector.hpp"
+#include "hotmesh/geometry/trim_region.hpp"
 
 namespace hotmesh::geometry {
 
@@ -163,6 +164,9 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   std::vector<BSplineSurface> after_;
   std::vector<BSplineSurface> before_;
   std::vector<ParameterRectangle> reach_;  ///< each face's rectangle, beyond its free edges
+  /// Each face's trimming loops, those along edges another face of the wall names binding;
+  /// nullptr for a face that is its whole rectangle.
+  std::vector<std::shared_ptr<const TrimRegion>> regions_of_faces_;
   /// Per face and side of its rectangle (s first, s last, t first, t last), the face sharing it,
   /// or -1.
   std::vector<std::array<int, 4>> neighbours_;

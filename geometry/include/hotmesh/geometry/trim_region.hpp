@@ -1,0 +1,67 @@
+// hotmesh geometry: the part of a face's parameter rectangle that its trimming curves enclose
+// (issue 23). A CAD face is a surface S(t, s) over a rectangle and the loops of edges that bound
+// it there (CadFace::trims): a plate with a hole is a plane whose rectangle covers the hole, a
+// cap of a cylinder is a square cut by a circle. A node sliding on such a face must stay inside
+// its loops: beyond them lies no wall (the hole's footprint), or another face of it.
+//
+// TrimRegion holds the loops as polylines in (t, s) and answers whether a parameter pair lies
+// inside them (even-odd rule, so loops need no order or orientation; the outer loop and the
+// holes alike). A uniform grid of cells keeps each query to the few segments of its cell: a cell
+// knows whether its centre is inside, and a query counts the crossings of the segment from the
+// centre to its point.
+//
+// Each curve says whether it binds: a curve the wall goes on across (an edge shared with another
+// face of the wall) holds a sliding node inside; a free one (where the wall ends, a seam, a
+// pole) does not, so the face reaches beyond it as it does beyond its rectangle's free sides.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "hotmesh/geometry/cad_face.hpp"
+#include "hotmesh/geometry/parametric_surface.hpp"
+#include "hotmesh/geometry/vec2.hpp"
+
+namespace hotmesh::geometry {
+
+class TrimRegion {
+ public:
+  struct Curve {
+    std::vector<Vec2> points;  ///< a polyline in (t, s)
+    bool binding = true;       ///< a sliding node stays on its inner side
+  };
+
+  /// Throws std::invalid_argument for no curve with two points, a point that is not finite or
+  /// an empty rectangle.
+  TrimRegion(std::vector<Curve> curves, const ParameterRectangle& rectangle);
+
+  /// Whether (t, s) lies inside the loops (points beyond the rectangle do not).
+  bool contains(double t, double s) const;
+  const std::vector<Curve>& curves() const { return curves_; }
+
+ private:
+  struct Segment {
+    Vec2 a;
+    Vec2 b;
+  };
+  /// Whether the segments from `from` to `to` and `s` cross (one endpoint of s counted, so a
+  /// path through a vertex of two segments crosses one of them).
+  static bool crosses(const Vec2& from, const Vec2& to, const Segment& s);
+  Vec2 centre(std::size_t i, std::size_t j) const;
+
+  std::vector<Curve> curves_;
+  std::vector<Segment> segments_;
+  ParameterRectangle rectangle_;
+  std::size_t cells_ = 1;                    ///< per direction
+  std::vector<std::vector<std::size_t>> in_cell_;  ///< segments meeting each cell, i * cells_ + j
+  std::vector<char> centre_inside_;
+};
+
+/// The region a wall's face slides in: nullptr where its trims (CadFace::trims) run along the
+/// sides of its rectangle only, or it has none (the whole rectangle is the face). A trim curve
+/// binds where `shared(edge)`: an edge of the CAD file that another face of the wall also names.
+std::shared_ptr<const TrimRegion> trim_region(const CadFace& face, const std::function<bool(int edge)>& shared);
+
+}  // namespace hotmesh::geometry
