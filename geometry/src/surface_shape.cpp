@@ -42,14 +42,21 @@ double turn_angle(const Vec3& into_a, const Vec3& into_b) {
   return std::numbers::pi - std::acos(std::clamp(dot(into_a, into_b), -1.0, 1.0));
 }
 
+/// The unit direction across an edge (direction `along`) in a face's tangent plane (derivatives
+/// `on`), either way.
+Vec3 across_edge(const SurfaceDerivatives& on, const Vec3& along) {
+  const Vec3 across = cross(cross(on.du, on.dv), along);
+  return across / norm(across);
+}
+
 /// The direction into face b across an edge that crosses b's rectangle (a side of another face
-/// lies on b there: a trimming curve of b), from b's derivatives there, the edge's direction and
-/// the direction into the other face: in b's tangent plane, across the edge, away from the side
-/// the other face leans to. The trimmed face is taken to end where the other leaves it, so the
-/// wall turns by the other face's angle to b (its mirror image, leaning the other way, alike).
-Vec3 into_trimmed_face(const SurfaceDerivatives& on_b, const Vec3& along, const Vec3& into_other) {
-  Vec3 across = cross(cross(on_b.du, on_b.dv), along);
-  across = across / norm(across);
+/// lies on b there: a trimming curve of b): `across` the edge in b's tangent plane, towards the
+/// side b's trimming loops keep (`kept`: +1 along `across`, -1 against it). Where they do not
+/// tell (0: a face without loops), away from the side the other face leans to: the trimmed face
+/// is taken to end where the other leaves it, so the wall turns by the other face's angle to b
+/// (its mirror image, leaning the other way, alike).
+Vec3 into_trimmed_face(const Vec3& across, const Vec3& into_other, int kept) {
+  if (kept != 0) return kept * across;
   return dot(into_other, across) > 0.0 ? -across : across;
 }
 
@@ -326,7 +333,24 @@ double SurfaceShape::turn_into(std::size_t f, int side, const SurfaceDerivatives
   }
   const ShapePoint there = project_on_face(static_cast<int>(g), here.point, lambda, kNoHint);
   const SurfaceDerivatives on_g = evaluate(g, there.parameter.t, there.parameter.s, lambda);
-  return turn_angle(into_f, into_trimmed_face(on_g, side < 2 ? here.du : here.dv, into_f));
+  const Vec3 across = across_edge(on_g, side < 2 ? here.du : here.dv);
+  return turn_angle(into_f, into_trimmed_face(across, into_f, kept_side(g, there.parameter, on_g, across)));
+}
+
+// A step of 1e-4 of the wall's size either way, in (t, s) by least squares on the face's
+// derivatives: a hundred times the loops' polyline error, so the loops are not mistaken at it.
+int SurfaceShape::kept_side(std::size_t face, const ShapeParameter& at, const SurfaceDerivatives& d,
+                            const Vec3& across) const {
+  const TrimRegion* region = regions_of_faces_[face].get();
+  if (region == nullptr) return 0;
+  const double a = dot(d.du, d.du), b = dot(d.du, d.dv), c = dot(d.dv, d.dv);
+  const double det = a * c - b * b;
+  if (!(det > 0.0)) return 0;
+  const Vec3 step = 1e-4 * size_ * across;
+  const double g0 = dot(step, d.du), g1 = dot(step, d.dv);
+  const double dt = (c * g0 - b * g1) / det, ds = (a * g1 - b * g0) / det;
+  const bool ahead = region->contains(at.t + dt, at.s + ds), behind = region->contains(at.t - dt, at.s - ds);
+  return ahead == behind ? 0 : ahead ? 1 : -1;
 }
 
 int SurfaceShape::side_shared_with(int face, int other) const {

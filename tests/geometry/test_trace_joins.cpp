@@ -153,6 +153,31 @@ TEST(TraceJoins, AFenceMeetsThePlateItStandsOnAtACrease) {
   }
 }
 
+// A plate that ends at the fence's foot (trimmed to y <= 0, its loop the foot and free edges),
+// the foot an edge both faces name: the plate goes on to the side its loop keeps, so a fence
+// leaning back over it at 150 degrees folds the wall by 150 degrees, and one leaning away at 30
+// turns it by 30. Without the loop the two read alike (the test above).
+TEST(TraceJoins, ATrimmedPlateTellsAFenceFoldingBackFromOneLeaningAway) {
+  FaceEdge foot{7, {}};
+  for (int k = 0; k < kFaceEdgePoints; ++k) foot.points.push_back({-0.5 + k / (kFaceEdgePoints - 1.0), 0.0, 0.0});
+  CadFace half_plate{1, plate(), {foot}, {}};
+  half_plate.trims = {{7, {{-0.5, 0.0}, {0.5, 0.0}}},
+                      {0, {{0.5, 0.0}, {1.0, 0.0}, {1.0, -1.0}, {-1.0, -1.0}, {-1.0, 0.0}, {-0.5, 0.0}}}};
+  for (const double degrees : {30.0, 150.0}) {
+    SCOPED_TRACE(degrees);
+    const double lean = degrees * M_PI / 180.0;
+    const Vec3 up{0.0, std::cos(lean), std::sin(lean)};
+    const BSplineSurface leaning(1, 1, {0, 0, 1, 1}, {0, 0, 1, 1},
+                                 {{-0.5, 0, 0}, Vec3{-0.5, 0, 0} + 0.5 * up, {0.5, 0, 0}, Vec3{0.5, 0, 0} + 0.5 * up});
+    const auto wall = undeformed_surface_shape({half_plate, {2, leaning, {foot}, {}}});
+    const auto creases = wall->creases(25.0 * M_PI / 180.0);
+    ASSERT_EQ(creases.size(), 1u);
+    EXPECT_NEAR(creases[0].angle, lean, 1e-6);
+    EXPECT_EQ(wall->crease_sides({0.2, 0.0, 0}, 25.0 * M_PI / 180.0).size(), 2u);
+    EXPECT_TRUE(wall->crease_sides({0.2, 0.0, 0}, lean + 0.01).empty());
+  }
+}
+
 // A real CAD file: I-DEAS's cylinder, a B-rep solid of three rational B-spline faces, the
 // lateral face (its u around the axis) and two caps whose circles trim their square
 // rectangles. The caps meet the lateral face along its sides (circles across the caps'

@@ -125,8 +125,8 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// The edges two faces share where they meet turning by at least `min_angle`: the largest
   /// turn (as for crease_sides) at points along the edge, undeformed or fully deflected. An
   /// edge where a side of one face crosses the other's rectangle (a trimming curve of the
-  /// other) counts, the face whose side it is first; the trimmed face is taken to go on away
-  /// from the side the other leans to.
+  /// other) counts, the face whose side it is first; the trimmed face goes on to the side its
+  /// trimming loops keep, or, for a face without loops, away from the side the other leans to.
   std::vector<ShapeCrease> creases(double min_angle) const override;
   /// The point of the crease's edge nearest p on the stage-lambda faces: the closest point of
   /// faces[0]'s side along it, and each face's normal there (faces[1]'s at its own side's
@@ -159,6 +159,9 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// How far the wall turns at `here`, a point of side `side` of face f, into face g: g's side
   /// along it, or g itself where f's side crosses g's rectangle (a trimming curve of g).
   double turn_into(std::size_t f, int side, const SurfaceDerivatives& here, std::size_t g, double lambda) const;
+  /// Which way across an edge at `at` (derivatives `d`) the face's trimming loops keep: +1 along
+  /// `across`, -1 against it, 0 where they do not tell (no loops; both sides in, or out).
+  int kept_side(std::size_t face, const ShapeParameter& at, const SurfaceDerivatives& d, const Vec3& across) const;
 
   std::vector<CadFace> faces_;
   std::vector<BSplineSurface> after_;
