@@ -597,42 +597,17 @@ SurfaceProjector::Local SurfaceProjector::to_rim(const Vec3& p, const Local& out
     }
   }
   if (best == kInfinity || !curves[best_curve].binding) return outside;
-  // The curve between its vertices as a Catmull-Rom spline (the vertices are even in the
-  // edge's parameter): within rounding of the edge's curve where the chords are 1e-6 of it.
   const std::vector<Vec2>& q = curves[best_curve].points;
-  const auto along = [&](double x) {
-    const std::size_t n = q.size();
-    const auto i = std::min(static_cast<std::size_t>(x), n - 2);
-    const double f = x - static_cast<double>(i);
-    // Beyond an end, the parabola through the last three vertices (the line through two).
-    const Vec2 before = i > 0 ? q[i - 1] : n > 2 ? 3.0 * (q[0] - q[1]) + q[2] : 2.0 * q[0] - q[1];
-    const Vec2 after = i + 2 < n ? q[i + 2] : n > 2 ? 3.0 * (q[n - 1] - q[n - 2]) + q[n - 3] : 2.0 * q[n - 1] - q[n - 2];
-    const Vec2 m0 = 0.5 * (q[i + 1] - before), m1 = 0.5 * (after - q[i]);
-    const double f2 = f * f, f3 = f2 * f;
-    return (2.0 * f3 - 3.0 * f2 + 1.0) * q[i] + (f3 - 2.0 * f2 + f) * m0 + (-2.0 * f3 + 3.0 * f2) * q[i + 1] +
-           (f3 - f2) * m1;
-  };
-  const auto miss = [&](double x) {
-    const Vec2 uv = along(x);
-    return squared(evaluate(outside.where.patch, uv.x, uv.y).point - p);
-  };
-  double a = best_chord > 0 ? static_cast<double>(best_chord - 1) : 0.0;
-  double b = std::min(static_cast<double>(best_chord + 2), static_cast<double>(q.size() - 1));
-  constexpr double kGolden = 0.6180339887498949;
-  double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
-  double f1 = miss(x1), f2 = miss(x2);
-  int iterations = 2;
-  while (b - a > 1e-10 && iterations < 60) {
-    if (f1 <= f2) {
-      b = x2, x2 = x1, f2 = f1, x1 = b - kGolden * (b - a), f1 = miss(x1);
-    } else {
-      a = x1, x1 = x2, f1 = f2, x2 = a + kGolden * (b - a), f2 = miss(x2);
-    }
-    ++iterations;
-  }
-  const Vec2 uv = along(f1 <= f2 ? x1 : x2);
+  const double a = best_chord > 0 ? static_cast<double>(best_chord - 1) : 0.0;
+  const double b = std::min(static_cast<double>(best_chord + 2), static_cast<double>(q.size() - 1));
+  int evaluations = 0;
+  const double x = nearest_on_curve(q, a, b, p, [&](const Vec2& uv) {
+    ++evaluations;
+    return evaluate(outside.where.patch, uv.x, uv.y);
+  });
+  const Vec2 uv = curve_point(q, x);
   const SurfaceDerivatives value = evaluate(outside.where.patch, uv.x, uv.y);
-  return {{outside.where.patch, uv.x, uv.y}, value, distance(value.point, p), outside.iterations + iterations, true, true};
+  return {{outside.where.patch, uv.x, uv.y}, value, distance(value.point, p), outside.iterations + evaluations, true, true};
 }
 
 bool SurfaceProjector::better(const Local& a, const Local& b, int hint_patch) const {

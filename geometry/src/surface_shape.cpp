@@ -9,6 +9,7 @@
 #include <limits>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <shared_mutex>
 #include <stdexcept>
 #include <string>
@@ -156,6 +157,26 @@ SurfaceShape::SurfaceShape(std::vector<CadFace> faces, std::vector<BSplineSurfac
   for (const CadFace& face : faces_) {
     regions_of_faces_.push_back(trim_region(face, [&](int edge) { return faces_naming[edge] > 1; }));
   }
+  // Edges across both faces' rectangles: each face's curve of the edge runs inside it.
+  const auto across = [&](std::size_t f, int edge) -> std::optional<std::size_t> {
+    const std::vector<TrimCurve>& trims = faces_[f].trims;
+    for (std::size_t c = 0; c < trims.size(); ++c) {
+      if (trims[c].edge == edge && trims[c].points.size() >= 2 &&
+          !along_rectangle_side(trims[c].points, faces_[f].surface.domain())) {
+        return c;
+      }
+    }
+    return std::nullopt;
+  };
+  for (std::size_t a = 0; a < faces_.size(); ++a) {
+    for (const FaceEdge& e : faces_[a].edges) {
+      const auto on_a = across(a, e.edge);
+      if (!on_a) continue;
+      for (std::size_t b = a + 1; b < faces_.size(); ++b) {
+        if (const auto on_b = across(b, e.edge)) trimmed_edges_.push_back({{a, b}, {*on_a, *on_b}});
+      }
+    }
+  }
 }
 
 // Stage lambda of the faces (section 4.3): S + (1 - lambda) d0 + lambda d1, d0 the deflection
@@ -246,7 +267,9 @@ int SurfaceShape::crease_region(int face, double min_angle) const {
       return std::minmax(c.faces[0], c.faces[1]) == std::minmax(static_cast<int>(a), static_cast<int>(b));
     });
   };
-  std::vector<std::vector<std::size_t>> groups = face_groups(neighbours_, joined);
+  std::vector<detail::TracedEdge> trimmed;
+  for (const TrimmedEdge& e : trimmed_edges_) trimmed.push_back({e.faces[0], e.faces[1], {}, {}, {}});
+  std::vector<std::vector<std::size_t>> groups = face_groups(neighbours_, joined, trimmed);
   const std::unique_lock write(stages_mutex_);
   const auto it = region_of_face_.find(min_angle);
   if (it != region_of_face_.end()) return it->second[static_cast<std::size_t>(face)];  // another thread's
@@ -320,6 +343,15 @@ std::vector<std::shared_ptr<const BoundaryShape>> SurfaceShape::crease_sides(con
     const SurfaceDerivatives there = evaluate(g, on_side.parameter.t, on_side.parameter.s, 0.0);
     if (turn_into(g, side, there, f, 0.0) >= min_angle) add(static_cast<int>(g));
   }
+  // A point of f on a trimming curve that is also the other face's.
+  for (const TrimmedEdge& e : trimmed_edges_) {
+    const int k = e.faces[0] == f ? 0 : e.faces[1] == f ? 1 : -1;
+    if (k < 0) continue;
+    const ShapePoint on = project_on_trim(e, k, here.point, 0.0);
+    if (on.distance > 1e-9 * size_) continue;
+    const ShapePoint on_first = k == 0 ? on : project_on_trim(e, 0, here.point, 0.0);
+    if (turn_across(e, on_first, 0.0) >= min_angle) add(static_cast<int>(e.faces[static_cast<std::size_t>(1 - k)]));
+  }
   return sides;
 }
 
@@ -351,6 +383,51 @@ int SurfaceShape::kept_side(std::size_t face, const ShapeParameter& at, const Su
   const double dt = (c * g0 - b * g1) / det, ds = (a * g1 - b * g0) / det;
   const bool ahead = region->contains(at.t + dt, at.s + ds), behind = region->contains(at.t - dt, at.s - ds);
   return ahead == behind ? 0 : ahead ? 1 : -1;
+}
+
+// A scan of at most 65 of the curve's vertices finds the span; the golden-section search runs
+// over the scan's steps on either side of the nearest.
+ShapePoint SurfaceShape::project_on_trim(const TrimmedEdge& e, int k, const Vec3& p, double lambda) const {
+  const std::size_t face = e.faces[static_cast<std::size_t>(k)];
+  const std::vector<Vec2>& q = curve_of(e, k);
+  const std::size_t last = q.size() - 1;
+  const std::size_t stride = std::max<std::size_t>(1, last / 64);
+  std::size_t nearest = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0;; i = std::min(i + stride, last)) {
+    const double d = distance(evaluate(face, q[i].x, q[i].y, lambda).point, p);
+    if (d < best) best = d, nearest = i;
+    if (i == last) break;
+  }
+  const double a = static_cast<double>(nearest >= stride ? nearest - stride : 0);
+  const double b = static_cast<double>(std::min(nearest + stride, last));
+  const Vec2 uv = curve_point(q, nearest_on_curve(q, a, b, p, [&](const Vec2& x) { return evaluate(face, x.x, x.y, lambda); }));
+  const SurfaceDerivatives d = evaluate(face, uv.x, uv.y, lambda);
+  const Vec3 n = cross(d.du, d.dv);
+  return {d.point, n / norm(n), {uv.x, uv.y, static_cast<int>(face)}, distance(d.point, p)};
+}
+
+// The edge's direction from the first face's derivatives and its curve's tangent there (the
+// curve's parameters on either side of the point); across it in each face's tangent plane, the
+// way each face's loops keep.
+double SurfaceShape::turn_across(const TrimmedEdge& e, const ShapePoint& on_first, double lambda) const {
+  const std::size_t a = e.faces[0], b = e.faces[1];
+  const std::vector<Vec2>& q = curve_of(e, 0);
+  const Vec2 here{on_first.parameter.t, on_first.parameter.s};
+  const auto near = std::min_element(q.begin(), q.end(), [&](const Vec2& x, const Vec2& y) {
+    return distance(x, here) < distance(y, here);
+  });
+  const auto i = static_cast<std::size_t>(near - q.begin());
+  const Vec2 step = q[std::min(i + 1, q.size() - 1)] - q[i > 0 ? i - 1 : 0];
+  const SurfaceDerivatives on_a = evaluate(a, here.x, here.y, lambda);
+  const Vec3 along = step.x * on_a.du + step.y * on_a.dv;
+  const ShapePoint there = project_on_trim(e, 1, on_first.point, lambda);
+  const SurfaceDerivatives on_b = evaluate(b, there.parameter.t, there.parameter.s, lambda);
+  const Vec3 across_a = across_edge(on_a, along), across_b = across_edge(on_b, along);
+  const int kept_a = kept_side(a, on_first.parameter, on_a, across_a);
+  const int kept_b = kept_side(b, there.parameter, on_b, across_b);
+  if (kept_a == 0 || kept_b == 0) return 0.0;
+  return turn_angle(kept_a * across_a, kept_b * across_b);
 }
 
 int SurfaceShape::side_shared_with(int face, int other) const {
@@ -413,6 +490,18 @@ std::vector<ShapeCrease> SurfaceShape::creases(double min_angle) const {
       if (crease.angle >= min_angle) found.push_back(crease);
     }
   }
+  for (const TrimmedEdge& e : trimmed_edges_) {
+    ShapeCrease crease{{static_cast<int>(e.faces[0]), static_cast<int>(e.faces[1])}, 0.0};
+    const std::vector<Vec2>& q = curve_of(e, 0);
+    for (const double lambda : {0.0, 1.0}) {
+      for (int k = 0; k <= kSamples; ++k) {  // inside the edge: its ends are corners of loops
+        const Vec2 x = curve_point(q, static_cast<double>(q.size() - 1) * (k + 0.5) / (kSamples + 1));
+        const ShapePoint on_a{evaluate(e.faces[0], x.x, x.y, lambda).point, {}, {x.x, x.y, crease.faces[0]}, 0.0};
+        crease.angle = std::max(crease.angle, turn_across(e, on_a, lambda));
+      }
+    }
+    if (crease.angle >= min_angle) found.push_back(crease);
+  }
   return found;
 }
 
@@ -421,12 +510,29 @@ CreasePoint SurfaceShape::crease_point(const ShapeCrease& crease, const Vec3& p,
   const int count = static_cast<int>(faces_.size());
   const int side_a = a >= 0 && a < count && b >= 0 && b < count ? side_shared_with(a, b) : -1;
   const int side_b = side_a >= 0 ? side_shared_with(b, a) : -1;
-  if (side_a < 0) throw std::logic_error("SurfaceShape::crease_point: the faces share no edge");
+  if (side_a < 0) return crease_point_on_trims(crease, p, lambda);
   const ShapePoint on_a = project_on_side(static_cast<std::size_t>(a), side_a, p, lambda);
   // b's side along it, or b itself where a's side crosses b's rectangle (a trimming curve).
   const ShapePoint on_b = side_b >= 0 ? project_on_side(static_cast<std::size_t>(b), side_b, on_a.point, lambda)
                                       : project_on_face(b, on_a.point, lambda, kNoHint);
   return {on_a.point, {on_a.normal, on_b.normal}};
+}
+
+// The nearest of the trimmed edges between the crease's faces (two faces may share several).
+CreasePoint SurfaceShape::crease_point_on_trims(const ShapeCrease& crease, const Vec3& p, double lambda) const {
+  std::optional<CreasePoint> best;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const TrimmedEdge& e : trimmed_edges_) {
+    const int first = static_cast<int>(e.faces[0]), second = static_cast<int>(e.faces[1]);
+    if (std::minmax(first, second) != std::minmax(crease.faces[0], crease.faces[1])) continue;
+    const int k = crease.faces[0] == first ? 0 : 1;
+    const ShapePoint on_a = project_on_trim(e, k, p, lambda);
+    if (on_a.distance >= nearest) continue;
+    nearest = on_a.distance;
+    best = CreasePoint{on_a.point, {on_a.normal, project_on_trim(e, 1 - k, on_a.point, lambda).normal}};
+  }
+  if (!best) throw std::logic_error("SurfaceShape::crease_point: the faces share no edge");
+  return *best;
 }
 
 SurfaceShapeFit make_surface_shape(std::vector<CadFace> faces, const DeflectionSamples& samples,

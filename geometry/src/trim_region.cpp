@@ -122,18 +122,77 @@ bool TrimRegion::contains(double t, double s) const {
   return inside;
 }
 
+Vec2 curve_point(std::span<const Vec2> q, double x) {
+  const std::size_t n = q.size();
+  const auto i = std::min(static_cast<std::size_t>(std::max(x, 0.0)), n - 2);
+  const double f = x - static_cast<double>(i);
+  const Vec2 before = i > 0 ? q[i - 1] : n > 2 ? 3.0 * (q[0] - q[1]) + q[2] : 2.0 * q[0] - q[1];
+  const Vec2 after = i + 2 < n ? q[i + 2] : n > 2 ? 3.0 * (q[n - 1] - q[n - 2]) + q[n - 3] : 2.0 * q[n - 1] - q[n - 2];
+  const Vec2 m0 = 0.5 * (q[i + 1] - before), m1 = 0.5 * (after - q[i]);
+  const double f2 = f * f, f3 = f2 * f;
+  return (2.0 * f3 - 3.0 * f2 + 1.0) * q[i] + (f3 - 2.0 * f2 + f) * m0 + (-2.0 * f3 + 3.0 * f2) * q[i + 1] +
+         (f3 - f2) * m1;
+}
+
+// Golden-section search on |S - p|^2 down to 1e-3 of a span (where it still tells the nearer of
+// two points well above rounding), then the secant method on its derivative
+// (S - p).(S_t t' + S_s s') within that bracket: the squared distance is flat to rounding over
+// sqrt(rounding) of the curve, its derivative is not.
+double nearest_on_curve(std::span<const Vec2> q, double a, double b, const Vec3& p,
+                        const std::function<SurfaceDerivatives(const Vec2&)>& surface) {
+  const auto miss = [&](double x) {
+    const Vec3 off = surface(curve_point(q, x)).point - p;
+    return dot(off, off);
+  };
+  constexpr double kGolden = 0.6180339887498949;
+  double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
+  double f1 = miss(x1), f2 = miss(x2);
+  for (int iteration = 0; b - a > 1e-3 && iteration < 40; ++iteration) {
+    if (f1 <= f2) {
+      b = x2, x2 = x1, f2 = f1, x1 = b - kGolden * (b - a), f1 = miss(x1);
+    } else {
+      a = x1, x1 = x2, f1 = f2, x2 = a + kGolden * (b - a), f2 = miss(x2);
+    }
+  }
+  const auto slope = [&](double x) {
+    constexpr double h = 1e-7;
+    const Vec2 tangent = (curve_point(q, x + h) - curve_point(q, x - h)) / (2.0 * h);
+    const SurfaceDerivatives d = surface(curve_point(q, x));
+    return dot(d.point - p, tangent.x * d.du + tangent.y * d.dv);
+  };
+  double xa = a, ga = slope(a), xb = b, gb = slope(b);
+  if (ga >= 0.0) return a;  // the nearest point is an end of the search
+  if (gb <= 0.0) return b;
+  double x = f1 <= f2 ? x1 : x2;
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    x = xa - ga * (xb - xa) / (gb - ga);  // regula falsi, the bracket kept
+    const double g = slope(x);
+    if (g == 0.0 || xb - xa <= 1e-15 * std::max(1.0, std::abs(x))) break;
+    if (g < 0.0) {
+      xa = x, ga = g, gb *= 0.5;  // Illinois: the stale end's value halved
+    } else {
+      xb = x, gb = g, ga *= 0.5;
+    }
+  }
+  return x;
+}
+
+bool along_rectangle_side(std::span<const Vec2> points, const ParameterRectangle& r) {
+  const double du = kOnSide * (r.u_last - r.u_first), dv = kOnSide * (r.v_last - r.v_first);
+  const auto all = [&](auto on) { return std::all_of(points.begin(), points.end(), on); };
+  return all([&](const Vec2& p) { return std::abs(p.x - r.u_first) <= du; }) ||
+         all([&](const Vec2& p) { return std::abs(p.x - r.u_last) <= du; }) ||
+         all([&](const Vec2& p) { return std::abs(p.y - r.v_first) <= dv; }) ||
+         all([&](const Vec2& p) { return std::abs(p.y - r.v_last) <= dv; });
+}
+
 std::shared_ptr<const TrimRegion> trim_region(const CadFace& face, const std::function<bool(int edge)>& shared) {
   const ParameterRectangle r = face.surface.domain();
-  const double du = kOnSide * (r.u_last - r.u_first), dv = kOnSide * (r.v_last - r.v_first);
-  const auto on_a_side = [&](const Vec2& p) {
-    return std::abs(p.x - r.u_first) <= du || std::abs(p.x - r.u_last) <= du || std::abs(p.y - r.v_first) <= dv ||
-           std::abs(p.y - r.v_last) <= dv;
-  };
   bool trimmed = false;
   std::vector<TrimRegion::Curve> curves;
   for (const TrimCurve& c : face.trims) {
     if (c.points.size() < 2) continue;
-    trimmed = trimmed || !std::all_of(c.points.begin(), c.points.end(), on_a_side);
+    trimmed = trimmed || !along_rectangle_side(c.points, r);
     curves.push_back({c.points, c.edge > 0 && shared(c.edge)});
   }
   if (!trimmed) return nullptr;

@@ -178,6 +178,61 @@ TEST(TraceJoins, ATrimmedPlateTellsAFenceFoldingBackFromOneLeaningAway) {
   }
 }
 
+// The fence's surface reaching below the plate and trimmed by it, as the plate is trimmed by the
+// fence: the foot crosses both faces' rectangles, a side of neither. It is a crease of the angle
+// the fence leans at, told from its supplement by both faces' loops; its nearest point lies on
+// the foot at both stages; points of either face on the foot lie on it, others not; and the
+// faces are one crease region only for angles above the crease's.
+TEST(TraceJoins, AnEdgeThatTrimsBothFacesIsACrease) {
+  FaceEdge foot{7, {}};
+  for (int k = 0; k < kFaceEdgePoints; ++k) foot.points.push_back({-0.5 + k / (kFaceEdgePoints - 1.0), 0.0, 0.0});
+  CadFace half_plate{1, plate(), {foot}, {}};
+  half_plate.trims = {{7, {{-0.5, 0.0}, {0.5, 0.0}}},
+                      {0, {{0.5, 0.0}, {1.0, 0.0}, {1.0, -1.0}, {-1.0, -1.0}, {-1.0, 0.0}, {-0.5, 0.0}}}};
+  const double foot_v = 2.0 / 7.0;  // where the fence's height, -0.2 to 0.5 along v, is 0
+  for (const double degrees : {90.0, 30.0, 150.0}) {
+    SCOPED_TRACE(degrees);
+    const double lean = degrees * M_PI / 180.0;
+    const Vec3 up{0.0, std::cos(lean), std::sin(lean)};
+    const Vec3 left{-0.5, 0, 0}, right{0.5, 0, 0};
+    CadFace fence{2,
+                  BSplineSurface(1, 1, {0, 0, 1, 1}, {0, 0, 1, 1},
+                                 {left - 0.2 * up, left + 0.5 * up, right - 0.2 * up, right + 0.5 * up}),
+                  {foot},
+                  {}};
+    fence.trims = {{7, {{0.0, foot_v}, {1.0, foot_v}}}, {0, {{1.0, foot_v}, {1.0, 1.0}, {0.0, 1.0}, {0.0, foot_v}}}};
+    const Vec3 shift{0.01, 0.02, 0.03};
+    std::vector<BSplineSurface> fields;
+    for (const CadFace& f : {half_plate, fence}) {
+      const ParameterRectangle r = f.surface.domain();
+      fields.emplace_back(1, 1, std::vector<double>{r.u_first, r.u_first, r.u_last, r.u_last},
+                          std::vector<double>{r.v_first, r.v_first, r.v_last, r.v_last}, std::vector<Vec3>(4, shift));
+    }
+    const auto wall = std::make_shared<SurfaceShape>(std::vector<CadFace>{half_plate, fence}, fields);
+    const double min_angle = 25.0 * M_PI / 180.0;
+    const auto creases = wall->creases(min_angle);
+    ASSERT_EQ(creases.size(), 1u);
+    EXPECT_EQ(creases[0].faces, (std::array<int, 2>{0, 1}));
+    EXPECT_NEAR(creases[0].angle, lean, 1e-6);
+    for (const double lambda : {0.0, 1.0}) {
+      const CreasePoint c = wall->crease_point(creases[0], {0.2, 0.3, 0.4}, lambda);
+      EXPECT_LT(distance(c.point, Vec3{0.2, lambda * shift.y, lambda * shift.z}), 1e-12) << lambda;
+      EXPECT_NEAR(std::abs(c.normals[0].z), 1.0, 1e-12);
+      EXPECT_NEAR(dot(c.normals[1], up), 0.0, 1e-12);
+    }
+    EXPECT_EQ(wall->crease_sides({0.2, 0.0, 0}, min_angle).size(), 2u);     // the plate at the foot
+    EXPECT_EQ(wall->crease_sides({0.7, foot_v, 1}, min_angle).size(), 2u);  // the fence at the foot
+    EXPECT_TRUE(wall->crease_sides({0.2, -0.1, 0}, min_angle).empty());     // the plate beside it
+    EXPECT_TRUE(wall->crease_sides({0.7, 0.5, 1}, min_angle).empty());      // the fence above it
+    EXPECT_TRUE(wall->crease_sides({0.2, 0.0, 0}, lean + 0.01).empty());
+    EXPECT_NE(wall->crease_region(0, min_angle), wall->crease_region(1, min_angle));
+    EXPECT_EQ(wall->crease_region(0, lean + 0.01), wall->crease_region(1, lean + 0.01));
+    // Sliding on the fence below the foot is held at it.
+    const ShapePoint below = wall->project_on_face(1, Vec3{0.2, 0.0, 0.0} - 0.1 * up + Vec3{0, 0, -0.05}, 0.0, kNoHint);
+    EXPECT_NEAR(below.parameter.s, foot_v, 1e-9);
+  }
+}
+
 // A real CAD file: I-DEAS's cylinder, a B-rep solid of three rational B-spline faces, the
 // lateral face (its u around the axis) and two caps whose circles trim their square
 // rectangles. The caps meet the lateral face along its sides (circles across the caps'

@@ -127,11 +127,14 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// edge where a side of one face crosses the other's rectangle (a trimming curve of the
   /// other) counts, the face whose side it is first; the trimmed face goes on to the side its
   /// trimming loops keep, or, for a face without loops, away from the side the other leans to.
+  /// So does an edge the CAD file names on both faces that crosses both rectangles, where both
+  /// faces' loops tell which way they go on, the lower face first.
   std::vector<ShapeCrease> creases(double min_angle) const override;
   /// The point of the crease's edge nearest p on the stage-lambda faces: the closest point of
-  /// faces[0]'s side along it, and each face's normal there (faces[1]'s at its own side's
-  /// closest point, or its closest point where the edge crosses its rectangle: the same edge of
-  /// the deflected wall, since the faces' fields agree there).
+  /// faces[0]'s side along it (or of its trimming curve, where the edge crosses both
+  /// rectangles), and each face's normal there (faces[1]'s at its own side's or trimming
+  /// curve's closest point, or its closest point where the edge crosses its rectangle: the same
+  /// edge of the deflected wall, since the faces' fields agree there).
   CreasePoint crease_point(const ShapeCrease& crease, const Vec3& p, double lambda) const override;
   /// Regions are numbered as they are first asked for; project() with a range of that region
   /// searches only its faces (clamped where they meet the others).
@@ -159,6 +162,23 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// How far the wall turns at `here`, a point of side `side` of face f, into face g: g's side
   /// along it, or g itself where f's side crosses g's rectangle (a trimming curve of g).
   double turn_into(std::size_t f, int side, const SurfaceDerivatives& here, std::size_t g, double lambda) const;
+  /// An edge two faces of the wall name that crosses both their rectangles (a trimming curve of
+  /// each): the faces (lower first) and the edge's curve among each one's trims.
+  struct TrimmedEdge {
+    std::array<std::size_t, 2> faces;
+    std::array<std::size_t, 2> curves;
+  };
+  const std::vector<Vec2>& curve_of(const TrimmedEdge& e, int k) const {
+    return faces_[e.faces[static_cast<std::size_t>(k)]].trims[e.curves[static_cast<std::size_t>(k)]].points;
+  }
+  /// The point of trimmed edge e nearest p on its face k (0 or 1) at stage lambda: a scan of
+  /// its curve, then a golden-section search along it.
+  ShapePoint project_on_trim(const TrimmedEdge& e, int k, const Vec3& p, double lambda) const;
+  /// crease_point for a crease along trimmed edges.
+  CreasePoint crease_point_on_trims(const ShapeCrease& crease, const Vec3& p, double lambda) const;
+  /// How far the wall turns across trimmed edge e at `on_first`, a point of it on its first face
+  /// (0 where either face's loops do not tell which way the face goes on).
+  double turn_across(const TrimmedEdge& e, const ShapePoint& on_first, double lambda) const;
   /// Which way across an edge at `at` (derivatives `d`) the face's trimming loops keep: +1 along
   /// `across`, -1 against it, 0 where they do not tell (no loops; both sides in, or out).
   int kept_side(std::size_t face, const ShapeParameter& at, const SurfaceDerivatives& d, const Vec3& across) const;
@@ -170,6 +190,7 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// Each face's trimming loops, those along edges another face of the wall names binding;
   /// nullptr for a face that is its whole rectangle.
   std::vector<std::shared_ptr<const TrimRegion>> regions_of_faces_;
+  std::vector<TrimmedEdge> trimmed_edges_;
   /// Per face and side of its rectangle (s first, s last, t first, t last), the face sharing it,
   /// or -1.
   std::vector<std::array<int, 4>> neighbours_;

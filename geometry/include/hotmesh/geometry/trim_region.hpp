@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "hotmesh/geometry/cad_face.hpp"
@@ -59,8 +60,25 @@ class TrimRegion {
   std::vector<char> centre_inside_;
 };
 
-/// The region a wall's face slides in: nullptr where its trims (CadFace::trims) run along the
-/// sides of its rectangle only, or it has none (the whole rectangle is the face). A trim curve
+/// Whether every point lies on one side of the rectangle (to 1e-9 of its extent): a trimming
+/// curve that runs along that side rather than across the rectangle.
+bool along_rectangle_side(std::span<const Vec2> points, const ParameterRectangle& rectangle);
+
+/// The point at x (in vertices: 0 at the first, n - 1 at the last) of the smooth curve through a
+/// polyline's vertices, as a Catmull-Rom spline (the vertices are even in the edge's parameter,
+/// as CadFace::trims are): within rounding of the edge's curve where its chords are within 1e-6
+/// of it. Beyond an end, the parabola through the last three vertices gives the tangent.
+Vec2 curve_point(std::span<const Vec2> q, double x);
+
+/// The x in [a, b] (vertices) where the surface point S(curve_point(q, x)) is nearest p:
+/// golden-section search, then a bracketed secant on the distance's derivative. `surface`
+/// gives S and its derivatives at (t, s); the distance is unimodal over a few spans around its
+/// minimum.
+double nearest_on_curve(std::span<const Vec2> q, double a, double b, const Vec3& p,
+                        const std::function<SurfaceDerivatives(const Vec2&)>& surface);
+
+/// The region a wall's face slides in: nullptr where each of its trims (CadFace::trims) runs
+/// along a side of its rectangle, or it has none (the whole rectangle is the face). A trim curve
 /// binds where `shared(edge)`: an edge of the CAD file that another face of the wall also names.
 std::shared_ptr<const TrimRegion> trim_region(const CadFace& face, const std::function<bool(int edge)>& shared);
 
