@@ -171,5 +171,29 @@ TEST_F(PlateWithHole, AFreeTrimmingLoopDoesNotHoldANodeIn) {
   EXPECT_NEAR(over_hole.distance, 0.5, 1e-12);
 }
 
+// Real CAD files: the cylinders of CATIA (four separate trimmed surfaces, not sewn: the caps'
+// circles are no edge of the lateral halves) and of I-DEAS (a solid whose caps share their
+// circles with the lateral face). A point just outside the cylinder beside a cap, over the cap's
+// square rectangle, projects onto the cap's rim, not into the square's corner beyond the circle:
+// the circle binds, named by both faces or lying on the lateral face.
+TEST(TrimRegion, RealCylindersHoldSlidingOnTheirCapsInsideTheCircles) {
+  struct Case {
+    const char* file;
+    Vec3 outside;  // beside the cap at the axis's start, 2 mm out from the radius
+    Vec3 rim;
+  };
+  for (const Case& c : {Case{"OCC8842_cylinder_CATIA.igs", {-0.5, 0.0, 52.0}, {0.0, 0.0, 50.0}},
+                        Case{"OCC8842_cylinder_Ideas.igs", {0.0, -75.5, 27.0}, {0.0, -75.0, 25.0}}}) {
+    SCOPED_TRACE(c.file);
+    const CadModel model = test::read_mm(c.file);
+    std::vector<CadFace> faces;
+    for (const FaceInfo& info : model.faces()) faces.push_back(model.cad_face(info.id));
+    const auto wall = undeformed_surface_shape(faces);
+    const ShapePoint q = wall->project(c.outside, 0.0);
+    EXPECT_NEAR(q.distance, std::sqrt(0.25 + 4.0), 1e-6);
+    EXPECT_LT(distance(q.point, c.rim), 1e-4);
+  }
+}
+
 }  // namespace
 }  // namespace hotmesh::geometry
