@@ -88,7 +88,7 @@ struct EdgeJoins {
   std::vector<detail::SharedSide> sides;
   std::vector<detail::UnevenSide> uneven;
   std::vector<detail::SideOnFace> on_faces;  ///< a side of one face across the other's rectangle (trace_joins.hpp)
-  std::vector<detail::TracedEdge> across;    ///< edges across both faces' rectangles: measured, not joined
+  std::vector<detail::TracedEdge> across;    ///< edges across both faces' rectangles (trace_joins.hpp)
   std::vector<std::vector<detail::FaceCorner>> corners;
   std::size_t shared = 0;  ///< shared sides, each counted once, joinable or not
 };
@@ -209,7 +209,7 @@ void add_shared_sides(std::span<const CadFace> faces, const FaceSet& set, double
 }
 
 /// Phase 2: the edges the CAD file names that cross a rectangle: along a side of one face
-/// (`on_faces`), or across both (`across`, measured only).
+/// (`on_faces`), or across both (`across`).
 void add_crossing_edges(std::span<const CadFace> faces, const FaceSet& set, EdgeJoins& out) {
   out.shared += set.crossing.size();
   for (const detail::TracedEdge& e : set.crossing) {
@@ -416,7 +416,12 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
     crossing_gap = std::max(crossing_gap, gap);
     if (gap <= join_tolerance) ++report.joined_edges;
   }
-  for (const detail::TracedEdge& e : joins.across) crossing_gap = std::max(crossing_gap, detail::traced_gap(out.fields, e));
+  std::vector<detail::FaceSide> kept = joined_sides(joins);
+  for (const detail::SideOnFace& e : joins.on_faces) kept.push_back({e.a, e.side});
+  for (const double gap : detail::join_across_faces(out.fields, faces, projectors, joins.across, kept, join_tolerance)) {
+    crossing_gap = std::max(crossing_gap, gap);
+    if (gap <= join_tolerance) ++report.joined_edges;
+  }
   report.max_node_residual = 0.0;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     SurfaceFitReport& fit = report.faces[f].fit;

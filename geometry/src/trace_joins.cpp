@@ -2,6 +2,9 @@
 // parameter rectangle (trace_joins.hpp).
 #include "trace_joins.hpp"
 
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -9,6 +12,7 @@
 
 #include "bspline_basis.hpp"
 #include "cad_face_set.hpp"
+#include "hotmesh/geometry/trim_region.hpp"
 
 namespace hotmesh::geometry::detail {
 namespace {
@@ -67,6 +71,108 @@ bool corners_frozen(std::size_t a, int side, std::span<const FaceSide> frozen) {
   return std::any_of(frozen.begin(), frozen.end(), [&](const FaceSide& s) {
     return s.face == a && along_u(s.side) != along_u(side);  // the sides across its ends
   });
+}
+
+/// The smoothness penalty of a correction against its fit at the edge's points: small, so the
+/// fit rules where the points decide the poles and the penalty only where they do not (the
+/// poles beside the edge), which a plain least-change correction leaves spiky. On a fence
+/// trimming a plate (TraceJoins.AFootThatTrimsBothFacesIsJoined), 1e-6 stalls at a gap of 2e-8
+/// (the penalty holds the fit back), 1e-10 meets 1e-10 of the size after 3 halvings, and
+/// smaller ones let the correction swing more at the nodes beside the edge.
+constexpr double kSmoothness = 1e-10;
+
+/// `field` plus a correction that adds change[k] at at[k] (least squares) and is smoothest
+/// where they leave it free: the thin-plate energy of the correction's poles over the pole grid
+/// (second differences along u and v, twice the mixed ones) as a kSmoothness penalty. Only the
+/// poles that act at the points and a ring around them change (the ring lets the correction
+/// fade out smoothly), not those of `frozen` sides (v first, v last, u first, u last).
+BSplineSurface corrected(const BSplineSurface& field, std::span<const Vec2> at, std::span<const Vec3> change,
+                         const std::array<bool, 4>& frozen) {
+  const std::size_t nu = field.u_count(), nv = field.v_count();
+  const int p = field.u_degree(), q = field.v_degree();
+  const auto index = [nv](std::size_t i, std::size_t j) { return i * nv + j; };
+  // The basis functions at each point: (pole, value).
+  std::vector<std::vector<std::pair<std::size_t, double>>> rows(at.size());
+  std::vector<char> acting(nu * nv, 0);
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    const std::size_t su = find_span(field.u_knots(), p, nu, at[k].x);
+    const std::size_t sv = find_span(field.v_knots(), q, nv, at[k].y);
+    BasisDerivatives bu{}, bv{};
+    basis_derivatives(field.u_knots(), p, su, at[k].x, 0, bu);
+    basis_derivatives(field.v_knots(), q, sv, at[k].y, 0, bv);
+    for (int a = 0; a <= p; ++a) {
+      for (int b = 0; b <= q; ++b) {
+        const std::size_t pole = index(su - static_cast<std::size_t>(p - a), sv - static_cast<std::size_t>(q - b));
+        rows[k].emplace_back(pole, bu[0][static_cast<std::size_t>(a)] * bv[0][static_cast<std::size_t>(b)]);
+        acting[pole] = 1;
+      }
+    }
+  }
+  std::vector<int> unknown(nu * nv, -1);
+  int count = 0;
+  for (std::size_t i = 0; i < nu; ++i) {
+    for (std::size_t j = 0; j < nv; ++j) {
+      if ((frozen[0] && j == 0) || (frozen[1] && j + 1 == nv) || (frozen[2] && i == 0) || (frozen[3] && i + 1 == nu)) continue;
+      bool near = false;
+      for (std::size_t a = i > 0 ? i - 1 : 0; a <= std::min(i + 1, nu - 1) && !near; ++a) {
+        for (std::size_t b = j > 0 ? j - 1 : 0; b <= std::min(j + 1, nv - 1) && !near; ++b) near = acting[index(a, b)] != 0;
+      }
+      if (near) unknown[index(i, j)] = count++;
+    }
+  }
+  if (count == 0) return field;
+  // Normal equations of the fit and the penalty, a tiny multiple of the identity against round-off.
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(count, 3);
+  const auto add_row = [&](const std::vector<std::pair<std::size_t, double>>& row, double weight, const Vec3* value) {
+    for (const auto& [pa, wa] : row) {
+      const int ua = unknown[pa];
+      if (ua < 0) continue;
+      for (const auto& [pb, wb] : row) {
+        if (unknown[pb] >= 0) entries.emplace_back(ua, unknown[pb], weight * wa * wb);
+      }
+      if (value != nullptr) {
+        rhs(ua, 0) += weight * wa * value->x, rhs(ua, 1) += weight * wa * value->y, rhs(ua, 2) += weight * wa * value->z;
+      }
+    }
+  };
+  for (std::size_t k = 0; k < at.size(); ++k) add_row(rows[k], 1.0, &change[k]);
+  for (std::size_t i = 0; i < nu; ++i) {
+    for (std::size_t j = 0; j < nv; ++j) {
+      if (i + 2 < nu) add_row({{index(i, j), 1.0}, {index(i + 1, j), -2.0}, {index(i + 2, j), 1.0}}, kSmoothness, nullptr);
+      if (j + 2 < nv) add_row({{index(i, j), 1.0}, {index(i, j + 1), -2.0}, {index(i, j + 2), 1.0}}, kSmoothness, nullptr);
+      if (i + 1 < nu && j + 1 < nv) {
+        add_row({{index(i, j), 1.0}, {index(i + 1, j), -1.0}, {index(i, j + 1), -1.0}, {index(i + 1, j + 1), 1.0}},
+                2.0 * kSmoothness, nullptr);
+      }
+    }
+  }
+  for (int u = 0; u < count; ++u) entries.emplace_back(u, u, 1e-6 * kSmoothness);
+  Eigen::SparseMatrix<double> normal(count, count);
+  normal.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(normal);
+  if (ldlt.info() != Eigen::Success) return field;
+  const Eigen::MatrixXd delta = ldlt.solve(rhs);
+  std::vector<Vec3> poles = field.poles();
+  for (std::size_t k = 0; k < poles.size(); ++k) {
+    if (const int u = unknown[k]; u >= 0) poles[k] = poles[k] + Vec3{delta(u, 0), delta(u, 1), delta(u, 2)};
+  }
+  return BSplineSurface(p, q, field.u_knots(), field.v_knots(), std::move(poles));
+}
+
+/// Halves the knot spans of `field` that hold the points, in both directions; false if none.
+bool halve_spans_at(BSplineSurface& field, std::span<const Vec2> at) {
+  std::set<double> u_middles, v_middles;
+  for (const Vec2& x : at) {
+    const std::size_t su = find_span(field.u_knots(), field.u_degree(), field.u_count(), x.x);
+    const std::size_t sv = find_span(field.v_knots(), field.v_degree(), field.v_count(), x.y);
+    u_middles.insert(0.5 * (field.u_knots()[su] + field.u_knots()[su + 1]));
+    v_middles.insert(0.5 * (field.v_knots()[sv] + field.v_knots()[sv + 1]));
+  }
+  bool inserted = false;
+  for (const double u : u_middles) inserted |= insert_knot(field, true, u);
+  for (const double v : v_middles) inserted |= insert_knot(field, false, v);
+  return inserted;
 }
 
 }  // namespace
@@ -163,6 +269,69 @@ std::vector<double> join_sides_to_faces(std::vector<BSplineSurface>& fields, std
       bool inserted = false;
       for (const double x : middles) inserted |= insert_knot(refined, along_u(e.side), x);
       if (!inserted) break;
+    }
+  }
+  return largest;
+}
+
+std::vector<double> join_across_faces(std::vector<BSplineSurface>& fields, std::span<const CadFace> faces,
+                                      std::span<const SurfaceProjector> projectors, std::span<const TracedEdge> edges,
+                                      std::span<const FaceSide> frozen, double tolerance) {
+  std::vector<double> largest(edges.size(), 0.0);
+  const auto frozen_sides = [&](std::size_t face) {
+    std::array<bool, 4> out{};
+    for (const FaceSide& s : frozen) {
+      if (s.face == face) out[static_cast<std::size_t>(s.side)] = true;
+    }
+    return out;
+  };
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const TracedEdge& e = edges[k];
+    std::vector<Vec2> trace_a, trace_b;
+    for (std::size_t i = 0; i < e.points.size(); ++i) {
+      trace_a.push_back({e.on_a[i][0], e.on_a[i][1]});
+      trace_b.push_back({e.on_b[i][0], e.on_b[i][1]});
+    }
+    const std::size_t budget_a = std::max<std::size_t>(4096, 16 * fields[e.a].poles().size());
+    const std::size_t budget_b = std::max<std::size_t>(4096, 16 * fields[e.b].poles().size());
+    BSplineSurface refined_a = fields[e.a], refined_b = fields[e.b];  // before the correction, knots inserted
+    for (int halvings = 0;; ++halvings) {
+      // Points along the edge, 129 at the start and twice as many at each halving: a's
+      // parameters there from its trace (a Catmull-Rom spline through the trace's points), b's
+      // those of the same point of the wall (a projection started from b's trace).
+      const std::size_t n = static_cast<std::size_t>(128) << halvings;
+      std::vector<Vec2> at_a, at_b;
+      std::vector<Vec3> to_a, to_b;
+      for (std::size_t i = 0; i <= n; ++i) {
+        const double x = static_cast<double>(trace_a.size() - 1) * static_cast<double>(i) / static_cast<double>(n);
+        at_a.push_back(curve_point(trace_a, x));
+        const Vec2 start = curve_point(trace_b, x);
+        const SurfaceProjection q = projectors[e.b].project(faces[e.a].surface.point(at_a.back().x, at_a.back().y),
+                                                            {0, start.x, start.y});
+        at_b.push_back({q.where.u, q.where.v});
+        const Vec3 half = 0.5 * (refined_b.point(at_b.back().x, at_b.back().y) - refined_a.point(at_a.back().x, at_a.back().y));
+        to_a.push_back(half);
+        to_b.push_back(-1.0 * half);
+      }
+      const BSplineSurface joined_a = corrected(refined_a, at_a, to_a, frozen_sides(e.a));
+      const BSplineSurface joined_b = corrected(refined_b, at_b, to_b, frozen_sides(e.b));
+      std::vector<Vec2> wide_a, wide_b;  // where the joined fields still differ
+      largest[k] = 0.0;
+      for (std::size_t i = 0; i < at_a.size(); ++i) {
+        const double gap = distance(joined_a.point(at_a[i].x, at_a[i].y), joined_b.point(at_b[i].x, at_b[i].y));
+        largest[k] = std::max(largest[k], gap);
+        if (gap > 0.1 * tolerance) wide_a.push_back(at_a[i]), wide_b.push_back(at_b[i]);
+      }
+      fields[e.a] = joined_a;
+      fields[e.b] = joined_b;
+      largest[k] = std::max(largest[k], traced_gap(fields, e));
+      if (halvings == kMaxHalvings || largest[k] <= tolerance || refined_a.poles().size() >= budget_a ||
+          refined_b.poles().size() >= budget_b) {
+        break;
+      }
+      const bool a_halved = halve_spans_at(refined_a, wide_a);
+      const bool b_halved = halve_spans_at(refined_b, wide_b);
+      if (!a_halved && !b_halved) break;
     }
   }
   return largest;

@@ -11,7 +11,9 @@
 // with (t_b, s_b)(x) the trimmed face's parameters at the side's point x, and the side's knot
 // spans halved where the fields still differ by more than the tolerance (each halving cuts
 // the difference about 2^(q+1)-fold), as for uneven sides. An edge that crosses both faces'
-// rectangles (both trimmed along it) has no row on either side: it is measured, not joined.
+// rectangles (both trimmed along it) has no row on either side: both fields are corrected
+// towards their mean along it, by the smoothest change of the poles near it
+// (join_across_faces).
 #pragma once
 
 #include <array>
@@ -61,6 +63,18 @@ std::vector<double> join_sides_to_faces(std::vector<BSplineSurface>& fields, std
                                         std::span<const SurfaceProjector> projectors,
                                         std::span<const SideOnFace> edges, std::span<const FaceSide> frozen,
                                         double tolerance);
+
+/// Joins the fields of faces a and b along each edge across both rectangles (a trimming curve
+/// of each): both fields corrected towards their mean at points along the edge (b's parameters
+/// there through the undeformed faces' `projectors`), by the
+/// smoothest change of their poles near it (corrected(), trace_joins.cpp), sides in `frozen`
+/// kept; the knot spans the edge crosses where the fields still differ by more than the
+/// tolerance halved in both directions (at most kMaxHalvings times, each face at most 16 times
+/// its poles, at least 4096) and the correction made again. Returns each edge's largest gap
+/// |d_a - d_b| after the join, at its points and its trace's.
+std::vector<double> join_across_faces(std::vector<BSplineSurface>& fields, std::span<const CadFace> faces,
+                                      std::span<const SurfaceProjector> projectors, std::span<const TracedEdge> edges,
+                                      std::span<const FaceSide> frozen, double tolerance);
 
 /// The largest |d_a - d_b| at the points of a traced edge.
 double traced_gap(const std::vector<BSplineSurface>& fields, const TracedEdge& edge);
