@@ -19,7 +19,7 @@ struct CadModel::Impl {
   TopoDS_Shape shape;
   std::vector<TopoDS_Face> faces;  // faces[id - 1]
   std::vector<FaceInfo> info;      // info[id - 1]
-  TopTools_IndexedMapOfShape edges;  // every edge of the shape, numbered from 1
+  TopTools_IndexedMapOfShape edges;  // every edge of the faces (sewn where they came apart), numbered from 1
 };
 
 }  // namespace hotmesh::geometry

@@ -2,6 +2,9 @@
 // in the caller's length unit), the faces in file order with their names, kinds, bounds and
 // axes, and clear errors for files that are not CAD, are empty or hold no faces.
 #include <BRepAdaptor_Curve.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <Bnd_Box.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
@@ -22,7 +25,10 @@
 #include <TCollection_HAsciiString.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS_Compound.hxx>
+#include <BRep_Builder.hxx>
 #include <TopoDS.hxx>
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
@@ -171,6 +177,39 @@ void transfer(Reader& reader, const std::filesystem::path& path, const char* for
   }
 }
 
+/// Faces from separate surfaces (an IGES file of trimmed surfaces rather than a solid, as CATIA
+/// writes them) share no edge where they meet, so nothing joins them there. Where the faces have
+/// free edges, they are sewn together on a copy (to 1e-5 of the model's size) and each face
+/// replaced by its sewn self: the same surface, bounded by the edges it shares with the faces it
+/// meets. A solid's faces, which have no free edges, are left as they are.
+void sew_faces(std::vector<TopoDS_Face>& faces) {
+  if (faces.size() < 2) return;
+  TopoDS_Compound all;
+  BRep_Builder builder;
+  builder.MakeCompound(all);
+  for (const TopoDS_Face& f : faces) builder.Add(all, f);
+  TopTools_IndexedDataMapOfShapeListOfShape owners;
+  TopExp::MapShapesAndAncestors(all, TopAbs_EDGE, TopAbs_FACE, owners);
+  bool free = false;
+  for (Standard_Integer i = 1; i <= owners.Extent() && !free; ++i) {
+    const TopoDS_Edge& edge = TopoDS::Edge(owners.FindKey(i));
+    free = owners(i).Extent() == 1 && !BRep_Tool::Degenerated(edge) &&
+           !BRep_Tool::IsClosed(edge, TopoDS::Face(owners(i).First()));
+  }
+  if (!free) return;
+  Bnd_Box box;
+  BRepBndLib::Add(all, box);
+  if (box.IsVoid()) return;
+  BRepBuilderAPI_Sewing sewing(1e-5 * std::sqrt(box.SquareExtent()));
+  for (const TopoDS_Face& f : faces) sewing.Add(f);
+  sewing.Perform();
+  for (TopoDS_Face& f : faces) {
+    if (!sewing.IsModified(f)) continue;
+    const TopoDS_Shape& sewn = sewing.Modified(f);
+    if (!sewn.IsNull() && sewn.ShapeType() == TopAbs_FACE) f = TopoDS::Face(sewn);
+  }
+}
+
 /// The (t, s) of the face's B-spline form `b` at the point `target` of OpenCASCADE's surface at
 /// (u, v): (u, v) itself where the face is a B-spline or a plane; near it where the conversion
 /// reparametrised (a cylinder's rational form runs at another speed between its knots), found
@@ -310,7 +349,8 @@ CadModel CadModel::read(const std::filesystem::path& path, const CadReadOptions&
       info.axis_source = axis.source;
       impl->info.push_back(std::move(info));
     }
-    TopExp::MapShapes(impl->shape, TopAbs_EDGE, impl->edges);
+    sew_faces(impl->faces);
+    for (const TopoDS_Face& f : impl->faces) TopExp::MapShapes(f, TopAbs_EDGE, impl->edges);
   } catch (const Standard_Failure& e) {
     // A fault (FaultsAsFailures) comes as OSD_SIGSEGV, or as a plain failure when it was a
     // stack overflow; either way the file, not hotmesh, is at fault.

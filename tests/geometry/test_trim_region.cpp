@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <set>
+#include <string>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -169,6 +172,23 @@ TEST_F(PlateWithHole, AFreeTrimmingLoopDoesNotHoldANodeIn) {
   const auto wall = moved({*top_}, {0, 0, 0});
   const ShapePoint over_hole = wall->project({1.5, 0.0, 2.5}, 0.0);
   EXPECT_NEAR(over_hole.distance, 0.5, 1e-12);
+}
+
+// CATIA's IGES cylinder is four separate surfaces that share no edge in the file: read, they
+// are sewn, so each cap names the edges of its circle that the lateral halves name too, and
+// the two halves share their straight seams. I-DEAS's solid shares its edges already.
+TEST(TrimRegion, SeparateSurfacesAreSewnSoThatTheyShareTheirEdges) {
+  for (const char* file : {"OCC8842_cylinder_CATIA.igs", "OCC8842_cylinder_Ideas.igs"}) {
+    SCOPED_TRACE(file);
+    const CadModel model = test::read_mm(file);
+    std::map<int, std::set<int>> faces_of_edge;
+    for (const FaceInfo& info : model.faces()) {
+      for (const FaceEdge& e : model.cad_face(info.id).edges) faces_of_edge[e.edge].insert(info.id);
+    }
+    std::size_t shared = 0;
+    for (const auto& entry : faces_of_edge) shared += entry.second.size() == 2 ? 1u : 0u;
+    EXPECT_GE(shared, std::string(file).find("CATIA") != std::string::npos ? 6u : 2u);
+  }
 }
 
 // Real CAD files: the cylinders of CATIA (four separate trimmed surfaces, not sewn: the caps'
