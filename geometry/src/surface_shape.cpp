@@ -150,27 +150,11 @@ SurfaceShape::SurfaceShape(std::vector<CadFace> faces, std::vector<BSplineSurfac
     deflection[f] = std::max(largest_pole(after_[f]), before_.empty() ? 0.0 : largest_pole(before_[f]));
   }
   reach_ = reaches(faces_, set, deflection);
-  // A trimming curve binds where the wall goes on across it: its edge is named by another face
-  // of the wall, or (faces from separate, unsewn surfaces, which share no edge) its points lie
-  // on another face.
+  // A trimming curve binds where the wall goes on across it: another face of the wall names its
+  // edge (faces from separate surfaces too: the reader sews them).
   std::map<int, int> faces_naming;  // CAD edge -> how many faces of the wall name it
   for (const CadFace& face : faces_) {
     for (const FaceEdge& e : face.edges) ++faces_naming[e.edge];
-  }
-  for (std::size_t f = 0; f < faces_.size(); ++f) {
-    for (const TrimCurve& c : faces_[f].trims) {
-      if (c.edge <= 0 || faces_naming[c.edge] > 1 || c.points.size() < 2) continue;
-      static constexpr std::array<double, 3> kAlong{0.25, 0.5, 0.75};
-      const auto on_another = [&](std::size_t g) {
-        return g != f && std::all_of(kAlong.begin(), kAlong.end(), [&](double x) {
-                 const Vec2 q = curve_point(c.points, x * static_cast<double>(c.points.size() - 1));
-                 return set.projectors[g].project(faces_[f].surface.point(q.x, q.y)).distance <= 1e-6 * size_;
-               });
-      };
-      for (std::size_t g = 0; g < faces_.size(); ++g) {
-        if (on_another(g)) faces_naming[c.edge] = 2;
-      }
-    }
   }
   for (const CadFace& face : faces_) {
     regions_of_faces_.push_back(trim_region(face, [&](int edge) { return faces_naming[edge] > 1; }));

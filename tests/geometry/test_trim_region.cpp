@@ -191,11 +191,10 @@ TEST(TrimRegion, SeparateSurfacesAreSewnSoThatTheyShareTheirEdges) {
   }
 }
 
-// Real CAD files: the cylinders of CATIA (four separate trimmed surfaces, not sewn: the caps'
-// circles are no edge of the lateral halves) and of I-DEAS (a solid whose caps share their
-// circles with the lateral face). A point just outside the cylinder beside a cap, over the cap's
-// square rectangle, projects onto the cap's rim, not into the square's corner beyond the circle:
-// the circle binds, named by both faces or lying on the lateral face.
+// Real CAD files: the cylinders of CATIA (four separate trimmed surfaces, sewn at read) and of
+// I-DEAS (a solid whose caps share their circles with the lateral face). A point just outside
+// the cylinder beside a cap, over the cap's square rectangle, projects onto the cap's rim, not
+// into the square's corner beyond the circle: the circle binds, named by both faces.
 TEST(TrimRegion, RealCylindersHoldSlidingOnTheirCapsInsideTheCircles) {
   struct Case {
     const char* file;
