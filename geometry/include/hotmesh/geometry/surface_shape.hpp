@@ -12,11 +12,13 @@
 // parametrise the edge affinely to each other (their rows of poles there averaged), to 1e-10
 // of the wall's size where they do not (their mean along the edge fitted in each face's
 // parameter, the knot spans there halved until the two fits agree), and to the same tolerance
-// where the edge is a side of one face that crosses the other's rectangle, a trimming curve
-// (that side's row fitted to the trimmed face's field, trace_joins.hpp).
+// where the edge is a trimming curve: a side of one face that crosses the other's rectangle
+// (that side's row fitted to the trimmed face's field), or a curve across both rectangles (both
+// fields corrected smoothly towards their mean, trace_joins.hpp).
 //
 // SurfaceShape is the BoundaryShape of such a wall: points are projected onto the stage's
-// deformed faces (surface_projector.hpp), parameters are (face, t, s). A restarted run goes
+// deformed faces (surface_projector.hpp), parameters are (face, t, s); a trimmed face answers
+// only inside its trimming loops where the wall goes on across them (trim_region.hpp). A restarted run goes
 // from one deflection field to the next: S + d0 + lambda (d1 - d0).
 //
 // ScatteredShape is the motion of a prescribed wall without CAD faces: the table's deflections
