@@ -560,10 +560,14 @@ class SurfaceMeasure {
         for (std::size_t j = 0; j < rows; ++j) {
           const double t = parameter(r.u_first, r.u_last, dt, i, columns);
           const double s = parameter(r.v_first, r.v_last, ds, j, rows);
+          ++result.shape_samples;
+          if (!shape_.holds(face, t, s)) {  // not on the face: beyond its trimming loops
+            ++result.uncovered_samples;
+            continue;
+          }
           const Vec3 x = at(t, s);
           const PieceTree::Nearest w = tree.nearest(x, near);
           near = w.piece;
-          ++result.shape_samples;
           if (on_rim(pieces_[w.piece], w.a, w.b)) {
             ++result.uncovered_samples;
             continue;
@@ -605,6 +609,7 @@ class SurfaceMeasure {
         return std::pair{std::clamp(t, r.u_first, r.u_last), std::clamp(s, r.v_first, r.v_last)};
       };
       const auto f = [&](double t, double s) {
+        if (!shape_.holds(c.index, t, s)) return -kInfinity;
         const PieceTree::Nearest w = tree.nearest(shape_.at({t, s, static_cast<int>(c.index)}, lambda, {}).point, near);
         near = w.piece;
         return on_rim(pieces_[w.piece], w.a, w.b) ? -kInfinity : w.distance;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <set>
 #include <string>
@@ -16,6 +17,7 @@
 #include "cad_test_helpers.hpp"
 #include "hotmesh/geometry/surface_shape.hpp"
 #include "hotmesh/geometry/trim_region.hpp"
+#include "hotmesh/geometry/wall_deviation.hpp"
 #include "occt_fixtures.hpp"
 
 namespace hotmesh::geometry {
@@ -172,6 +174,39 @@ TEST_F(PlateWithHole, AFreeTrimmingLoopDoesNotHoldANodeIn) {
   const auto wall = moved({*top_}, {0, 0, 0});
   const ShapePoint over_hole = wall->project({1.5, 0.0, 2.5}, 0.0);
   EXPECT_NEAR(over_hole.distance, 0.5, 1e-12);
+}
+
+// A mesh of the wall, the plate's top face round the hole (an annulus out to radius 4.5) and the
+// hole's wall down to its end, measured both ways against the faces: the top face's samples
+// over the hole are no points of it (beyond its trimming loop), so they do not count, where the
+// hole's wall, joined to the annulus along the circle, would be 2 mm from the hole's middle.
+TEST_F(PlateWithHole, AMeshOfTheWallIsMeasuredAgainstTheTrimmedFaceOnly) {
+  constexpr int kAround = 48;
+  std::vector<Vec3> points;
+  const auto node = [](int k, int i) { return static_cast<std::int32_t>((k % kAround) * 10 + i); };
+  for (int k = 0; k < kAround; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / kAround;
+    for (int i = 0; i <= 5; ++i) points.push_back({(2.0 + 0.5 * i) * std::cos(a), (2.0 + 0.5 * i) * std::sin(a), 2.0});
+    for (int j = 1; j <= 4; ++j) points.push_back({2.0 * std::cos(a), 2.0 * std::sin(a), 2.0 - 0.5 * j});
+  }
+  WallFaces faces;
+  for (int k = 0; k < kAround; ++k) {
+    for (int i = 0; i < 5; ++i) {
+      const std::int32_t quad[4] = {node(k, i), node(k + 1, i), node(k + 1, i + 1), node(k, i + 1)};
+      faces.add(quad);
+    }
+    for (int j = 0; j < 4; ++j) {  // the circle's node, then the wall's below it
+      const std::int32_t quad[4] = {node(k, j == 0 ? 0 : 5 + j), node(k, 6 + j), node(k + 1, 6 + j),
+                                    node(k + 1, j == 0 ? 0 : 5 + j)};
+      faces.add(quad);
+    }
+  }
+  const auto wall = undeformed_surface_shape({*top_, *hole_});
+  const WallDeviation w = wall_deviation(*wall, points, faces, {.lambda = 0.0});
+  const double chord = 2.0 * (1.0 - std::cos(std::numbers::pi / kAround));  // the polygon's sag at the circle
+  EXPECT_LT(w.shape_to_mesh.distance, 4.5 * chord);
+  EXPECT_LT(w.mesh_to_shape.distance, 4.5 * chord);
+  EXPECT_GT(w.uncovered_samples, 0u);
 }
 
 // CATIA's IGES cylinder is four separate surfaces that share no edge in the file: read, they

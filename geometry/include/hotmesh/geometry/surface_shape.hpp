@@ -144,6 +144,12 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// The closest point of one face at stage lambda (clamped at its shared edges).
   ShapePoint project_on_face(int face, const Vec3& p, double lambda, const ShapeParameter& hint) const;
 
+  /// Whether (t, s) is a point of face `face`: inside its trimming loops (any of them, binding
+  /// or free), anywhere on a face that is its whole rectangle.
+  bool holds(std::size_t face, double t, double s) const {
+    const TrimRegion* region = regions_of_faces_[face].get();
+    return region == nullptr || region->contains(t, s);
+  }
   std::size_t face_count() const { return faces_.size(); }
   const CadFace& face(std::size_t i) const { return faces_[i]; }
 

@@ -124,7 +124,7 @@ struct WallDeviation {
   std::size_t faces = 0;          ///< faces: wall faces measured (0: none, nothing measured)
   std::size_t shape_samples = 0;  ///< samples of the curve or the faces, before refinement
   /// Faces: shape samples left out as not covered by the wall (their nearest point of the wall
-  /// is on its rim); counted in shape_samples.
+  /// is on its rim) or not on their face (beyond its trimming loops); counted in shape_samples.
   std::size_t uncovered_samples = 0;
 
   const WallDeviationPoint& worst_point() const {
@@ -155,7 +155,8 @@ WallDeviation wall_deviation(const CurveProjector& curve, std::span<const Vec3> 
 //     tree of the faces (median splits, O(N log N) to build, O(log N) a query near the wall).
 //     Restriction to the part the wall covers: a sample whose nearest point of the wall lies on
 //     the wall's rim (an edge of one face only, or a node at an end of such an edge) is beyond
-//     the wall's edge, not under it: it is left out (counted in uncovered_samples). So a CAD
+//     the wall's edge, not under it: it is left out (counted in uncovered_samples), as is a
+//     sample beyond its face's trimming loops (SurfaceShape::holds), not on the face. So a CAD
 //     face reaching beyond the patch, or a patch covering part of a face, is measured where the
 //     patch covers it; a patch that stops short of its face's edge is not caught on this side.
 //   Refinement: the best sample of each wall face, and each local maximum of a CAD face's
