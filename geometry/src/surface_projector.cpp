@@ -772,7 +772,10 @@ SurfaceProjection SurfaceProjector::finish(const Vec3& p, const Local& local) co
   result.distance = distance(p, local.value.point);
   result.on_boundary = local.on_rim || on_boundary(local.where, local.value);
   result.iterations = local.iterations;
-  result.normal = unit_normal(local.where, local.value, p);
+  // On a trimming loop, p off it: the direction to p, the distance's gradient there (as at a
+  // corner of a curve: the surface's normal would let a node slide on over the loop).
+  result.normal = local.on_rim && result.distance > tolerance_ ? (p - result.point) / result.distance
+                                                               : unit_normal(local.where, local.value, p);
   return result;
 }
 

@@ -284,8 +284,8 @@ TEST(DeformTrimmedFaces, APlateWithAHoleSlidesOnItsTrimmedTopFaceAndTheHolesWall
   EXPECT_LT(deflections["max_edge_gap"].get<double>(), 1e-8);
 
   // The wall's faces against the deflected faces: the cylinder's faceting, a chord's sagitta
-  // h^2 / 8R with R = 2 and h up to 0.6 (0.0245 measured). (The other side, shape_to_mesh,
-  // counts the hole's footprint: DISABLED_TheWallDistanceLeavesOutTheHolesFootprint.)
+  // h^2 / 8R with R = 2 and h up to 0.6 (0.0245 measured); the other side below
+  // (TheWallDistanceLeavesOutTheHolesFootprint).
   ASSERT_EQ(r.report["wall_deviations"].size(), 1u);
   const auto& wall = r.report["wall_deviations"][0];
   EXPECT_EQ(wall["shape"], "faces");
@@ -320,32 +320,26 @@ TEST(DeformTrimmedFaces, NodesTheHoleOvertakesGoOntoItsWallNotOverItsFootprint) 
 }
 
 // ---------------------------------------------------------------------------------------------
-// Known bugs found with these cases, kept as disabled tests until they are fixed.
+// Bugs found with these cases: the first two mended, the last kept as a disabled test until it is.
 
-// BUG: with `features: off`, the cylindrical hole's case does not run: the first increment's
-// Newton cycle stalls (residual 0.08 of the initial one after 30 iterations, at every halving
-// down to stage 0.0039): "kept the last valid mesh (stage 0.0000)", exit 1. With the trimming
-// taken out of the projector (SurfacePatch::region left null) it runs, in 1 s, but leaves 23 of
-// the circle's 42 nodes on the plane over the hole's footprint, up to 0.074 inside the circle
-// (without features they are no longer held on the circle). A bulge alone (no shift) stalls
-// too. The residual that stays is on the circle's nodes on the side the hole moves to, exactly
-// on the deflected circle, radial in the plate's plane: a node the projector put on the binding
-// circle (to_rim) is constrained by the plane's normal only, so each Newton step moves it into
-// the hole in the plane, and the projection puts it back on the circle. (At c12884b, before the
-// trimming, the run completed as without it: the 23 nodes over the footprint.)
-TEST(DeformTrimmedFaces, DISABLED_ACylindricalHoleWithoutFeaturesKeepsItsNodesOnTheTrimmedWall) {
+// The cylindrical hole with `features: off`: the circle is no crease, and nothing holds its
+// nodes on it but the trimming. A node the projection puts on the circle (the top face's
+// projection moved onto its binding loop) is held by the direction to it, the distance's
+// gradient there; with the plane's normal it slid on into the hole at every Newton step and was
+// put back, and the first increment stalled (exit 1). Without the trimming the run ended with 23
+// of the circle's 42 nodes over the hole's footprint, up to 0.074 inside the circle.
+TEST(DeformTrimmedFaces, ACylindricalHoleWithoutFeaturesKeepsItsNodesOnTheTrimmedWall) {
   const TrimmedPlate plate({.cone_deg = 0.0, .shift_x = 0.3, .shift_y = 0.1});
   const DeformRun r = plate.deform(", features: off");
   ASSERT_EQ(r.result.exit_code, 0) << r.result.output;
   expect_on_trimmed_wall(plate.hole(), r, 0.1);
 }
 
-// BUG: report.json's wall_deviations measures the deflected top face over its whole parameter
-// rectangle, the hole's footprint included (the trimming loops are not used): shape_to_mesh is
-// 1.99 mm, at the deflected hole's centre (0.3, 0.1, 2.15), against 0.0245 mesh_to_shape, for a
-// mesh whose nodes are all on the wall. `hotmesh check --case` reports the same 1.994 ("faces:
-// two-sided distance"), so a --wall-tol below it fails a good mesh. Already so at c12884b.
-TEST(DeformTrimmedFaces, DISABLED_TheWallDistanceLeavesOutTheHolesFootprint) {
+// report.json's wall_deviations against the deflected faces: the top face's samples over the
+// hole's footprint are beyond its trimming loop, no points of it, and left out. (Before, the
+// face was measured over its whole rectangle: shape_to_mesh 1.99 mm at the deflected hole's
+// centre for a mesh whose nodes are all on the wall, and `hotmesh check --case` the same.)
+TEST(DeformTrimmedFaces, TheWallDistanceLeavesOutTheHolesFootprint) {
   const TrimmedPlate plate({.cone_deg = 0.0, .shift_x = 0.3, .shift_y = 0.1});
   const DeformRun r = plate.deform();
   ASSERT_EQ(r.result.exit_code, 0) << r.result.output;

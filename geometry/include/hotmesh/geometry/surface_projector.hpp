@@ -70,7 +70,7 @@ struct SurfaceParameter {
 struct SurfaceProjection {
   Vec3 point;
   /// Unit S_u x S_v; where it vanishes (a pole, a collapsed edge) its limit from inside the
-  /// patch's rectangle.
+  /// patch's rectangle. On a trimming loop that p lies off, the unit direction to p.
   Vec3 normal;
   SurfaceParameter where;
   double distance = 0.0;     ///< from the projected point (0 for at())
