@@ -29,6 +29,22 @@ BSplineSurface fence() {
   return BSplineSurface(3, 1, {0, 0, 0, 0, 1, 1, 1, 1}, {0, 0, 1, 1}, poles);
 }
 
+/// A straight foot along y = 0 from x = -0.5 to 0.5, as edge 7 of the CAD file.
+FaceEdge straight_foot() {
+  FaceEdge foot{7, {}};
+  for (int k = 0; k < kFaceEdgePoints; ++k) foot.points.push_back({-0.5 + k / (kFaceEdgePoints - 1.0), 0.0, 0.0});
+  return foot;
+}
+
+/// The plate trimmed to y <= 0, its loop the straight foot (edge 7) and free edges (the rest of
+/// y = 0 and the rectangle's other sides).
+CadFace plate_ending_at(const FaceEdge& foot) {
+  CadFace half{1, plate(), {foot}, {}};
+  half.trims = {{7, {{-0.5, 0.0}, {0.5, 0.0}}},
+                {0, {{0.5, 0.0}, {1.0, 0.0}, {1.0, -1.0}, {-1.0, -1.0}, {-1.0, 0.0}, {-0.5, 0.0}}}};
+  return half;
+}
+
 Vec3 field(const Vec3& p) {
   return {0.01 * std::sin(2.0 * p.x + p.y), 0.02 * std::cos(3.0 * p.y) + 0.01 * p.z,
           0.03 * std::sin(p.x) * std::cos(2.0 * p.y) + 0.02 * p.z * p.z};
@@ -223,11 +239,8 @@ TEST(TraceJoins, AFenceMeetsThePlateItStandsOnAtACrease) {
 // leaning back over it at 150 degrees folds the wall by 150 degrees, and one leaning away at 30
 // turns it by 30. Without the loop the two read alike (the test above).
 TEST(TraceJoins, ATrimmedPlateTellsAFenceFoldingBackFromOneLeaningAway) {
-  FaceEdge foot{7, {}};
-  for (int k = 0; k < kFaceEdgePoints; ++k) foot.points.push_back({-0.5 + k / (kFaceEdgePoints - 1.0), 0.0, 0.0});
-  CadFace half_plate{1, plate(), {foot}, {}};
-  half_plate.trims = {{7, {{-0.5, 0.0}, {0.5, 0.0}}},
-                      {0, {{0.5, 0.0}, {1.0, 0.0}, {1.0, -1.0}, {-1.0, -1.0}, {-1.0, 0.0}, {-0.5, 0.0}}}};
+  const FaceEdge foot = straight_foot();
+  const CadFace half_plate = plate_ending_at(foot);
   for (const double degrees : {30.0, 150.0}) {
     SCOPED_TRACE(degrees);
     const double lean = degrees * M_PI / 180.0;
@@ -249,11 +262,8 @@ TEST(TraceJoins, ATrimmedPlateTellsAFenceFoldingBackFromOneLeaningAway) {
 // the foot at both stages; points of either face on the foot lie on it, others not; and the
 // faces are one crease region only for angles above the crease's.
 TEST(TraceJoins, AnEdgeThatTrimsBothFacesIsACrease) {
-  FaceEdge foot{7, {}};
-  for (int k = 0; k < kFaceEdgePoints; ++k) foot.points.push_back({-0.5 + k / (kFaceEdgePoints - 1.0), 0.0, 0.0});
-  CadFace half_plate{1, plate(), {foot}, {}};
-  half_plate.trims = {{7, {{-0.5, 0.0}, {0.5, 0.0}}},
-                      {0, {{0.5, 0.0}, {1.0, 0.0}, {1.0, -1.0}, {-1.0, -1.0}, {-1.0, 0.0}, {-0.5, 0.0}}}};
+  const FaceEdge foot = straight_foot();
+  const CadFace half_plate = plate_ending_at(foot);
   const double foot_v = 2.0 / 7.0;  // where the fence's height, -0.2 to 0.5 along v, is 0
   for (const double degrees : {90.0, 30.0, 150.0}) {
     SCOPED_TRACE(degrees);

@@ -197,6 +197,8 @@ class SurfaceProjector {
   void note(int patch, std::size_t cell, const SurfaceDerivatives& d);
   void report_degeneracies(const std::vector<Grid>& grids);
   void build_tree();
+  /// rims_: the trimmed patches' loops on the surface (surface_projector_rims.cpp).
+  void sample_rims();
   void build_node(std::vector<std::uint32_t>& order, std::uint32_t first, std::uint32_t count, std::uint32_t index);
 
   SurfaceDerivatives evaluate(int patch, double u, double v) const;
