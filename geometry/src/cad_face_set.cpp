@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "hotmesh/geometry/trim_region.hpp"
+
 namespace hotmesh::geometry::detail {
 
 Box pole_box(const BSplineSurface& s) {
@@ -17,7 +19,11 @@ Box pole_box(const BSplineSurface& s) {
 FaceSet::FaceSet(std::span<const CadFace> faces) {
   Box all = pole_box(faces.front().surface);
   for (const CadFace& f : faces) {
-    projectors.emplace_back(std::vector<SurfacePatch>{bspline_patch(f.surface)});
+    // Within the face's trimming loops, every loop binding: a point beyond one is no point of
+    // the face (a node beside a strut is not one of the strut's surface running on below it).
+    SurfacePatch patch = bspline_patch(f.surface);
+    patch.region = trim_region(f, [](int) { return true; });
+    projectors.emplace_back(std::vector<SurfacePatch>{std::move(patch)});
     boxes.push_back(pole_box(f.surface));
     all.lo = {std::min(all.lo.x, boxes.back().lo.x), std::min(all.lo.y, boxes.back().lo.y),
               std::min(all.lo.z, boxes.back().lo.z)};

@@ -188,6 +188,45 @@ TEST(TraceJoins, AFootThatTrimsBothFacesIsJoined) {
             std::max(plate_alone.report.max_node_residual, fence_alone.report.max_node_residual) + unjoined);
 }
 
+// A fence leaning at 30 degrees, its surface running on below the plate that trims it: a plate
+// node 4e-3 beside the foot, on the side the surface runs on under, is within the tolerance
+// (2.9e-3) of that surface (2e-3 away) but not of the fence (the foot is 4e-3 away). It is a
+// sample of the plate only: its deflection is not put onto the fence below the plate.
+TEST(TraceJoins, ANodeBesideAFootIsNoSampleOfTheSurfaceBeyondTheTrimmingCurve) {
+  const double lean = M_PI / 6.0;
+  const Vec3 up{0.0, std::cos(lean), std::sin(lean)};
+  const double foot_v = 2.0 / 7.0;
+  const Vec3 left{-0.5, 0, 0}, right{0.5, 0, 0};
+  const FaceEdge foot = straight_foot();
+  CadFace fence{2,
+                BSplineSurface(1, 1, {0, 0, 1, 1}, {0, 0, 1, 1},
+                               {left - 0.2 * up, left + 0.5 * up, right - 0.2 * up, right + 0.5 * up}),
+                {foot},
+                {}};
+  fence.trims = {{7, {{0.0, foot_v}, {1.0, foot_v}}}, {0, {{1.0, foot_v}, {1.0, 1.0}, {0.0, 1.0}, {0.0, foot_v}}}};
+  DeflectionSamples nodes;
+  nodes.frame = SampleFrame::cartesian;
+  nodes.source = "wall.csv";
+  for (int i = 0; i <= 4; ++i) {
+    for (int j = 0; j <= 4; ++j) {
+      nodes.points.push_back({-1.0 + 0.5 * i, -1.0 + 0.5 * j, 0.0});
+      nodes.points.push_back(fence.surface.point(0.25 * i, foot_v + (1.0 - foot_v) * 0.25 * j));
+    }
+  }
+  const std::size_t beside = nodes.points.size();
+  nodes.points.push_back({0.2, -4e-3, 0.0});
+  for (const Vec3& p : nodes.points) nodes.deflections.push_back(field(p));
+  const std::vector<CadFace> faces{{1, plate(), {foot}, {}}, fence};
+  const FaceDeflections fit = reconstruct_on_faces(faces, nodes, {.degree = 1});
+  ASSERT_GT(fit.report.tolerance, 2.5e-3);  // 1e-3 of the faces' size
+  ASSERT_LT(fit.report.tolerance, 4e-3);
+  std::vector<std::size_t> faces_of_beside;
+  for (const NodePlacement& p : fit.placements) {
+    if (p.node == beside) faces_of_beside.push_back(p.face);
+  }
+  EXPECT_EQ(faces_of_beside, std::vector<std::size_t>{0});
+}
+
 // A fence on a plate is a crease along its foot: the plate is trimmed there, the fence's side
 // crosses the plate's rectangle. Upright it turns the wall by 90 degrees; leaning at 30 degrees
 // to the plate (or its mirror image, at 150) by 30. The crease's point nearest a point is on the
