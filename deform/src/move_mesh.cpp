@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include <fmt/format.h>
@@ -543,7 +544,19 @@ MotionResult with_corner_pass(const Mesh& mesh, MotionResult moved, MotionResult
                           "); the mesh is the one the motion gave, whose walls may cut them");
     return moved;
   }
-  moved.notes.insert(moved.notes.end(), pass.notes.begin(), pass.notes.end());
+  for (std::string& note : pass.notes) {  // the setup's notes on the walls are the motion's too
+    if (std::find(moved.notes.begin(), moved.notes.end(), note) == moved.notes.end()) {
+      moved.notes.push_back(std::move(note));
+    }
+  }
+  // The pass's walls are the fully deflected ones at every stage: a feature's turn on the
+  // undeformed wall is the motion's measure.
+  for (WallFeature& f : pass.features) {
+    const auto same = std::find_if(moved.features.begin(), moved.features.end(), [&](const WallFeature& m) {
+      return m.patch == f.patch && m.faces == f.faces && m.parameter == f.parameter;
+    });
+    if (same != moved.features.end()) f.angle = std::max(f.angle, same->angle);
+  }
   if (pass.summary.min_scaled_jacobian < moved.summary.min_scaled_jacobian) restore_worst_cell(mesh, moved.summary, pass);
   moved.corner_repair = pass.corner_repair;
   moved.restart_points = std::exchange(moved.points, std::move(pass.points));
