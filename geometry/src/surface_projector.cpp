@@ -487,9 +487,10 @@ void SurfaceProjector::build_node(std::vector<std::uint32_t>& order, std::uint32
 // outwards; the step is Newton's on the other parameter (a 1D problem along that edge), and with
 // both fixed (a corner) the search ends. Where H is not clearly positive definite (far out on the
 // concave side, near a saddle) J^T J replaces it and still gives a descent direction. The step
-// is projected onto the rectangle and halved until f does not grow. Newton stops when a step
-// would move the point by less than the tolerance, or after a full Newton step shorter than
-// kFinalStep (quadratic convergence puts the next one below rounding).
+// is projected onto the rectangle and halved until f does not grow. Newton stops after a step
+// that moves the point by less than the tolerance (taken, so that a point of the surface
+// projects onto itself to rounding), or after a full Newton step shorter than kFinalStep
+// (quadratic convergence puts the next one below rounding).
 SurfaceProjector::Local SurfaceProjector::newton_in_rectangle(const Vec3& p, int patch, double u, double v) const {
   const ParameterRectangle& box = patches_[static_cast<std::size_t>(patch)].domain;
   const double lo[2] = {box.u_first, box.v_first};
@@ -524,6 +525,15 @@ SurfaceProjector::Local SurfaceProjector::newton_in_rectangle(const Vec3& p, int
     const double length = norm(d[0] * e.du + d[1] * e.dv);
     if (!std::isfinite(length)) break;
     if (length <= tolerance_) {  // a corner, a stationary point, or one within the tolerance
+      // The step is still taken (if f does not grow): without it, a point moved along the
+      // surface by less than the tolerance would be put back where the search started (a
+      // sliding node moved 1e-11 along a face by the solver, put back at every Newton step).
+      const double last[2] = {std::clamp(x[0] + d[0], lo[0], hi[0]), std::clamp(x[1] + d[1], lo[1], hi[1])};
+      if (last[0] != x[0] || last[1] != x[1]) {
+        const SurfaceDerivatives e_last = evaluate(patch, last[0], last[1]);
+        const double f_last = squared(e_last.point - p);
+        if (f_last <= f) x[0] = last[0], x[1] = last[1], e = e_last, f = f_last;
+      }
       converged = true;
       break;
     }

@@ -150,6 +150,20 @@ SurfaceShape::SurfaceShape(std::vector<CadFace> faces, std::vector<BSplineSurfac
     deflection[f] = std::max(largest_pole(after_[f]), before_.empty() ? 0.0 : largest_pole(before_[f]));
   }
   reach_ = reaches(faces_, set, deflection);
+  // Sides whose ends meet (on the CAD face), though they are not points: closed curves.
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    const ParameterRectangle r = faces_[f].surface.domain();
+    std::array<bool, 4> closed{};
+    for (int side = 0; side < 4; ++side) {
+      const auto end_point = [&](double at) {
+        const auto [t, u] = on_side(r, side, at);
+        return faces_[f].surface.point(t, u);
+      };
+      closed[static_cast<std::size_t>(side)] = !set.collapsed[f][static_cast<std::size_t>(side)] &&
+                                               distance(end_point(0.0), end_point(1.0)) <= 1e-9 * size_;
+    }
+    closed_sides_.push_back(closed);
+  }
   // A trimming curve binds where the wall goes on across it: another face of the wall names its
   // edge (faces from separate surfaces too: the reader sews them).
   std::map<int, int> faces_naming;  // CAD edge -> how many faces of the wall name it
@@ -439,11 +453,14 @@ int SurfaceShape::side_shared_with(int face, int other) const {
 }
 
 // The side's curve C(f) = S(on_side(f)), f in [0, 1], minimises |C(f) - p|^2: the best of
-// uniform samples, then Newton on C'(f).(C(f) - p) = 0, kept on the side.
+// uniform samples, then Newton on C'(f).(C(f) - p) = 0, kept on the side. A closed side (a
+// cylinder's circle, whose ends meet at the face's seam) has no ends: Newton goes on across the
+// seam (f modulo 1), so a point just before the seam finds its nearest point there, not the seam.
 ShapePoint SurfaceShape::project_on_side(std::size_t face, int side, const Vec3& p, double lambda) const {
   const ParameterRectangle r = faces_[face].surface.domain();
   const bool along_t = side < 2;
   const double span = along_t ? r.u_last - r.u_first : r.v_last - r.v_first;
+  const bool closed = closed_sides_[face][static_cast<std::size_t>(side)];
   const auto curve = [&](double f) {
     const auto [t, s] = on_side(r, side, f);
     return evaluate(face, t, s, lambda);
@@ -459,8 +476,10 @@ ShapePoint SurfaceShape::project_on_side(std::size_t face, int side, const Vec3&
     const SurfaceDerivatives c = curve(f);
     const Vec3 d1 = span * (along_t ? c.du : c.dv), d2 = span * span * (along_t ? c.duu : c.dvv), off = c.point - p;
     const double g = dot(d1, off), h = dot(d2, off) + dot(d1, d1);
-    const double next = std::clamp(f - g / (h > 0.0 ? h : std::max(dot(d1, d1), 1e-300)), 0.0, 1.0);
-    const bool done = std::abs(next - f) <= 1e-14;
+    const double step = g / (h > 0.0 ? h : std::max(dot(d1, d1), 1e-300));
+    const double next = closed ? f - step - std::floor(f - step) : std::clamp(f - step, 0.0, 1.0);
+    const double moved = closed ? next - f - std::round(next - f) : next - f;
+    const bool done = std::abs(moved) <= 1e-14;
     f = next;
     if (done) break;
   }

@@ -202,6 +202,9 @@ class SurfaceShape final : public BoundaryShape, public std::enable_shared_from_
   /// Per face and side of its rectangle (s first, s last, t first, t last), the face sharing it,
   /// or -1.
   std::vector<std::array<int, 4>> neighbours_;
+  /// Per face and side: whether the side is a closed curve (its ends meet at the face's seam,
+  /// as a cylinder's circle), which project_on_side follows across the seam.
+  std::vector<std::array<bool, 4>> closed_sides_;
   double size_ = 0.0;  ///< the faces' size (FaceSet::size)
   mutable std::shared_mutex stages_mutex_;
   /// The crease regions asked for: each one's faces (increasing), and per angle asked for,
