@@ -12,6 +12,9 @@
 //  - warm: each point moved by up to 0.002 per coordinate, as by a Newton step of the mesh
 //    motion, with the previous projection as hint; checked by a global search that has to beat it
 //    (the default), and unchecked (verify_warm_starts = false);
+//  - trimmed: the same faces, each with a round hole of radius 0.3 (in its parameters, a loop of
+//    1 024 segments that binds, as where the wall goes on into the hole's wall), cold and warm:
+//    the points over a hole (about 28 %) are moved onto its rim;
 //  - OpenCASCADE, for reference, on the undeformed faces (OpenCASCADE has no S + d surface):
 //    GeomAPI_ProjectPointOnSurf on each face, nearest kept (cold), and ShapeAnalysis_Surface's
 //    NextValueOfUV from the previous parameters (warm) on the known face.
@@ -28,6 +31,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -152,6 +156,31 @@ int main(int argc, char** argv) {
   });
   double unchecked_iterations = 0.0;
   for (const SurfaceProjection& q : fast) unchecked_iterations += q.iterations;
+  // The same faces with a hole each.
+  std::vector<SurfacePatch> holed = patches;
+  for (SurfacePatch& patch : holed) {
+    std::vector<Vec2> circle;
+    for (int k = 0; k <= 1024; ++k) {
+      const double a = 2.0 * M_PI * k / 1024.0;
+      circle.push_back({0.5 + 0.3 * std::cos(a), 0.5 + 0.3 * std::sin(a)});
+    }
+    patch.region = std::make_shared<const TrimRegion>(
+        std::vector<TrimRegion::Curve>{{{{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}}, false}, {circle, true}}, patch.domain);
+  }
+  const SurfaceProjector trimmed(holed, options);
+  std::vector<SurfaceProjection> trimmed_before(count), trimmed_after(count);
+  const double trimmed_cold = rate(count, 3, [&] {
+    for (std::size_t i = 0; i < count; ++i) trimmed_before[i] = trimmed.project(points[i]);
+  });
+  const double trimmed_warm = rate(count, 5, [&] {
+    for (std::size_t i = 0; i < count; ++i) trimmed_after[i] = trimmed.project(moved[i], trimmed_before[i].where);
+  });
+  std::size_t on_rims = 0;
+  double trimmed_iterations = 0.0;
+  for (const SurfaceProjection& q : trimmed_after) {
+    trimmed_iterations += q.iterations;
+    on_rims += q.on_boundary ? 1 : 0;
+  }
   const double others = load.others();
 
   // Warm starts must land where cold ones do.
@@ -200,6 +229,9 @@ int main(int argc, char** argv) {
   std::printf("| cold (global search + Newton) | %.3g | %.1f | |\n", cold, cold_iterations / n);
   std::printf("| warm, checked (default) | %.3g | %.1f | %.1f %% |\n", warm, warm_iterations / n, 100.0 * static_cast<double>(accepted) / n);
   std::printf("| warm, unchecked | %.3g | %.1f | |\n", warm_unchecked, unchecked_iterations / n);
+  std::printf("| trimmed (a hole in each face), cold | %.3g | | |\n", trimmed_cold);
+  std::printf("| trimmed (a hole in each face), warm, checked | %.3g | %.1f | %.1f %% on a rim |\n", trimmed_warm,
+              trimmed_iterations / n, 100.0 * static_cast<double>(on_rims) / n);
   std::printf("| OpenCASCADE GeomAPI_ProjectPointOnSurf, 4 faces (undeformed) | %.3g | | |\n", occt_cold);
   std::printf("| OpenCASCADE ShapeAnalysis_Surface::NextValueOfUV, warm (undeformed) | %.3g | | |\n", occt_warm);
   std::fprintf(stderr,

@@ -257,6 +257,12 @@ SurfaceProjector::SurfaceProjector(std::vector<SurfacePatch> patches, const Surf
     throw std::invalid_argument("surface projector: too many patches");
   }
   sample(options);
+  // Sub-patches wholly outside a trimmed patch's loops, where a binding loop holds nodes in,
+  // hold no point it answers: left out of the search.
+  std::erase_if(subs_, [this](const SubPatch& sub) {
+    const TrimRegion* region = patches_[static_cast<std::size_t>(sub.patch)].region.get();
+    return region != nullptr && region->excludes(sub.rect);
+  });
   build_tree();
   sample_rims();
   tolerance_ = options.tolerance * scale_;
@@ -635,7 +641,7 @@ bool SurfaceProjector::outside_ball(const SubPatch& sub, const Minimum& m) const
 // (outside_ball), Newton starts from the triangles' nearest point. Newton runs on the whole
 // patch, so its result may lie outside the sub-patch it started from.
 SurfaceProjector::Local SurfaceProjector::global_search(const Vec3& p, const SurfaceParameter& hint,
-                                                        const Local* seed) const {
+                                                        const Local* seed, RimCache& rim) const {
   Local best{{-1, 0.0, 0.0}, {}, kInfinity, 0, false};
   int iterations = 0;
   Minimum minima[kRememberedMinima];
@@ -661,7 +667,7 @@ SurfaceProjector::Local SurfaceProjector::global_search(const Vec3& p, const Sur
     const double hv = r.v_last - r.v_first;
     const double u = r.u_first + (d1 <= d2 ? (s1 + t1) * hu : s2 * hu);
     const double v = r.v_first + (d1 <= d2 ? t1 * hv : (s2 + t2) * hv);
-    const Local local = newton(p, sub.patch, u, v);
+    const Local local = newton(p, sub.patch, u, v, &rim);
     iterations += local.iterations;
     if (local.converged && !local.on_rim) minima[found++ % kRememberedMinima] = {local.where, local.distance};
     if (better(local, best, hint.patch)) best = local;
@@ -751,8 +757,10 @@ SurfaceProjection SurfaceProjector::project(const Vec3& p, const SurfaceParamete
   }
   const bool warm = hint.patch >= 0 && static_cast<std::size_t>(hint.patch) < patches_.size() &&
                     std::isfinite(hint.u) && std::isfinite(hint.v);
-  if (!warm) return finish(p, global_search(p, {}, nullptr));
-  const Local local = newton(p, hint.patch, hint.u, hint.v);
+  // Newton from sub-patches over a hole lands at one minimum outside it, again and again.
+  RimCache rim;
+  if (!warm) return finish(p, global_search(p, {}, nullptr, rim));
+  const Local local = newton(p, hint.patch, hint.u, hint.v, &rim);
   if (!verify_ && local.converged && !local.on_rim && !on_boundary(local.where, local.value)) {
     SurfaceProjection result = finish(p, local);
     result.from_hint = true;
@@ -761,7 +769,7 @@ SurfaceProjection SurfaceProjector::project(const Vec3& p, const SurfaceParamete
   // A nearer point may lie on another patch (near a shared edge or a concave corner) or on a
   // fold of the same one: a global search with the warm result as the distance to beat visits
   // only the sub-patches that could hold one.
-  const Local best = global_search(p, hint, &local);
+  const Local best = global_search(p, hint, &local, rim);
   SurfaceProjection result = finish(p, best);
   result.from_hint = best.where.patch == local.where.patch && best.where.u == local.where.u &&
                      best.where.v == local.where.v;

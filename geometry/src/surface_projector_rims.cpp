@@ -1,6 +1,7 @@
 // hotmesh geometry: the projector on trimmed patches (surface_projector.hpp): a Newton result
 // outside a patch's trimming loops moved onto the nearest binding loop.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "hotmesh/geometry/surface_projector.hpp"
@@ -18,11 +19,21 @@ void SurfaceProjector::sample_rims() {
   }
 }
 
-SurfaceProjector::Local SurfaceProjector::newton(const Vec3& p, int patch, double u, double v) const {
+SurfaceProjector::Local SurfaceProjector::newton(const Vec3& p, int patch, double u, double v, RimCache* cache) const {
   const Local local = newton_in_rectangle(p, patch, u, v);
-  const TrimRegion* region = patches_[static_cast<std::size_t>(patch)].region.get();
-  if (region == nullptr || region->contains(local.where.u, local.where.v)) return local;
-  return to_rim(p, local);
+  const SurfacePatch& on = patches_[static_cast<std::size_t>(patch)];
+  if (on.region == nullptr || on.region->contains(local.where.u, local.where.v)) return local;
+  const double same_u = 1e-9 * (on.domain.u_last - on.domain.u_first);
+  const double same_v = 1e-9 * (on.domain.v_last - on.domain.v_first);
+  if (cache != nullptr && cache->patch == patch && std::abs(cache->u - local.where.u) <= same_u &&
+      std::abs(cache->v - local.where.v) <= same_v) {
+    Local again = cache->rim;
+    again.iterations = local.iterations;
+    return again;
+  }
+  const Local rim = to_rim(p, local);
+  if (cache != nullptr) *cache = {patch, local.where.u, local.where.v, rim};
+  return rim;
 }
 
 // The nearest chord of the loops' polylines (between their vertices' points on the surface)

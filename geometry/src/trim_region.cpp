@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace hotmesh::geometry {
@@ -45,7 +46,10 @@ TrimRegion::TrimRegion(std::vector<Curve> curves, const ParameterRectangle& rect
     }
   }
   for (const Curve& c : curves_) {
-    for (std::size_t k = 1; k < c.points.size(); ++k) segments_.push_back({c.points[k - 1], c.points[k]});
+    for (std::size_t k = 1; k < c.points.size(); ++k) {
+      segments_.push_back({c.points[k - 1], c.points[k]});
+      binding_.push_back(c.binding ? 1 : 0);
+    }
   }
   if (segments_.empty()) throw std::invalid_argument("trim region: no curve with two points");
   // About one segment per cell on the loops: sqrt(segments) cells a side, 4 to 256.
@@ -120,6 +124,43 @@ bool TrimRegion::contains(double t, double s) const {
     if (crosses(from, to, segments_[k])) inside = !inside;
   }
   return inside;
+}
+
+// Wholly outside: within the rectangle, its middle outside, and no segment's box meeting it
+// (the segments of the grid cells it overlaps); then the nearest segment to its middle decides.
+bool TrimRegion::excludes(const ParameterRectangle& part) const {
+  const ParameterRectangle& r = rectangle_;
+  if (part.u_first < r.u_first || part.u_last > r.u_last || part.v_first < r.v_first || part.v_last > r.v_last) {
+    return false;
+  }
+  const Vec2 middle{0.5 * (part.u_first + part.u_last), 0.5 * (part.v_first + part.v_last)};
+  if (contains(middle.x, middle.y)) return false;
+  const double hu = (r.u_last - r.u_first) / static_cast<double>(cells_);
+  const double hv = (r.v_last - r.v_first) / static_cast<double>(cells_);
+  const auto cell_of = [&](double x, double first, double h) {
+    return static_cast<std::size_t>(std::clamp(std::floor((x - first) / h), 0.0, static_cast<double>(cells_ - 1)));
+  };
+  for (std::size_t i = cell_of(part.u_first, r.u_first, hu); i <= cell_of(part.u_last, r.u_first, hu); ++i) {
+    for (std::size_t j = cell_of(part.v_first, r.v_first, hv); j <= cell_of(part.v_last, r.v_first, hv); ++j) {
+      for (const std::size_t k : in_cell_[i * cells_ + j]) {
+        const Segment& s = segments_[k];
+        if (std::max(s.a.x, s.b.x) >= part.u_first && std::min(s.a.x, s.b.x) <= part.u_last &&
+            std::max(s.a.y, s.b.y) >= part.v_first && std::min(s.a.y, s.b.y) <= part.v_last) {
+          return false;
+        }
+      }
+    }
+  }
+  std::size_t nearest = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < segments_.size(); ++k) {
+    const Vec2 d = segments_[k].b - segments_[k].a;
+    const double length2 = dot(d, d);
+    const double f = length2 > 0.0 ? std::clamp(dot(middle - segments_[k].a, d) / length2, 0.0, 1.0) : 0.0;
+    const double gap = distance(segments_[k].a + f * d, middle);
+    if (gap < best) best = gap, nearest = k;
+  }
+  return binding_[nearest] != 0;
 }
 
 Vec2 curve_point(std::span<const Vec2> q, double x) {

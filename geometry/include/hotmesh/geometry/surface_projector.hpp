@@ -202,13 +202,21 @@ class SurfaceProjector {
   void build_node(std::vector<std::uint32_t>& order, std::uint32_t first, std::uint32_t count, std::uint32_t index);
 
   SurfaceDerivatives evaluate(int patch, double u, double v) const;
-  /// Newton within the patch's rectangle, then onto its region (to_rim).
-  Local newton(const Vec3& p, int patch, double u, double v) const;
+  /// The last result outside a patch's loops and where to_rim moved it, within one search.
+  struct RimCache {
+    int patch = -1;
+    double u = 0.0;
+    double v = 0.0;
+    Local rim{};
+  };
+  /// Newton within the patch's rectangle, then onto its region (to_rim; `cache` reused where
+  /// Newton ends where it ended last).
+  Local newton(const Vec3& p, int patch, double u, double v, RimCache* cache = nullptr) const;
   Local newton_in_rectangle(const Vec3& p, int patch, double u, double v) const;
   /// `outside`, a point of a trimmed patch outside its loops, moved to the nearest point of the
   /// loops, or kept where the nearest loop is free.
   Local to_rim(const Vec3& p, const Local& outside) const;
-  Local global_search(const Vec3& p, const SurfaceParameter& hint, const Local* seed) const;
+  Local global_search(const Vec3& p, const SurfaceParameter& hint, const Local* seed, RimCache& rim) const;
   /// Whether the surface over the parameter box spanning `sub` and the minimum `m` found on its
   /// patch is a sheet curved too little to come nearer to p than m: then `sub` holds no nearer point.
   bool outside_ball(const SubPatch& sub, const Minimum& m) const;

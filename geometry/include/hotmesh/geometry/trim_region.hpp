@@ -40,6 +40,10 @@ class TrimRegion {
 
   /// Whether (t, s) lies inside the loops (points beyond the rectangle do not).
   bool contains(double t, double s) const;
+  /// Whether a part of the rectangle lies wholly outside the loops with a binding curve nearest
+  /// its middle: no point of it belongs to the face a node slides on, nor is it beyond a free
+  /// curve where the face reaches on.
+  bool excludes(const ParameterRectangle& part) const;
   const std::vector<Curve>& curves() const { return curves_; }
 
  private:
@@ -54,6 +58,7 @@ class TrimRegion {
 
   std::vector<Curve> curves_;
   std::vector<Segment> segments_;
+  std::vector<char> binding_;  ///< per segment: its curve binds
   ParameterRectangle rectangle_;
   std::size_t cells_ = 1;                    ///< per direction
   std::vector<std::vector<std::size_t>> in_cell_;  ///< segments meeting each cell, i * cells_ + j
