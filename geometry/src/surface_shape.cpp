@@ -415,9 +415,20 @@ ShapePoint SurfaceShape::project_on_trim(const TrimmedEdge& e, int k, const Vec3
     if (d < best) best = d, nearest = i;
     if (i == last) break;
   }
-  const double a = static_cast<double>(nearest >= stride ? nearest - stride : 0);
-  const double b = static_cast<double>(std::min(nearest + stride, last));
-  const Vec2 uv = curve_point(q, nearest_on_curve(q, a, b, p, [&](const Vec2& x) { return evaluate(face, x.x, x.y, lambda); }));
+  // The scan's steps on either side of the nearest; on a closed curve (a circle trimming both
+  // faces) its first and last points are one, and the nearest point may lie past it: both ends.
+  const auto search = [&](std::size_t from, std::size_t to) {
+    return curve_point(q, nearest_on_curve(q, static_cast<double>(from), static_cast<double>(to), p,
+                                           [&](const Vec2& x) { return evaluate(face, x.x, x.y, lambda); }));
+  };
+  Vec2 uv = search(nearest >= stride ? nearest - stride : 0, std::min(nearest + stride, last));
+  const bool closed = distance(q.front(), q.back()) <= 1e-9 * distance(q.front(), q[last / 2]);
+  if (closed && (nearest == 0 || nearest == last)) {
+    const Vec2 other = nearest == 0 ? search(last - stride, last) : search(0, stride);
+    if (distance(evaluate(face, other.x, other.y, lambda).point, p) < distance(evaluate(face, uv.x, uv.y, lambda).point, p)) {
+      uv = other;
+    }
+  }
   const SurfaceDerivatives d = evaluate(face, uv.x, uv.y, lambda);
   const Vec3 n = cross(d.du, d.dv);
   return {d.point, n / norm(n), {uv.x, uv.y, static_cast<int>(face)}, distance(d.point, p)};

@@ -5,6 +5,7 @@
 // their own do not.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -344,6 +345,56 @@ TEST(TraceJoins, AnEdgeThatTrimsBothFacesIsACrease) {
     // Sliding on the fence below the foot is held at it.
     const ShapePoint below = wall->project_on_face(1, Vec3{0.2, 0.0, 0.0} - 0.1 * up + Vec3{0, 0, -0.05}, 0.0, kNoHint);
     EXPECT_NEAR(below.parameter.s, foot_v, 1e-9);
+  }
+}
+
+// A tube of radius 0.5 standing in a hole of the plate, its surface running on below the plate
+// that trims it, as the hole's circle trims the plate: a closed edge across both rectangles. On
+// the plate the circle's trace starts and ends at angle 0; the crease's nearest point to a point
+// just before that (angle -0.01) is found there, past the curve's end, not at its end.
+TEST(TraceJoins, TheNearestPointOfAClosedTrimmingCurveIsFoundPastItsEnds) {
+  constexpr int kAround = 1024;
+  FaceEdge circle{9, {}};
+  for (int k = 0; k < kFaceEdgePoints; ++k) {
+    const double a = 2.0 * M_PI * k / (kFaceEdgePoints - 1.0);
+    circle.points.push_back({0.5 * std::cos(a), 0.5 * std::sin(a), 0.0});
+  }
+  CadFace holed{1, plate(), {circle}, {}};
+  std::vector<Vec2> round;
+  for (int k = 0; k <= kAround; ++k) {
+    const double a = 2.0 * M_PI * k / kAround;
+    round.push_back({0.5 * std::cos(a), 0.5 * std::sin(a)});
+  }
+  round.back() = round.front();  // closed exactly, as a CAD file's circle
+  holed.trims = {{0, {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}}}, {9, round}};
+  // The tube: a rational quadratic circle (9 poles) along u, z from -0.2 to 0.5 along v.
+  const double w = std::sqrt(0.5);
+  const std::array<Vec3, 9> ring{Vec3{1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}, {-1, 0, 0},
+                                 {-1, -1, 0}, {0, -1, 0}, {1, -1, 0}, {1, 0, 0}};
+  std::vector<Vec3> poles;
+  std::vector<double> weights;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    for (const double z : {-0.2, 0.5}) {
+      poles.push_back(0.5 * ring[i] + Vec3{0, 0, z});
+      weights.push_back(i % 2 == 0 ? 1.0 : w);
+    }
+  }
+  const double foot_v = 2.0 / 7.0;
+  CadFace tube{2,
+               BSplineSurface(2, 1, {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1}, {0, 0, 1, 1}, poles, weights),
+               {circle},
+               {}};
+  tube.trims = {{9, {{0.0, foot_v}, {0.25, foot_v}, {0.5, foot_v}, {0.75, foot_v}, {1.0, foot_v}}},
+                {0, {{1.0, foot_v}, {1.0, 1.0}, {0.0, 1.0}, {0.0, foot_v}}}};
+  const auto wall = undeformed_surface_shape({holed, tube});
+  const auto creases = wall->creases(25.0 * M_PI / 180.0);
+  ASSERT_EQ(creases.size(), 1u);
+  EXPECT_NEAR(creases[0].angle, M_PI / 2.0, 1e-6);
+  for (const double a : {-0.01, 0.01}) {  // before the end, after the start
+    const CreasePoint c = wall->crease_point(creases[0], {0.6 * std::cos(a), 0.6 * std::sin(a), 0.1}, 0.0);
+    // Within the spline through the trace's points (1 024 chords: 1e-8 of the circle); 5e-3
+    // when the search stopped at the curve's end.
+    EXPECT_LT(distance(c.point, Vec3{0.5 * std::cos(a), 0.5 * std::sin(a), 0.0}), 2e-8) << a;
   }
 }
 
