@@ -484,6 +484,18 @@ void SurfaceProjector::build_node(std::vector<std::uint32_t>& order, std::uint32
 
 // ---- queries ------------------------------------------------------------------------------
 
+// The last step, shorter than the tolerance, is still taken if f does not grow: without it, a
+// point moved along the surface by less than the tolerance would be put back where the search
+// started (a sliding node moved 1e-11 along a face by the solver, put back at every Newton step).
+void SurfaceProjector::take_short_step(const Vec3& p, int patch, const double (&lo)[2], const double (&hi)[2],
+                                       const double (&d)[2], double (&x)[2], SurfaceDerivatives& e, double& f) const {
+  const double last[2] = {std::clamp(x[0] + d[0], lo[0], hi[0]), std::clamp(x[1] + d[1], lo[1], hi[1])};
+  if (last[0] == x[0] && last[1] == x[1]) return;
+  const SurfaceDerivatives e_last = evaluate(patch, last[0], last[1]);
+  const double f_last = squared(e_last.point - p);
+  if (f_last <= f) x[0] = last[0], x[1] = last[1], e = e_last, f = f_last;
+}
+
 // Closest point on one patch: minimise f(u, v) = |r|^2 / 2, r = S(u, v) - p, over its rectangle.
 //   gradient  g = (r.S_u, r.S_v)
 //   Hessian   H = [S_u.S_u + r.S_uu   S_u.S_v + r.S_uv]
@@ -531,15 +543,7 @@ SurfaceProjector::Local SurfaceProjector::newton_in_rectangle(const Vec3& p, int
     const double length = norm(d[0] * e.du + d[1] * e.dv);
     if (!std::isfinite(length)) break;
     if (length <= tolerance_) {  // a corner, a stationary point, or one within the tolerance
-      // The step is still taken (if f does not grow): without it, a point moved along the
-      // surface by less than the tolerance would be put back where the search started (a
-      // sliding node moved 1e-11 along a face by the solver, put back at every Newton step).
-      const double last[2] = {std::clamp(x[0] + d[0], lo[0], hi[0]), std::clamp(x[1] + d[1], lo[1], hi[1])};
-      if (last[0] != x[0] || last[1] != x[1]) {
-        const SurfaceDerivatives e_last = evaluate(patch, last[0], last[1]);
-        const double f_last = squared(e_last.point - p);
-        if (f_last <= f) x[0] = last[0], x[1] = last[1], e = e_last, f = f_last;
-      }
+      take_short_step(p, patch, lo, hi, d, x, e, f);
       converged = true;
       break;
     }

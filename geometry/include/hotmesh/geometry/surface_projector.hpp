@@ -213,6 +213,9 @@ class SurfaceProjector {
   /// Newton ends where it ended last).
   Local newton(const Vec3& p, int patch, double u, double v, RimCache* cache = nullptr) const;
   Local newton_in_rectangle(const Vec3& p, int patch, double u, double v) const;
+  /// Newton's final step d from x, below the tolerance, taken where it does not move away from p.
+  void take_short_step(const Vec3& p, int patch, const double (&lo)[2], const double (&hi)[2], const double (&d)[2],
+                       double (&x)[2], SurfaceDerivatives& e, double& f) const;
   /// `outside`, a point of a trimmed patch outside its loops, moved to the nearest point of the
   /// loops, or kept where the nearest loop is free.
   Local to_rim(const Vec3& p, const Local& outside) const;
