@@ -14,31 +14,59 @@
 namespace hotmesh::deform {
 namespace {
 
-/// One quadrature point's w B^T E B, added to the row-major K_e, from the physical gradients
-/// g_a = grad N_a of the N corners: K_ab,ij += w (lambda g_a,i g_b,j + G (g_a,j g_b,i + delta_ij g_a . g_b)).
+/// The quadrature sum of K_e = sum_g w_g B^T E B over the points g, for the gradients
+/// g_a = grad N_a of the N corners and constant Lame parameters. Entry by entry
+///     K_ab,ij = sum_g w_g (lambda g_a,i g_b,j + mu (g_a,j g_b,i + delta_ij g_a . g_b)),
+/// which is, with the d x d sums M_ab = sum_g w_g g_a g_b^T,
+///     K_ab = lambda M_ab + mu (M_ab^T + tr(M_ab) I).
+/// So each point adds d^2 products per pair of corners (not 3 d^2), and only the pairs a <= b:
+/// M_ba = M_ab^T, and K_ba = K_ab^T.
 template <std::size_t D, std::size_t N>
-void add_point_stiffness(const std::array<std::array<double, D>, N>& g, const Lame& lame, double w, std::span<double> k) {
-  constexpr std::size_t n = N * D;
-  for (std::size_t a = 0; a < N; ++a) {
-    for (std::size_t b = 0; b < N; ++b) {
-      double gg = 0.0;
-      for (std::size_t m = 0; m < D; ++m) gg += g[a][m] * g[b][m];
-      for (std::size_t i = 0; i < D; ++i) {
-        double* row = k.data() + (a * D + i) * n + b * D;
-        for (std::size_t jj = 0; jj < D; ++jj) {
-          double v = lame.lambda * g[a][i] * g[b][jj] + lame.mu * g[a][jj] * g[b][i];
-          if (i == jj) v += lame.mu * gg;
-          row[jj] += w * v;
+class PointSums {
+ public:
+  void add(const std::array<std::array<double, D>, N>& g, double w) {
+    std::size_t p = 0;
+    for (std::size_t a = 0; a < N; ++a) {
+      std::array<double, D> wg{};
+      for (std::size_t i = 0; i < D; ++i) wg[i] = w * g[a][i];
+      for (std::size_t b = a; b < N; ++b, ++p) {
+        double* m = m_.data() + p * D * D;
+        for (std::size_t i = 0; i < D; ++i) {
+          for (std::size_t j = 0; j < D; ++j) m[i * D + j] += wg[i] * g[b][j];
         }
       }
     }
   }
-}
+
+  /// K_e, row-major, every entry written.
+  void write(const Lame& lame, std::span<double> k) const {
+    constexpr std::size_t n = N * D;
+    std::size_t p = 0;
+    for (std::size_t a = 0; a < N; ++a) {
+      for (std::size_t b = a; b < N; ++b, ++p) {
+        const double* m = m_.data() + p * D * D;
+        double trace = 0.0;
+        for (std::size_t i = 0; i < D; ++i) trace += m[i * D + i];
+        for (std::size_t i = 0; i < D; ++i) {
+          for (std::size_t j = 0; j < D; ++j) {
+            double v = lame.lambda * m[i * D + j] + lame.mu * m[j * D + i];
+            if (i == j) v += lame.mu * trace;
+            k[(a * D + i) * n + b * D + j] = v;
+            k[(b * D + j) * n + a * D + i] = v;
+          }
+        }
+      }
+    }
+  }
+
+ private:
+  std::array<double, N*(N + 1) / 2 * D * D> m_{};
+};
 
 template <std::size_t D>
 void q1_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, std::span<double> k) {
   using Q = detail::Q1<D>;
-  std::fill(k.begin(), k.end(), 0.0);
+  PointSums<D, Q::kNodes> sums;
   for (const auto& xi : Q::gauss_points()) {
     const auto dn = Q::reference_gradients(xi);
     const auto j = Q::jacobian(e, dn);
@@ -53,8 +81,9 @@ void q1_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobian, 
       }
     }
     const double w = drop_jacobian ? 1.0 : std::abs(det);  // Gauss weights are all 1
-    add_point_stiffness<D, Q::kNodes>(g, lame, w, k);
+    sums.add(g, w);
   }
+  sums.write(lame, k);
 }
 
 /// The element matrix of a linear element E of linear_elements.hpp, the same sum as
@@ -65,7 +94,7 @@ void linear_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobi
   constexpr std::size_t D = E::kDim;
   constexpr std::size_t nodes = E::kNodes;
   using Q = detail::Q1<D>;  // the d x d matrix helpers
-  std::fill(k.begin(), k.end(), 0.0);
+  PointSums<D, nodes> sums;
   const auto x = detail::corner_coordinates<D, nodes>(e);
   for (const auto& q : E::quadrature()) {
     const auto dn = E::reference_gradients(q.xi);
@@ -80,8 +109,9 @@ void linear_stiffness(const ElementPoints& e, const Lame& lame, bool drop_jacobi
       }
     }
     const double w = drop_jacobian ? q.weight : q.weight * std::abs(det);
-    add_point_stiffness<D, nodes>(g, lame, w, k);
+    sums.add(g, w);
   }
+  sums.write(lame, k);
 }
 
 }  // namespace
