@@ -197,6 +197,7 @@ json solver_json(const deform::SolverOptions& solver, const deform::LinearSolver
           {"amg", deform::to_string(solver.amg)},
           {"amg_reuse", deform::kAmgReuseNames.name(solver.amg_reuse)},
           {"forcing", deform::to_string(solver.forcing)},
+          {"predictor", solver.predictor},
           {"processes", parallel::processes().count}};
 }
 

@@ -280,6 +280,33 @@ class Motion {
     return u;
   }
 
+  /// The predictor of an increment from stage a > 0 to b (SolverOptions::predictor): every
+  /// interior, periodic and sliding node starts where its motion so far, scaled from stage a to
+  /// b, puts it, u = (b/a - 1)(x - x_ref), as the boundary's prescribed motion scales; the
+  /// sliding nodes are then placed on c_b (4.2). Returns u as it was without the prediction,
+  /// or nothing when there is nothing to predict or the prediction would invert a cell.
+  std::vector<double> predict(double a, double b, std::vector<double>& u) {
+    if (!solver_.predictor || !(a > 0.0) || !(b > a)) return {};
+    std::vector<double> start = u;
+    const double scale = b / a - 1.0;
+    const std::vector<Vec3>& x = result_.points;
+    constexpr auto role = [](BoundaryRole r) { return static_cast<NodeRoleCode>(1 + static_cast<int>(r)); };
+    const auto t = Clock::now();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const NodeRoleCode r = setup_.roles[i];
+      if (r != 0 && r != role(BoundaryRole::periodic) && r != role(BoundaryRole::sliding)) continue;
+      for (std::size_t c = 0; c < dim_; ++c) u[i * dim_ + c] = scale * (x[i][c] - setup_.reference[i][c]);
+    }
+    sliding_.project(b, x, u);
+    setup_.periodic.expand(u);  // slaves follow their masters
+    result_.timings.projection += seconds_since(t);
+    std::vector<Vec3> trial(x.size());
+    displace(x, u, trial);
+    if (summarize_quality(scaled_jacobians(mesh_.cells, trial)).inverted_cells == 0) return start;
+    u = initial_displacements(a, b);  // the sliding nodes' forcing and normals again
+    return {};
+  }
+
   /// A converged increment is accepted if no cell of the moved mesh `trial` is inverted.
   void accept_if_valid(const std::vector<Vec3>& trial, std::span<const double> u, IncrementRecord& record) {
     const auto t = Clock::now();
@@ -309,6 +336,9 @@ class Motion {
     const std::size_t dofs = kernel_->size();
 
     std::vector<double> u = initial_displacements(a, b);
+    const std::vector<double> unpredicted = predict(a, b, u);
+    std::vector<double> reference_residual(unpredicted.empty() ? 0 : dofs);
+    const detail::ReferenceResidual reference{unpredicted, reference_residual};
 
     std::vector<Vec3> trial(x.size());
     std::vector<double> r(dofs), rhs(dofs), p(dofs), node_stiffness(dofs / dim_);
@@ -320,10 +350,13 @@ class Motion {
       // K(n) at the current geometry (eq. 8) and R(n) = K(n) u(n) - f (eq. 7; f is K's action on
       // the boundary motion), with only its tangential part F_t at sliding nodes (eq. 17).
       const detail::ConstrainedSystem system{*kernel_, setup_.constraints, setup_.periodic, trial, node_stiffness};
+      const bool referenced = it == 0 && !unpredicted.empty();
       detail::newton_residual(system, blocks_ ? &*blocks_ : nullptr, linear_->assembler(), ranks_, u, r, node_stiffness,
-                              result_.timings);
+                              result_.timings, referenced ? &reference : nullptr);
       const double residual = detail::scaled_residual_norm(r, node_stiffness, dim_);
-      if (it == 0) r0 = residual;
+      // The tolerance is relative to the residual of the increment's start without the
+      // predictor, so that a good prediction does not tighten it.
+      if (it == 0) r0 = referenced ? detail::scaled_residual_norm(reference_residual, node_stiffness, dim_) : residual;
       record.newton.push_back({residual, 0, true, 0.0});
       record.residual_reduction = r0 > 0.0 ? residual / r0 : 0.0;
       if (it > 0 && observers_.newton) report_step(piece, record, it, seconds_since(start));

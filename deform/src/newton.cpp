@@ -12,12 +12,13 @@ namespace hotmesh::deform::detail {
 
 void ResidualPass::add(std::span<const NodeId> nodes, std::span<const double> ke) const {
   add_element_product(nodes, ke, d, u, r);
+  if (!u_start.empty()) add_element_product(nodes, ke, d, u_start, r_start);
   add_node_stiffness(nodes, ke, d, node_stiffness);
 }
 
 void newton_residual(const ConstrainedSystem& s, StiffnessOperator* k, ElementAssembler* assembler,
                      const parallel::RankExchange& ranks, std::span<const double> u, std::span<double> r,
-                     std::span<double> node_stiffness, MotionTimings& timings) {
+                     std::span<double> node_stiffness, MotionTimings& timings, const ReferenceResidual* reference) {
   const auto start = std::chrono::steady_clock::now();
   const auto seconds = [&start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
@@ -32,16 +33,28 @@ void newton_residual(const ConstrainedSystem& s, StiffnessOperator* k, ElementAs
     }
     s.periodic.fold_nodal(node_stiffness);
     k->apply(u, r);
+    if (reference) k->apply(reference->u_start, reference->r_start);
   } else {
     if (!assembler) throw std::invalid_argument("newton_residual: neither node blocks of K nor a solver that computes them");
     std::fill(r.begin(), r.end(), 0.0);
-    assembler->assemble(s, {u, r, node_stiffness, static_cast<std::size_t>(s.kernel.dofs_per_node())});
+    ResidualPass pass{u, r, node_stiffness, static_cast<std::size_t>(s.kernel.dofs_per_node())};
+    if (reference) {
+      std::fill(reference->r_start.begin(), reference->r_start.end(), 0.0);
+      pass.u_start = reference->u_start;
+      pass.r_start = reference->r_start;
+    }
+    assembler->assemble(s, pass);
     ranks.sum(r);  // each rank added its cells' part
+    if (reference) ranks.sum(reference->r_start);
     ranks.sum(node_stiffness);
     s.periodic.fold_nodal(node_stiffness);
   }
   s.periodic.fold(r);
   s.constraints.project(r);
+  if (reference) {
+    s.periodic.fold(reference->r_start);
+    s.constraints.project(reference->r_start);
+  }
   if (!k) timings.assembly += seconds();
 }
 
@@ -51,6 +64,10 @@ LinearTarget Forcing::next(int n, double residual, double initial) {
   constexpr double kSufficientDecrease = 1e-4;  // t
   const bool decreased =
       n == 0 || residual <= (1.0 - kSufficientDecrease * (1.0 - previous_eta_)) * previous_residual_;
+  if (options_.forcing == ForcingTerm::eisenstat_walker && n == 0 && residual > 0.0) {
+    // A predicted start already close to the solution: reach the Newton tolerance, no further.
+    eta = std::clamp(0.5 * options_.newton_tolerance * initial / residual, floor, std::max(0.1, floor));
+  }
   if (options_.forcing == ForcingTerm::eisenstat_walker && n > 0 && previous_residual_ > 0.0 && decreased) {
     constexpr double kGamma = 0.9, kAlpha = 2.0, kMax = 0.1;
     const double ratio = residual / previous_residual_;

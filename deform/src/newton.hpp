@@ -20,8 +20,20 @@ struct ResidualPass {
   std::span<double> r;
   std::span<double> node_stiffness;
   std::size_t d = 3;  ///< dofs per node: 2 (quad4 cells) or 3 (hex8)
+  /// A second displacement and its product K(n) u_start with the same element matrices, when
+  /// not empty (the reference residual of a predicted increment, ReferenceResidual).
+  std::span<const double> u_start;
+  std::span<double> r_start;
   /// Adds K_e u_e (element_product) and the corners' stiffness of the cell with `nodes`.
   void add(std::span<const NodeId> nodes, std::span<const double> ke) const;
+};
+
+/// An increment's displacements before the predictor (move_mesh.cpp) and, filled by
+/// newton_residual, their residual K(n) u_start with the stiffness of the predicted first step,
+/// folded and projected as R is.
+struct ReferenceResidual {
+  std::span<const double> u_start;
+  std::span<double> r_start;
 };
 
 /// The residual of a Newton step, R(n) = P T^T K(n) u(n) of eq. (7), at s.points: folded onto
@@ -30,9 +42,10 @@ struct ResidualPass {
 /// of `k`, updated here at s.points (R = K u by its product); without them from the element
 /// pass of the solver's `assembler`, which computes each K_e once for its matrix and for R,
 /// each rank its cells, summed over `ranks`. Adds the element work to timings.assembly.
+/// With a `reference`, also its residual from the same K(n).
 void newton_residual(const ConstrainedSystem& s, StiffnessOperator* k, ElementAssembler* assembler,
                      const parallel::RankExchange& ranks, std::span<const double> u, std::span<double> r,
-                     std::span<double> node_stiffness, MotionTimings& timings);
+                     std::span<double> node_stiffness, MotionTimings& timings, const ReferenceResidual* reference = nullptr);
 
 /// Inexact Newton: the tolerance of each inner solve. `fixed` gives pcg_tolerance every time.
 /// `eisenstat_walker` is Eisenstat and Walker's choice 2 (SIAM J. Sci. Comput. 17, 1996),

@@ -10,12 +10,13 @@
 // the system asks for as Jacobi-PCG does (StoppingTest), and p = T p~. PCGAMG gets the
 // translations written in the frames as near-null space.
 //
-// The multigrid hierarchy is built at the first Newton step of an increment and kept for
-// the later steps of the increment (KSPSetReusePreconditioner): K changes little between
-// them, the old hierarchy stays a symmetric positive definite preconditioner, and rebuilding
-// it costs more than the few extra CG iterations (docs/performance.md). The case file's
-// `amg_reuse` changes that (SolverOptions::amg_reuse); any option of the KSP and PC can be
-// given in PETSC_OPTIONS with the prefix `hotmesh_`, e.g.
+// The multigrid hierarchy is kept from one Newton step to the next and from one increment to
+// the next (KSPSetReusePreconditioner) while it serves: K changes little between them, an old
+// hierarchy stays a symmetric positive definite preconditioner, and it is rebuilt once the
+// first solve of an increment takes kAmgSlowdown times the CG iterations it took fresh, or a
+// solve with it fails (docs/performance.md measures the choice). The case file's `amg_reuse`
+// changes that (SolverOptions::amg_reuse); any option of the KSP and PC can be given in
+// PETSC_OPTIONS with the prefix `hotmesh_`, e.g.
 // PETSC_OPTIONS="-hotmesh_pc_gamg_threshold 0.05 -hotmesh_ksp_view".
 //
 // With several processes (mpirun, hotmesh/parallel/processes.hpp) every rank keeps the whole
@@ -50,10 +51,15 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-void default_option(const char* name, const char* value) {
+bool option_given(const char* name) {
   PetscBool set = PETSC_FALSE;
   check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
-  if (!set) check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
+  return set == PETSC_TRUE;
+}
+
+/// Sets the option unless the user gave it (PETSC_OPTIONS); a null value sets a flag.
+void default_option(const char* name, const char* value) {
+  if (!option_given(name)) check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
 }
 
 /// The part of `full` (every row) that this rank owns of `to`.
@@ -153,11 +159,27 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
       : options_(options), job_{ranks.rank(), ranks.ranks()} {
     parallel::start_petsc();
     if (options_.amg == AmgPackage::gamg) {
-      // One symmetric Gauss-Seidel sweep as smoother on every level. The default Chebyshev/
-      // Jacobi smoother made the preconditioner indefinite on the ramp: its eigenvalue
-      // estimates miss the top of the spectrum of these boundary-layer matrices.
+      // Gauss-Seidel smoothing on every level: one forward sweep before the coarse-grid
+      // correction and one backward sweep after it, which keeps the V-cycle symmetric for CG.
+      // A symmetric sweep on both sides (PETSc's SOR default) took as many CG iterations and
+      // twice the smoothing time. With several ranks each sweeps its own rows (hybrid
+      // Gauss-Seidel), and the one-sided sweeps can make the V-cycle indefinite where ranks
+      // couple strongly (a hybrid sector on two ranks): CG then breaks down, and the solver
+      // goes over to symmetric sweeps for the rest of the run (solve()). The default
+      // Chebyshev/Jacobi smoother made the preconditioner indefinite on the ramp: its
+      // eigenvalue estimates miss the top of the spectrum of these boundary-layer matrices.
+      const bool smoother_given = option_given("-hotmesh_mg_levels_ksp_type") || option_given("-hotmesh_mg_levels_pc_type");
+      one_sided_sweeps_ = !smoother_given;
+      smoother_given_ = smoother_given;
       default_option("-hotmesh_mg_levels_ksp_type", "richardson");
       default_option("-hotmesh_mg_levels_pc_type", "sor");
+      if (!smoother_given) {
+        default_option("-hotmesh_mg_levels_pc_sor_local_forward", nullptr);
+        default_option("-hotmesh_pc_mg_distinct_smoothup", nullptr);
+        default_option("-hotmesh_mg_levels_up_ksp_type", "richardson");
+        default_option("-hotmesh_mg_levels_up_pc_type", "sor");
+        default_option("-hotmesh_mg_levels_up_pc_sor_local_backward", nullptr);
+      }
     } else {
       // BoomerAMG for elasticity: the d components of a node coarsened together.
       default_option("-hotmesh_pc_hypre_boomeramg_nodal_coarsen", "6");
@@ -165,8 +187,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     }
     // BoomerAMG kept across Newton steps needed 20 times the iterations on the ramp; its
     // set-up is cheap, so hypre rebuilds every step.
-    reuse_ = options_.amg_reuse;
-    if (reuse_ == AmgReuse::automatic) reuse_ = options_.amg == AmgPackage::hypre ? AmgReuse::none : AmgReuse::preconditioner;
+    reuse_ = options_.amg_reuse;  // `automatic` resolved with the mesh's size (create())
     if (options_.amg == AmgPackage::hypre && reuse_ == AmgReuse::interpolation) reuse_ = AmgReuse::none;  // gamg only
   }
 
@@ -184,7 +205,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   AmgSolver(const AmgSolver&) = delete;
   AmgSolver& operator=(const AmgSolver&) = delete;
 
-  void begin_increment() override { fresh_ = true; }
+  void begin_increment() override { first_step_ = true; }
 
   /// One pass computes every K_e, gives it to the residual and assembles K~ (the matrix is
   /// then ready for solve()).
@@ -209,54 +230,122 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
       result.converged = true;
       return result;
     }
-    t = Clock::now();
-    const bool rebuild = fresh_ || reuse_ == AmgReuse::none;
-    if (rebuild) set_near_null_space(a_, *frames_, *rows_, s.points);
-    // Each increment's hierarchy from a new KSP, as in a new process: PCGAMG carries state from
-    // one set-up into the next, and a run resumed from a checkpoint would otherwise take other
-    // CG iterations than the uninterrupted run.
-    if (!ksp_ || (fresh_ && reuse_ != AmgReuse::interpolation)) create_ksp();
-    PC pc = nullptr;
-    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-    if (reuse_ == AmgReuse::interpolation) check(PCGAMGSetReuseInterpolation(pc, fresh_ ? PETSC_FALSE : PETSC_TRUE), "PCGAMGSetReuseInterpolation");
-    check(KSPSetReusePreconditioner(ksp_, reuse_ == AmgReuse::preconditioner && !fresh_ ? PETSC_TRUE : PETSC_FALSE),
-          "KSPSetReusePreconditioner");
-    check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
-    // StoppingTest decides convergence; PETSc keeps only the iteration limit.
-    check(KSPSetTolerances(ksp_, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, options_.max_pcg_iterations),
-          "KSPSetTolerances");
     stopping_.tolerance = target.tolerance;
     stopping_.initial = initial;
     stopping_.scaled = scaled;
-    check(KSPSetConvergenceTest(ksp_, StoppingTest::converged, &stopping_, nullptr), "KSPSetConvergenceTest");
-    if (rebuild) release_free_memory();  // the old hierarchy's pages, before the new set-up's peak
-    check(KSPSetUp(ksp_), "KSPSetUp");
-    if (rebuild) release_free_memory();  // the set-up's work space
-    timings.preconditioner += seconds_since(t);
-
+    bool rebuild = must_rebuild();
+    set_up(s, rebuild, timings);
+    for (;;) {
+      t = Clock::now();
+      check(KSPSolve(ksp_, b_, x_), "KSPSolve");
+      PetscInt iterations = 0;
+      KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+      check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
+      check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+      timings.solve += seconds_since(t);
+      result.iterations += static_cast<int>(iterations);
+      result.converged = reason > 0;
+      result.breakdown = reason == KSP_DIVERGED_INDEFINITE_MAT || reason == KSP_DIVERGED_INDEFINITE_PC ||
+                         reason == KSP_DIVERGED_BREAKDOWN || reason == KSP_DIVERGED_NANORINF ||
+                         reason == KSP_DIVERGED_PC_FAILED;
+      if (result.breakdown && one_sided_sweeps_) {  // the V-cycle is indefinite: symmetric sweeps from now on
+        one_sided_sweeps_ = false;
+        make_sweeps_symmetric();
+        continue;
+      }
+      // A hierarchy kept from an earlier increment that no longer serves is rebuilt and the
+      // system solved again, rather than the increment failed.
+      if (!result.converged && !rebuild && reuse_ == AmgReuse::adaptive) {
+        rebuild = true;
+        set_up(s, rebuild, timings);
+        continue;
+      }
+      note_iterations(static_cast<int>(iterations), rebuild);
+      break;
+    }
     t = Clock::now();
-    check(KSPSolve(ksp_, b_, x_), "KSPSolve");
-    PetscInt iterations = 0;
-    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-    check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
-    check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
-    const double residual = stopping_.last;
     gather_solution();
     rows_->scatter(solution_, full_, d);
     frames_->from_frames(full_, p);
     timings.solve += seconds_since(t);
-    fresh_ = false;
-
-    result.iterations = static_cast<int>(iterations);
-    result.converged = reason > 0;
-    result.breakdown = reason == KSP_DIVERGED_INDEFINITE_MAT || reason == KSP_DIVERGED_INDEFINITE_PC ||
-                       reason == KSP_DIVERGED_BREAKDOWN || reason == KSP_DIVERGED_NANORINF ||
-                       reason == KSP_DIVERGED_PC_FAILED;
-    result.reduction = residual / initial;
+    first_step_ = false;
+    result.reduction = stopping_.last / initial;
     return result;
   }
 
  private:
+  /// Whether this solve builds the multigrid anew (SolverOptions::amg_reuse).
+  bool must_rebuild() const {
+    if (!ksp_) return true;
+    switch (reuse_) {
+      case AmgReuse::adaptive: return slow_;
+      case AmgReuse::none: return true;
+      default: return first_step_;
+    }
+  }
+
+  /// The KSP with the matrix of this step and its hierarchy: rebuilt, or kept
+  /// (KSPSetReusePreconditioner; with `interpolation` GAMG's aggregates and prolongators only).
+  void set_up(const ConstrainedSystem& s, bool rebuild, MotionTimings& timings) {
+    const auto t = Clock::now();
+    if (rebuild) set_near_null_space(a_, *frames_, *rows_, s.points);
+    // A hierarchy built for an increment comes from a new KSP, as in a new process: PCGAMG
+    // carries state from one set-up into the next, and a run resumed from a checkpoint would
+    // otherwise take other CG iterations than the uninterrupted run.
+    if (!ksp_ || (rebuild && (first_step_ || reuse_ == AmgReuse::adaptive) && reuse_ != AmgReuse::interpolation)) create_ksp();
+    PC pc = nullptr;
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    if (reuse_ == AmgReuse::interpolation) {
+      check(PCGAMGSetReuseInterpolation(pc, first_step_ ? PETSC_FALSE : PETSC_TRUE), "PCGAMGSetReuseInterpolation");
+    }
+    const bool keep = !rebuild && (reuse_ == AmgReuse::preconditioner || reuse_ == AmgReuse::adaptive);
+    check(KSPSetReusePreconditioner(ksp_, keep ? PETSC_TRUE : PETSC_FALSE), "KSPSetReusePreconditioner");
+    check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
+    // StoppingTest decides convergence; PETSc keeps only the iteration limit.
+    check(KSPSetTolerances(ksp_, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, options_.max_pcg_iterations),
+          "KSPSetTolerances");
+    check(KSPSetConvergenceTest(ksp_, StoppingTest::converged, &stopping_, nullptr), "KSPSetConvergenceTest");
+    if (rebuild) release_free_memory();  // the old hierarchy's pages, before the new set-up's peak
+    check(KSPSetUp(ksp_), "KSPSetUp");
+    if (rebuild) release_free_memory();  // the set-up's work space
+    if (rebuild && options_.amg == AmgPackage::gamg && !one_sided_sweeps_ && !smoother_given_) make_sweeps_symmetric();
+    timings.preconditioner += seconds_since(t);
+  }
+
+  /// A symmetric Gauss-Seidel sweep (forward and backward, each rank on its rows) before and
+  /// after the coarse-grid correction on every level of the built hierarchy, as PETSc's SOR
+  /// does by default.
+  void make_sweeps_symmetric() {
+    PC pc = nullptr;
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    PetscInt levels = 0;
+    check(PCMGGetLevels(pc, &levels), "PCMGGetLevels");
+    for (PetscInt level = 1; level < levels; ++level) {  // level 0 is the coarse solve
+      for (const bool up : {false, true}) {
+        KSP smoother = nullptr;
+        check(up ? PCMGGetSmootherUp(pc, level, &smoother) : PCMGGetSmootherDown(pc, level, &smoother), "PCMGGetSmoother");
+        PC sweep = nullptr;
+        check(KSPGetPC(smoother, &sweep), "KSPGetPC");
+        PetscBool sor = PETSC_FALSE;
+        check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(sweep), PCSOR, &sor), "PetscObjectTypeCompare");
+        if (sor) check(PCSORSetSymmetric(sweep, SOR_LOCAL_SYMMETRIC_SWEEP), "PCSORSetSymmetric");
+      }
+    }
+  }
+
+  /// `adaptive`: the CG iterations of an increment's first solve (at pcg_tolerance in the
+  /// Newton norm, whatever the forcing) against those with a fresh hierarchy.
+  void note_iterations(int iterations, bool rebuilt) {
+    if (rebuilt) {
+      fresh_iterations_ = first_step_ ? std::max(iterations, 1) : 0;  // 0: the next first solve's count
+      slow_ = false;
+    } else if (first_step_ && fresh_iterations_ == 0) {
+      fresh_iterations_ = std::max(iterations, 1);
+    } else if (first_step_) {
+      slow_ = iterations > kAmgSlowdown * fresh_iterations_;
+    }
+  }
+
   /// K~ of the system at its points, with the frames of its current normals.
   void assemble_matrix(const ConstrainedSystem& s, const ResidualPass* residual) {
     if (!a_) create(s);
@@ -272,6 +361,11 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     frames_.emplace(nodes, d);
     frames_->update(s.constraints, s.periodic);
     const ElementList& cells = s.kernel.cells();
+    if (reuse_ == AmgReuse::automatic) {
+      reuse_ = options_.amg == AmgPackage::hypre ? AmgReuse::none
+               : cells.size() >= kAdaptiveReuseCells ? AmgReuse::adaptive
+                                                      : AmgReuse::preconditioner;
+    }
     const NodeCells around(cells, nodes);
     const std::vector<int> rank_of_cell = partition_cells(cells, around, d, job_);
     for (std::size_t c = 0; c < cells.size(); ++c) {
@@ -344,7 +438,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   SolverOptions options_;
   parallel::Processes job_;  ///< this rank, of how many
   std::vector<CellId> local_cells_;  ///< the cells whose element work this rank does
-  AmgReuse reuse_ = AmgReuse::preconditioner;  ///< never automatic
+  AmgReuse reuse_ = AmgReuse::automatic;  ///< resolved by create()
   std::optional<NodalFrames> frames_;
   std::optional<BlockRows> rows_;
   std::optional<AssemblyOrder> order_;
@@ -354,7 +448,11 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   Vec x_ = nullptr;
   VecScatter to_all_ = nullptr;  ///< x_ to all_ on every rank (several processes)
   Vec all_ = nullptr;
-  bool fresh_ = true;
+  bool first_step_ = true;  ///< the coming solve is the first of an increment
+  bool one_sided_sweeps_ = false;  ///< gamg's default smoother, forward down and backward up (false once CG broke down)
+  bool smoother_given_ = false;    ///< the user chose the smoother in PETSC_OPTIONS
+  bool slow_ = false;       ///< adaptive: the hierarchy is to be rebuilt
+  int fresh_iterations_ = 0;  ///< adaptive: of the first solve of an increment with a fresh hierarchy (0: none yet)
   bool pattern_ = false;    ///< the sparsity is fixed (after the first assembly)
   bool assembled_ = false;  ///< the element pass assembled K~ for the coming solve()
   std::vector<double> full_;             ///< d per node, in the frames

@@ -40,9 +40,9 @@ using geometry::SampleFrame;
 constexpr std::array<std::string_view, 10> kTopKeys{"mesh",     "cad",     "length_unit", "output",  "axis",
                                                    "solver",   "material", "patches",    "pictures", "restart"};
 constexpr std::array<std::string_view, 2> kAxisKeys{"origin", "direction"};
-constexpr std::array<std::string_view, 11> kSolverKeys{
+constexpr std::array<std::string_view, 12> kSolverKeys{
     "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
-    "max_increment_splits", "linear", "amg", "amg_reuse", "forcing"};
+    "max_increment_splits", "linear", "amg", "amg_reuse", "forcing", "predictor"};
 constexpr std::array<std::string_view, 4> kMaterialKeys{"law", "alpha_s", "alpha_v", "drop_jacobian"};
 constexpr std::array<std::string_view, 5> kPatchKeys{"role", "deflection", "partner", "angle_deg", "features"};
 constexpr std::array<std::string_view, 1> kFeatureKeys{"angle"};
@@ -254,6 +254,7 @@ class CaseParser {
     if (const Entry* x = m.find("forcing")) {
       if (const auto k = reader_.choice(*x, deform::kForcingTermNames)) s.forcing = *k;
     }
+    if (const Entry* x = m.find("predictor")) s.predictor = reader_.boolean(*x).value_or(s.predictor);
   }
 
   void read_material(const Entry& e) {

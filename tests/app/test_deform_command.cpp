@@ -178,8 +178,10 @@ TEST(DeformCommand, AmgSolverRunsWithoutMpirunAndReportsItsPhases) {
   }
   EXPECT_LT(report["max_normal_slip"].get<double>(), 1e-12);
   // Inexact Newton: the tolerances given to the linear solves vary, never below pcg_tolerance.
-  // The first solve of every increment stops on the Newton norm ||D^-1 r|| at pcg_tolerance;
-  // the loose ones stop on ||r||.
+  // The first solve of every increment stops on the Newton norm ||D^-1 r||, at pcg_tolerance
+  // or, after a predicted start, as far as the Newton tolerance needs (at most 0.1); a later
+  // solve in that norm (after a step without sufficient decrease) at pcg_tolerance; the loose
+  // ones stop on ||r||.
   std::set<double> tolerances;
   std::size_t residual_norm_solves = 0;
   for (const auto& inc : report["increments"]) {
@@ -191,8 +193,17 @@ TEST(DeformCommand, AmgSolverRunsWithoutMpirunAndReportsItsPhases) {
     EXPECT_EQ(norms[0], "newton") << inc["increment"];
     for (std::size_t i = 0; i < eta.size(); ++i) {
       tolerances.insert(eta[i].get<double>());
-      if (norms[i] == "newton") EXPECT_EQ(eta[i].get<double>(), 1e-3) << inc["increment"] << " solve " << i;
-      else residual_norm_solves += norms[i] == "residual";
+      if (norms[i] == "newton" && i == 0) {
+        EXPECT_GE(eta[i].get<double>(), 1e-3) << inc["increment"];
+        EXPECT_LE(eta[i].get<double>(), 0.1) << inc["increment"];
+        if (inc["increment"] == 1) {
+          EXPECT_EQ(eta[i].get<double>(), 1e-3);  // nothing to predict from
+        }
+      } else if (norms[i] == "newton") {
+        EXPECT_EQ(eta[i].get<double>(), 1e-3) << inc["increment"] << " solve " << i;
+      } else {
+        residual_norm_solves += norms[i] == "residual";
+      }
     }
   }
   EXPECT_GT(tolerances.size(), 2u);

@@ -204,6 +204,8 @@ TEST_F(CaseFile, ReadsWhatTheMultigridKeepsAndRefusesInterpolationForHypre) {
   EXPECT_EQ(parse(std::string(kBase)).solver.amg_reuse, deform::AmgReuse::automatic);
   EXPECT_EQ(parse(std::string(kBase) + "solver: {linear: amg, amg_reuse: interpolation}\n").solver.amg_reuse,
             deform::AmgReuse::interpolation);
+  EXPECT_EQ(parse(std::string(kBase) + "solver: {linear: amg, amg_reuse: adaptive}\n").solver.amg_reuse,
+            deform::AmgReuse::adaptive);
   EXPECT_EQ(parse(std::string(kBase) + "solver: {linear: amg, amg: hypre, amg_reuse: preconditioner}\n").solver.amg_reuse,
             deform::AmgReuse::preconditioner);
   const std::string error = error_with(
@@ -213,7 +215,7 @@ TEST_F(CaseFile, ReadsWhatTheMultigridKeepsAndRefusesInterpolationForHypre) {
       "  linear: amg\n");
   EXPECT_THAT(error, HasSubstr(at(6) + "solver.amg_reuse: interpolation is kept by amg: gamg only"));
   EXPECT_THAT(error_with("solver: {amg_reuse: always}\n"),
-              HasSubstr("solver.amg_reuse: expected one of auto, preconditioner, interpolation, none, got 'always'"));
+              HasSubstr("solver.amg_reuse: expected one of auto, adaptive, preconditioner, interpolation, none, got 'always'"));
 }
 
 TEST_F(CaseFile, RejectsBadLawFlagAndPictures) {

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hotmesh/io/checkpoint_file.hpp"
+#include "hotmesh/io/mesh_files.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::test {
@@ -63,6 +65,18 @@ inline void rewrite_as_checkpoint_format_1(const std::filesystem::path& path) {
   out += text;
   out += arrays;
   write_text(path, out);
+}
+
+/// The largest distance between the nodes of the deformed meshes in two output folders, over
+/// the first one's bounding-box diagonal.
+inline double largest_relative_distance(const std::filesystem::path& a, const std::filesystem::path& b) {
+  const auto ma = io::read_mesh(a / "deformed.msh").mesh, mb = io::read_mesh(b / "deformed.msh").mesh;
+  EXPECT_EQ(ma.points.size(), mb.points.size());
+  double largest = 0.0;
+  for (std::size_t i = 0; i < std::min(ma.points.size(), mb.points.size()); ++i) {
+    largest = std::max(largest, distance(ma.points[i], mb.points[i]));
+  }
+  return largest / mesh::bounding_diagonal(ma.points);
 }
 
 /// Two output folders of runs that must end alike (a resumed run and the uninterrupted one):

@@ -22,14 +22,26 @@ enum class AmgPackage {
   hypre,  ///< hypre's BoomerAMG (classical AMG, nodal coarsening)
 };
 
-/// What the amg solver keeps of a Newton step's multigrid for the later steps of the increment
-/// (K changes little between them; the first step of an increment always builds anew).
+/// What the amg solver keeps of a Newton step's multigrid for later steps. K changes little
+/// between them; all but `adaptive` build anew at the first step of each increment.
 enum class AmgReuse {
-  automatic,       ///< `preconditioner` with gamg, `none` with hypre (kept, BoomerAMG needed 20x the iterations)
-  preconditioner,  ///< the whole hierarchy, operators included (KSPSetReusePreconditioner)
-  interpolation,   ///< gamg's aggregates and prolongators; the Galerkin operators are recomputed
+  automatic,       ///< gamg: `adaptive` from kAdaptiveReuseCells cells, `preconditioner` below; hypre: `none`
+  adaptive,        ///< the whole hierarchy, across increments too, rebuilt when CG slows (kAmgSlowdown)
+  preconditioner,  ///< the whole hierarchy, operators included (KSPSetReusePreconditioner), within an increment
+  interpolation,   ///< gamg's aggregates and prolongators within an increment; the Galerkin operators are recomputed
   none,            ///< rebuilt every Newton step
 };
+
+/// `amg_reuse: adaptive` rebuilds the hierarchy once the first solve of an increment takes more
+/// than this many times the CG iterations of the first solve with a fresh hierarchy (those
+/// solves all stop at pcg_tolerance in the Newton norm, so their counts compare).
+inline constexpr double kAmgSlowdown = 1.5;
+
+/// `amg_reuse: auto` with gamg keeps hierarchies across increments (`adaptive`) from this many
+/// cells on, where a set-up costs seconds (48 s of a 263 s run of the 200 000-cell sector on two
+/// ranks, 16 set-ups); below, each increment builds its own (`preconditioner`), so that a resumed
+/// run repeats the uninterrupted one to the bit.
+inline constexpr std::size_t kAdaptiveReuseCells = 100000;
 
 /// The tolerance of each inner linear solve.
 enum class ForcingTerm {
@@ -41,7 +53,8 @@ enum class ForcingTerm {
 inline constexpr EnumNames<LinearSolverKind, 3> kLinearSolverNames{
     {{{LinearSolverKind::automatic, "auto"}, {LinearSolverKind::jacobi_pcg, "jacobi-pcg"}, {LinearSolverKind::amg, "amg"}}}};
 inline constexpr EnumNames<AmgPackage, 2> kAmgPackageNames{{{{AmgPackage::gamg, "gamg"}, {AmgPackage::hypre, "hypre"}}}};
-inline constexpr EnumNames<AmgReuse, 4> kAmgReuseNames{{{{AmgReuse::automatic, "auto"},
+inline constexpr EnumNames<AmgReuse, 5> kAmgReuseNames{{{{AmgReuse::automatic, "auto"},
+                                                        {AmgReuse::adaptive, "adaptive"},
                                                         {AmgReuse::preconditioner, "preconditioner"},
                                                         {AmgReuse::interpolation, "interpolation"},
                                                         {AmgReuse::none, "none"}}}};
@@ -93,6 +106,10 @@ struct SolverOptions {
   AmgPackage amg = AmgPackage::gamg;
   AmgReuse amg_reuse = AmgReuse::automatic;
   ForcingTerm forcing = ForcingTerm::fixed;
+  /// Start each increment after the first from the motion so far, scaled to its stage, instead
+  /// of from the boundary's move alone (move_mesh.cpp, docs/method.md "Predictor"). Off for
+  /// callers of the library, as the paper starts; a case file's default is on (io::Case).
+  bool predictor = false;
 };
 
 /// How the pseudo-material's Lamé parameters vary from element to element.

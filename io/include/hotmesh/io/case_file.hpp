@@ -96,10 +96,12 @@ struct Case {
   /// (`output: {series: true}`).
   bool series = false;
   std::optional<geometry::Axis> axis;
-  /// The solver's options; `linear` defaults to auto (choose_linear_solver picks by the mesh).
+  /// The solver's options; `linear` defaults to auto (choose_linear_solver picks by the mesh),
+  /// `predictor` to on.
   deform::SolverOptions solver = [] {
     deform::SolverOptions s;
     s.linear = deform::LinearSolverKind::automatic;
+    s.predictor = true;
     return s;
   }();
   /// OpenMP threads of the run, 0: all cores. The case file sets it among the solver's options
