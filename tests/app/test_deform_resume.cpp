@@ -115,13 +115,17 @@ TEST(DeformResume, CheckpointAfterTheFirstIncrementDoesNotGrowWithTheIncrementCo
 }
 
 /// The ramp's case in 6 increments with `linear: amg`, Eisenstat-Walker forcing and the given
-/// `amg_reuse`.
-void use_amg(const SlidingRamp& ramp, const std::string& reuse) {
+/// `amg_reuse`, run into `straight` and into `out`, that one killed after its third increment
+/// and resumed (what this returns).
+auto amg_run_killed_and_resumed(const SlidingRamp& ramp, const std::string& reuse) {
   std::string text = test::ramp_case("full.csv", 6);
   const std::string solver = "pcg_tolerance: 1.0e-6}";
   text.replace(text.find(solver), solver.size(),
                "pcg_tolerance: 1.0e-6, linear: amg, forcing: eisenstat-walker, amg_reuse: " + reuse + "}");
   test::write_text(ramp.dir / "case.yaml", text);
+  EXPECT_EQ(hotmesh("-q " + ramp.deform("straight")).exit_code, 0);
+  EXPECT_EQ(hotmesh(ramp.deform("out"), killed_after(3)).exit_code, kKilled);
+  return hotmesh(ramp.deform("out", "--resume"));
 }
 
 TEST(DeformResume, AmgRunStoppedAfterAnIncrementResumesToTheSameOutputs) {
@@ -131,24 +135,19 @@ TEST(DeformResume, AmgRunStoppedAfterAnIncrementResumesToTheSameOutputs) {
   // ones do, and every increment's hierarchy comes from a new KSP (PCGAMG carries state from
   // one set-up to the next).
   const SlidingRamp ramp;
-  use_amg(ramp, "preconditioner");
-  ASSERT_EQ(hotmesh("-q " + ramp.deform("straight")).exit_code, 0);
-  EXPECT_EQ(hotmesh(ramp.deform("out"), killed_after(3)).exit_code, kKilled);
-  const auto resumed = hotmesh(ramp.deform("out", "--resume"));
+  const auto resumed = amg_run_killed_and_resumed(ramp, "preconditioner");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_THAT(resumed.output, HasSubstr("3 of 6 increments done"));
   expect_same_outputs(ramp.dir / "straight", ramp.dir / "out");
 }
 
 TEST(DeformResume, AmgRunKeepingItsHierarchyAcrossIncrementsResumesToTheSameMeshWithinTolerance) {
-  // `amg_reuse: adaptive` (the default) keeps a hierarchy built increments before; the resumed
-  // process cannot have it and builds one at its first increment, so its CG iterations differ
-  // and its mesh agrees with the uninterrupted run's to the solver tolerances, not to the bit.
+  // `amg_reuse: adaptive` (auto's choice from 100 000 cells) keeps a hierarchy built increments
+  // before; the resumed process cannot have it and builds one at its first increment, so its
+  // CG iterations differ and its mesh agrees with the uninterrupted run's to the solver
+  // tolerances, not to the bit.
   const SlidingRamp ramp;
-  use_amg(ramp, "adaptive");
-  ASSERT_EQ(hotmesh("-q " + ramp.deform("straight")).exit_code, 0);
-  EXPECT_EQ(hotmesh(ramp.deform("out"), killed_after(3)).exit_code, kKilled);
-  const auto resumed = hotmesh(ramp.deform("out", "--resume"));
+  const auto resumed = amg_run_killed_and_resumed(ramp, "adaptive");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   const auto straight = read_json(ramp.dir / "straight" / "report.json"), out = read_json(ramp.dir / "out" / "report.json");
   EXPECT_EQ(straight["solver"]["amg_reuse"], "adaptive");
