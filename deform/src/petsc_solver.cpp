@@ -57,6 +57,13 @@ bool option_given(const char* name) {
   return set == PETSC_TRUE;
 }
 
+/// Whether the user chose GAMG's smoother in PETSC_OPTIONS: asked once per process, before
+/// the first solver sets hotmesh's defaults into the same options database.
+bool user_chose_smoother() {
+  static const bool chosen = option_given("-hotmesh_mg_levels_ksp_type") || option_given("-hotmesh_mg_levels_pc_type");
+  return chosen;
+}
+
 /// Sets the option unless the user gave it (PETSC_OPTIONS); a null value sets a flag.
 void default_option(const char* name, const char* value) {
   if (!option_given(name)) check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
@@ -159,8 +166,9 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
       : options_(options), job_{ranks.rank(), ranks.ranks()} {
     parallel::start_petsc();
     if (options_.amg == AmgPackage::gamg) {
-      // Gauss-Seidel smoothing on every level: one forward sweep before the coarse-grid
-      // correction and one backward sweep after it, which keeps the V-cycle symmetric for CG.
+      // Gauss-Seidel smoothing on every level: in 3D one forward sweep before the coarse-grid
+      // correction and one backward sweep after it, which keeps the V-cycle symmetric for CG
+      // (2D: create()).
       // A symmetric sweep on both sides (PETSc's SOR default) took as many CG iterations and
       // twice the smoothing time. With several ranks each sweeps its own rows (hybrid
       // Gauss-Seidel), and the one-sided sweeps can make the V-cycle indefinite where ranks
@@ -168,7 +176,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
       // goes over to symmetric sweeps for the rest of the run (solve()). The default
       // Chebyshev/Jacobi smoother made the preconditioner indefinite on the ramp: its
       // eigenvalue estimates miss the top of the spectrum of these boundary-layer matrices.
-      const bool smoother_given = option_given("-hotmesh_mg_levels_ksp_type") || option_given("-hotmesh_mg_levels_pc_type");
+      const bool smoother_given = user_chose_smoother();
       one_sided_sweeps_ = !smoother_given;
       smoother_given_ = smoother_given;
       default_option("-hotmesh_mg_levels_ksp_type", "richardson");
@@ -361,6 +369,10 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     frames_.emplace(nodes, d);
     frames_->update(s.constraints, s.periodic);
     const ElementList& cells = s.kernel.cells();
+    // In 2D the one-sided sweeps doubled GAMG's CG iterations on the ramps' boundary layers
+    // (sliding ramp 3 268 -> 7 274, and 25 % more time); in 3D they took as many as symmetric
+    // sweeps (the sectors). So 2D keeps symmetric sweeps on both sides.
+    if (d == 2) one_sided_sweeps_ = false;
     if (reuse_ == AmgReuse::automatic) {
       reuse_ = options_.amg == AmgPackage::hypre ? AmgReuse::none
                : cells.size() >= kAdaptiveReuseCells ? AmgReuse::adaptive
