@@ -64,12 +64,12 @@ LinearTarget Forcing::next(int n, double residual, double initial) {
   constexpr double kSufficientDecrease = 1e-4;  // t
   const bool decreased =
       n == 0 || residual <= (1.0 - kSufficientDecrease * (1.0 - previous_eta_)) * previous_residual_;
+  constexpr double kGamma = 0.9, kAlpha = 2.0, kMax = 0.1;
   if (options_.forcing == ForcingTerm::eisenstat_walker && n == 0 && residual > 0.0) {
     // A predicted start already close to the solution: reach the Newton tolerance, no further.
-    eta = std::clamp(0.5 * options_.newton_tolerance * initial / residual, floor, std::max(0.1, floor));
+    eta = std::clamp(0.5 * options_.newton_tolerance * initial / residual, floor, std::max(kMax, floor));
   }
   if (options_.forcing == ForcingTerm::eisenstat_walker && n > 0 && previous_residual_ > 0.0 && decreased) {
-    constexpr double kGamma = 0.9, kAlpha = 2.0, kMax = 0.1;
     const double ratio = residual / previous_residual_;
     eta = kGamma * std::pow(ratio, kAlpha);
     const double safeguard = kGamma * std::pow(previous_eta_, kAlpha);
