@@ -54,7 +54,7 @@ main() {
 
   echo "== hotmesh: fuzz targets (clang, libFuzzer, ASan + UBSan) in $build/"
   cmake -S . -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
-        -DCMAKE_CXX_FLAGS_DEBUG="-g -O2" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=ON -DHOTMESH_WERROR=ON \
+        -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O2" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=ON -DHOTMESH_WERROR=ON \
         -DHOTMESH_FUZZ=ON -DHOTMESH_TESTS=OFF >/dev/null
   if [[ -n $seed_hotmesh ]]; then
     cmake --build "$build" -j "$jobs" --target fuzzers
