@@ -1,6 +1,7 @@
 // hotmesh deform: preconditioned conjugate gradients.
 #include "hotmesh/deform/pcg.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace hotmesh::deform {
@@ -10,10 +11,19 @@ PcgResult pcg(const LinearOperator& a, const LinearOperator& m, std::span<const 
   const std::size_t n = a.size();
   std::vector<double> r(n), z(n), d(n), q(n);
   PcgResult result;
-  const auto residual_norm = [&options](std::span<const double> v) { return options.norm ? options.norm(v) : norm2(v); };
+  const auto total = [&options](double local) { return options.sum ? options.sum(local) : local; };
+  const auto residual_norm = [&](std::span<const double> v) {
+    return options.norm ? options.norm(v) : std::sqrt(total(dot(v, v)));
+  };
 
-  a.apply(x, q);  // r = b - A x
-  for (std::size_t i = 0; i < n; ++i) r[i] = b[i] - q[i];
+  // r = b - A x; from x = 0 on every process without the product
+  const bool from_zero = total(std::ranges::all_of(x, [](double v) { return v == 0.0; }) ? 0.0 : 1.0) == 0.0;
+  if (from_zero) {
+    std::ranges::copy(b, r.begin());
+  } else {
+    a.apply(x, q);
+    for (std::size_t i = 0; i < n; ++i) r[i] = b[i] - q[i];
+  }
   if (options.project) options.project(r);
   double rnorm = residual_norm(r);
   result.initial_residual = rnorm;
@@ -28,14 +38,14 @@ PcgResult pcg(const LinearOperator& a, const LinearOperator& m, std::span<const 
   m.apply(r, z);
   if (options.project) options.project(z);
   d = z;
-  double rz = dot(r, z);
+  double rz = total(dot(r, z));
   for (int k = 0; k < options.max_iterations; ++k) {
     if (!(rz > 0.0)) {
       result.breakdown = true;
       break;
     }
     a.apply(d, q);
-    const double dq = dot(d, q);
+    const double dq = total(dot(d, q));
     if (!(dq > 0.0)) {
       result.breakdown = true;
       break;
@@ -54,7 +64,7 @@ PcgResult pcg(const LinearOperator& a, const LinearOperator& m, std::span<const 
     if (!std::isfinite(rnorm)) break;
     m.apply(r, z);
     if (options.project) options.project(z);
-    const double rz_next = dot(r, z);
+    const double rz_next = total(dot(r, z));
     xpby(z, rz_next / rz, d);  // step 3: the next search direction
     rz = rz_next;
   }

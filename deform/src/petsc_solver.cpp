@@ -6,18 +6,17 @@
 // nodal frames of the current normals (nodal_frames.hpp) added into a matrix of block size d
 // whose sparsity was preallocated once from the node graph, slaves merged into their masters
 // (MAT_NEW_NONZERO_LOCATION_ERR guards it). Then (solve()) the right-hand side is r~ = T^T r,
-// CG (KSPCG) with algebraic multigrid solves K~ p~ = r~ from p~ = 0, stopping on the norm
-// the system asks for as Jacobi-PCG does (StoppingTest), and p = T p~. PCGAMG gets the
-// translations written in the frames as near-null space.
+// hotmesh's CG (pcg.hpp, as Jacobi-PCG) preconditioned by PETSc's algebraic multigrid solves
+// K~ p~ = r~ from p~ = 0 on each rank's rows, stopping on the norm the system asks for, and
+// p = T p~. PCGAMG gets the translations written in the frames as near-null space.
 //
 // The multigrid hierarchy is kept from one Newton step to the next and from one increment to
-// the next (KSPSetReusePreconditioner) while it serves: K changes little between them, an old
+// the next (PCSetReusePreconditioner) while it serves: K changes little between them, an old
 // hierarchy stays a symmetric positive definite preconditioner, and it is rebuilt once the
 // first solve of an increment takes kAmgSlowdown times the CG iterations it took fresh, or a
 // solve with it fails (docs/performance.md measures the choice). The case file's `amg_reuse`
-// changes that (SolverOptions::amg_reuse); any option of the KSP and PC can be given in
-// PETSC_OPTIONS with the prefix `hotmesh_`, e.g.
-// PETSC_OPTIONS="-hotmesh_pc_gamg_threshold 0.05 -hotmesh_ksp_view".
+// changes that (SolverOptions::amg_reuse); any option of the PC can be given in PETSC_OPTIONS
+// with the prefix `hotmesh_`, e.g. PETSC_OPTIONS="-hotmesh_pc_gamg_threshold 0.05 -hotmesh_pc_view".
 //
 // With several processes (mpirun, hotmesh/parallel/processes.hpp) every rank keeps the whole
 // mesh, but the matrix and the element work are distributed: PETSc's partitioner (PT-Scotch)
@@ -38,12 +37,14 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "frame_matrix.hpp"
+#include "hotmesh/deform/pcg.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {
@@ -122,40 +123,25 @@ void release_free_memory() {
 #endif
 }
 
-/// When CG stops: at ||r~|| <= tolerance ||r~_0||, or, in the Newton norm with the node stiffness D, at
-/// ||D^-1 r~|| <= tolerance ||D^-1 r~_0|| (the frames are orthonormal per node, so both equal
-/// the norms of r). The scaled norm needs the residual vector, which KSPCG keeps to itself:
-/// KSPBuildResidual forms it with one more product per iteration.
-struct StoppingTest {
-  double tolerance = 0.0;
-  double initial = 0.0;  ///< the norm of the right-hand side (p~ = 0 at the start)
-  double last = 0.0;     ///< the norm at the last iteration tested
-  bool scaled = false;
-  Vec weight = nullptr;  ///< D^-1 at this rank's rows (created with the first scaled solve)
-  Vec work = nullptr, residual = nullptr;
-
-  static PetscErrorCode converged(KSP ksp, PetscInt iteration, PetscReal norm, KSPConvergedReason* reason, void* self) {
-    auto& test = *static_cast<StoppingTest*>(self);
-    *reason = KSP_CONVERGED_ITERATING;
-    if (PetscIsInfOrNanReal(norm)) {
-      *reason = KSP_DIVERGED_NANORINF;
-      return 0;
-    }
-    if (iteration == 0) {
-      test.last = test.initial;
-      return 0;
-    }
-    test.last = norm;
-    if (test.scaled) {
-      Vec r = nullptr;
-      PetscErrorCode code = KSPBuildResidual(ksp, test.work, test.residual, &r);
-      if (code == 0) code = VecPointwiseMult(r, r, test.weight);
-      if (code == 0) code = VecNorm(r, NORM_2, &test.last);
-      if (code != 0) return code;
-    }
-    if (test.last <= test.tolerance * test.initial) *reason = KSP_CONVERGED_RTOL;
-    return 0;
+/// A PETSc operator on this rank's rows as pcg() sees its operators: the matrix (MatMult) or
+/// the multigrid's V-cycle (PCApply), the spans lent to two Vecs of the matrix's layout.
+template <class Object, PetscErrorCode (*Apply)(Object, Vec, Vec)>
+class RowsOperator final : public LinearOperator {
+ public:
+  RowsOperator(Object object, Vec in, Vec out, std::size_t rows) : object_(object), in_(in), out_(out), rows_(rows) {}
+  std::size_t size() const override { return rows_; }
+  void apply(std::span<const double> x, std::span<double> y) const override {
+    check(VecPlaceArray(in_, x.data()), "VecPlaceArray");
+    check(VecPlaceArray(out_, y.data()), "VecPlaceArray");
+    check(Apply(object_, in_, out_), "apply");
+    check(VecResetArray(in_), "VecResetArray");
+    check(VecResetArray(out_), "VecResetArray");
   }
+
+ private:
+  Object object_;
+  Vec in_, out_;
+  std::size_t rows_;
 };
 
 // --- The solver ---------------------------------------------------------------------------
@@ -200,12 +186,9 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   }
 
   ~AmgSolver() override {
-    if (ksp_) KSPDestroy(&ksp_);
+    if (pc_) PCDestroy(&pc_);
     if (to_all_) VecScatterDestroy(&to_all_);
-    if (all_) VecDestroy(&all_);
-    if (b_) VecDestroy(&b_);
-    if (x_) VecDestroy(&x_);
-    for (Vec* v : {&stopping_.weight, &stopping_.work, &stopping_.residual}) {
+    for (Vec* v : {&all_, &x_, &in_, &out_}) {
       if (*v) VecDestroy(v);
     }
     if (a_) MatDestroy(&a_);
@@ -230,32 +213,31 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     frames_->to_frames(rhs, full_);
     rows_->gather(full_, rhs_, d);
     LinearSolveResult result;
-    const bool scaled = target.newton_norm;
-    copy_to(rhs_, b_);
-    const double initial = scaled ? scaled_norm_of_b(s.node_stiffness, d) : norm2(rhs_);
+    // CG in the norm the Newton loop asks for: the Newton norm ||D^-1 r~|| with the node
+    // stiffness D (the frames are orthonormal per node, so it equals ||D^-1 r||), else ||r~||.
+    PcgOptions cg{.relative_tolerance = target.tolerance, .max_iterations = options_.max_pcg_iterations,
+                  .record_history = false, .sum = [this](double local) { return sum_over_ranks(local); }};
+    if (target.newton_norm) {
+      set_newton_weights(s.node_stiffness, d);
+      cg.norm = [this](std::span<const double> r) { return newton_norm(r); };
+    }
+    const auto b = std::span<const double>(rhs_).subspan(first_row_, local_rows_);
+    const double initial = cg.norm ? cg.norm(b) : std::sqrt(sum_over_ranks(dot(b, b)));
     if (!(initial > 0.0)) {
       std::fill(p.begin(), p.end(), 0.0);
       result.converged = true;
       return result;
     }
-    stopping_.tolerance = target.tolerance;
-    stopping_.initial = initial;
-    stopping_.scaled = scaled;
     bool rebuild = must_rebuild();
     set_up(s, rebuild, timings);
+    PcgResult last;
     for (;;) {
       t = Clock::now();
-      check(KSPSolve(ksp_, b_, x_), "KSPSolve");
-      PetscInt iterations = 0;
-      KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-      check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
-      check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+      last = cg_on_rows(b, cg);
       timings.solve += seconds_since(t);
-      result.iterations += static_cast<int>(iterations);
-      result.converged = reason > 0;
-      result.breakdown = reason == KSP_DIVERGED_INDEFINITE_MAT || reason == KSP_DIVERGED_INDEFINITE_PC ||
-                         reason == KSP_DIVERGED_BREAKDOWN || reason == KSP_DIVERGED_NANORINF ||
-                         reason == KSP_DIVERGED_PC_FAILED;
+      result.iterations += last.iterations;
+      result.converged = last.converged;
+      result.breakdown = last.breakdown || !std::isfinite(last.final_residual);
       if (result.breakdown && one_sided_sweeps_) {  // the V-cycle is indefinite: symmetric sweeps from now on
         one_sided_sweeps_ = false;
         make_sweeps_symmetric();
@@ -268,7 +250,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
         set_up(s, rebuild, timings);
         continue;
       }
-      note_iterations(static_cast<int>(iterations), rebuild);
+      note_iterations(last.iterations, rebuild);
       break;
     }
     t = Clock::now();
@@ -277,14 +259,14 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     frames_->from_frames(full_, p);
     timings.solve += seconds_since(t);
     first_step_ = false;
-    result.reduction = stopping_.last / initial;
+    result.reduction = last.final_residual / initial;
     return result;
   }
 
  private:
   /// Whether this solve builds the multigrid anew (SolverOptions::amg_reuse).
   bool must_rebuild() const {
-    if (!ksp_) return true;
+    if (!pc_) return true;
     switch (reuse_) {
       case AmgReuse::adaptive: return slow_;
       case AmgReuse::none: return true;
@@ -292,30 +274,27 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     }
   }
 
-  /// The KSP with the matrix of this step and its hierarchy: rebuilt, or kept
-  /// (KSPSetReusePreconditioner; with `interpolation` GAMG's aggregates and prolongators only).
+  /// The multigrid of this step's matrix: rebuilt, or kept (PCSetReusePreconditioner; with
+  /// `interpolation` GAMG's aggregates and prolongators only).
   void set_up(const ConstrainedSystem& s, bool rebuild, MotionTimings& timings) {
     const auto t = Clock::now();
     if (rebuild) set_near_null_space(a_, *frames_, *rows_, s.points);
-    // A hierarchy built for an increment comes from a new KSP, as in a new process: PCGAMG
+    // A hierarchy built for an increment comes from a new PC, as in a new process: PCGAMG
     // carries state from one set-up into the next, and a run resumed from a checkpoint would
     // otherwise take other CG iterations than the uninterrupted run.
-    if (!ksp_ || (rebuild && (first_step_ || reuse_ == AmgReuse::adaptive) && reuse_ != AmgReuse::interpolation)) create_ksp();
-    PC pc = nullptr;
-    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    if (!pc_ || (rebuild && (first_step_ || reuse_ == AmgReuse::adaptive) && reuse_ != AmgReuse::interpolation)) create_pc();
     if (reuse_ == AmgReuse::interpolation) {
-      check(PCGAMGSetReuseInterpolation(pc, first_step_ ? PETSC_FALSE : PETSC_TRUE), "PCGAMGSetReuseInterpolation");
+      check(PCGAMGSetReuseInterpolation(pc_, first_step_ ? PETSC_FALSE : PETSC_TRUE), "PCGAMGSetReuseInterpolation");
     }
     const bool keep = !rebuild && (reuse_ == AmgReuse::preconditioner || reuse_ == AmgReuse::adaptive);
-    check(KSPSetReusePreconditioner(ksp_, keep ? PETSC_TRUE : PETSC_FALSE), "KSPSetReusePreconditioner");
-    check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
-    // StoppingTest decides convergence; PETSc keeps only the iteration limit.
-    check(KSPSetTolerances(ksp_, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, options_.max_pcg_iterations),
-          "KSPSetTolerances");
-    check(KSPSetConvergenceTest(ksp_, StoppingTest::converged, &stopping_, nullptr), "KSPSetConvergenceTest");
+    check(PCSetReusePreconditioner(pc_, keep ? PETSC_TRUE : PETSC_FALSE), "PCSetReusePreconditioner");
+    check(PCSetOperators(pc_, a_, a_), "PCSetOperators");
     if (rebuild) release_free_memory();  // the old hierarchy's pages, before the new set-up's peak
-    check(KSPSetUp(ksp_), "KSPSetUp");
-    if (rebuild) release_free_memory();  // the set-up's work space
+    check(PCSetUp(pc_), "PCSetUp");
+    if (rebuild) {
+      release_free_memory();  // the set-up's work space
+      check(PCViewFromOptions(pc_, nullptr, "-pc_view"), "PCViewFromOptions");
+    }
     if (rebuild && options_.amg == AmgPackage::gamg && !one_sided_sweeps_ && !smoother_given_) make_sweeps_symmetric();
     timings.preconditioner += seconds_since(t);
   }
@@ -324,14 +303,12 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   /// after the coarse-grid correction on every level of the built hierarchy, as PETSc's SOR
   /// does by default.
   void make_sweeps_symmetric() {
-    PC pc = nullptr;
-    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
     PetscInt levels = 0;
-    check(PCMGGetLevels(pc, &levels), "PCMGGetLevels");
+    check(PCMGGetLevels(pc_, &levels), "PCMGGetLevels");
     for (PetscInt level = 1; level < levels; ++level) {  // level 0 is the coarse solve
       for (const bool up : {false, true}) {
         KSP smoother = nullptr;
-        check(up ? PCMGGetSmootherUp(pc, level, &smoother) : PCMGGetSmootherDown(pc, level, &smoother), "PCMGGetSmoother");
+        check(up ? PCMGGetSmootherUp(pc_, level, &smoother) : PCMGGetSmootherDown(pc_, level, &smoother), "PCMGGetSmoother");
         PC sweep = nullptr;
         check(KSPGetPC(smoother, &sweep), "KSPGetPC");
         PetscBool sor = PETSC_FALSE;
@@ -386,54 +363,82 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     rows_.emplace(*frames_, around, rank_of_cell, job_.count);
     order_.emplace(s.kernel, *frames_);
     a_ = create_frame_matrix(cells, around, *frames_, *rows_, job_);
-    check(MatCreateVecs(a_, &x_, &b_), "MatCreateVecs");
+    check(MatCreateVecs(a_, &x_, nullptr), "MatCreateVecs");
     if (job_.count > 1) check(VecScatterCreateToAll(x_, &to_all_, &all_), "VecScatterCreateToAll");
+    PetscInt lo = 0, hi = 0;
+    check(VecGetOwnershipRange(x_, &lo, &hi), "VecGetOwnershipRange");
+    first_row_ = static_cast<std::size_t>(lo);
+    local_rows_ = static_cast<std::size_t>(hi - lo);
+    for (Vec* v : {&in_, &out_}) {  // without arrays of their own: CG's spans are lent to them
+      if (job_.count > 1) {
+        check(VecCreateMPIWithArray(PETSC_COMM_WORLD, 1, hi - lo, PETSC_DECIDE, nullptr, v), "VecCreateMPIWithArray");
+      } else {
+        check(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, hi - lo, nullptr, v), "VecCreateSeqWithArray");
+      }
+    }
     full_.assign(s.kernel.size(), 0.0);
     rhs_.assign(static_cast<std::size_t>(rows_->count) * static_cast<std::size_t>(d), 0.0);
     solution_.assign(rhs_.size(), 0.0);
   }
 
-  /// ||D^-1 b|| for StoppingTest, with D^-1 written at this rank's rows of its weight.
-  double scaled_norm_of_b(std::span<const double> node_stiffness, std::size_t d) {
-    if (!stopping_.weight) {  // the first solve in the scaled norm
-      for (Vec* v : {&stopping_.weight, &stopping_.work, &stopping_.residual}) check(VecDuplicate(x_, v), "VecDuplicate");
+  /// D^-1 at this rank's rows, for the Newton norm.
+  void set_newton_weights(std::span<const double> node_stiffness, std::size_t d) {
+    weight_.resize(local_rows_);
+    for (std::size_t i = 0; i < local_rows_; ++i) {
+      const double k = node_stiffness[static_cast<std::size_t>(rows_->node_of[(first_row_ + i) / d])];
+      weight_[i] = k > 0.0 ? 1.0 / k : 0.0;  // as scaled_residual_norm, which skips such nodes
     }
-    PetscInt lo = 0, hi = 0;
-    check(VecGetOwnershipRange(stopping_.weight, &lo, &hi), "VecGetOwnershipRange");
-    PetscScalar* w = nullptr;
-    check(VecGetArrayWrite(stopping_.weight, &w), "VecGetArrayWrite");
-    for (PetscInt i = lo; i < hi; ++i) {
-      const double k = node_stiffness[static_cast<std::size_t>(rows_->node_of[static_cast<std::size_t>(i) / d])];
-      w[i - lo] = k > 0.0 ? 1.0 / k : 0.0;  // as scaled_residual_norm, which skips such nodes
-    }
-    check(VecRestoreArrayWrite(stopping_.weight, &w), "VecRestoreArrayWrite");
-    check(VecPointwiseMult(stopping_.work, b_, stopping_.weight), "VecPointwiseMult");
-    PetscReal norm = 0.0;
-    check(VecNorm(stopping_.work, NORM_2, &norm), "VecNorm");
-    return norm;
   }
 
-  /// CG with the multigrid preconditioner, options from PETSC_OPTIONS (prefix hotmesh_).
-  void create_ksp() {
-    if (ksp_) check(KSPDestroy(&ksp_), "KSPDestroy");
-    check(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a_)), &ksp_), "KSPCreate");
-    check(KSPSetOptionsPrefix(ksp_, "hotmesh_"), "KSPSetOptionsPrefix");
-    check(KSPSetType(ksp_, KSPCG), "KSPSetType");
-    // The norm of b - A x for StoppingTest (the plain norm; the scaled one it forms itself).
-    check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
-    PC pc = nullptr;
-    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-    if (options_.amg == AmgPackage::gamg) {
-      check(PCSetType(pc, PCGAMG), "PCSetType");
-      check(PCGAMGSetType(pc, PCGAMGAGG), "PCGAMGSetType");
-      check(PCGAMGSetNSmooths(pc, 1), "PCGAMGSetNSmooths");  // smoothed aggregation
-      PetscReal threshold[] = {0.02};
-      check(PCGAMGSetThreshold(pc, threshold, 1), "PCGAMGSetThreshold");
-    } else {
-      check(PCSetType(pc, PCHYPRE), "PCSetType");
-      check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
+  /// ||D^-1 r~|| over every rank's rows, r~ being this rank's.
+  double newton_norm(std::span<const double> r) const {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const double scaled = weight_[i] * r[i];
+      sum += scaled * scaled;
     }
-    check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+    return std::sqrt(sum_over_ranks(sum));
+  }
+
+  double sum_over_ranks(double local) const {
+    if (job_.count > 1 &&
+        MPI_Allreduce(MPI_IN_PLACE, &local, 1, MPI_DOUBLE, MPI_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(a_))) != MPI_SUCCESS) {
+      throw std::runtime_error("MPI_Allreduce failed");
+    }
+    return local;
+  }
+
+  /// CG from p~ = 0 on this rank's rows of K~ p~ = r~ (b), preconditioned by the multigrid;
+  /// p~ is left in x_. Each iteration takes one product and one V-cycle: PETSc's KSPCG would
+  /// need a second product for the Newton norm, whose residual it keeps to itself.
+  PcgResult cg_on_rows(std::span<const double> b, const PcgOptions& options) {
+    PetscScalar* x = nullptr;
+    check(VecGetArrayWrite(x_, &x), "VecGetArrayWrite");
+    const std::span<double> p(x, local_rows_);
+    std::fill(p.begin(), p.end(), 0.0);
+    const RowsOperator<Mat, MatMult> k(a_, in_, out_, local_rows_);
+    const RowsOperator<PC, PCApply> v_cycle(pc_, in_, out_, local_rows_);
+    const PcgResult result = pcg(k, v_cycle, b, p, options);
+    check(VecRestoreArrayWrite(x_, &x), "VecRestoreArrayWrite");
+    return result;
+  }
+
+  /// The multigrid preconditioner, options from PETSC_OPTIONS (prefix hotmesh_).
+  void create_pc() {
+    if (pc_) check(PCDestroy(&pc_), "PCDestroy");
+    check(PCCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a_)), &pc_), "PCCreate");
+    check(PCSetOptionsPrefix(pc_, "hotmesh_"), "PCSetOptionsPrefix");
+    if (options_.amg == AmgPackage::gamg) {
+      check(PCSetType(pc_, PCGAMG), "PCSetType");
+      check(PCGAMGSetType(pc_, PCGAMGAGG), "PCGAMGSetType");
+      check(PCGAMGSetNSmooths(pc_, 1), "PCGAMGSetNSmooths");  // smoothed aggregation
+      PetscReal threshold[] = {0.02};
+      check(PCGAMGSetThreshold(pc_, threshold, 1), "PCGAMGSetThreshold");
+    } else {
+      check(PCSetType(pc_, PCHYPRE), "PCSetType");
+      check(PCHYPRESetType(pc_, "boomeramg"), "PCHYPRESetType");
+    }
+    check(PCSetFromOptions(pc_), "PCSetFromOptions");
   }
 
   /// The solution on every rank (the whole vector: each keeps the whole mesh).
@@ -455,9 +460,10 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   std::optional<BlockRows> rows_;
   std::optional<AssemblyOrder> order_;
   Mat a_ = nullptr;
-  KSP ksp_ = nullptr;
-  Vec b_ = nullptr;
-  Vec x_ = nullptr;
+  PC pc_ = nullptr;
+  Vec x_ = nullptr;  ///< p~ at this rank's rows
+  Vec in_ = nullptr, out_ = nullptr;  ///< this rank's rows, lent CG's vectors for the products
+  std::size_t first_row_ = 0, local_rows_ = 0;  ///< this rank's rows of K~
   VecScatter to_all_ = nullptr;  ///< x_ to all_ on every rank (several processes)
   Vec all_ = nullptr;
   bool first_step_ = true;  ///< the coming solve is the first of an increment
@@ -469,7 +475,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   bool assembled_ = false;  ///< the element pass assembled K~ for the coming solve()
   std::vector<double> full_;             ///< d per node, in the frames
   std::vector<double> rhs_, solution_;  ///< d per block row
-  StoppingTest stopping_;
+  std::vector<double> weight_;           ///< D^-1 at this rank's rows (the Newton norm)
 };
 
 }  // namespace

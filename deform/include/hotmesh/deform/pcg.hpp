@@ -21,6 +21,10 @@ struct PcgOptions {
   /// Euclidean norm. The Newton loop passes its own (scaled_residual_norm), so that a solve
   /// to tolerance eta reduces the residual Newton measures by eta.
   std::function<double(std::span<const double>)> norm;
+  /// Sums a value over the processes that each hold some rows of the system: the dot products
+  /// of the iteration and the Euclidean norm. Empty: one process holds every row. A `norm`
+  /// given above sums over the processes itself.
+  std::function<double(double)> sum;
 };
 
 struct PcgResult {
