@@ -2,7 +2,8 @@
 // about --cells cells (default 2.7 million, the size of a large stator-well sector) stands for
 // the mesh; its six sides are taken as sliding walls (their nodes carry targets and hints). For
 // each run it times, as the command does them:
-//   - state: building the deform::MotionCheckpoint from the solver (a copy of every point),
+//   - state: building the deform::MotionCheckpoint from the solver (a copy of every point, now
+//            and at the start of the increment),
 //   - write: io::write_checkpoint (temporary file, fsync, rename) into --dir,
 //   - read:  io::read_checkpoint, with its checks, as `--resume` does,
 //   - hash:  io::input_fingerprints of the case's inputs (the mesh file, binary Gmsh 4.1) and
@@ -38,14 +39,17 @@ using bench::Clock;
 using bench::seconds_since;
 using bench::median;
 
-/// The state a run hands out after an accepted increment: every point, and each boundary
-/// node as a sliding node with a target and hints; 8 increments of records.
+/// The state a run hands out after an accepted increment: every point, those at the start of
+/// the increment (the predictor's), and each boundary node as a sliding node with a target and
+/// hints; 8 increments of records.
 deform::MotionCheckpoint state_of(const mesh::Mesh& mesh) {
   deform::MotionCheckpoint s;
   s.increments = 16;
   s.finished_increments = 8;
   s.lambda = 0.5;
   s.points = mesh.points;
+  s.previous_points = mesh.points;
+  s.previous_lambda = 0.4375;
   std::vector<char> boundary(mesh.node_count(), 0);
   for (const auto& patch : mesh.patches) {
     for (mesh::NodeId n : patch.nodes) boundary[static_cast<std::size_t>(n)] = 1;

@@ -176,6 +176,8 @@ class Motion {
     result_.increments.push_back(record);
     if (observers_.increment) observers_.increment(record);
     if (record.accepted) {
+      previous_points_ = std::move(result_.points);
+      previous_stage_ = a;
       result_.points = std::move(moved);
       result_.lambda_reached = b;
       return true;
@@ -207,6 +209,8 @@ class Motion {
     c.lambda = result_.lambda_reached;
     c.split_pieces.assign(pieces.begin(), pieces.end());
     c.points = result_.points;
+    c.previous_points = previous_points_;
+    c.previous_lambda = previous_stage_;
     c.sliding.reserve(setup_.sliding.size());
     for (const detail::SlidingNode& s : setup_.sliding) c.sliding.push_back({s.node, s.target, s.hints});
     c.records = result_.increments;
@@ -242,7 +246,13 @@ class Motion {
         refuse("its steps left are damaged");
       }
     }
+    if (!c.previous_points.empty() &&
+        (c.previous_points.size() != c.points.size() || !(c.previous_lambda >= 0.0 && c.previous_lambda < c.lambda))) {
+      refuse("its previous mesh is damaged");
+    }
     result_.points = c.points;
+    previous_points_ = c.previous_points;
+    previous_stage_ = c.previous_lambda;
     result_.lambda_reached = c.lambda;
     result_.increments = c.records;
     finished_increments_ = c.finished_increments;
@@ -281,21 +291,24 @@ class Motion {
   }
 
   /// The predictor of an increment from stage a > 0 to b (SolverOptions::predictor): every
-  /// interior, periodic and sliding node starts where its motion so far, scaled from stage a to
-  /// b, puts it, u = (b/a - 1)(x - x_ref), as the boundary's prescribed motion scales; the
-  /// sliding nodes are then placed on c_b (4.2). Returns u as it was without the prediction,
-  /// or nothing when there is nothing to predict or the prediction would invert a cell.
+  /// interior, periodic and sliding node goes on along the secant of the last accepted step,
+  /// from the mesh x' at its start a' to x at a, as the boundary's prescribed motion goes on:
+  /// u = (b - a)/(a - a') (x - x'); before the first, x' = x_ref at stage 0. The sliding nodes
+  /// are then placed on c_b (4.2). Returns u as it was without the prediction, or nothing when
+  /// there is nothing to predict or the prediction would invert a cell.
   std::vector<double> predict(double a, double b, std::vector<double>& u) {
     if (!solver_.predictor || !(a > 0.0) || !(b > a)) return {};
     std::vector<double> start = u;
-    const double scale = b / a - 1.0;
+    const bool secant = !previous_points_.empty() && previous_stage_ < a;
+    const std::vector<Vec3>& from = secant ? previous_points_ : setup_.reference;
+    const double scale = (b - a) / (a - (secant ? previous_stage_ : 0.0));
     const std::vector<Vec3>& x = result_.points;
     constexpr auto role = [](BoundaryRole r) { return static_cast<NodeRoleCode>(1 + static_cast<int>(r)); };
     const auto t = Clock::now();
     for (std::size_t i = 0; i < x.size(); ++i) {
       const NodeRoleCode r = setup_.roles[i];
       if (r != 0 && r != role(BoundaryRole::periodic) && r != role(BoundaryRole::sliding)) continue;
-      for (std::size_t c = 0; c < dim_; ++c) u[i * dim_ + c] = scale * (x[i][c] - setup_.reference[i][c]);
+      for (std::size_t c = 0; c < dim_; ++c) u[i * dim_ + c] = scale * (x[i][c] - from[i][c]);
     }
     sliding_.project(b, x, u);
     setup_.periodic.expand(u);  // slaves follow their masters
@@ -441,6 +454,8 @@ class Motion {
   int finished_increments_ = 0;
   double setup_seconds_ = 0.0;    ///< of this run
   double earlier_seconds_ = 0.0;  ///< total of the interrupted run this one resumes
+  std::vector<Vec3> previous_points_;  ///< the mesh at the start of the last accepted step (predict())
+  double previous_stage_ = 0.0;        ///< its stage
   MotionResult result_;
 };
 

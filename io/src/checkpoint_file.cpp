@@ -26,8 +26,10 @@ constexpr std::string_view kMagic = "HOTMESH-CHECKPOINT\n";
 /// Version 2 holds the pieces of a split increment left (`split_pieces`) where version 1 held
 /// every step left (`remaining`, 31 bytes per increment of the run). Version 3 appends the s
 /// and face of each projection hint (surfaces' parameters) after version 2's arrays, which hold
-/// t, with a checksum of their own. All are read.
-constexpr int kVersion = 3;
+/// t, with a checksum of their own. Version 4 appends the mesh at the start of the last
+/// accepted step (the predictor's secant; none in a checkpoint of an older version, whose
+/// resumed run then predicts its first increment from the undeformed mesh). All are read.
+constexpr int kVersion = 4;
 constexpr int kOldestVersion = 1;
 constexpr std::string_view kKind = "checkpoint file";
 
@@ -154,6 +156,13 @@ std::uint64_t arrays_hash(const std::vector<geometry::Vec3>& points, const std::
   return h;
 }
 
+/// The hash of the array version 4 appends: the previous points.
+std::uint64_t points_hash(const std::vector<geometry::Vec3>& points) {
+  std::uint64_t h = detail::kFnvOffset;
+  detail::hash_words(h, points.data(), points.size() * sizeof(geometry::Vec3));
+  return h;
+}
+
 /// The hash of the arrays version 3 appends: the hints' s and face.
 std::uint64_t surface_hints_hash(const HintArrays& hints) {
   std::uint64_t h = detail::kFnvOffset;
@@ -264,8 +273,11 @@ CheckpointOrigin checkpoint_origin(const Case& c, const mesh::Mesh& mesh, std::v
   return {c.file.string(), mesh_fingerprint(mesh), std::move(inputs)};
 }
 
-void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin& origin,
-                      const deform::MotionCheckpoint& s) {
+namespace {
+
+/// The checkpoint's JSON header as text. (The JSON is gone before the file is written: its
+/// destructor allocates, and nothing may fail once the checkpoint is in place.)
+std::string checkpoint_header(const CheckpointOrigin& origin, const deform::MotionCheckpoint& s) {
   json header{{"format_version", kVersion},
               {"hotmesh_version", HOTMESH_IO_VERSION},
               {"case", origin.case_file},
@@ -277,6 +289,8 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin&
               {"increments", s.increments},
               {"finished_increments", s.finished_increments},
               {"lambda", s.lambda},
+              {"previous_lambda", s.previous_lambda},
+              {"previous_nodes", s.previous_points.size()},
               {"split_pieces", json::array()},
               {"records", json::array()},
               {"timings", timings_json(s.timings)}};
@@ -285,12 +299,20 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin&
     header["split_pieces"].push_back({step.increment, step.lambda_begin, step.lambda_end, step.split_depth});
   }
   for (const auto& r : s.records) header["records"].push_back(record_json(r));
+  return header.dump();
+}
+
+}  // namespace
+
+void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin& origin,
+                      const deform::MotionCheckpoint& s) {
+  const std::string header = checkpoint_header(origin, s);
 
   // Sliding nodes as arrays (ids, targets, hints' t, s and face), written without copying the points.
   const auto count = [](std::size_t n) { return static_cast<std::uint64_t>(n); };
   AtomicFile file(path);
   std::ostream& out = file.stream();
-  detail::write_header(out, kMagic, header.dump());
+  detail::write_header(out, kMagic, header);
   detail::write_array(out, s.points);
   const auto put = [&out](const void* data, std::size_t size) { out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size)); };
   const std::uint64_t n = count(s.sliding.size()), hints = n * kHints;
@@ -309,6 +331,9 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointOrigin&
   put(h.face.data(), h.face.size() * sizeof(std::int32_t));
   const std::uint64_t surface_hash = surface_hints_hash(h);
   put(&surface_hash, sizeof surface_hash);
+  detail::write_array(out, s.previous_points);
+  const std::uint64_t previous_hash = points_hash(s.previous_points);
+  put(&previous_hash, sizeof previous_hash);
   file.commit();
 }
 
@@ -329,7 +354,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& 
   detail::BinaryReader in(bytes, path, std::string(kKind));
   const json header = parse_header(in, path);
   Checkpoint k;
-  std::uint64_t nodes = 0, sliding = 0;
+  std::uint64_t nodes = 0, sliding = 0, previous_nodes = 0;
   int version = 0;
   try {
     k.info = info_from_json(header);
@@ -346,6 +371,11 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& 
     s.increments = k.info.increments;
     s.finished_increments = k.info.finished_increments;
     s.lambda = k.info.lambda;
+    if (version >= 4) {
+      s.previous_lambda = header.at("previous_lambda").get<double>();
+      previous_nodes = detail::integer_value<std::uint64_t>(header.at("previous_nodes"));
+      if (previous_nodes != 0 && previous_nodes != nodes) throw std::runtime_error("previous_nodes is neither 0 nor nodes");
+    }
     // Version 1 listed the whole increments left too: they follow from finished_increments.
     // (Its run maxima, max_normal_slip and max_sliding_projection_distance, follow from the
     // records.)
@@ -391,6 +421,12 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& 
   } else {  // curve parameters only
     hints.s.assign(hints.t.size(), 0.0);
     hints.face.assign(hints.t.size(), 0);
+  }
+  if (version >= 4) {
+    k.state.previous_points = in.array<geometry::Vec3>(previous_nodes);
+    std::uint64_t previous_hash = 0;
+    in.read(&previous_hash, sizeof previous_hash);
+    intact = intact && previous_hash == points_hash(k.state.previous_points);
   }
   k.state.sliding.resize(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {

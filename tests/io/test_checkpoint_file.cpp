@@ -43,6 +43,9 @@ deform::MotionCheckpoint some_state(const mesh::Mesh& mesh) {
   s.split_pieces = {{3, 0.3125, 0.34375, 2}, {3, 0.34375, 0.375, 2}};
   s.points = mesh.points;
   for (auto& p : s.points) p = (1.0 + 1e-13) * p + geometry::Vec3{0.1, -0.2, 0.0};
+  s.previous_points = mesh.points;
+  for (auto& p : s.previous_points) p = (1.0 - 1e-13) * p + geometry::Vec3{0.05, -0.1, 0.0};
+  s.previous_lambda = 0.25;
   s.sliding = {{3, {0.5, 1.0 / 3.0, 0.0}, {{{.t = 0.25}, geometry::kNoHint, {.t = 0.0, .s = -0.5, .face = 4}}}},
                {7, {1.0, 2.0, 3.0}, {{{.t = 1.0}, {.t = 2.0, .s = 0.75, .face = 1}, {.t = 3.0}}}}};
   deform::IncrementRecord rejected;
@@ -92,6 +95,10 @@ TEST(CheckpointFile, RoundTripKeepsEveryFieldBitForBit) {
   EXPECT_TRUE(same_bits(s.split_pieces[1].lambda_begin, 0.34375));
   ASSERT_EQ(s.points.size(), expected.points.size());
   EXPECT_EQ(std::memcmp(s.points.data(), expected.points.data(), s.points.size() * sizeof(geometry::Vec3)), 0);
+  ASSERT_EQ(s.previous_points.size(), expected.previous_points.size());  // the predictor's secant
+  EXPECT_EQ(std::memcmp(s.previous_points.data(), expected.previous_points.data(),
+                        s.previous_points.size() * sizeof(geometry::Vec3)), 0);
+  EXPECT_TRUE(same_bits(s.previous_lambda, 0.25));
   ASSERT_EQ(s.sliding.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(s.sliding[i].node, expected.sliding[i].node);
@@ -220,14 +227,17 @@ TEST(CheckpointFile, DamagedOrForeignFilesAreRefused) {
     }
   };
   std::string flipped = good;
-  flipped[flipped.size() - 20] ^= 0x01;  // a bit of a sliding node's hints
+  flipped[flipped.size() - 20] ^= 0x01;  // a bit of a previous point
   refused(flipped, "does not match its checksum");
+  std::string hint = good;
+  hint[hint.size() - 20 - 8 - 3 * 8 * mesh.node_count()] ^= 0x01;  // a bit of a sliding node's hints
+  refused(hint, "does not match its checksum");
   refused(good.substr(0, good.size() - 9), "damaged");
   refused(good.substr(0, 30), "cut short");
   refused("hello", "not a hotmesh checkpoint file");
   std::string version = good;
-  version.replace(version.find("\"format_version\":3"), 18, "\"format_version\":7");
-  refused(version, "checkpoint format 7 is not one this hotmesh reads (1 to 3)");
+  version.replace(version.find("\"format_version\":4"), 18, "\"format_version\":7");
+  refused(version, "checkpoint format 7 is not one this hotmesh reads (1 to 4)");
   EXPECT_THROW(read_checkpoint_info(dir / "bad.hmc"), InputError);
 }
 

@@ -38,14 +38,19 @@ inline CheckpointParts checkpoint_parts(const std::filesystem::path& path) {
           bytes.substr(header_at + static_cast<std::size_t>(length))};
 }
 
-/// Rewrites a checkpoint (format 3) in place as hotmesh wrote it in format 1, before issue 18:
+/// Rewrites a checkpoint (format 4) in place as hotmesh wrote it in format 1, before issue 18:
 /// `remaining` listed every step left, the pieces of a split increment and then each whole
 /// increment to N, and the header carried the run's maxima (since derived from the records);
 /// the hints' s and face, which format 3 appends to the arrays (two counts, 12 bytes per hint
-/// and a checksum), were not there.
+/// and a checksum), and the previous points, which format 4 appends (a count, the points and a
+/// checksum), were not there.
 inline void rewrite_as_checkpoint_format_1(const std::filesystem::path& path) {
   auto [header, arrays] = checkpoint_parts(path);
-  ASSERT_EQ(header["format_version"], 3);
+  ASSERT_EQ(header["format_version"], 4);
+  const std::size_t previous = header["previous_nodes"].get<std::size_t>();
+  arrays.resize(arrays.size() - (2 * sizeof(std::uint64_t) + previous * 3 * sizeof(double)));
+  header.erase("previous_nodes");
+  header.erase("previous_lambda");
   const std::size_t hints = 3 * header["sliding_nodes"].get<std::size_t>();
   arrays.resize(arrays.size() - (3 * sizeof(std::uint64_t) + hints * (sizeof(double) + sizeof(std::int32_t))));
   const int n = header["increments"], done = header["finished_increments"];

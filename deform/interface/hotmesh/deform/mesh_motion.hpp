@@ -230,6 +230,10 @@ struct MotionCheckpoint {
   double lambda = 0.0;               ///< stage of `points`
   std::vector<MotionStep> split_pieces;  ///< pieces of increment finished_increments + 1 left, in order
   std::vector<Vec3> points;          ///< the mesh at stage `lambda`
+  /// The mesh at the start of the last accepted step, at stage `previous_lambda` (the
+  /// predictor's secant, SolverOptions::predictor); empty before the first.
+  std::vector<Vec3> previous_points;
+  double previous_lambda = 0.0;
   std::vector<SlidingState> sliding;  ///< in the order of the set-up
   std::vector<IncrementRecord> records;  ///< every attempt so far, as MotionResult::increments
   MotionTimings timings;             ///< spent so far
