@@ -145,21 +145,20 @@ HintArrays hint_arrays(const std::vector<deform::SlidingState>& sliding) {
   return a;
 }
 
-/// The hash of a checkpoint's arrays of version 2, in file order (the hints' t only).
-std::uint64_t arrays_hash(const std::vector<geometry::Vec3>& points, const std::vector<deform::SlidingState>& sliding,
-                          const HintArrays& hints) {
-  std::uint64_t h = detail::kFnvOffset;
-  detail::hash_words(h, points.data(), points.size() * sizeof(geometry::Vec3));
-  for (const auto& s : sliding) detail::hash_words(h, &s.node, sizeof s.node);
-  for (const auto& s : sliding) detail::hash_words(h, &s.target, sizeof s.target);
-  detail::hash_words(h, hints.t.data(), hints.t.size() * sizeof(double));
-  return h;
-}
-
-/// The hash of the array version 4 appends: the previous points.
+/// The hash of an array of points: the previous points that version 4 appends.
 std::uint64_t points_hash(const std::vector<geometry::Vec3>& points) {
   std::uint64_t h = detail::kFnvOffset;
   detail::hash_words(h, points.data(), points.size() * sizeof(geometry::Vec3));
+  return h;
+}
+
+/// The hash of a checkpoint's arrays of version 2, in file order (the hints' t only).
+std::uint64_t arrays_hash(const std::vector<geometry::Vec3>& points, const std::vector<deform::SlidingState>& sliding,
+                          const HintArrays& hints) {
+  std::uint64_t h = points_hash(points);
+  for (const auto& s : sliding) detail::hash_words(h, &s.node, sizeof s.node);
+  for (const auto& s : sliding) detail::hash_words(h, &s.target, sizeof s.target);
+  detail::hash_words(h, hints.t.data(), hints.t.size() * sizeof(double));
   return h;
 }
 
