@@ -170,6 +170,7 @@ TEST_F(Processes, OneTwoAndFourRanksMoveTheSectorAlike) {
 /// A job of two ranks killed after its second increment resumes in one process (the
 /// checkpoint knows nothing of the partition) and ends where an uninterrupted run does.
 TEST_F(Processes, AKilledJobResumesOnAnotherNumberOfRanks) {
+  if (test::under_sanitizers()) GTEST_SKIP() << "a minute under the sanitizers; DeformResume checks the resume's memory";
   const fs::path out = *dir_ / "out-killed";
   const auto killed = deform(2, out, "", {.kill_after_checkpoint = 2});  // rank 0, which writes the checkpoints
   EXPECT_NE(killed.exit_code, 0) << killed.output;
