@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -37,7 +38,7 @@ double segment_distance(Point2 p, Point2 a, Point2 b) {
 
 /// Distance from p to the polyline through the deflected nodes of a table (in its node order).
 double distance_to_deflected(Point2 p, const geometry::DeflectionSamples& s) {
-  double d = INFINITY;
+  double d = std::numeric_limits<double>::infinity();
   for (std::size_t j = 0; j + 1 < s.size(); ++j) {
     const auto at = [&](std::size_t k) {
       return Point2{s.points[k].x + s.deflections[k].x, s.points[k].y + s.deflections[k].y};

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <functional>
 #include <random>
@@ -288,7 +289,7 @@ TEST(SurfaceFit, BadOptionsAndSamplesOutsideTheDomainAreRefused) {
   EXPECT_THROW(fit_surface_field(samples, {0.0, 0.5, 0.0, 1.0}), std::invalid_argument);
   EXPECT_THROW(fit_surface_field(samples, {0.0, 0.0, 0.0, 1.0}), std::invalid_argument);
   auto infinite = samples;
-  infinite[3].value.y = INFINITY;
+  infinite[3].value.y = std::numeric_limits<double>::infinity();
   EXPECT_THAT([&] { fit_surface_field(infinite, kUnit); }, ::testing::ThrowsMessage<InputError>(HasSubstr("node 4")));
 }
 

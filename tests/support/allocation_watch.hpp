@@ -10,7 +10,9 @@
 #include <cstdlib>
 #include <new>
 
-#if defined(__SANITIZE_ADDRESS__)
+#include "sanitizer_build.hpp"
+
+#if HOTMESH_TEST_UNDER_ASAN
 #define HOTMESH_WATCH_ALLOCATIONS 0
 #else
 #define HOTMESH_WATCH_ALLOCATIONS 1

@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "sanitizer_build.hpp"
+
 namespace hotmesh::test {
 
 struct Faults {
@@ -25,16 +27,11 @@ std::string mpirun_fault_options(const Faults& faults);
 /// before any preloaded library. (GCC's runtime is a shared library, which the test library
 /// comes before.)
 constexpr bool allocation_faults_reach_hotmesh() {
-#if defined(__clang__) && defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  constexpr bool clang_address_sanitizer = true;
+#if defined(__clang__)
+  return !HOTMESH_TEST_UNDER_ASAN;
 #else
-  constexpr bool clang_address_sanitizer = false;
+  return true;
 #endif
-#else
-  constexpr bool clang_address_sanitizer = false;
-#endif
-  return !clang_address_sanitizer;
 }
 
 }  // namespace hotmesh::test

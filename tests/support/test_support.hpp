@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "hotmesh/mesh/mesh.hpp"
+#include "sanitizer_build.hpp"
 
 namespace hotmesh::test {
 
@@ -28,13 +29,7 @@ std::filesystem::path data_path(std::string_view name);  ///< tests/data/<name>
 /// Whether this test program runs under AddressSanitizer: the numerical comparisons of the
 /// larger cases take minutes there, and the sanitizer build runs smaller ones that take the
 /// same code paths.
-constexpr bool under_sanitizers() {
-#if defined(__SANITIZE_ADDRESS__)
-  return true;
-#else
-  return false;
-#endif
-}
+constexpr bool under_sanitizers() { return HOTMESH_TEST_UNDER_ASAN != 0; }
 std::string read_text(const std::filesystem::path& path);
 void write_text(const std::filesystem::path& path, std::string_view text);
 
