@@ -10,9 +10,13 @@
 # Exits non-zero if a target crashed; the input that crashed it is kept in
 # build-fuzz/fuzz/findings/<target>/ (crash-*, leak-*, timeout-*, oom-*), and
 # `build-fuzz/fuzz/fuzz_<target> <that file>` runs it again.
-# Usage: scripts/fuzz.sh [-j N] [--hotmesh EXE] [SECONDS] [TARGET...]   (all targets by default)
+# Usage: scripts/fuzz.sh [-j N] [--hotmesh EXE] [--build DIR] [SECONDS] [TARGET...]
+#                  (all targets by default)
 #   --hotmesh EXE  makes the restart and checkpoint seeds with this hotmesh (a Release build is
 #                  much faster than the sanitizer build that is made otherwise)
+#   --build DIR    builds the targets in DIR, a build folder already configured with clang and
+#                  -DHOTMESH_FUZZ=ON (scripts/test.sh's sanitizer build, which has the tests
+#                  too), instead of configuring build-fuzz/
 set -euo pipefail
 
 # The whole script is one function, read before it runs, and the line that calls it also
@@ -25,12 +29,17 @@ main() {
   parallel=1
   seed_hotmesh=""
   targets=()
-  usage="usage: scripts/fuzz.sh [-j N] [--hotmesh EXE] [SECONDS] [TARGET...]   targets: ${all_targets[*]}"
+  build=build-fuzz
+  configure=1
+  usage="usage: scripts/fuzz.sh [-j N] [--hotmesh EXE] [--build DIR] [SECONDS] [TARGET...]   targets: ${all_targets[*]}"
   while (($#)); do
     case "$1" in
       -j) [[ ${2:-} =~ ^[1-9][0-9]*$ ]] || { echo "$usage" >&2; exit 2; }; parallel=$2; shift ;;
       --hotmesh) [[ -x ${2:-} ]] || { echo "fuzz.sh: --hotmesh needs an executable, got '${2:-}'" >&2; exit 2; }
                  seed_hotmesh=$(realpath "$2"); shift ;;
+      --build) grep -qs '^HOTMESH_FUZZ:BOOL=ON' "${2:-}/CMakeCache.txt" ||
+                 { echo "fuzz.sh: --build needs a build folder configured with -DHOTMESH_FUZZ=ON, got '${2:-}'" >&2; exit 2; }
+               build=$2; configure=0; shift ;;
       *) if [[ "$1" =~ ^[0-9]+$ ]]; then
            seconds=$1
          elif [[ " ${all_targets[*]} " == *" $1 "* ]]; then
@@ -44,7 +53,6 @@ main() {
   done
   ((${#targets[@]})) || targets=("${all_targets[@]}")
 
-  build=build-fuzz
   out=$build/fuzz
   jobs=$(nproc)
   if ! command -v clang++ >/dev/null || ! command -v gmsh >/dev/null; then
@@ -53,9 +61,11 @@ main() {
   fi
 
   echo "== hotmesh: fuzz targets (clang, libFuzzer, ASan + UBSan) in $build/"
-  cmake -S . -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
-        -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O2" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=ON -DHOTMESH_WERROR=ON \
-        -DHOTMESH_FUZZ=ON -DHOTMESH_TESTS=OFF >/dev/null
+  if ((configure)); then
+    cmake -S . -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
+          -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O2" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=ON -DHOTMESH_WERROR=ON \
+          -DHOTMESH_FUZZ=ON -DHOTMESH_TESTS=OFF -DHOTMESH_BENCH=OFF >/dev/null
+  fi
   if [[ -n $seed_hotmesh ]]; then
     cmake --build "$build" -j "$jobs" --target fuzzers
     hotmesh=$seed_hotmesh
