@@ -54,7 +54,7 @@ Call call(int i, const std::string& model, const std::string& curve) {
 /// would otherwise grow the resident memory by up to 256 MiB and hide what the server keeps.
 std::map<std::string, std::string> server_environment() {
   std::map<std::string, std::string> environment;
-#if defined(__SANITIZE_ADDRESS__)
+#if HOTMESH_TEST_UNDER_ASAN
   const char* options = std::getenv("ASAN_OPTIONS");
   environment["ASAN_OPTIONS"] = std::string(options ? options : "") + ":quarantine_size_mb=8";
 #endif

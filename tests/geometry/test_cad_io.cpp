@@ -10,7 +10,8 @@
 #include <stdexcept>
 #include <string>
 
-#if defined(__SANITIZE_ADDRESS__)
+#include "sanitizer_build.hpp"
+#if HOTMESH_TEST_UNDER_ASAN
 #include <sanitizer/lsan_interface.h>
 #endif
 
@@ -228,7 +229,7 @@ TEST(CadFiles, DamagedReferencesAreUserErrorsNotCrashes) {
     damaged.replace(at, c.line.size(), c.damaged);
     const auto path = dir / (std::string(c.name) + ".step");
     hotmesh::test::write_text(path, damaged);
-#if defined(__SANITIZE_ADDRESS__)
+#if HOTMESH_TEST_UNDER_ASAN
     // What OpenCASCADE abandons when it recovers from a fault deep in a reference cycle was
     // allocated under stacks cut off before any frame tests/lsan.supp names.
     const __lsan::ScopedDisabler abandoned;
