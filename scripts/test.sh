@@ -3,9 +3,10 @@
 #   1. installs missing Debian packages (scripts/install-deps.sh),
 #   2. builds Release with warnings as errors in build/ and runs every test with ctest,
 #   3. builds with clang, AddressSanitizer + UndefinedBehaviorSanitizer, in build-sanitizers/:
-#      the tests, hotmesh and the fuzz targets in one build, runs the tests again (those that
-#      ask for it leave their larger cases to the Release build) and each fuzz target for 30 s,
-#      as many at a time as there are cores (scripts/fuzz.sh, docs/fuzzing.md).
+#      the tests, hotmesh and the fuzz targets in one build, runs the tests again (but those
+#      of tests/sanitizer_exclusions.txt, whose larger cases the Release build has run) and
+#      each fuzz target for 30 s, as many at a time as there are cores (scripts/fuzz.sh,
+#      docs/fuzzing.md).
 # Exits non-zero on any failure. Usage: scripts/test.sh [--no-sanitizers] [--no-fuzz]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -33,9 +34,9 @@ ctest --test-dir build -j "$jobs" --output-on-failure --timeout 900
 
 if ((sanitizers || fuzz)); then
   phase "clang AddressSanitizer + UndefinedBehaviorSanitizer build: tests and fuzz targets"
-  # One build for both: every hotmesh library carries libFuzzer's coverage hooks too, which the
-  # tests do not call. -O1 and line tables only (-g1: file and line in every report). No
-  # benchmarks: they are timed in Release only.
+  # One build for both: the libraries the fuzz targets read through carry libFuzzer's coverage
+  # hooks too (CMakeLists.txt), the rest only the sanitizers. -O1 and line tables only (-g1:
+  # file and line in every report). No benchmarks: they are timed in Release only.
   cmake -S . -B build-sanitizers -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
         -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=ON \
         -DHOTMESH_WERROR=ON -DHOTMESH_FUZZ=ON -DHOTMESH_TESTS=$((sanitizers ? 1 : 0)) -DHOTMESH_BENCH=OFF
