@@ -1,17 +1,18 @@
-// hotmesh benchmark: the two linear solvers of the Newton steps on whole motions — the
-// paper's Jacobi-PCG against the system assembled in nodal frames and solved with
-// algebraic multigrid (PETSc's GAMG), each with the fixed inner tolerance and with the
-// Eisenstat-Walker forcing term (inexact Newton).
+// hotmesh benchmark: the linear solvers of the Newton steps on whole motions — the paper's
+// Jacobi-PCG against the system assembled in nodal frames and solved with algebraic multigrid
+// (PETSc's GAMG) or with its sparse Cholesky factors (`direct`), each with the fixed inner
+// tolerance and with the Eisenstat-Walker forcing term (inexact Newton).
 //
 //   ninja -C build bench_linear_solvers && build/bench/bench_linear_solvers [CASE.yaml ...] [--runs 3]
-//                                          [--threads 1] [--hypre]
+//       [--threads 1] [--hypre] [--linear jacobi-pcg,amg,direct] [--forcing fixed,eisenstat-walker]
 //
 // Without cases: the samples ramp2d and shear2d, with and without sliding. scripts/bench.sh adds
-// stator-well sectors written by make_stator_well. Each case runs as `hotmesh deform` would
+// the stator-well sample and the sliding ramp refined by make_ramp2d --refine. --linear and
+// --forcing keep the solvers and forcing terms named (default: all of them). Each case runs as `hotmesh deform` would
 // (read and check the case, rebuild the deflected walls, deform::move_mesh) without writing the
 // outputs, with every solver and forcing; prints a Markdown table of medians over the runs:
-// the motion's time split into assembly (element matrices, and for amg the matrix in frames),
-// preconditioner (Jacobi blocks, or the multigrid hierarchy), solve (the CG iterations) and
+// the motion's time split into assembly (element matrices, and for amg and direct the matrix in
+// frames), preconditioner (Jacobi blocks, the multigrid hierarchy, or the factorization), solve (the CG iterations) and
 // projection (sliding nodes), the Newton and linear iteration totals, the time per linear
 // iteration, and the other load (the mean number of cores other processes kept busy).
 #include <omp.h>
@@ -80,10 +81,23 @@ Run run_case(const io::Case& base, const io::LoadedMesh& loaded, const io::CaseS
 
 }  // namespace
 
+/// Whether `list` (comma-separated) names `name`; an empty list names everything.
+bool named(const std::string& list, std::string_view name) {
+  if (list.empty()) return true;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t end = list.find(',', start);
+    if (std::string_view(list).substr(start, end - start) == name) return true;
+    if (end == std::string::npos) return false;
+    start = end + 1;
+  }
+}
+
 int main(int argc, char** argv) {
   std::vector<std::string> files;
   int runs = 3, threads = 1;
   bool hypre = false;
+  std::string linear_list, forcing_list;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
     if (arg == "--runs" && i + 1 < argc) {
@@ -92,10 +106,16 @@ int main(int argc, char** argv) {
       threads = std::max(1, std::atoi(argv[++i]));
     } else if (arg == "--hypre") {
       hypre = true;
+    } else if (arg == "--linear" && i + 1 < argc) {
+      linear_list = argv[++i];
+    } else if (arg == "--forcing" && i + 1 < argc) {
+      forcing_list = argv[++i];
     } else if (!arg.starts_with("-")) {
       files.emplace_back(arg);
     } else {
-      std::fprintf(stderr, "usage: bench_linear_solvers [CASE.yaml ...] [--runs N] [--threads N] [--hypre]\n");
+      std::fprintf(stderr,
+                   "usage: bench_linear_solvers [CASE.yaml ...] [--runs N] [--threads N] [--hypre] "
+                   "[--linear jacobi-pcg,amg,direct] [--forcing fixed,eisenstat-walker]\n");
       return 2;
     }
   }
@@ -107,9 +127,17 @@ int main(int argc, char** argv) {
   }
   std::vector<Solver> solvers;
   for (const auto forcing : {deform::ForcingTerm::fixed, deform::ForcingTerm::eisenstat_walker}) {
-    solvers.push_back({deform::LinearSolverKind::jacobi_pcg, deform::AmgPackage::gamg, forcing});
-    solvers.push_back({deform::LinearSolverKind::amg, deform::AmgPackage::gamg, forcing});
-    if (hypre) solvers.push_back({deform::LinearSolverKind::amg, deform::AmgPackage::hypre, forcing});
+    if (!named(forcing_list, deform::to_string(forcing))) continue;
+    for (const auto linear : {deform::LinearSolverKind::jacobi_pcg, deform::LinearSolverKind::amg,
+                              deform::LinearSolverKind::direct}) {
+      if (!named(linear_list, deform::to_string(linear))) continue;
+      solvers.push_back({linear, deform::AmgPackage::gamg, forcing});
+      if (linear == deform::LinearSolverKind::amg && hypre) solvers.push_back({linear, deform::AmgPackage::hypre, forcing});
+    }
+  }
+  if (solvers.empty()) {
+    std::fprintf(stderr, "bench_linear_solvers: --linear and --forcing leave no solver to run\n");
+    return 2;
   }
   try {
     omp_set_num_threads(threads);

@@ -33,7 +33,7 @@ if ((paper)); then benches=(bench_stator_solve); fi
 
 echo "== hotmesh: Release build of the benchmarks (warnings are errors)"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DHOTMESH_WERROR=ON >/dev/null
-cmake --build build -j "$(nproc)" --target "${benches[@]}"
+cmake --build build -j "$(nproc)" --target "${benches[@]}" make_ramp2d  # make_ramp2d: refined ramps (linear_solvers)
 
 compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' build/CMakeCache.txt)
 flags=$(sed -n 's/^CMAKE_CXX_FLAGS_RELEASE:[A-Z]*=//p' build/CMakeCache.txt)
@@ -65,7 +65,8 @@ args_for() {
 }
 
 # The linear solvers: the 2D samples, three runs each, then the stator-well sample (20 000 hex
-# cells) once.
+# cells) once, then amg against direct on the sliding ramp refined 2 and 4 times (9 120 and
+# 36 480 cells), once: where `linear: auto` goes from one to the other (kDirectCells).
 linear_solvers() {
   if ((quick)); then
     build/bench/bench_linear_solvers --runs 1
@@ -74,6 +75,13 @@ linear_solvers() {
   build/bench/bench_linear_solvers --runs 3
   echo
   build/bench/bench_linear_solvers --runs 1 samples/stator_well/case_small.yaml
+  for refine in 2 4; do
+    local folder="build/bench-ramp2d-x$refine"
+    build/samples/ramp2d/make_ramp2d --refine "$refine" "$folder" >/dev/null
+    cp samples/ramp2d/ramp2d-sliding.yaml "$folder/"
+    echo
+    build/bench/bench_linear_solvers --runs 1 --linear amg,direct --forcing fixed "$folder/ramp2d-sliding.yaml"
+  done
 }
 
 if ((paper)); then

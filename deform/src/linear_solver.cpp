@@ -13,12 +13,14 @@ std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& option
 
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks,
                                                  const StiffnessOperator* k) {
-  if (options.linear == LinearSolverKind::amg) return make_amg_solver(options, ranks);
+  if (!solves_with_node_blocks(options)) return make_assembled_solver(options, ranks);
   if (!k) throw std::invalid_argument("make_linear_solver: jacobi-pcg needs K in node blocks");
   return make_jacobi_pcg_solver(options, *k);
 }
 
-bool solves_with_node_blocks(const SolverOptions& options) { return options.linear != LinearSolverKind::amg; }
+bool solves_with_node_blocks(const SolverOptions& options) {
+  return options.linear != LinearSolverKind::amg && options.linear != LinearSolverKind::direct;
+}
 
 double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d) {
   double sum = 0.0;

@@ -6,7 +6,8 @@
 //  - jacobi-pcg: the paper's PCG on P T^T K T P with nodal Jacobi (section 3), K in node
 //    blocks (stiffness_operator.hpp);
 //  - amg: the same operator assembled in nodal frames (nodal_frames.hpp) into a PETSc matrix,
-//    solved by CG with algebraic multigrid (petsc_solver.cpp).
+//    solved by CG with algebraic multigrid (petsc_solver.cpp);
+//  - direct: that matrix's sparse Cholesky factors as CG's preconditioner (petsc_solver.cpp).
 // Both see the same system and give the same p to the solver tolerance (tests/deform).
 #pragma once
 
@@ -89,12 +90,12 @@ class LinearSolver {
 double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d);
 
 /// The solver SolverOptions::linear names, for the processes of `ranks`, with K in the node
-/// blocks of `k` (which jacobi-pcg needs: std::invalid_argument without; amg assembles its own
-/// matrix and ignores it). `amg` initialises PETSc (and MPI) on first use.
+/// blocks of `k` (which jacobi-pcg needs: std::invalid_argument without; amg and direct
+/// assemble their own matrix and ignore it). They initialise PETSc (and MPI) on first use.
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks,
                                                  const StiffnessOperator* k);
 /// Whether that solver works on K in node blocks (jacobi-pcg) or assembles the element matrices
-/// into a matrix of its own (amg).
+/// into a matrix of its own (amg, direct).
 bool solves_with_node_blocks(const SolverOptions& options);
 
 /// P T^T K T P: the stiffness restricted to the admissible subspace — periodic slaves expanded

@@ -1,4 +1,4 @@
-// hotmesh deform: the assembled linear solver on PETSc (SolverOptions::linear = amg).
+// hotmesh deform: the assembled linear solvers on PETSc (SolverOptions::linear = amg or direct).
 //
 // Per Newton step, in one pass over the cells (ElementAssembler::assemble, which the Newton
 // loop's newton_residual() calls): every K_e is computed at the current points (not stored),
@@ -9,6 +9,15 @@
 // hotmesh's CG (pcg.hpp, as Jacobi-PCG) preconditioned by PETSc's algebraic multigrid solves
 // K~ p~ = r~ from p~ = 0 on each rank's rows, stopping on the norm the system asks for, and
 // p = T p~. PCGAMG gets the translations written in the frames as near-null space.
+//
+// `direct` runs the same CG with a sparse Cholesky factorization of K~ as its preconditioner
+// (CHOLMOD in one process, MUMPS on several), factorized at every Newton step: exact, so CG
+// stops after one iteration, and the ordering and symbolic factorization of the fixed sparsity
+// are kept from one step to the next, only the numbers are factorized again. A factorization
+// kept for later steps was a poor preconditioner (50 to 350 CG iterations a solve on the
+// sliding ramp, against 1). On 2D meshes the factors stay small (nested dissection: about
+// 45 per row on the ramp's 4 670 rows), in 3D they grow as N^4/3 and their cost as N^2:
+// `linear: auto` weighs that (choose_linear_solver()).
 //
 // The multigrid hierarchy is kept from one Newton step to the next and from one increment to
 // the next (PCSetReusePreconditioner) while it serves: K changes little between them, an old
@@ -146,11 +155,15 @@ class RowsOperator final : public LinearOperator {
 
 // --- The solver ---------------------------------------------------------------------------
 
-class AmgSolver final : public LinearSolver, public ElementAssembler {
+class AssembledSolver final : public LinearSolver, public ElementAssembler {
  public:
-  AmgSolver(const SolverOptions& options, const parallel::RankExchange& ranks)
-      : options_(options), job_{ranks.rank(), ranks.ranks()} {
+  AssembledSolver(const SolverOptions& options, const parallel::RankExchange& ranks)
+      : options_(options), job_{ranks.rank(), ranks.ranks()}, direct_(options.linear == LinearSolverKind::direct) {
     parallel::start_petsc();
+    if (direct_) {
+      reuse_ = AmgReuse::none;  // a fresh factorization at every Newton step (above)
+      return;
+    }
     if (options_.amg == AmgPackage::gamg) {
       // Gauss-Seidel smoothing on every level: in 3D one forward sweep before the coarse-grid
       // correction and one backward sweep after it, which keeps the V-cycle symmetric for CG
@@ -185,7 +198,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     if (options_.amg == AmgPackage::hypre && reuse_ == AmgReuse::interpolation) reuse_ = AmgReuse::none;  // gamg only
   }
 
-  ~AmgSolver() override {
+  ~AssembledSolver() override {
     if (pc_) PCDestroy(&pc_);
     if (to_all_) VecScatterDestroy(&to_all_);
     for (Vec* v : {&all_, &x_, &in_, &out_}) {
@@ -193,8 +206,8 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     }
     if (a_) MatDestroy(&a_);
   }
-  AmgSolver(const AmgSolver&) = delete;
-  AmgSolver& operator=(const AmgSolver&) = delete;
+  AssembledSolver(const AssembledSolver&) = delete;
+  AssembledSolver& operator=(const AssembledSolver&) = delete;
 
   void begin_increment() override { first_step_ = true; }
 
@@ -229,7 +242,11 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
       return result;
     }
     bool rebuild = must_rebuild();
-    set_up(s, rebuild, timings);
+    if (!set_up(s, rebuild, timings)) {  // no factorization: K~ is not positive definite
+      std::fill(p.begin(), p.end(), 0.0);
+      result.breakdown = true;
+      return result;
+    }
     PcgResult last;
     for (;;) {
       t = Clock::now();
@@ -275,10 +292,11 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
   }
 
   /// The multigrid of this step's matrix: rebuilt, or kept (PCSetReusePreconditioner; with
-  /// `interpolation` GAMG's aggregates and prolongators only).
-  void set_up(const ConstrainedSystem& s, bool rebuild, MotionTimings& timings) {
+  /// `interpolation` GAMG's aggregates and prolongators only); or its Cholesky factors (false
+  /// if the factorization failed).
+  bool set_up(const ConstrainedSystem& s, bool rebuild, MotionTimings& timings) {
     const auto t = Clock::now();
-    if (rebuild) set_near_null_space(a_, *frames_, *rows_, s.points);
+    if (rebuild && !direct_) set_near_null_space(a_, *frames_, *rows_, s.points);
     // A hierarchy built for an increment comes from a new PC, as in a new process: PCGAMG
     // carries state from one set-up into the next, and a run resumed from a checkpoint would
     // otherwise take other CG iterations than the uninterrupted run.
@@ -295,8 +313,13 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
       release_free_memory();  // the set-up's work space
       check(PCViewFromOptions(pc_, nullptr, "-pc_view"), "PCViewFromOptions");
     }
-    if (rebuild && options_.amg == AmgPackage::gamg && !one_sided_sweeps_ && !smoother_given_) make_sweeps_symmetric();
+    if (rebuild && !direct_ && options_.amg == AmgPackage::gamg && !one_sided_sweeps_ && !smoother_given_) {
+      make_sweeps_symmetric();
+    }
     timings.preconditioner += seconds_since(t);
+    PCFailedReason failed = PC_NOERROR;
+    check(PCGetFailedReason(pc_, &failed), "PCGetFailedReason");
+    return failed == PC_NOERROR;
   }
 
   /// A symmetric Gauss-Seidel sweep (forward and backward, each rank on its rows) before and
@@ -349,7 +372,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     // In 2D the one-sided sweeps doubled GAMG's CG iterations on the ramps' boundary layers
     // (sliding ramp 3 268 -> 7 274, and 25 % more time); in 3D they took as many as symmetric
     // sweeps (the sectors). So 2D keeps symmetric sweeps on both sides.
-    if (d == 2) one_sided_sweeps_ = false;
+    if (d == 2 || direct_) one_sided_sweeps_ = false;
     if (reuse_ == AmgReuse::automatic) {
       reuse_ = options_.amg == AmgPackage::hypre ? AmgReuse::none
                : cells.size() >= kAdaptiveReuseCells ? AmgReuse::adaptive
@@ -363,6 +386,10 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     rows_.emplace(*frames_, around, rank_of_cell, job_.count);
     order_.emplace(s.kernel, *frames_);
     a_ = create_frame_matrix(cells, around, *frames_, *rows_, job_);
+    if (direct_) {  // K~ = T^T K T: the factorizations read one triangle
+      check(MatSetOption(a_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+      check(MatSetOption(a_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+    }
     check(MatCreateVecs(a_, &x_, nullptr), "MatCreateVecs");
     if (job_.count > 1) check(VecScatterCreateToAll(x_, &to_all_, &all_), "VecScatterCreateToAll");
     PetscInt lo = 0, hi = 0;
@@ -423,12 +450,16 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
     return result;
   }
 
-  /// The multigrid preconditioner, options from PETSC_OPTIONS (prefix hotmesh_).
+  /// The multigrid preconditioner or the Cholesky factorization, options from PETSC_OPTIONS
+  /// (prefix hotmesh_).
   void create_pc() {
     if (pc_) check(PCDestroy(&pc_), "PCDestroy");
     check(PCCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a_)), &pc_), "PCCreate");
     check(PCSetOptionsPrefix(pc_, "hotmesh_"), "PCSetOptionsPrefix");
-    if (options_.amg == AmgPackage::gamg) {
+    if (direct_) {
+      check(PCSetType(pc_, PCCHOLESKY), "PCSetType");
+      check(PCFactorSetMatSolverType(pc_, job_.count > 1 ? MATSOLVERMUMPS : MATSOLVERCHOLMOD), "PCFactorSetMatSolverType");
+    } else if (options_.amg == AmgPackage::gamg) {
       check(PCSetType(pc_, PCGAMG), "PCSetType");
       check(PCGAMGSetType(pc_, PCGAMGAGG), "PCGAMGSetType");
       check(PCGAMGSetNSmooths(pc_, 1), "PCGAMGSetNSmooths");  // smoothed aggregation
@@ -454,6 +485,7 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
 
   SolverOptions options_;
   parallel::Processes job_;  ///< this rank, of how many
+  bool direct_ = false;      ///< Cholesky factors instead of a multigrid (`linear: direct`)
   std::vector<CellId> local_cells_;  ///< the cells whose element work this rank does
   AmgReuse reuse_ = AmgReuse::automatic;  ///< resolved by create()
   std::optional<NodalFrames> frames_;
@@ -480,8 +512,8 @@ class AmgSolver final : public LinearSolver, public ElementAssembler {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options, const parallel::RankExchange& ranks) {
-  return std::make_unique<AmgSolver>(options, ranks);
+std::unique_ptr<LinearSolver> make_assembled_solver(const SolverOptions& options, const parallel::RankExchange& ranks) {
+  return std::make_unique<AssembledSolver>(options, ranks);
 }
 
 std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const NodalFrames& frames,

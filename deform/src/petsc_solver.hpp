@@ -1,7 +1,8 @@
-// hotmesh deform (internal): the assembled linear solver (SolverOptions::linear = amg). The
-// system in nodal frames (nodal_frames.hpp) is assembled into a PETSc matrix with block size
-// d, preallocated once from the node graph, and solved by CG with algebraic multigrid (PCGAMG
-// with the rigid-body near-null space, or hypre's BoomerAMG). PETSc and MPI types stay in
+// hotmesh deform (internal): the assembled linear solvers (SolverOptions::linear = amg or
+// direct). The system in nodal frames (nodal_frames.hpp) is assembled into a PETSc matrix with
+// block size d, preallocated once from the node graph, and solved by CG with algebraic
+// multigrid (PCGAMG with the rigid-body near-null space, or hypre's BoomerAMG), or with its
+// sparse Cholesky factors (CHOLMOD, MUMPS). PETSc and MPI types stay in
 // petsc_solver.cpp and frame_matrix.hpp (the matrix); PETSc is initialised on first use, once
 // per process (hotmesh/parallel/processes.hpp), and finalised at exit.
 #pragma once
@@ -17,7 +18,7 @@ namespace hotmesh::deform::detail {
 
 /// With several processes in `ranks`, the matrix and the element work are distributed among them.
 /// K(n) is computed in its element pass (ElementAssembler).
-std::unique_ptr<LinearSolver> make_amg_solver(const SolverOptions& options, const parallel::RankExchange& ranks);
+std::unique_ptr<LinearSolver> make_assembled_solver(const SolverOptions& options, const parallel::RankExchange& ranks);
 
 /// For tests: K~ of the system in `frames` (updated by the caller), assembled into a PETSc
 /// matrix exactly as the amg solver does it, applied to x~ (MatMult). With `twice`, assembled

@@ -6,16 +6,20 @@
 // its corners A and B fall between mesh nodes. The mesh is strongly stretched towards the
 // lower wall, as a boundary-layer mesh would be.
 //
-// Run:   build/samples/ramp2d/make_ramp2d [OUTPUT_FOLDER]   (default: the current folder)
+// Run:   build/samples/ramp2d/make_ramp2d [--refine N] [OUTPUT_FOLDER]   (default: the current folder)
 // Writes ramp2d.msh (the undeformed mesh, Gmsh 4.1) and ramp.csv (the FEM deflection table
 // of the lower wall), and the same mesh with its quads split into triangles along a diagonal:
 // all of them (ramp2d-triangles.msh), or those above the 8 rows of quads on the lower wall
 // (ramp2d-hybrid.msh, a boundary layer of quads under triangles). The committed copies in
-// samples/ramp2d/ are this program's output.
+// samples/ramp2d/ are this program's output. With --refine N: ramp2d.msh N times finer in
+// both directions (first cell 0.001 h / N) and ramp.csv only, for the size benchmarks of the
+// linear solvers (scripts/bench.sh).
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -67,12 +71,28 @@ std::string deflection_table() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return hotmesh::samples::run_generator("make_ramp2d", argc, argv, [](const std::filesystem::path& folder) {
-    const auto xs = hotmesh::mesh::uniform_line(0.0, kLength, kCellsX);
-    const auto ys = hotmesh::mesh::stretched_line(0.0, kHeight, kCellsY, kFirstCellY);
+  int refine = 1;
+  if (argc > 2 && std::string_view(argv[1]) == "--refine") {
+    refine = std::atoi(argv[2]);
+    if (refine < 1 || refine > 64) {
+      std::fprintf(stderr, "make_ramp2d: --refine takes an integer from 1 to 64, got '%s'\n", argv[2]);
+      return 2;
+    }
+    argv[2] = argv[0];  // the rest as if without the option
+    argc -= 2;
+    argv += 2;
+  }
+  return hotmesh::samples::run_generator("make_ramp2d", argc, argv, [refine](const std::filesystem::path& folder) {
+    const auto xs = hotmesh::mesh::uniform_line(0.0, kLength, kCellsX * refine);
+    const auto ys = hotmesh::mesh::stretched_line(0.0, kHeight, kCellsY * refine, kFirstCellY / refine);
     const auto mesh = hotmesh::mesh::structured_quads(xs, ys, {"left", "right", "bottom", "top"});
     hotmesh::io::write_gmsh(folder / "ramp2d.msh", mesh);
     hotmesh::io::write_file_atomically(folder / "ramp.csv", deflection_table());
+    if (refine > 1) {
+      std::printf("wrote ramp2d.msh (refined %d times: %zu cells) and ramp.csv in %s\n", refine, mesh.cell_count(),
+                  folder.c_str());
+      return;
+    }
     // Cells run row by row from the lower wall up.
     std::vector<hotmesh::mesh::CellSplit> split(mesh.cell_count(), hotmesh::mesh::CellSplit::triangles);
     hotmesh::io::write_gmsh(folder / "ramp2d-triangles.msh", hotmesh::mesh::split_cells(mesh, split));

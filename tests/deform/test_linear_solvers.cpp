@@ -331,10 +331,17 @@ TEST_P(FramesIn, AmgElementPassGivesTheResidualAndMatrixOfTheNodeBlocks) {
   EXPECT_LE(max_difference(p_amg, p_jacobi), 1e-8 * max_abs(p_jacobi));
 }
 
-/// `linear: auto`: amg with several processes, for 2D meshes with a sliding wall and 3D meshes
-/// beyond kJacobiPcgCells cells; jacobi-pcg otherwise.
+/// `linear: auto`: amg with several processes, for 2D meshes with a sliding wall beyond
+/// kDirectCells cells and 3D meshes beyond kJacobiPcgCells cells; direct for the smaller 2D
+/// meshes with a sliding wall; jacobi-pcg otherwise.
 TEST(LinearSolverChoice, FollowsTheMeasuredRule) {
-  EXPECT_EQ(choose_linear_solver(2, 1000, true, 1).kind, LinearSolverKind::amg);
+  EXPECT_EQ(choose_linear_solver(2, 1000, true, 1).kind, LinearSolverKind::direct);
+  EXPECT_EQ(choose_linear_solver(2, kDirectCells, true, 1).kind, LinearSolverKind::direct);
+  EXPECT_EQ(choose_linear_solver(2, kDirectCells + 1, true, 1).kind, LinearSolverKind::amg);
+  EXPECT_EQ(choose_linear_solver(2, kDirectCells, true, 1).reason, "a 2D mesh with a sliding wall, at most 40 000 cells");
+  EXPECT_EQ(choose_linear_solver(2, kDirectCells + 1, true, 1).reason,
+            "a 2D mesh with a sliding wall, more than 40 000 cells");
+  EXPECT_EQ(choose_linear_solver(3, 1000, true, 1).kind, LinearSolverKind::jacobi_pcg);
   EXPECT_EQ(choose_linear_solver(2, 1000000, false, 1).kind, LinearSolverKind::jacobi_pcg);
   EXPECT_EQ(choose_linear_solver(2, 1000, false, 2).kind, LinearSolverKind::amg);
   EXPECT_EQ(choose_linear_solver(3, kJacobiPcgCells, true, 1).kind, LinearSolverKind::jacobi_pcg);
@@ -394,17 +401,63 @@ TEST_P(LinearSolverOn, SolvesTheSameStepAsJacobiPcg) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    GamgAndHypre, LinearSolverOn,
+    GamgHypreAndCholesky, LinearSolverOn,
     ::testing::Values(SolverCase{{2, false}, LinearSolverKind::amg, AmgPackage::gamg},
                       SolverCase{{3, false}, LinearSolverKind::amg, AmgPackage::gamg},
                       SolverCase{{2, false}, LinearSolverKind::amg, AmgPackage::hypre},
                       SolverCase{{3, false}, LinearSolverKind::amg, AmgPackage::hypre},
                       SolverCase{{2, true}, LinearSolverKind::amg, AmgPackage::gamg},
-                      SolverCase{{3, true}, LinearSolverKind::amg, AmgPackage::gamg}),
+                      SolverCase{{3, true}, LinearSolverKind::amg, AmgPackage::gamg},
+                      SolverCase{{2, false}, LinearSolverKind::direct, AmgPackage::gamg},
+                      SolverCase{{3, false}, LinearSolverKind::direct, AmgPackage::gamg},
+                      SolverCase{{2, true}, LinearSolverKind::direct, AmgPackage::gamg},
+                      SolverCase{{3, true}, LinearSolverKind::direct, AmgPackage::gamg}),
     [](const auto& param_info) {
       const SolverCase& c = param_info.param;
-      return cells_name(c.cells) + (c.amg == AmgPackage::gamg ? "Gamg" : "Hypre");
+      return cells_name(c.cells) + (c.linear == LinearSolverKind::direct ? "Direct"
+                                    : c.amg == AmgPackage::gamg         ? "Gamg"
+                                                                        : "Hypre");
     });
+
+/// `linear: direct`: the Cholesky factors of K~ are exact, so CG preconditioned by them stops
+/// after one iteration (two at most, for rounding) at a tolerance far below what Jacobi-PCG or
+/// a multigrid reaches in one; and again at a later Newton step of the same increment, where
+/// the matrix has changed (the factors are made anew, not kept).
+TEST_P(FramesIn, DirectSolverIsExactAtEveryNewtonStep) {
+  SectorSystem s(GetParam());
+  std::vector<double> rhs = random_vector(s.stiffness.size(), 6);
+  s.periodic.fold(rhs);
+  s.constraints.project(rhs);
+  SolverOptions options;
+  options.linear = LinearSolverKind::direct;
+  auto direct = detail::make_linear_solver(options, parallel::one_process(), nullptr);
+  ASSERT_NE(direct->assembler(), nullptr);
+  MotionTimings timings;
+  direct->begin_increment();
+  std::vector<double> p(rhs.size());
+  for (int step = 0; step < 2; ++step) {
+    SCOPED_TRACE(step);
+    const auto result = direct->solve(s.system(), rhs, p, {1e-10}, timings);
+    EXPECT_TRUE(result.converged);
+    EXPECT_LE(result.iterations, 2);
+    EXPECT_LE(result.reduction, 1e-10);
+    // The reference: the same system solved by Jacobi-PCG at its current points.
+    std::vector<double> reference(rhs.size());
+    SolverOptions jacobi_options;
+    auto jacobi = detail::make_linear_solver(jacobi_options, parallel::one_process(), &s.stiffness);
+    jacobi->begin_increment();
+    EXPECT_TRUE(jacobi->solve(s.system(), rhs, reference, {1e-11}, timings).converged);
+    EXPECT_LE(max_difference(p, reference), 1e-7 * max_abs(reference));
+    // The next Newton step: the mesh has moved by a fraction of p, K with it.
+    const auto d = static_cast<std::size_t>(s.dimension());
+    const double scale = 0.05 / max_abs(p);
+    for (std::size_t n = 0; n < s.points.size(); ++n) {
+      for (std::size_t i = 0; i < d; ++i) s.points[n][i] += scale * p[n * d + i];
+    }
+    s.stiffness.update(s.points);
+  }
+  EXPECT_GT(timings.preconditioner, 0.0);
+}
 
 /// Asked for the Newton norm (as Forcing asks for some solves), each solver stops on
 /// ||D^-1 r|| with the system's node stiffness D, not on the plain ||r||: with every

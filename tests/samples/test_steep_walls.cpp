@@ -89,7 +89,7 @@ TEST(RampSample, PrescribedRampCutsItsCornersBy0025h) {
 
 // Issue 20's targets with features (the sample cases, whose sliding walls hold their corners by
 // default): the wall within 0.002 h of the exact wall, no inverted cell, and a worst cell no
-// worse than sliding without features gives (ramp 0.52133, bump 0.61690). The corner pass
+// worse than sliding without features gives (bump 0.61690; the ramp's below). The corner pass
 // alone leaves 0.512 on the ramp (the node that takes corner A moves a whole foot cell, 0.037 h,
 // and the mesh line above it shears) and 0.610 on the bump; the repair of the cells it left
 // below the motion's worst cell restores them (deform/src/quality_repair.hpp).
@@ -101,11 +101,17 @@ TEST(StepSample, SlidingBumpWithFeaturesFollowsTheExactWallWithin0002h) {
   EXPECT_LE(run.wall_distance, 0.002 * kH);
 }
 
+// The ramp's worst cell is compared with the run without features by the same linear solver
+// (`auto` takes the exact factorization there: 0.521324 against 0.521299; amg's inexact steps
+// gave 0.52133 without features).
 TEST(RampSample, SlidingRampWithFeaturesFollowsTheExactWallWithin0002h) {
   if (test::under_sanitizers()) GTEST_SKIP() << "seconds in the Release build, far longer here; run there";
+  const auto paper = run_case(kRamp / "ramp2d-sliding-nofeatures.yaml", kRamp / "ramp.csv");
   const auto run = run_case(kRamp / "ramp2d-sliding.yaml", kRamp / "ramp.csv");
+  ASSERT_TRUE(valid(paper));
   ASSERT_TRUE(valid(run));
-  EXPECT_GE(run.result.summary.min_scaled_jacobian, 0.52133);
+  EXPECT_GE(run.result.summary.min_scaled_jacobian, paper.result.summary.min_scaled_jacobian);
+  EXPECT_GT(run.result.summary.min_scaled_jacobian, 0.52);
   EXPECT_LE(run.wall_distance, 0.002 * kH);
 }
 

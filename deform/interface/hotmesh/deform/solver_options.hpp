@@ -11,9 +11,10 @@ namespace hotmesh::deform {
 
 /// How each Newton step's linear system K(n) p = -R(n) is solved (docs/method.md).
 enum class LinearSolverKind {
-  automatic,   ///< the faster of the two for the case, by choose_linear_solver()
+  automatic,   ///< the fastest for the case, by choose_linear_solver()
   jacobi_pcg,  ///< the paper's PCG with nodal Jacobi (section 3), projected for sliding (eq. 16), K in node blocks
   amg,         ///< assembled in nodal frames (PETSc), CG preconditioned by algebraic multigrid
+  direct,      ///< assembled in nodal frames (PETSc), sparse Cholesky of every Newton step's matrix
 };
 
 /// The algebraic multigrid of the `amg` solver.
@@ -50,8 +51,10 @@ enum class ForcingTerm {
 };
 
 /// The names the case file and report.json use.
-inline constexpr EnumNames<LinearSolverKind, 3> kLinearSolverNames{
-    {{{LinearSolverKind::automatic, "auto"}, {LinearSolverKind::jacobi_pcg, "jacobi-pcg"}, {LinearSolverKind::amg, "amg"}}}};
+inline constexpr EnumNames<LinearSolverKind, 4> kLinearSolverNames{{{{LinearSolverKind::automatic, "auto"},
+                                                                  {LinearSolverKind::jacobi_pcg, "jacobi-pcg"},
+                                                                  {LinearSolverKind::amg, "amg"},
+                                                                  {LinearSolverKind::direct, "direct"}}}};
 inline constexpr EnumNames<AmgPackage, 2> kAmgPackageNames{{{{AmgPackage::gamg, "gamg"}, {AmgPackage::hypre, "hypre"}}}};
 inline constexpr EnumNames<AmgReuse, 5> kAmgReuseNames{{{{AmgReuse::automatic, "auto"},
                                                         {AmgReuse::adaptive, "adaptive"},
@@ -67,15 +70,21 @@ constexpr std::string_view to_string(ForcingTerm f) { return kForcingTermNames.n
 /// The linear solver `linear: auto` runs, and why, from what docs/performance.md measured on
 /// whole motions ("AMG against Jacobi-PCG", "Stator-well solve at growing sizes"):
 ///  - amg with several processes: jacobi-pcg runs in one;
-///  - amg for a 2D mesh with a sliding wall: Jacobi-PCG needs 10 to 30 times the iterations
-///    there and took 1.5 to 1.8 times as long on the sliding ramp and shear;
-///  - jacobi-pcg for a 2D mesh without sliding walls: 1.7 to 2.4 times faster on the ramp and
-///    the shear;
+///  - direct for a 2D mesh with a sliding wall of at most kDirectCells cells: Jacobi-PCG needs
+///    10 to 30 times the iterations there; the exact solves took 0.75 times amg's time on the
+///    sliding ramp (2 280 cells), 0.83 times on the ramp refined twice (9 120 cells) and less
+///    than 0.6 times refined four times (36 480 cells, where amg's inexact steps made the
+///    Newton cycle fail and split three of the first five increments). The factorization grows
+///    as N^1.5 or faster, so beyond the sizes measured amg is kept;
+///  - jacobi-pcg for a 2D mesh without sliding walls: 1.7 to 2.7 times faster than amg or
+///    direct on the ramp and the shear;
 ///  - in 3D, jacobi-pcg up to kJacobiPcgCells cells, amg beyond: on the sliding stator-well
 ///    sector Jacobi-PCG was faster at 18 000, 50 000 and 200 000 cells (336 s against 388 s
 ///    there, with 40 % less memory), but its time grows faster (N^1.15 against N^1.02 from
-///    50 000 to 200 000 cells): the two cross near 600 000 cells.
+///    50 000 to 200 000 cells): the two cross near 600 000 cells. direct took twice Jacobi-PCG's
+///    time at 18 000 cells (the factors of a 3D mesh grow as N^4/3).
 inline constexpr std::size_t kJacobiPcgCells = 500000;
+inline constexpr std::size_t kDirectCells = 40000;
 struct LinearSolverChoice {
   LinearSolverKind kind = LinearSolverKind::jacobi_pcg;
   std::string_view reason;
@@ -83,8 +92,9 @@ struct LinearSolverChoice {
 constexpr LinearSolverChoice choose_linear_solver(int dimension, std::size_t cells, bool sliding, int processes) {
   if (processes > 1) return {LinearSolverKind::amg, "several processes"};
   if (dimension == 2) {
-    return sliding ? LinearSolverChoice{LinearSolverKind::amg, "a 2D mesh with a sliding wall"}
-                   : LinearSolverChoice{LinearSolverKind::jacobi_pcg, "a 2D mesh without sliding walls"};
+    if (!sliding) return {LinearSolverKind::jacobi_pcg, "a 2D mesh without sliding walls"};
+    return cells <= kDirectCells ? LinearSolverChoice{LinearSolverKind::direct, "a 2D mesh with a sliding wall, at most 40 000 cells"}
+                                 : LinearSolverChoice{LinearSolverKind::amg, "a 2D mesh with a sliding wall, more than 40 000 cells"};
   }
   return cells > kJacobiPcgCells ? LinearSolverChoice{LinearSolverKind::amg, "a 3D mesh of more than 500 000 cells"}
                                  : LinearSolverChoice{LinearSolverKind::jacobi_pcg, "a 3D mesh of at most 500 000 cells"};
