@@ -36,7 +36,8 @@ if ((sanitizers || fuzz)); then
   phase "clang AddressSanitizer + UndefinedBehaviorSanitizer build: tests and fuzz targets"
   # One build for both: the libraries the fuzz targets read through carry libFuzzer's coverage
   # hooks too (CMakeLists.txt), the rest only the sanitizers. -O1 and line tables only (-g1:
-  # file and line in every report). No benchmarks: they are timed in Release only.
+  # file and line in every report); the tests' and the command line's own files at -O0
+  # (tests/CMakeLists.txt, app/CMakeLists.txt). No benchmarks: they are timed in Release only.
   cmake -S . -B build-sanitizers -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
         -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=ON \
         -DHOTMESH_WERROR=ON -DHOTMESH_FUZZ=ON -DHOTMESH_TESTS=$((sanitizers ? 1 : 0)) -DHOTMESH_BENCH=OFF

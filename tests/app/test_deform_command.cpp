@@ -223,16 +223,18 @@ TEST(DeformCommand, AmgSolverRunsWithoutMpirunAndReportsItsPhases) {
 }
 
 TEST(DeformCommand, FailedMotionKeepsLastValidMeshAndMarksFailedCells) {
-  // The ramp pushed through the top wall: cannot be done.
-  RampCase ramp(
-      "mesh: ramp2d.msh\nsolver: {increments: 2, max_increment_splits: 1}\n"
-      "patches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: fixed}\n"
-      "  bottom: {role: prescribed, deflection: {file: steep.csv}}\n");
-  test::write_text(ramp.dir / "steep.csv", "x,y,dx,dy\n0,0,0,0\n0.9,0,0,0\n1.1,0,0,1.4\n2,0,0,1.4\n");
-  const auto r = hotmesh("deform " + ramp.case_file());
+  // The coarse ramp channel's floor pushed through its top wall: cannot be done.
+  test::TempDir dir;
+  test::write_coarse_ramp(dir.path());
+  test::write_text(dir / "case.yaml",
+                   "mesh: ramp.msh\nsolver: {increments: 2, max_increment_splits: 1}\n"
+                   "patches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: fixed}\n"
+                   "  bottom: {role: prescribed, deflection: {file: steep.csv}}\n");
+  test::write_text(dir / "steep.csv", "x,y,dx,dy\n0,0,0,0\n0.9,0,0,0\n1.1,0,0,1.4\n2,0,0,1.4\n");
+  const auto r = hotmesh("deform " + shell_quote((dir / "case.yaml").string()));
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_THAT(r.output, HasSubstr("increment 1 of 2 failed"));
-  const auto out = ramp.dir / "case-out";
+  const auto out = dir / "case-out";
   EXPECT_TRUE(std::filesystem::exists(out / "failed.vtu"));
   EXPECT_TRUE(std::filesystem::exists(out / "failed.png"));
   const auto report = read_json(out / "report.json");
@@ -328,18 +330,18 @@ TEST(DeformCommand, HugeIncrementCountIsRefusedAtOnce) {
 }
 
 TEST(DeformCommand, RefusesOutputFolderHoldingInputsUnlessForced) {
-  RampCase ramp(
-      "mesh: ramp2d.msh\nsolver: {increments: 2}\n"
-      "patches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: fixed}\n"
-      "  bottom: {role: prescribed, deflection: {file: ramp.csv}}\n");
-  const std::string before = test::read_text(ramp.dir / "ramp2d.msh");
-  const auto refused = hotmesh("deform " + ramp.case_file() + " -o " + shell_quote(ramp.dir.path().string()));
+  test::TempDir dir;
+  test::write_coarse_ramp(dir.path());
+  test::write_text(dir / "case.yaml", test::ramp_case("full.csv", 2));
+  const std::string case_file = shell_quote((dir / "case.yaml").string());
+  const std::string before = test::read_text(dir / "ramp.msh");
+  const auto refused = hotmesh("deform " + case_file + " -o " + shell_quote(dir.path().string()));
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_THAT(refused.output, HasSubstr("--force"));
-  const auto forced = hotmesh("-q deform --force " + ramp.case_file() + " -o " + shell_quote(ramp.dir.path().string()));
+  const auto forced = hotmesh("-q deform --force " + case_file + " -o " + shell_quote(dir.path().string()));
   EXPECT_EQ(forced.exit_code, 0) << forced.output;
-  EXPECT_EQ(test::read_text(ramp.dir / "ramp2d.msh"), before);  // inputs untouched
-  EXPECT_TRUE(std::filesystem::exists(ramp.dir / "deformed.msh"));
+  EXPECT_EQ(test::read_text(dir / "ramp.msh"), before);  // inputs untouched
+  EXPECT_TRUE(std::filesystem::exists(dir / "deformed.msh"));
 }
 
 }  // namespace
