@@ -12,8 +12,9 @@
 //
 // `direct` runs the same CG with a sparse Cholesky factorization of K~ as its preconditioner
 // (CHOLMOD in one process, MUMPS on several), factorized at every Newton step: exact, so CG
-// stops after one iteration, and the ordering and symbolic factorization of the fixed sparsity
-// are kept from one step to the next, only the numbers are factorized again. A factorization
+// stops after one iteration. Each increment's first step orders the fixed sparsity and makes
+// the symbolic factorization (a new PC, as for the multigrid); its later steps factorize only
+// the numbers again. A factorization
 // kept for later steps was a poor preconditioner (50 to 350 CG iterations a solve on the
 // sliding ramp, against 1). On 2D meshes the factors stay small (nested dissection: about
 // 45 per row on the ramp's 4 670 rows), in 3D they grow as N^4/3 and their cost as N^2:
@@ -293,7 +294,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
 
   /// The multigrid of this step's matrix: rebuilt, or kept (PCSetReusePreconditioner; with
   /// `interpolation` GAMG's aggregates and prolongators only); or its Cholesky factors (false
-  /// if the factorization failed).
+  /// if the factorization failed: factorize()).
   bool set_up(const ConstrainedSystem& s, bool rebuild, MotionTimings& timings) {
     const auto t = Clock::now();
     if (rebuild && !direct_) set_near_null_space(a_, *frames_, *rows_, s.points);
@@ -308,7 +309,12 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     check(PCSetReusePreconditioner(pc_, keep ? PETSC_TRUE : PETSC_FALSE), "PCSetReusePreconditioner");
     check(PCSetOperators(pc_, a_, a_), "PCSetOperators");
     if (rebuild) release_free_memory();  // the old hierarchy's pages, before the new set-up's peak
-    check(PCSetUp(pc_), "PCSetUp");
+    bool factorized = true;
+    if (direct_) {
+      factorized = factorize();
+    } else {
+      check(PCSetUp(pc_), "PCSetUp");
+    }
     if (rebuild) {
       release_free_memory();  // the set-up's work space
       check(PCViewFromOptions(pc_, nullptr, "-pc_view"), "PCViewFromOptions");
@@ -317,10 +323,23 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       make_sweeps_symmetric();
     }
     timings.preconditioner += seconds_since(t);
-    PCFailedReason failed = PC_NOERROR;
-    check(PCGetFailedReason(pc_, &failed), "PCGetFailedReason");
-    return failed == PC_NOERROR;
+    return factorized;
   }
+
+  /// PCSetUp of the Cholesky factorization; false on every rank if it failed on any (a pivot
+  /// that is not positive: K~ is not positive definite). CHOLMOD reports that as error
+  /// PETSC_ERR_MAT_CH_ZRPVT in 3D (without printing PETSc's traceback here) and as the PC's
+  /// failed reason in 2D, MUMPS as the failed reason; other errors throw as ever.
+  bool factorize() {
+    check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+    const PetscErrorCode code = PCSetUp(pc_);
+    check(PetscPopErrorHandler(), "PetscPopErrorHandler");
+    if (code != 0 && code != PETSC_ERR_MAT_CH_ZRPVT && code != PETSC_ERR_MAT_LU_ZRPVT) check(code, "PCSetUp");
+    PCFailedReason reason = PC_NOERROR;
+    if (code == 0) check(PCGetFailedReason(pc_, &reason), "PCGetFailedReason");
+    return sum_over_ranks(code != 0 || reason != PC_NOERROR ? 1.0 : 0.0) == 0.0;
+  }
+
 
   /// A symmetric Gauss-Seidel sweep (forward and backward, each rank on its rows) before and
   /// after the coarse-grid correction on every level of the built hierarchy, as PETSc's SOR

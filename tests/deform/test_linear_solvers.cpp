@@ -400,6 +400,32 @@ TEST_P(LinearSolverOn, SolvesTheSameStepAsJacobiPcg) {
   }
 }
 
+/// A matrix that cannot be factorized (here K with every modulus negated: negative definite)
+/// is a breakdown of the solve, which the Newton loop turns into a failed attempt, not an
+/// exception out of PETSc, and the solver stays usable.
+TEST_P(FramesIn, DirectSolverReportsAFailedFactorizationAsABreakdown) {
+  const SectorSystem s(GetParam());
+  std::vector<Lame> negated = element_lame(s.mesh, {});
+  for (Lame& lame : negated) lame = {-lame.lambda, -lame.mu};
+  const StiffnessKernel negative(s.mesh, negated, true);
+  std::vector<double> rhs = random_vector(s.stiffness.size(), 7);
+  s.periodic.fold(rhs);
+  s.constraints.project(rhs);
+  SolverOptions options;
+  options.linear = LinearSolverKind::direct;
+  auto direct = detail::make_linear_solver(options, parallel::one_process(), nullptr);
+  MotionTimings timings;
+  direct->begin_increment();
+  std::vector<double> p(rhs.size(), 1.0);
+  const ConstrainedSystem indefinite{negative, s.constraints, s.periodic, s.points, {}};
+  detail::LinearSolveResult result;
+  ASSERT_NO_THROW(result = direct->solve(indefinite, rhs, p, {1e-10}, timings));
+  EXPECT_TRUE(result.breakdown);
+  EXPECT_FALSE(result.converged);
+  EXPECT_EQ(result.iterations, 0);  // found at the factorization, before any CG iteration
+  EXPECT_EQ(max_abs(p), 0.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     GamgHypreAndCholesky, LinearSolverOn,
     ::testing::Values(SolverCase{{2, false}, LinearSolverKind::amg, AmgPackage::gamg},
