@@ -76,13 +76,13 @@ constexpr std::string_view to_string(ForcingTerm f) { return kForcingTermNames.n
 ///    than 0.6 times refined four times (36 480 cells, where amg's inexact steps made the
 ///    Newton cycle fail and split three of the first five increments). The factorization grows
 ///    as N^1.5 or faster, so beyond the sizes measured amg is kept;
-///  - jacobi-pcg for a 2D mesh without sliding walls: 1.7 to 2.7 times faster than amg or
-///    direct on the ramp and the shear;
+///  - jacobi-pcg for a 2D mesh without sliding walls: 2 to 5 times faster than amg or direct
+///    on the ramp and the shear;
 ///  - in 3D, jacobi-pcg up to kJacobiPcgCells cells, amg beyond: on the sliding stator-well
 ///    sector Jacobi-PCG was faster at 18 000, 50 000 and 200 000 cells (336 s against 388 s
 ///    there, with 40 % less memory), but its time grows faster (N^1.15 against N^1.02 from
-///    50 000 to 200 000 cells): the two cross near 600 000 cells. direct took twice Jacobi-PCG's
-///    time at 18 000 cells (the factors of a 3D mesh grow as N^4/3).
+///    50 000 to 200 000 cells): the two cross near 600 000 cells. direct took 2 to 8 times
+///    Jacobi-PCG's time at 18 000 cells (the factors of a 3D mesh grow as N^4/3).
 inline constexpr std::size_t kJacobiPcgCells = 500000;
 inline constexpr std::size_t kDirectCells = 40000;
 struct LinearSolverChoice {
