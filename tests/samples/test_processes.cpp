@@ -26,6 +26,7 @@
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/mesh/split_cells.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "output_folders.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -299,6 +300,31 @@ TEST_F(Processes, AnotherMpisLauncherIsRefusedWithExitCode2) {
   EXPECT_NE(r.output.find("an MPI launcher started hotmesh as one of 2 processes"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Open MPI's mpirun"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(*dir_ / "out-launcher" / "report.json"));
+}
+
+/// `linear: direct` under mpirun: MUMPS factorizes the matrix the ranks share (CHOLMOD in one
+/// process), and a coarse ramp channel with both walls sliding ends where one process puts it.
+TEST_F(Processes, DirectSolverOnTwoRanksMovesASlidingRampAsOneProcess) {
+  const fs::path dir = *dir_ / "direct";
+  fs::create_directories(dir);
+  io::write_gmsh(dir / "ramp.msh", mesh::structured_quads(mesh::uniform_line(0.0, 2.0, 21),
+                                                          mesh::stretched_line(0.0, 1.0, 12, 0.004),
+                                                          {"left", "right", "bottom", "top"}));
+  test::write_text(dir / "ramp.csv", "x,y,dx,dy\n0,0,0,0\n0.975,0,0,0\n1.025,0,0,0.5\n2,0,0,0.5\n");
+  test::write_text(dir / "case.yaml",
+                   "mesh: ramp.msh\nsolver: {increments: 4, linear: direct, newton_tolerance: 1.0e-10, "
+                   "max_newton_iterations: 60}\npatches:\n  left: {role: fixed}\n  right: {role: slip}\n"
+                   "  top: {role: sliding}\n  bottom: {role: sliding, deflection: {file: ramp.csv}}\n");
+  const auto one = deform_case(0, dir / "case.yaml", dir / "out-1");
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const auto two = deform_case(2, dir / "case.yaml", dir / "out-2");
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  EXPECT_EQ(report(dir / "out-2")["solver"]["linear"], "direct");
+  EXPECT_EQ(report(dir / "out-2")["solver"]["processes"], 2);
+  EXPECT_GT(report(dir / "out-2")["sliding_nodes"].get<int>(), 0);
+  // One CG iteration per Newton step on either: the factors are exact on every rank's rows.
+  EXPECT_EQ(report(dir / "out-2")["pcg_iterations"], report(dir / "out-2")["newton_iterations"]);
+  EXPECT_LT(test::largest_relative_distance(dir / "out-1", dir / "out-2"), 1e-8);
 }
 
 TEST_F(Processes, JacobiPcgIsRefusedOnceWithExitCode2) {
