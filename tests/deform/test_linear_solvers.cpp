@@ -127,6 +127,15 @@ std::vector<double> random_vector(std::size_t n, unsigned seed) {
   return v;
 }
 
+/// A random right-hand side in the admissible subspace of `s` (folded onto the periodic
+/// masters, projected off the constrained directions), as the Newton loop hands the solvers.
+std::vector<double> admissible_rhs(const SectorSystem& s, unsigned seed) {
+  std::vector<double> rhs = random_vector(s.stiffness.size(), seed);
+  s.periodic.fold(rhs);
+  s.constraints.project(rhs);
+  return rhs;
+}
+
 double max_abs(std::span<const double> v) {
   double m = 0.0;
   for (double x : v) m = std::max(m, std::abs(x));
@@ -355,6 +364,13 @@ INSTANTIATE_TEST_SUITE_P(TwoAndThreeDimensions, FramesIn,
                                            SectorCells{3, true}),
                          [](const auto& param_info) { return cells_name(param_info.param); });
 
+/// `linear: direct` in one process.
+std::unique_ptr<detail::LinearSolver> make_direct_solver() {
+  SolverOptions options;
+  options.linear = LinearSolverKind::direct;
+  return detail::make_linear_solver(options, parallel::one_process(), nullptr);
+}
+
 struct SolverCase {
   SectorCells cells;
   LinearSolverKind linear;
@@ -367,9 +383,7 @@ class LinearSolverOn : public ::testing::TestWithParam<SolverCase> {};
 /// under test: the same p, tangential at sliding nodes, zero at fixed nodes and slaves.
 TEST_P(LinearSolverOn, SolvesTheSameStepAsJacobiPcg) {
   const SectorSystem s(GetParam().cells);
-  std::vector<double> rhs = random_vector(s.stiffness.size(), 4);
-  s.periodic.fold(rhs);
-  s.constraints.project(rhs);
+  const std::vector<double> rhs = admissible_rhs(s, 4);
   const auto solve = [&](LinearSolverKind kind, AmgPackage amg) {
     SolverOptions options;
     options.linear = kind;
@@ -408,12 +422,8 @@ TEST_P(FramesIn, DirectSolverReportsAFailedFactorizationAsABreakdown) {
   std::vector<Lame> negated = element_lame(s.mesh, {});
   for (Lame& lame : negated) lame = {-lame.lambda, -lame.mu};
   const StiffnessKernel negative(s.mesh, negated, true);
-  std::vector<double> rhs = random_vector(s.stiffness.size(), 7);
-  s.periodic.fold(rhs);
-  s.constraints.project(rhs);
-  SolverOptions options;
-  options.linear = LinearSolverKind::direct;
-  auto direct = detail::make_linear_solver(options, parallel::one_process(), nullptr);
+  const std::vector<double> rhs = admissible_rhs(s, 7);
+  auto direct = make_direct_solver();
   MotionTimings timings;
   direct->begin_increment();
   std::vector<double> p(rhs.size(), 1.0);
@@ -451,12 +461,8 @@ INSTANTIATE_TEST_SUITE_P(
 /// the matrix has changed (the factors are made anew, not kept).
 TEST_P(FramesIn, DirectSolverIsExactAtEveryNewtonStep) {
   SectorSystem s(GetParam());
-  std::vector<double> rhs = random_vector(s.stiffness.size(), 6);
-  s.periodic.fold(rhs);
-  s.constraints.project(rhs);
-  SolverOptions options;
-  options.linear = LinearSolverKind::direct;
-  auto direct = detail::make_linear_solver(options, parallel::one_process(), nullptr);
+  const std::vector<double> rhs = admissible_rhs(s, 6);
+  auto direct = make_direct_solver();
   ASSERT_NE(direct->assembler(), nullptr);
   MotionTimings timings;
   direct->begin_increment();
