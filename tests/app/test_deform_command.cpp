@@ -149,10 +149,7 @@ TEST(DeformCommand, LinearAutoPicksTheSolverBySlidingWallsAndSaysWhy) {
   test::TempDir dir;
   test::write_coarse_ramp(dir.path());
   test::write_text(dir / "sliding.yaml", test::ramp_case("full.csv", 2));
-  test::write_text(dir / "prescribed.yaml",
-                   "mesh: ramp.msh\nsolver: {increments: 2}\n"
-                   "patches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: fixed}\n"
-                   "  bottom: {role: prescribed, deflection: {file: full.csv}}\n");
+  test::write_text(dir / "prescribed.yaml", test::prescribed_ramp_case("full.csv", "increments: 2"));
   const std::array<std::array<std::string, 3>, 2> runs{{{"sliding", "direct", "auto: a 2D mesh with a sliding wall, at most 40 000 cells"},
                                                        {"prescribed", "jacobi-pcg", "auto: a 2D mesh without sliding walls"}}};
   for (const auto& [name, linear, why] : runs) {
@@ -226,10 +223,7 @@ TEST(DeformCommand, FailedMotionKeepsLastValidMeshAndMarksFailedCells) {
   // The coarse ramp channel's floor pushed through its top wall: cannot be done.
   test::TempDir dir;
   test::write_coarse_ramp(dir.path());
-  test::write_text(dir / "case.yaml",
-                   "mesh: ramp.msh\nsolver: {increments: 2, max_increment_splits: 1}\n"
-                   "patches:\n  left: {role: fixed}\n  right: {role: slip}\n  top: {role: fixed}\n"
-                   "  bottom: {role: prescribed, deflection: {file: steep.csv}}\n");
+  test::write_text(dir / "case.yaml", test::prescribed_ramp_case("steep.csv", "increments: 2, max_increment_splits: 1"));
   test::write_text(dir / "steep.csv", "x,y,dx,dy\n0,0,0,0\n0.9,0,0,0\n1.1,0,0,1.4\n2,0,0,1.4\n");
   const auto r = hotmesh("deform " + shell_quote((dir / "case.yaml").string()));
   EXPECT_EQ(r.exit_code, 1) << r.output;

@@ -26,7 +26,7 @@
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/mesh/split_cells.hpp"
-#include "hotmesh/mesh/structured_mesh.hpp"
+#include "coarse_ramp.hpp"
 #include "output_folders.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -307,14 +307,10 @@ TEST_F(Processes, AnotherMpisLauncherIsRefusedWithExitCode2) {
 TEST_F(Processes, DirectSolverOnTwoRanksMovesASlidingRampAsOneProcess) {
   const fs::path dir = *dir_ / "direct";
   fs::create_directories(dir);
-  io::write_gmsh(dir / "ramp.msh", mesh::structured_quads(mesh::uniform_line(0.0, 2.0, 21),
-                                                          mesh::stretched_line(0.0, 1.0, 12, 0.004),
-                                                          {"left", "right", "bottom", "top"}));
-  test::write_text(dir / "ramp.csv", "x,y,dx,dy\n0,0,0,0\n0.975,0,0,0\n1.025,0,0,0.5\n2,0,0,0.5\n");
-  test::write_text(dir / "case.yaml",
-                   "mesh: ramp.msh\nsolver: {increments: 4, linear: direct, newton_tolerance: 1.0e-10, "
-                   "max_newton_iterations: 60}\npatches:\n  left: {role: fixed}\n  right: {role: slip}\n"
-                   "  top: {role: sliding}\n  bottom: {role: sliding, deflection: {file: ramp.csv}}\n");
+  test::write_coarse_ramp(dir);
+  std::string text = test::ramp_case("full.csv", 4);
+  text = replaced(text, "newton_tolerance: 1.0e-6", "linear: direct, newton_tolerance: 1.0e-10, max_newton_iterations: 60");
+  test::write_text(dir / "case.yaml", text);
   const auto one = deform_case(0, dir / "case.yaml", dir / "out-1");
   ASSERT_EQ(one.exit_code, 0) << one.output;
   const auto two = deform_case(2, dir / "case.yaml", dir / "out-2");
