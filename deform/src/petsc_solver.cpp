@@ -391,7 +391,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     // In 2D the one-sided sweeps doubled GAMG's CG iterations on the ramps' boundary layers
     // (sliding ramp 3 268 -> 7 274, and 25 % more time); in 3D they took as many as symmetric
     // sweeps (the sectors). So 2D keeps symmetric sweeps on both sides.
-    if (d == 2 || direct_) one_sided_sweeps_ = false;
+    if (d == 2) one_sided_sweeps_ = false;
     if (reuse_ == AmgReuse::automatic) {
       reuse_ = options_.amg == AmgPackage::hypre ? AmgReuse::none
                : cells.size() >= kAdaptiveReuseCells ? AmgReuse::adaptive
