@@ -180,6 +180,11 @@ AssemblyOrder::AssemblyOrder(const StiffnessKernel& k, const NodalFrames& frames
   }
 }
 
+void ElementPass::element(CellId cell, std::span<double> ke) const {
+  s.kernel.element_matrix(cell, s.points, ke);
+  if (residual) residual->add(s.kernel.cells().nodes(static_cast<std::size_t>(cell)), ke);
+}
+
 void ElementPass::frame_element(CellId cell, const NodalFrames& frames, const BlockRows& rows, FrameElement& out) const {
   const auto d = static_cast<std::size_t>(frames.dimension());
   const auto nodes = s.kernel.cells().nodes(static_cast<std::size_t>(cell));
@@ -187,8 +192,7 @@ void ElementPass::frame_element(CellId cell, const NodalFrames& frames, const Bl
   const std::size_t n = corners * d;
   std::array<double, kMaxElementDofs * kMaxElementDofs> scratch{};
   const double* ke = scratch.data();
-  s.kernel.element_matrix(cell, s.points, {scratch.data(), n * n});
-  if (residual) residual->add(nodes, {ke, n * n});
+  element(cell, {scratch.data(), n * n});
   std::array<std::int32_t, mesh::kMaxElementNodes> owners{};
   frames.transform_element(nodes, {ke, n * n}, {out.values.data(), n * n}, {owners.data(), corners});
   for (std::size_t k = 0; k < corners; ++k) out.index[k] = rows[owners[k]];
@@ -196,6 +200,25 @@ void ElementPass::frame_element(CellId cell, const NodalFrames& frames, const Bl
 }
 
 namespace {
+
+/// Calls fn(cell, may_send) for this rank's cells: with several ranks its `local` cells in order
+/// (may_send: rows of other ranks go through PETSc); with one the cells of each colour in
+/// parallel, then the cells with periodic slaves one after another.
+template <class Fn>
+void for_each_cell(const AssemblyOrder& order, std::span<const CellId> local, bool distributed, const Fn& fn) {
+  if (distributed) {
+    for (const CellId cell : local) fn(cell, true);
+    return;
+  }
+  for (const auto& colour : order.colours) {
+    const auto count = static_cast<std::ptrdiff_t>(colour.size());
+    mesh::LoopExceptions errors;  // fn throws on a broken invariant
+#pragma omp parallel for schedule(static) if (count >= mesh::kParallelCells)
+    for (std::ptrdiff_t k = 0; k < count; ++k) errors.run([&] { fn(colour[static_cast<std::size_t>(k)], false); });
+    errors.rethrow();
+  }
+  for (const CellId cell : order.with_slaves) fn(cell, false);
+}
 
 /// The stored values of one SeqAIJ part of the matrix (the whole matrix with one process; the
 /// diagonal or the off-diagonal block of a rank's rows of an MPIAIJ matrix).
@@ -299,23 +322,21 @@ void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& fr
         }
       }
     };
-    if (distributed) {
-      for (const CellId cell : local) add(cell, true);
-    } else {
-      for (const auto& colour : order.colours) {
-        const auto count = static_cast<std::ptrdiff_t>(colour.size());
-        mesh::LoopExceptions errors;  // add() throws on a broken invariant
-#pragma omp parallel for schedule(static) if (count >= mesh::kParallelCells)
-        for (std::ptrdiff_t k = 0; k < count; ++k) errors.run([&] { add(colour[static_cast<std::size_t>(k)], false); });
-        errors.rethrow();
-      }
-      for (const CellId cell : order.with_slaves) add(cell, false);
-    }
+    for_each_cell(order, local, distributed, add);
   }  // the values are given back before PETSc adds the rows other ranks sent
   if (distributed) {
     check(MatAssemblyBegin(a, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(a, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   }
+}
+
+void residual_pass(const ElementPass& pass, const AssemblyOrder& order, std::span<const CellId> local, bool distributed) {
+  const auto d = static_cast<std::size_t>(pass.s.kernel.dofs_per_node());
+  for_each_cell(order, local, distributed, [&](CellId cell, bool) {
+    const std::size_t n = pass.s.kernel.cells().nodes(static_cast<std::size_t>(cell)).size() * d;
+    std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
+    pass.element(cell, {ke.data(), n * n});
+  });
 }
 
 }  // namespace hotmesh::deform::detail

@@ -90,6 +90,8 @@ struct ElementPass {
 
   /// K~_e of `cell` in `frames`, its corners' block rows; K_e to the residual.
   void frame_element(CellId cell, const NodalFrames& frames, const BlockRows& rows, FrameElement& out) const;
+  /// K_e of `cell` into `ke` ((d corners)^2 values), and to the residual.
+  void element(CellId cell, std::span<double> ke) const;
 };
 
 /// K~ into the preallocated `a`, from the K_e of this rank's cells `local` (and their part of
@@ -101,5 +103,9 @@ struct ElementPass {
 /// checkpoint (a new process, a first assembly) reproduces the uninterrupted run bit for bit.
 void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& frames, const BlockRows& rows,
                            const AssemblyOrder& order, std::span<const CellId> local, bool first);
+
+/// The residual of the pass alone: each K_e of this rank's cells handed to pass.residual in the
+/// order assemble_frame_matrix hands them (the same sums, bit for bit), none added to a matrix.
+void residual_pass(const ElementPass& pass, const AssemblyOrder& order, std::span<const CellId> local, bool distributed);
 
 }  // namespace hotmesh::deform::detail

@@ -56,11 +56,13 @@ struct ResidualPass;  // newton.hpp
 
 /// A solver that computes the element matrices itself, into a matrix of its own (amg): one
 /// pass over this rank's cells gives every K_e at s.points, once per Newton step, to its
-/// matrix and to the Newton loop's `residual`.
+/// matrix and to the Newton loop's `residual`. Without `matrix` the pass gives them to the
+/// residual only, for a residual that will likely end the Newton loop; the next solve()
+/// then assembles the matrix itself.
 class ElementAssembler {
  public:
   virtual ~ElementAssembler() = default;
-  virtual void assemble(const ConstrainedSystem& s, const ResidualPass& residual) = 0;
+  virtual void assemble(const ConstrainedSystem& s, const ResidualPass& residual, bool matrix) = 0;
 };
 
 class LinearSolver {

@@ -355,7 +355,10 @@ class Motion {
 
     std::vector<Vec3> trial(x.size());
     std::vector<double> r(dofs), rhs(dofs), p(dofs), node_stiffness(dofs / dim_);
-    double r0 = 0.0;
+    double r0 = 0.0, previous = 0.0;
+    // Whether this step's element pass assembles the solver's matrix too (amg, direct): not when
+    // the residual will likely end the loop (the solve assembles it if not).
+    bool matrix_wanted = true;
     linear_->begin_increment();
     detail::Forcing forcing(solver_);
     for (int it = 0;; ++it) {
@@ -365,7 +368,7 @@ class Motion {
       const detail::ConstrainedSystem system{*kernel_, setup_.constraints, setup_.periodic, trial, node_stiffness};
       const bool referenced = it == 0 && !unpredicted.empty();
       detail::newton_residual(system, blocks_ ? &*blocks_ : nullptr, linear_->assembler(), ranks_, u, r, node_stiffness,
-                              result_.timings, referenced ? &reference : nullptr);
+                              result_.timings, referenced ? &reference : nullptr, matrix_wanted);
       const double residual = detail::scaled_residual_norm(r, node_stiffness, dim_);
       // The tolerance is relative to the residual of the increment's start without the
       // predictor, so that a good prediction does not tighten it.
@@ -394,6 +397,10 @@ class Motion {
       // Its tolerance, and whether it stops on this loop's ||D^-1 r|| or the cheaper ||r||: Forcing.
       const auto target = forcing.next(it, residual, r0);
       const auto solved = linear_->solve(system, rhs, p, target, result_.timings);
+      // The next residual, expected from this solve's tolerance and the last step's reduction.
+      const double reduction = std::max(target.tolerance, it > 0 && previous > 0.0 ? residual / previous : 0.0);
+      matrix_wanted = reduction * residual > solver_.newton_tolerance * r0;
+      previous = residual;
       auto& step = record.newton.back();
       step.pcg_iterations = solved.iterations;
       step.pcg_converged = solved.converged;

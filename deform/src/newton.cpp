@@ -18,7 +18,8 @@ void ResidualPass::add(std::span<const NodeId> nodes, std::span<const double> ke
 
 void newton_residual(const ConstrainedSystem& s, StiffnessOperator* k, ElementAssembler* assembler,
                      const parallel::RankExchange& ranks, std::span<const double> u, std::span<double> r,
-                     std::span<double> node_stiffness, MotionTimings& timings, const ReferenceResidual* reference) {
+                     std::span<double> node_stiffness, MotionTimings& timings, const ReferenceResidual* reference,
+                     bool matrix_wanted) {
   const auto start = std::chrono::steady_clock::now();
   const auto seconds = [&start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
@@ -43,7 +44,7 @@ void newton_residual(const ConstrainedSystem& s, StiffnessOperator* k, ElementAs
       pass.u_start = reference->u_start;
       pass.r_start = reference->r_start;
     }
-    assembler->assemble(s, pass);
+    assembler->assemble(s, pass, matrix_wanted);
     ranks.sum(r);  // each rank added its cells' part
     if (reference) ranks.sum(reference->r_start);
     ranks.sum(node_stiffness);

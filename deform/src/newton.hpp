@@ -42,10 +42,12 @@ struct ReferenceResidual {
 /// of `k`, updated here at s.points (R = K u by its product); without them from the element
 /// pass of the solver's `assembler`, which computes each K_e once for its matrix and for R,
 /// each rank its cells, summed over `ranks`. Adds the element work to timings.assembly.
-/// With a `reference`, also its residual from the same K(n).
+/// With a `reference`, also its residual from the same K(n). Without `matrix_wanted` the
+/// assembler computes the residual alone (ElementAssembler).
 void newton_residual(const ConstrainedSystem& s, StiffnessOperator* k, ElementAssembler* assembler,
                      const parallel::RankExchange& ranks, std::span<const double> u, std::span<double> r,
-                     std::span<double> node_stiffness, MotionTimings& timings, const ReferenceResidual* reference = nullptr);
+                     std::span<double> node_stiffness, MotionTimings& timings, const ReferenceResidual* reference = nullptr,
+                     bool matrix_wanted = true);
 
 /// Inexact Newton: the tolerance of each inner solve. `fixed` gives pcg_tolerance every time.
 /// `eisenstat_walker` is Eisenstat and Walker's choice 2 (SIAM J. Sci. Comput. 17, 1996),

@@ -213,8 +213,16 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
   void begin_increment() override { first_step_ = true; }
 
   /// One pass computes every K_e, gives it to the residual and assembles K~ (the matrix is
-  /// then ready for solve()).
-  void assemble(const ConstrainedSystem& s, const ResidualPass& residual) override { assemble_matrix(s, &residual); }
+  /// then ready for solve()); or, without `matrix`, gives them to the residual alone.
+  void assemble(const ConstrainedSystem& s, const ResidualPass& residual, bool matrix) override {
+    if (matrix) {
+      assemble_matrix(s, &residual);
+    } else {
+      if (!a_) create(s);
+      residual_pass({s, &residual}, *order_, local_cells_, job_.count > 1);
+      assembled_ = false;
+    }
+  }
   ElementAssembler* assembler() override { return this; }
 
   LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p,
