@@ -64,56 +64,60 @@ void turn_block(const double* qa, const double* k, const double* qb, double* out
 }  // namespace
 
 NodalFrames::NodalFrames(std::size_t nodes, int dimension)
-    : dim_(dimension),
-      owner_(nodes),
-      constrained_(nodes, 0),
-      cartesian_(nodes, 1),
-      frames_(nodes * static_cast<std::size_t>(dimension * dimension), 0.0) {
+    : dim_(dimension), owner_(nodes), constrained_(nodes, 0), slot_(nodes, -1) {
   for (std::size_t n = 0; n < nodes; ++n) owner_[n] = static_cast<NodeId>(n);
 }
 
 std::span<const double> NodalFrames::frame(NodeId n) const {
-  const auto dd = static_cast<std::size_t>(dim_ * dim_);
-  return {frames_.data() + static_cast<std::size_t>(n) * dd, dd};
+  return {q(static_cast<std::size_t>(n)), static_cast<std::size_t>(dim_ * dim_)};
 }
 
 void NodalFrames::update(const NodeConstraints& constraints, const PeriodicCoupling& periodic) {
   const int d = dim_;
   const auto dd = static_cast<std::size_t>(d * d);
   const auto nodes = static_cast<std::ptrdiff_t>(owner_.size());
+  // The nodes that turn: those with normals (sliding, slip) and the periodic slaves.
+  std::int32_t rotated = 0;
+  for (std::size_t k = 0; k < owner_.size(); ++k) {
+    const auto n = static_cast<NodeId>(k);
+    slot_[k] = !constraints.is_fixed(n) && !constraints.normals(n).empty() ? rotated++ : -1;
+  }
+  for (const PeriodicPair& p : periodic.pairs()) {
+    auto& slot = slot_[static_cast<std::size_t>(p.slave)];
+    if (slot < 0) slot = rotated++;
+  }
+  frames_.resize(static_cast<std::size_t>(rotated) * dd);
 #pragma omp parallel for schedule(static) if (nodes >= mesh::kParallelNodes)
   for (std::ptrdiff_t i = 0; i < nodes; ++i) {
     const auto n = static_cast<NodeId>(i);
     const auto k = static_cast<std::size_t>(i);
     owner_[k] = n;
-    std::array<double, 9> q{};
     const auto normals = constraints.normals(n);
     if (constraints.is_fixed(n) || normals.empty()) {
-      for (int c = 0; c < d; ++c) q[static_cast<std::size_t>(c * d + c)] = 1.0;
-      constrained_[k] = constraints.is_fixed(n) ? d : 0;
-      cartesian_[k] = 1;
-    } else {
-      const int count = static_cast<int>(normals.size());
-      for (int c = 0; c < count; ++c) {
-        for (int r = 0; r < d; ++r) q[static_cast<std::size_t>(r * d + c)] = normals[static_cast<std::size_t>(c)][static_cast<std::size_t>(r)];
-      }
-      complete_basis(q, count, d);
-      constrained_[k] = count;
-      cartesian_[k] = 0;
+      constrained_[k] = static_cast<std::int8_t>(constraints.is_fixed(n) ? d : 0);
+      continue;
     }
-    std::copy(q.begin(), q.begin() + static_cast<std::ptrdiff_t>(dd), frames_.begin() + static_cast<std::ptrdiff_t>(k * dd));
+    std::array<double, 9> q{};
+    const int count = static_cast<int>(normals.size());
+    for (int c = 0; c < count; ++c) {
+      for (int r = 0; r < d; ++r) q[static_cast<std::size_t>(r * d + c)] = normals[static_cast<std::size_t>(c)][static_cast<std::size_t>(r)];
+    }
+    complete_basis(q, count, d);
+    constrained_[k] = static_cast<std::int8_t>(count);
+    std::copy(q.begin(), q.begin() + static_cast<std::ptrdiff_t>(dd), frames_.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(slot_[k]) * dd));
   }
   // Slaves: Q_s = R Q_m, the unknowns of the master.
   for (const PeriodicPair& p : periodic.pairs()) {
     const auto s = static_cast<std::size_t>(p.slave), m = static_cast<std::size_t>(p.master);
     owner_[s] = p.master;
-    cartesian_[s] = 0;
     const Rotation& r = periodic.rotation(p.rotation);
+    const double* qm = q(m);
+    double* qs = frames_.data() + static_cast<std::size_t>(slot_[s]) * dd;
     for (int i = 0; i < d; ++i) {
       for (int j = 0; j < d; ++j) {
         double v = 0.0;
-        for (int l = 0; l < d; ++l) v += r.entry(static_cast<std::size_t>(i), static_cast<std::size_t>(l)) * frames_[m * dd + static_cast<std::size_t>(l * d + j)];
-        frames_[s * dd + static_cast<std::size_t>(i * d + j)] = v;
+        for (int l = 0; l < d; ++l) v += r.entry(static_cast<std::size_t>(i), static_cast<std::size_t>(l)) * qm[static_cast<std::size_t>(l * d + j)];
+        qs[static_cast<std::size_t>(i * d + j)] = v;
       }
     }
   }
@@ -131,12 +135,12 @@ void NodalFrames::transform_element(std::span<const NodeId> nodes, std::span<con
       const auto nb = static_cast<std::size_t>(nodes[b]);
       const double* k = ke.data() + a * d * n + b * d;
       double* o = out.data() + a * d * n + b * d;
-      if (cartesian_[na] && cartesian_[nb]) {
+      if (slot_[na] < 0 && slot_[nb] < 0) {
         for (std::size_t i = 0; i < d; ++i) std::copy(k + i * n, k + i * n + d, o + i * n);
       } else if (d == 2) {
-        turn_block<2>(frames_.data() + na * 4, k, frames_.data() + nb * 4, o, n);
+        turn_block<2>(q(na), k, q(nb), o, n);
       } else {
-        turn_block<3>(frames_.data() + na * 9, k, frames_.data() + nb * 9, o, n);
+        turn_block<3>(q(na), k, q(nb), o, n);
       }
     }
   }
@@ -165,14 +169,14 @@ void NodalFrames::turn(std::span<const double> v, std::span<double> out, bool in
 #pragma omp parallel for schedule(static) if (nodes >= mesh::kParallelNodes)
   for (std::ptrdiff_t i = 0; i < nodes; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    const double* q = frames_.data() + k * d * d;
+    const double* qk = q(k);
     const auto c = static_cast<std::size_t>(constrained_[k]);
     const bool slave = is_slave(static_cast<NodeId>(i));
     for (std::size_t a = 0; a < d; ++a) {
       double s = 0.0;
       for (std::size_t b = 0; b < d && !slave; ++b) {
         // Q^T v keeps the unconstrained components a; Q v uses the unconstrained components b.
-        if (into_frames ? a >= c : b >= c) s += (into_frames ? q[b * d + a] : q[a * d + b]) * v[k * d + b];
+        if (into_frames ? a >= c : b >= c) s += (into_frames ? qk[b * d + a] : qk[a * d + b]) * v[k * d + b];
       }
       out[k * d + a] = s;
     }
