@@ -112,9 +112,9 @@ BlockRows::BlockRows(const NodalFrames& frames, const NodeCells& around, std::sp
   }
 }
 
-void BlockRows::gather(std::span<const double> full, std::span<double> rows, std::size_t d) const {
-  for (std::size_t r = 0; r < node_of.size(); ++r) {
-    const auto n = static_cast<std::size_t>(node_of[r]);
+void BlockRows::gather(std::span<const double> full, std::span<double> rows, std::size_t d, PetscInt first_row) const {
+  for (std::size_t r = 0; r < rows.size() / d; ++r) {
+    const auto n = static_cast<std::size_t>(node_of[static_cast<std::size_t>(first_row) + r]);
     for (std::size_t i = 0; i < d; ++i) rows[r * d + i] = full[n * d + i];
   }
 }

@@ -52,8 +52,9 @@ struct BlockRows {
   PetscInt begin(int rank) const { return first[static_cast<std::size_t>(rank)]; }
   PetscInt end(int rank) const { return first[static_cast<std::size_t>(rank) + 1]; }
 
-  /// A full vector (d entries per node) at the block rows, and back (zero elsewhere).
-  void gather(std::span<const double> full, std::span<double> rows, std::size_t d) const;
+  /// A full vector (d entries per node) at the block rows (as many as `rows` holds, from
+  /// `first_row` on), and back (every block row; zero elsewhere).
+  void gather(std::span<const double> full, std::span<double> rows, std::size_t d, PetscInt first_row = 0) const;
   void scatter(std::span<const double> rows, std::span<double> full, std::size_t d) const;
 };
 

@@ -354,7 +354,7 @@ class Motion {
     const detail::ReferenceResidual reference{unpredicted, reference_residual};
 
     std::vector<Vec3> trial(x.size());
-    std::vector<double> r(dofs), rhs(dofs), p(dofs), node_stiffness(dofs / dim_);
+    std::vector<double> r(dofs), p(dofs), node_stiffness(dofs / dim_);
     double r0 = 0.0, previous = 0.0;
     // Whether this step's element pass assembles the solver's matrix too (amg, direct): not when
     // the residual will likely end the loop (the solve assembles it if not).
@@ -393,10 +393,10 @@ class Motion {
       }
       // K(n) p = -R(n) on the free degrees of freedom, from p = 0 (eq. 8, section 3); at
       // sliding nodes the projected operator solves eq. (16) and keeps p . n = 0 (eq. 19).
-      for (std::size_t i = 0; i < dofs; ++i) rhs[i] = -r[i];
+      for (double& value : r) value = -value;  // the right-hand side, in place: R is not needed again
       // Its tolerance, and whether it stops on this loop's ||D^-1 r|| or the cheaper ||r||: Forcing.
       const auto target = forcing.next(it, residual, r0);
-      const auto solved = linear_->solve(system, rhs, p, target, result_.timings);
+      const auto solved = linear_->solve(system, r, p, target, result_.timings);
       // The next residual, expected from this solve's tolerance and the last step's reduction.
       const double reduction = std::max(target.tolerance, it > 0 && previous > 0.0 ? residual / previous : 0.0);
       matrix_wanted = reduction * residual > solver_.newton_tolerance * r0;

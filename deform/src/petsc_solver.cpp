@@ -233,7 +233,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     timings.assembly += seconds_since(t);
     const auto d = static_cast<std::size_t>(s.kernel.dofs_per_node());
     frames_->to_frames(rhs, full_);
-    rows_->gather(full_, rhs_, d);
+    rows_->gather(full_, rhs_, d, static_cast<PetscInt>(first_row_ / d));
     LinearSolveResult result;
     // CG in the norm the Newton loop asks for: the Newton norm ||D^-1 r~|| with the node
     // stiffness D (the frames are orthonormal per node, so it equals ||D^-1 r||), else ||r~||.
@@ -243,7 +243,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       set_newton_weights(s.node_stiffness, d);
       cg.norm = [this](std::span<const double> r) { return newton_norm(r); };
     }
-    const auto b = std::span<const double>(rhs_).subspan(first_row_, local_rows_);
+    const std::span<const double> b = rhs_;
     const double initial = cg.norm ? cg.norm(b) : std::sqrt(sum_over_ranks(dot(b, b)));
     if (!(initial > 0.0)) {
       std::fill(p.begin(), p.end(), 0.0);
@@ -280,8 +280,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       break;
     }
     t = Clock::now();
-    gather_solution();
-    rows_->scatter(solution_, full_, d);
+    solution_to_nodes(full_, d);
     frames_->from_frames(full_, p);
     timings.solve += seconds_since(t);
     first_step_ = false;
@@ -431,8 +430,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       }
     }
     full_.assign(s.kernel.size(), 0.0);
-    rhs_.assign(static_cast<std::size_t>(rows_->count) * static_cast<std::size_t>(d), 0.0);
-    solution_.assign(rhs_.size(), 0.0);
+    rhs_.assign(local_rows_, 0.0);
   }
 
   /// D^-1 at this rank's rows, for the Newton norm.
@@ -499,15 +497,19 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     check(PCSetFromOptions(pc_), "PCSetFromOptions");
   }
 
-  /// The solution on every rank (the whole vector: each keeps the whole mesh).
-  void gather_solution() {
-    if (!to_all_) {
-      copy_from(x_, solution_);
-      return;
+  /// The solution p~ of every rank's rows (each keeps the whole mesh) at the nodes: from x_
+  /// with one process, else gathered into all_ first.
+  void solution_to_nodes(std::span<double> full, std::size_t d) {
+    Vec whole = x_;
+    if (to_all_) {
+      check(VecScatterBegin(to_all_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+      check(VecScatterEnd(to_all_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+      whole = all_;
     }
-    check(VecScatterBegin(to_all_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-    check(VecScatterEnd(to_all_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-    copy_from(all_, solution_);
+    const PetscScalar* x = nullptr;
+    check(VecGetArrayRead(whole, &x), "VecGetArrayRead");
+    rows_->scatter({x, static_cast<std::size_t>(rows_->count) * d}, full, d);
+    check(VecRestoreArrayRead(whole, &x), "VecRestoreArrayRead");
   }
 
   SolverOptions options_;
@@ -533,7 +535,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
   bool pattern_ = false;    ///< the sparsity is fixed (after the first assembly)
   bool assembled_ = false;  ///< the element pass assembled K~ for the coming solve()
   std::vector<double> full_;             ///< d per node, in the frames
-  std::vector<double> rhs_, solution_;  ///< d per block row
+  std::vector<double> rhs_;              ///< r~ at this rank's rows
   std::vector<double> weight_;           ///< D^-1 at this rank's rows (the Newton norm)
 };
 
