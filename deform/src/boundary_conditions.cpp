@@ -145,7 +145,7 @@ constexpr double kCrossingAngle = std::numbers::pi / 6.0;  // 30 degrees
 /// rims hold nothing themselves: they move as their rim does.
 void refuse_free_rigid_motions(const Mesh& mesh, const BoundarySetup& setup, const std::vector<char>& follows_sliding) {
   RigidModes modes(mesh);
-  const std::vector<Vec3>& x0 = setup.reference;
+  const std::span<const Vec3> x0 = setup.reference;
   const NodeConstraints& c = setup.constraints;
   for (std::size_t n = 0; n < mesh.node_count(); ++n) {
     const auto node = static_cast<NodeId>(n);
@@ -224,7 +224,7 @@ class BoundaryBuilder {
       : mesh_(mesh),
         patches_(patches),
         start_(start),
-        setup_{start ? start->points : mesh.points,
+        setup_{start ? std::span<const Vec3>(start->points) : std::span<const Vec3>(mesh.points),
                NodeConstraints(mesh.node_count(), mesh.dimension),
                {},
                {},
@@ -708,7 +708,7 @@ class BoundaryBuilder {
   std::span<const PatchMotion> patches_;
   const MotionStart* start_;
   BoundarySetup setup_;
-  const std::vector<Vec3>& x0_;                  ///< setup_.reference
+  const std::span<const Vec3> x0_;               ///< setup_.reference
   std::vector<const PatchMotion*> motion_of_;    ///< per mesh patch
   std::vector<int> owner_;                       ///< per node: the patch of its strongest role, or -1
   std::vector<int> plane_of_;                    ///< per mesh patch: its slip plane, or -1

@@ -91,8 +91,9 @@ struct WallCrease {
 };
 
 struct BoundarySetup {
-  /// Positions the shapes' stage 0 refers to: the mesh's, or those a restarted run starts from.
-  std::vector<Vec3> reference;
+  /// Positions the shapes' stage 0 refers to: the mesh's, or those a restarted run starts from
+  /// (MotionStart::points). Not copied: both outlive the set-up (move_mesh's arguments).
+  std::span<const Vec3> reference;
   NodeConstraints constraints;
   std::vector<PrescribedNode> prescribed;
   std::vector<SlidingNode> sliding;

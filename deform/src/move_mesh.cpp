@@ -68,7 +68,7 @@ class Motion {
     result_.passive_nodes = setup_.passive.size();
     result_.periodic_pairs = setup_.periodic.pairs().size();
     for (const auto& s : setup_.sliding) result_.sliding_origins.push_back({s.node, s.origin});
-    result_.points = setup_.reference;
+    result_.points.assign(setup_.reference.begin(), setup_.reference.end());
     const int n = increments();
     // The steps to do, in order: the pieces of a split increment first (a step that fails is
     // replaced by its two halves, up to max_increment_splits deep), then the whole increments
@@ -300,7 +300,7 @@ class Motion {
     if (!solver_.predictor || !(a > 0.0) || !(b > a)) return {};
     std::vector<double> start = u;
     const bool secant = !previous_points_.empty() && previous_stage_ < a;
-    const std::vector<Vec3>& from = secant ? previous_points_ : setup_.reference;
+    const std::span<const Vec3> from = secant ? std::span<const Vec3>(previous_points_) : setup_.reference;
     const double scale = (b - a) / (a - (secant ? previous_stage_ : 0.0));
     const std::vector<Vec3>& x = result_.points;
     constexpr auto role = [](BoundaryRole r) { return static_cast<NodeRoleCode>(1 + static_cast<int>(r)); };
@@ -349,9 +349,8 @@ class Motion {
     const std::size_t dofs = kernel_->size();
 
     std::vector<double> u = initial_displacements(a, b);
-    const std::vector<double> unpredicted = predict(a, b, u);
+    std::vector<double> unpredicted = predict(a, b, u);
     std::vector<double> reference_residual(unpredicted.empty() ? 0 : dofs);
-    const detail::ReferenceResidual reference{unpredicted, reference_residual};
 
     std::vector<Vec3> trial(x.size());
     std::vector<double> r(dofs), p(dofs), node_stiffness(dofs / dim_);
@@ -367,12 +366,18 @@ class Motion {
       // the boundary motion), with only its tangential part F_t at sliding nodes (eq. 17).
       const detail::ConstrainedSystem system{*kernel_, setup_.constraints, setup_.periodic, trial, node_stiffness};
       const bool referenced = it == 0 && !unpredicted.empty();
+      const detail::ReferenceResidual reference{unpredicted, reference_residual};
       detail::newton_residual(system, blocks_ ? &*blocks_ : nullptr, linear_->assembler(), ranks_, u, r, node_stiffness,
                               result_.timings, referenced ? &reference : nullptr, matrix_wanted);
       const double residual = detail::scaled_residual_norm(r, node_stiffness, dim_);
       // The tolerance is relative to the residual of the increment's start without the
       // predictor, so that a good prediction does not tighten it.
-      if (it == 0) r0 = referenced ? detail::scaled_residual_norm(reference_residual, node_stiffness, dim_) : residual;
+      if (it == 0) {
+        r0 = referenced ? detail::scaled_residual_norm(reference_residual, node_stiffness, dim_) : residual;
+        // Needed no more: given back before the solves (two vectors the mesh's size).
+        std::vector<double>().swap(unpredicted);
+        std::vector<double>().swap(reference_residual);
+      }
       record.newton.push_back({residual, 0, true, 0.0});
       record.residual_reduction = r0 > 0.0 ? residual / r0 : 0.0;
       if (it > 0 && observers_.newton) report_step(piece, record, it, seconds_since(start));
