@@ -172,14 +172,14 @@ void NodalFrames::turn(std::span<const double> v, std::span<double> out, bool in
     const double* qk = q(k);
     const auto c = static_cast<std::size_t>(constrained_[k]);
     const bool slave = is_slave(static_cast<NodeId>(i));
+    std::array<double, 3> turned{};  // then written: v and out may be the same vector
     for (std::size_t a = 0; a < d; ++a) {
-      double s = 0.0;
       for (std::size_t b = 0; b < d && !slave; ++b) {
         // Q^T v keeps the unconstrained components a; Q v uses the unconstrained components b.
-        if (into_frames ? a >= c : b >= c) s += (into_frames ? qk[b * d + a] : qk[a * d + b]) * v[k * d + b];
+        if (into_frames ? a >= c : b >= c) turned[a] += (into_frames ? qk[b * d + a] : qk[a * d + b]) * v[k * d + b];
       }
-      out[k * d + a] = s;
     }
+    std::copy(turned.begin(), turned.begin() + static_cast<std::ptrdiff_t>(d), out.begin() + static_cast<std::ptrdiff_t>(k * d));
   }
 }
 

@@ -54,7 +54,8 @@ class NodalFrames {
   void transform_element(std::span<const NodeId> nodes, std::span<const double> ke, std::span<double> out,
                          std::span<std::int32_t> blocks) const;
   /// r~ = T^T r for a vector already folded onto the masters: r~_n = Q_n^T r_n at every node
-  /// but slaves, zero on constrained components and at slaves.
+  /// but slaves, zero on constrained components and at slaves. This and from_frames may write
+  /// over their input (out the same vector).
   void to_frames(std::span<const double> r, std::span<double> out) const;
   /// p = T p~ restricted to the unknowns: p_n = Q_n p~_n with constrained components of p~
   /// dropped, and p = 0 at slaves (the Newton loop expands slaves from their masters).

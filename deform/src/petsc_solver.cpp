@@ -232,8 +232,8 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     assembled_ = false;
     timings.assembly += seconds_since(t);
     const auto d = static_cast<std::size_t>(s.kernel.dofs_per_node());
-    frames_->to_frames(rhs, full_);
-    rows_->gather(full_, rhs_, d, static_cast<PetscInt>(first_row_ / d));
+    frames_->to_frames(rhs, p);  // p as scratch: r~ at the nodes
+    rows_->gather(p, rhs_, d, static_cast<PetscInt>(first_row_ / d));
     LinearSolveResult result;
     // CG in the norm the Newton loop asks for: the Newton norm ||D^-1 r~|| with the node
     // stiffness D (the frames are orthonormal per node, so it equals ||D^-1 r||), else ||r~||.
@@ -280,8 +280,8 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       break;
     }
     t = Clock::now();
-    solution_to_nodes(full_, d);
-    frames_->from_frames(full_, p);
+    solution_to_nodes(p, d);
+    frames_->from_frames(p, p);
     timings.solve += seconds_since(t);
     first_step_ = false;
     result.reduction = last.final_residual / initial;
@@ -429,7 +429,6 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
         check(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, hi - lo, nullptr, v), "VecCreateSeqWithArray");
       }
     }
-    full_.assign(s.kernel.size(), 0.0);
     rhs_.assign(local_rows_, 0.0);
   }
 
@@ -534,7 +533,6 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
   int fresh_iterations_ = 0;  ///< adaptive: of the first solve of an increment with a fresh hierarchy (0: none yet)
   bool pattern_ = false;    ///< the sparsity is fixed (after the first assembly)
   bool assembled_ = false;  ///< the element pass assembled K~ for the coming solve()
-  std::vector<double> full_;             ///< d per node, in the frames
   std::vector<double> rhs_;              ///< r~ at this rank's rows
   std::vector<double> weight_;           ///< D^-1 at this rank's rows (the Newton norm)
 };

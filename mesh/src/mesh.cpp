@@ -10,6 +10,12 @@ void ElementList::reserve(std::size_t elements, std::size_t nodes) {
   nodes_.reserve(nodes);
 }
 
+void ElementList::shrink_to_fit() {
+  types_.shrink_to_fit();
+  offsets_.shrink_to_fit();
+  nodes_.shrink_to_fit();
+}
+
 void ElementList::add(ElementType type, std::span<const NodeId> nodes) {
   types_.push_back(type);
   nodes_.insert(nodes_.end(), nodes.begin(), nodes.end());

@@ -25,6 +25,9 @@ using CellId = std::int32_t;  ///< 0-based index into Mesh::cells
 class ElementList {
  public:
   void reserve(std::size_t elements, std::size_t nodes);
+  /// Gives back the room the lists grew beyond their elements (a reader that could not
+  /// reserve: up to half of them).
+  void shrink_to_fit();
   void add(ElementType type, std::span<const NodeId> nodes);
   void add(ElementType type, std::initializer_list<NodeId> nodes) {
     add(type, std::span<const NodeId>(nodes.begin(), nodes.size()));
