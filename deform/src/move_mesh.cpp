@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "boundary_conditions.hpp"
+#include "free_memory.hpp"
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
@@ -93,6 +94,7 @@ class Motion {
       if (!result_.increments.back().accepted) continue;
       if (pieces.empty()) finished_increments_ = step.increment;
       if (observers_.checkpoint) observers_.checkpoint(checkpoint(pieces, seconds_since(start)));
+      detail::release_free_memory();  // the increment's and its checkpoint's freed blocks
     }
     result_.success = result_.failed_points.empty();
     if (result_.success) result_.lambda_reached = 1.0;

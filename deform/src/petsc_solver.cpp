@@ -40,9 +40,6 @@
 #include "petsc_solver.hpp"
 
 #include <petscksp.h>
-#if defined(__GLIBC__)
-#include <malloc.h>  // malloc_trim
-#endif
 
 #include <algorithm>
 #include <array>
@@ -54,6 +51,7 @@
 #include <string>
 
 #include "frame_matrix.hpp"
+#include "free_memory.hpp"
 #include "hotmesh/deform/pcg.hpp"
 
 namespace hotmesh::deform::detail {
@@ -118,19 +116,6 @@ void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows
   check(MatSetNearNullSpace(a, space), "MatSetNearNullSpace");
   check(MatNullSpaceDestroy(&space), "MatNullSpaceDestroy");
   for (Vec& v : vectors) check(VecDestroy(&v), "VecDestroy");
-}
-
-/// Gives the pages of freed memory back to the system. Each increment's hierarchy is built anew,
-/// and the old one and the set-up's work space are freed in pieces that glibc keeps inside its
-/// heap: on two ranks of the 300 000-cell sector each grew from 1.14 to 1.45 GB over ten
-/// increments (0.15 GB per increment at 2.7 million cells), and stayed at 1.12 GB with the free
-/// pages released after each set-up. Released before each set-up too, once the old hierarchy is
-/// destroyed: else the set-up's peak sits on the old hierarchy's resident free pages, and at 2.7
-/// million cells it rose by 0.2-0.4 GiB per increment (the history of docs/performance.md).
-void release_free_memory() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
 }
 
 /// A PETSc operator on this rank's rows as pcg() sees its operators: the matrix (MatMult) or
@@ -315,7 +300,9 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     const bool keep = !rebuild && (reuse_ == AmgReuse::preconditioner || reuse_ == AmgReuse::adaptive);
     check(PCSetReusePreconditioner(pc_, keep ? PETSC_TRUE : PETSC_FALSE), "PCSetReusePreconditioner");
     check(PCSetOperators(pc_, a_, a_), "PCSetOperators");
-    if (rebuild) release_free_memory();  // the old hierarchy's pages, before the new set-up's peak
+    // The old hierarchy's pages, before the new set-up's peak: else that peak sits on them (at
+    // 2.7 million cells it rose by 0.2-0.4 GiB per increment, the history of docs/performance.md).
+    if (rebuild) release_free_memory();
     bool factorized = true;
     if (direct_) {
       factorized = factorize();
