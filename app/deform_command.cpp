@@ -14,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <memory>
 #include <new>
@@ -360,6 +361,9 @@ int run_deform(const Options& options, RunState& state) {
                m.total, m.assembly, m.preconditioner, m.solve, m.projection);
 
   state.phase = "writing the outputs";
+  std::array<double, 1> memory{static_cast<double>(peak_memory_bytes())};
+  parallel::job_exchange().sum(memory);  // every rank: the job's memory for rank 0's report
+  timings.peak_memory_all_ranks = static_cast<std::uint64_t>(memory[0]);
   if (!parallel::processes().root()) return result.success ? 0 : 1;
   return write_run_outputs(in, setup, result, options, checkpoints, timings, resumed_from ? &*resumed_from : nullptr,
                            start);

@@ -350,6 +350,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["solver"] = solver_json(c.solver, linear_solver_of(c, loaded.mesh, setup));
   put_increments(j, result);
   put_motion(j, loaded.mesh, setup, result);
+  j["peak_memory_bytes_all_ranks"] = std::max(timings.peak_memory_all_ranks, j["peak_memory_bytes"].get<std::uint64_t>());
   j["wall_deviations"] = wall_deviations_json(loaded.mesh, result.points, setup, result.lambda_reached, result.length_scale);
   if (c.restart) j["restarted_from"] = c.restart->string();
   if (resumed) {

@@ -24,6 +24,7 @@ struct RunTimings {
   int checkpoints = 0;  ///< checkpoints written
   double checkpoint = 0.0;  ///< writing them
   std::uint64_t checkpoint_bytes = 0;  ///< size of the last one
+  std::uint64_t peak_memory_all_ranks = 0;  ///< every process's peak resident memory, summed
 };
 
 struct RunOutputs {

@@ -5,11 +5,13 @@
 // memory, all from report.json.
 //
 // Run:   ninja -C build bench_stator_solve && build/bench/bench_stator_solve [CELLS,...]
-//            [--linear auto|jacobi-pcg|amg] [--forcing fixed|eisenstat-walker]
+//            [--linear auto|jacobi-pcg|amg] [--forcing fixed|eisenstat-walker] [--ranks N]
 // Default 5000,18000,50000 with the case's solver (`linear: auto`, fixed inner tolerance);
-// each size runs in its own process. The paper's size (2700000) with `--forcing
-// eisenstat-walker` (auto runs amg there) takes about an hour and a half and 13 GB:
-// `scripts/bench.sh --paper-size`.
+// each size runs in its own process, or with `--ranks N` in N processes of one thread under
+// mpirun (peak memory: the processes' peaks summed, report.json's
+// peak_memory_bytes_all_ranks). The paper's size on two ranks (`2700000 --forcing
+// eisenstat-walker --ranks 2`, with PETSc's lean triple products, docs/performance.md) takes
+// about 17 minutes and 12 GiB: `scripts/bench.sh --paper-size`.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -30,11 +32,13 @@ namespace {
 struct Options {
   std::vector<long> sizes;
   std::string linear, forcing;  ///< empty: the case's own (auto, fixed)
+  int ranks = 1;                 ///< processes under mpirun (1: hotmesh alone)
 };
 
 [[noreturn]] void usage() {
   std::fprintf(stderr,
-               "usage: bench_stator_solve [CELLS,...] [--linear auto|jacobi-pcg|amg] [--forcing fixed|eisenstat-walker]\n");
+               "usage: bench_stator_solve [CELLS,...] [--linear auto|jacobi-pcg|amg] [--forcing fixed|eisenstat-walker] "
+               "[--ranks N]\n");
   std::exit(2);
 }
 
@@ -45,6 +49,9 @@ Options parse(int argc, char** argv) {
     const std::string_view a = argv[i];
     if ((a == "--linear" || a == "--forcing") && i + 1 < argc) {
       (a == "--linear" ? o.linear : o.forcing) = argv[++i];
+    } else if (a == "--ranks" && i + 1 < argc) {
+      o.ranks = std::atoi(argv[++i]);
+      if (o.ranks < 1) usage();
     } else if (!a.empty() && a.find_first_not_of("0123456789,") == std::string_view::npos) {
       list = a;
     } else {
@@ -85,9 +92,10 @@ int run(const std::string& command) {
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
   const auto folder = std::filesystem::temp_directory_path() / "hotmesh-bench-stator";
-  std::printf("### Stator-well sector, sliding on, 16 increments (`case_small.yaml` at growing sizes), linear %s, forcing %s\n\n",
+  std::printf("### Stator-well sector, sliding on, 16 increments (`case_small.yaml` at growing sizes), linear %s, forcing %s, "
+              "%d process%s\n\n",
               options.linear.empty() ? "auto" : options.linear.c_str(),
-              options.forcing.empty() ? "fixed" : options.forcing.c_str());
+              options.forcing.empty() ? "fixed" : options.forcing.c_str(), options.ranks, options.ranks > 1 ? "es" : "");
   std::printf("| target cells | hex cells | nodes | sliding nodes | solver | Newton | CG | wall s | assembly s | "
               "preconditioner s | solve s | projection s | ms per CG iteration | peak memory (MB) | min scaled Jacobian | "
               "other load |\n");
@@ -100,8 +108,12 @@ int main(int argc, char** argv) {
     }
     choose_solver(dir / "case_small.yaml", options);
     const hotmesh::bench::LoadProbe load;
-    if (run(fmt::format("OMP_WAIT_POLICY=passive {} -q deform --binary '{}'", HOTMESH_EXE, (dir / "case_small.yaml").string())) !=
-        0) {
+    const std::string launcher =
+        options.ranks > 1 ? fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 {} -n {} ",
+                                         HOTMESH_MPIEXEC, options.ranks)
+                          : std::string();
+    if (run(fmt::format("OMP_WAIT_POLICY=passive {}{} -q deform --binary{} '{}'", launcher, HOTMESH_EXE,
+                        options.ranks > 1 ? " --threads 1" : "", (dir / "case_small.yaml").string())) != 0) {
       return 1;
     }
     const double other = load.others();
@@ -113,7 +125,7 @@ int main(int argc, char** argv) {
                 cells, r["mesh"]["cells"].get<long>(), r["mesh"]["nodes"].get<long>(), r["sliding_nodes"].get<long>(),
                 r["solver"]["linear"].get<std::string>().c_str(), r["newton_iterations"].get<long>(), pcg, r["wall_seconds"].get<double>(), seconds["assembly"].get<double>(),
                 seconds["preconditioner"].get<double>(), solve, seconds["projection"].get<double>(),
-                1e3 * solve / static_cast<double>(pcg), r["peak_memory_bytes"].get<double>() / 1e6,
+                1e3 * solve / static_cast<double>(pcg), r["peak_memory_bytes_all_ranks"].get<double>() / 1e6,
                 r["min_scaled_jacobian"].get<double>(), other);
     std::fflush(stdout);
   }

@@ -164,6 +164,10 @@ TEST_F(Processes, OneTwoAndFourRanksMoveTheSectorAlike) {
   // The same increments, sliding and periodic checks as one process.
   EXPECT_EQ(report(two)["increments"].size(), report(serial)["increments"].size());
   EXPECT_LT(report(two)["max_periodic_mismatch_relative"].get<double>(), 1e-12);
+  // The job's memory: both ranks' peaks, each holding the whole mesh; one process's own.
+  const auto peak = [](const nlohmann::json& r, const char* key) { return r[key].get<double>(); };
+  EXPECT_GT(peak(report(two), "peak_memory_bytes_all_ranks"), 1.5 * peak(report(two), "peak_memory_bytes"));
+  EXPECT_EQ(peak(report(serial), "peak_memory_bytes_all_ranks"), peak(report(serial), "peak_memory_bytes"));
   if (test::under_sanitizers()) return;  // four ranks under the sanitizers: minutes
   const fs::path four = run(4);
   EXPECT_LT(test::largest_relative_distance(serial, four), 1e-8);
