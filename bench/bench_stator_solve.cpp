@@ -11,7 +11,7 @@
 // mpirun (peak memory: the processes' peaks summed, report.json's
 // peak_memory_bytes_all_ranks). The paper's size on two ranks (`2700000 --forcing
 // eisenstat-walker --ranks 2`, with PETSc's lean triple products, docs/performance.md) takes
-// about 17 minutes and 12 GiB: `scripts/bench.sh --paper-size`.
+// 15 to 18 minutes and 12.5 GiB: `scripts/bench.sh --paper-size`.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
