@@ -398,11 +398,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     }
     rows_.emplace(*frames_, around, rank_of_cell, job_.count);
     order_.emplace(s.kernel, *frames_);
-    a_ = create_frame_matrix(cells, around, *frames_, *rows_, job_);
-    if (direct_) {  // K~ = T^T K T: the factorizations read one triangle
-      check(MatSetOption(a_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-      check(MatSetOption(a_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
-    }
+    a_ = create_frame_matrix(cells, around, *frames_, *rows_, job_);  // symmetric: the factorizations read one triangle
     check(MatCreateVecs(a_, &x_, nullptr), "MatCreateVecs");
     if (job_.count > 1) check(VecScatterCreateToAll(x_, &to_all_, &all_), "VecScatterCreateToAll");
     PetscInt lo = 0, hi = 0;
