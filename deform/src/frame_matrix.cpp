@@ -339,4 +339,51 @@ void residual_pass(const ElementPass& pass, const AssemblyOrder& order, std::spa
   });
 }
 
+void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows) {
+  const int d = frames.dimension();
+  PetscInt lo = 0, hi = 0;
+  check(MatGetOwnershipRange(a, &lo, &hi), "MatGetOwnershipRange");
+  std::vector<Vec> modes;
+  for (int k = 0; k < d; ++k) {
+    Vec mode = nullptr;
+    check(MatCreateVecs(a, &mode, nullptr), "MatCreateVecs");
+    PetscScalar* x = nullptr;
+    check(VecGetArrayWrite(mode, &x), "VecGetArrayWrite");
+    // Q_n^T e_k at each of this rank's block rows: row k of Q_n, without the constrained
+    // components (a row's node is never a slave: slaves share their master's row).
+    for (PetscInt row = lo / d; row < hi / d; ++row) {
+      const NodeId n = rows.node_of[static_cast<std::size_t>(row)];
+      const std::span<const double> q = frames.frame(n);
+      const int c = frames.constrained(n);
+      for (int i = 0; i < d; ++i) x[(row - lo / d) * d + i] = i < c ? 0.0 : q[static_cast<std::size_t>(k * d + i)];
+    }
+    check(VecRestoreArrayWrite(mode, &x), "VecRestoreArrayWrite");
+    // Modified Gram-Schmidt, twice, against the modes kept so far; a mode that vanishes on the
+    // unknowns (a direction fixed everywhere) is dropped.
+    PetscReal before = 0.0, after = 0.0;
+    check(VecNorm(mode, NORM_2, &before), "VecNorm");
+    for (int pass = 0; pass < 2; ++pass) {
+      for (Vec kept : modes) {
+        PetscScalar along = 0.0;
+        check(VecDot(mode, kept, &along), "VecDot");
+        check(VecAXPY(mode, -along, kept), "VecAXPY");
+      }
+    }
+    check(VecNorm(mode, NORM_2, &after), "VecNorm");
+    if (after > 1e-8 * before) {
+      check(VecScale(mode, 1.0 / after), "VecScale");
+      modes.push_back(mode);
+    } else {
+      check(VecDestroy(&mode), "VecDestroy");
+    }
+  }
+  MatNullSpace space = nullptr;
+  check(MatNullSpaceCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a)), PETSC_FALSE,
+                           static_cast<PetscInt>(modes.size()), modes.data(), &space),
+        "MatNullSpaceCreate");
+  check(MatSetNearNullSpace(a, space), "MatSetNearNullSpace");
+  check(MatNullSpaceDestroy(&space), "MatNullSpaceDestroy");
+  for (Vec& v : modes) check(VecDestroy(&v), "VecDestroy");
+}
+
 }  // namespace hotmesh::deform::detail

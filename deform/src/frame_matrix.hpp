@@ -37,7 +37,7 @@ std::vector<int> partition_cells(const ElementList& list, const NodeCells& aroun
 /// a slave shares its master's. Fixed nodes (and slaves of fixed masters) have none and are
 /// left out: as rows holding only a diagonal they would be isolated vertices of the matrix
 /// graph, which PCGAMG makes aggregates of one node (whose d rows cannot carry the rigid-body
-/// rotations, see set_near_null_space in petsc_solver.cpp), and work for nothing. The set does not change
+/// rotations, see set_near_null_space), and work for nothing. The set does not change
 /// during a run: sliding nodes keep at least one tangential direction. A node's row belongs
 /// to the lowest rank among its cells; rows are numbered rank by rank, nodes in order within
 /// a rank (with one process: in node order).
@@ -104,6 +104,15 @@ struct ElementPass {
 /// checkpoint (a new process, a first assembly) reproduces the uninterrupted run bit for bit.
 void assemble_frame_matrix(Mat a, const ElementPass& pass, const NodalFrames& frames, const BlockRows& rows,
                            const AssemblyOrder& order, std::span<const CellId> local, bool first);
+
+/// The d translations written in the frames (Q_n^T e_k at each block row's node, zero on the
+/// constrained components), orthonormalised over all ranks, as the near-null space of `a`:
+/// PCGAMG's aggregates interpolate them exactly. Built on this rank's rows only. Not the
+/// rotations: with them PCGAMG of PETSc 3.18 makes aggregates of one node here and there, whose
+/// d rows cannot carry 3 (2D) or 6 (3D) modes; their prolongator columns vanish, the coarse
+/// matrices get zero rows and the smoother fails (the sliding ramp, the stator well). With the
+/// translations alone every aggregate has enough rows.
+void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows);
 
 /// The residual of the pass alone: each K_e of this rank's cells handed to pass.residual in the
 /// order assemble_frame_matrix hands them (the same sums, bit for bit), none added to a matrix.

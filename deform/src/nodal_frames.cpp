@@ -183,42 +183,4 @@ void NodalFrames::turn(std::span<const double> v, std::span<double> out, bool in
   }
 }
 
-std::vector<std::vector<double>> NodalFrames::near_null_space(std::span<const Vec3> points, bool rotations) const {
-  const auto d = static_cast<std::size_t>(dim_);
-  Vec3 centre{};
-  for (const Vec3& p : points) centre += p;
-  centre = centre / static_cast<double>(std::max<std::size_t>(points.size(), 1));
-  const std::size_t count = d + (rotations ? (d == 2 ? 1 : 3) : 0);
-  std::vector<std::vector<double>> modes;
-  std::vector<double> cartesian(points.size() * d);
-  for (std::size_t m = 0; m < count; ++m) {
-    for (std::size_t n = 0; n < points.size(); ++n) {
-      const Vec3 r = points[n] - centre;
-      Vec3 v{};
-      if (m < d) {
-        v[m] = 1.0;
-      } else if (d == 2) {
-        v = {-r.y, r.x, 0.0};
-      } else {
-        Vec3 axis{};
-        axis[m - d] = 1.0;
-        v = cross(axis, r);
-      }
-      for (std::size_t i = 0; i < d; ++i) cartesian[n * d + i] = v[i];
-    }
-    std::vector<double> mode(cartesian.size());
-    to_frames(cartesian, mode);
-    // Modified Gram-Schmidt, twice, against the modes kept so far.
-    const double before = norm2(mode);
-    for (int pass = 0; pass < 2; ++pass) {
-      for (const auto& kept : modes) axpy(-dot(kept, mode), kept, mode);
-    }
-    const double after = norm2(mode);
-    if (!(after > 1e-8 * before)) continue;  // vanishes on the unknowns (e.g. a translation all fixed)
-    for (double& x : mode) x /= after;
-    modes.push_back(std::move(mode));
-  }
-  return modes;
-}
-
 }  // namespace hotmesh::deform::detail

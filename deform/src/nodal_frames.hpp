@@ -60,10 +60,6 @@ class NodalFrames {
   /// p = T p~ restricted to the unknowns: p_n = Q_n p~_n with constrained components of p~
   /// dropped, and p = 0 at slaves (the Newton loop expands slaves from their masters).
   void from_frames(std::span<const double> p, std::span<double> out) const;
-  /// The rigid-body modes at `points` (d translations and, with `rotations`, 1 or 3 rotations
-  /// about the centre of the points), written in the frames with constrained components and
-  /// slave rows zeroed, orthonormalised; modes that vanish on the unknowns are dropped.
-  std::vector<std::vector<double>> near_null_space(std::span<const Vec3> points, bool rotations = true) const;
 
  private:
   /// Q_n^T v_n (into the frames) or Q_n v_n (out of them) on the unconstrained components.

@@ -95,29 +95,6 @@ void copy_from(Vec from, std::span<double> to) {
   check(VecRestoreArrayRead(from, &x), "VecRestoreArrayRead");
 }
 
-/// The d translations in the frames as the matrix's near-null space (PCGAMG's aggregates
-/// interpolate them exactly). Not the rotations: with them PCGAMG of PETSc 3.18 makes
-/// aggregates of one node here and there, whose d rows cannot carry 3 (2D) or 6 (3D) modes;
-/// their prolongator columns vanish, the coarse matrices get zero rows and the smoother fails
-/// (the sliding ramp, the stator well). With the translations alone every aggregate has enough rows.
-void set_near_null_space(Mat a, const NodalFrames& frames, const BlockRows& rows, std::span<const Vec3> points) {
-  const auto modes = frames.near_null_space(points, false);
-  const auto d = static_cast<std::size_t>(frames.dimension());
-  std::vector<double> compressed(static_cast<std::size_t>(rows.count) * d);
-  std::vector<Vec> vectors(modes.size(), nullptr);
-  for (std::size_t k = 0; k < modes.size(); ++k) {
-    check(MatCreateVecs(a, &vectors[k], nullptr), "MatCreateVecs");
-    rows.gather(modes[k], compressed, d);  // the modes vanish on the nodes left out: still orthonormal
-    copy_to(compressed, vectors[k]);
-  }
-  MatNullSpace space = nullptr;
-  check(MatNullSpaceCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a)), PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(), &space),
-        "MatNullSpaceCreate");
-  check(MatSetNearNullSpace(a, space), "MatSetNearNullSpace");
-  check(MatNullSpaceDestroy(&space), "MatNullSpaceDestroy");
-  for (Vec& v : vectors) check(VecDestroy(&v), "VecDestroy");
-}
-
 /// A PETSc operator on this rank's rows as pcg() sees its operators: the matrix (MatMult) or
 /// the multigrid's V-cycle (PCApply), the spans lent to two Vecs of the matrix's layout.
 template <class Object, PetscErrorCode (*Apply)(Object, Vec, Vec)>
@@ -236,7 +213,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       return result;
     }
     bool rebuild = must_rebuild();
-    if (!set_up(s, rebuild, timings)) {  // no factorization: K~ is not positive definite
+    if (!set_up(rebuild, timings)) {  // no factorization: K~ is not positive definite
       std::fill(p.begin(), p.end(), 0.0);
       result.breakdown = true;
       return result;
@@ -258,7 +235,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       // system solved again, rather than the increment failed.
       if (!result.converged && !rebuild && reuse_ == AmgReuse::adaptive) {
         rebuild = true;
-        set_up(s, rebuild, timings);
+        set_up(rebuild, timings);
         continue;
       }
       note_iterations(last.iterations, rebuild);
@@ -287,13 +264,13 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
   /// The multigrid of this step's matrix: rebuilt, or kept (PCSetReusePreconditioner; with
   /// `interpolation` GAMG's aggregates and prolongators only); or its Cholesky factors (false
   /// if the factorization failed: factorize()).
-  bool set_up(const ConstrainedSystem& s, bool rebuild, MotionTimings& timings) {
+  bool set_up(bool rebuild, MotionTimings& timings) {
     const auto t = Clock::now();
-    if (rebuild && !direct_) set_near_null_space(a_, *frames_, *rows_, s.points);
     // A hierarchy built for an increment comes from a new PC, as in a new process: PCGAMG
     // carries state from one set-up into the next, and a run resumed from a checkpoint would
     // otherwise take other CG iterations than the uninterrupted run.
     if (!pc_ || (rebuild && (first_step_ || reuse_ == AmgReuse::adaptive) && reuse_ != AmgReuse::interpolation)) create_pc();
+    if (rebuild && !direct_) set_near_null_space(a_, *frames_, *rows_);
     if (reuse_ == AmgReuse::interpolation) {
       check(PCGAMGSetReuseInterpolation(pc_, first_step_ ? PETSC_FALSE : PETSC_TRUE), "PCGAMGSetReuseInterpolation");
     }
@@ -308,6 +285,9 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       factorized = factorize();
     } else {
       check(PCSetUp(pc_), "PCSetUp");
+      // The hierarchy holds what it took from the modes: their d vectors go (24 bytes a row,
+      // 0.1 GB a process at the paper's size).
+      if (rebuild) check(MatSetNearNullSpace(a_, nullptr), "MatSetNearNullSpace");
     }
     if (rebuild) {
       release_free_memory();  // the set-up's work space
@@ -526,33 +506,71 @@ std::unique_ptr<LinearSolver> make_assembled_solver(const SolverOptions& options
   return std::make_unique<AssembledSolver>(options, ranks);
 }
 
+namespace {
+
+/// The matrix of `cells` in `frames` as one process makes it, preallocated (for the test hooks).
+struct OneProcessMatrix {
+  NodeCells around;
+  BlockRows rows;
+  Mat a = nullptr;
+  std::vector<double> compressed;  ///< d values for each block row
+
+  OneProcessMatrix(const ElementList& cells, const NodalFrames& frames)
+      : around(cells, frames.node_count()),
+        rows(frames, around, std::vector<int>(cells.size(), 0), 1),
+        a(create(cells, frames)),
+        compressed(static_cast<std::size_t>(rows.count) * static_cast<std::size_t>(frames.dimension())) {}
+  ~OneProcessMatrix() { MatDestroy(&a); }
+
+  Mat create(const ElementList& cells, const NodalFrames& frames) const {
+    parallel::start_petsc();
+    return create_frame_matrix(cells, around, frames, rows, parallel::Processes{});
+  }
+  OneProcessMatrix(const OneProcessMatrix&) = delete;
+  OneProcessMatrix& operator=(const OneProcessMatrix&) = delete;
+};
+
+}  // namespace
+
+std::vector<std::vector<double>> assembled_near_null_space(const ElementList& cells, const NodalFrames& frames) {
+  OneProcessMatrix m(cells, frames);
+  const auto d = static_cast<std::size_t>(frames.dimension());
+  set_near_null_space(m.a, frames, m.rows);
+  MatNullSpace space = nullptr;
+  check(MatGetNearNullSpace(m.a, &space), "MatGetNearNullSpace");
+  PetscBool constant = PETSC_FALSE;
+  PetscInt count = 0;
+  const Vec* vectors = nullptr;
+  check(MatNullSpaceGetVecs(space, &constant, &count, &vectors), "MatNullSpaceGetVecs");
+  std::vector<std::vector<double>> modes;
+  for (PetscInt k = 0; k < count; ++k) {
+    copy_from(vectors[k], m.compressed);
+    modes.emplace_back(frames.node_count() * d);
+    m.rows.scatter(m.compressed, modes.back(), d);
+  }
+  return modes;
+}
+
 std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const NodalFrames& frames,
                                             std::span<const double> x, bool twice) {
-  parallel::start_petsc();
   const ElementList& cells = system.kernel.cells();
-  const NodeCells around(cells, frames.node_count());
-  const parallel::Processes one;
-  const std::vector<int> rank_of_cell(cells.size(), 0);
-  const BlockRows rows(frames, around, rank_of_cell, one.count);
+  OneProcessMatrix m(cells, frames);
   const auto d = static_cast<std::size_t>(frames.dimension());
   const AssemblyOrder order(system.kernel, frames);
   std::vector<CellId> all(cells.size());
   std::iota(all.begin(), all.end(), CellId{0});
-  Mat a = create_frame_matrix(cells, around, frames, rows, one);
-  assemble_frame_matrix(a, {system, nullptr}, frames, rows, order, all, true);
-  if (twice) assemble_frame_matrix(a, {system, nullptr}, frames, rows, order, all, false);
+  assemble_frame_matrix(m.a, {system, nullptr}, frames, m.rows, order, all, true);
+  if (twice) assemble_frame_matrix(m.a, {system, nullptr}, frames, m.rows, order, all, false);
   Vec vx = nullptr, vy = nullptr;
-  check(MatCreateVecs(a, &vx, &vy), "MatCreateVecs");
-  std::vector<double> compressed(static_cast<std::size_t>(rows.count) * d);
-  rows.gather(x, compressed, d);
-  copy_to(compressed, vx);
-  check(MatMult(a, vx, vy), "MatMult");
-  copy_from(vy, compressed);
+  check(MatCreateVecs(m.a, &vx, &vy), "MatCreateVecs");
+  m.rows.gather(x, m.compressed, d);
+  copy_to(m.compressed, vx);
+  check(MatMult(m.a, vx, vy), "MatMult");
+  copy_from(vy, m.compressed);
   std::vector<double> y(x.size());
-  rows.scatter(compressed, y, d);
+  m.rows.scatter(m.compressed, y, d);
   VecDestroy(&vx);
   VecDestroy(&vy);
-  MatDestroy(&a);
   return y;
 }
 

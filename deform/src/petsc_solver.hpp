@@ -26,4 +26,9 @@ std::unique_ptr<LinearSolver> make_assembled_solver(const SolverOptions& options
 std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const NodalFrames& frames,
                                             std::span<const double> x, bool twice = false);
 
+/// For tests: the near-null space the amg solver gives PCGAMG for the matrix of `cells` in
+/// `frames` (set_near_null_space), each mode as a vector of d entries per node (zero at nodes
+/// without unknowns).
+std::vector<std::vector<double>> assembled_near_null_space(const ElementList& cells, const NodalFrames& frames);
+
 }  // namespace hotmesh::deform::detail
