@@ -16,6 +16,7 @@
 #include "logging.hpp"
 
 int main(int argc, char** argv) {
+  hotmesh::parallel::restore_malloc_defaults();
   CLI::App app{"hotmesh: moves a CFD mesh onto the hot running geometry computed by an FEM code.\n"
                "Run 'hotmesh <command> --help' for the options of a command."};
   app.set_version_flag("--version", HOTMESH_VERSION);

@@ -3,6 +3,9 @@
 
 #include <omp.h>
 #include <petscsys.h>
+#if defined(__GLIBC__)
+#include <malloc.h>  // mallopt
+#endif
 
 #include <algorithm>
 #include <cstdio>
@@ -152,6 +155,17 @@ void abort_processes(int exit_code) {
   std::fflush(stderr);
   if (g_job.count > 1) MPI_Abort(PETSC_COMM_WORLD, exit_code);
   std::exit(exit_code);
+}
+
+void restore_malloc_defaults() {
+#if defined(__GLIBC__)
+  // Blocks from 4 MiB on (node vectors from 170 000 nodes on, the matrix, PETSc's work arrays)
+  // mapped apart and unmapped when freed; glibc's own threshold would rise from 128 KiB to at
+  // most 32 MiB, but CombBLAS's calls have fixed it. The trim threshold is glibc's default.
+  mallopt(M_MMAP_MAX, 65536);
+  mallopt(M_MMAP_THRESHOLD, 4 << 20);
+  mallopt(M_TRIM_THRESHOLD, 128 << 10);
+#endif
 }
 
 void start_petsc() {

@@ -33,6 +33,14 @@ const RankExchange& job_exchange();
 /// process that stops alone would leave the others waiting for it forever.
 [[noreturn]] void abort_processes(int exit_code);
 
+/// Gives the C library back its own handling of large blocks: allocated with mmap and given back
+/// to the system when freed, and the heap's top trimmed. PETSc brings SuperLU_DIST, whose
+/// CombBLAS part turns both off for the whole process as it is loaded (mallopt(M_MMAP_MAX, 0)
+/// and mallopt(M_TRIM_THRESHOLD, -1) in a static initialiser): every block freed then stays
+/// resident, and the multigrid set-up's work space stayed part of the run's memory (at the
+/// paper's 2.7 million cells, 1.2 GB a process; docs/performance.md). Call first thing in main().
+void restore_malloc_defaults();
+
 /// Initialises PETSc once per process (MPI with it: as a singleton without a launcher), for
 /// the amg solver or for a job of several processes; finalised at exit.
 void start_petsc();
