@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "hotmesh/deform/pcg.hpp"
 #include "linear_solver.hpp"
@@ -145,6 +146,11 @@ class JacobiPcgSolver final : public LinearSolver {
     const NodalJacobi m(k_, s.constraints, s.periodic);
     timings.preconditioner += seconds_since(t);
     t = Clock::now();
+    std::vector<double> own_rhs;  // p is cleared below: where p is rhs, rhs is kept apart
+    if (rhs.data() == p.data()) {
+      own_rhs.assign(rhs.begin(), rhs.end());
+      rhs = own_rhs;
+    }
     std::fill(p.begin(), p.end(), 0.0);
     const auto cg = pcg(k, m, rhs, p,
                         {.relative_tolerance = target.tolerance,

@@ -72,8 +72,9 @@ class LinearSolver {
   /// or, with target.newton_norm, to ||D^-1 r|| <= target.tolerance ||D^-1 rhs||: the norm the
   /// Newton loop converges in (scaled_residual_norm, Forcing). `rhs` lies in the
   /// admissible subspace (projected, folded); so does p, with p = 0 at slaves (the Newton loop
-  /// expands u afterwards). Adds its times to timings.assembly (what it assembles beyond the
-  /// element matrices), .preconditioner and .solve.
+  /// expands u afterwards). `p` may be `rhs` itself (the Newton loop solves in place). Adds its
+  /// times to timings.assembly (what it assembles beyond the element matrices), .preconditioner
+  /// and .solve.
   virtual LinearSolveResult solve(const ConstrainedSystem& system, std::span<const double> rhs, std::span<double> p,
                                   const LinearTarget& target, MotionTimings& timings) = 0;
   /// A new increment (or piece of one) starts: preconditioners kept for reuse are dropped.

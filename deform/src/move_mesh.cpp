@@ -355,7 +355,7 @@ class Motion {
     std::vector<double> reference_residual(unpredicted.empty() ? 0 : dofs);
 
     std::vector<Vec3> trial(x.size());
-    std::vector<double> r(dofs), p(dofs), node_stiffness(dofs / dim_);
+    std::vector<double> r(dofs), node_stiffness(dofs / dim_);
     double r0 = 0.0, previous = 0.0;
     // Whether this step's element pass assembles the solver's matrix too (amg, direct): not when
     // the residual will likely end the loop (the solve assembles it if not).
@@ -403,6 +403,7 @@ class Motion {
       for (double& value : r) value = -value;  // the right-hand side, in place: R is not needed again
       // Its tolerance, and whether it stops on this loop's ||D^-1 r|| or the cheaper ||r||: Forcing.
       const auto target = forcing.next(it, residual, r0);
+      const std::span<double> p = r;  // solved in place: p over -R (one vector the mesh's size less)
       const auto solved = linear_->solve(system, r, p, target, result_.timings);
       // The next residual, expected from this solve's tolerance and the last step's reduction.
       const double reduction = std::max(target.tolerance, it > 0 && previous > 0.0 ? residual / previous : 0.0);

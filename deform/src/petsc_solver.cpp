@@ -380,7 +380,17 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     order_.emplace(s.kernel, *frames_);
     a_ = create_frame_matrix(cells, around, *frames_, *rows_, job_);  // symmetric: the factorizations read one triangle
     check(MatCreateVecs(a_, &x_, nullptr), "MatCreateVecs");
-    if (job_.count > 1) check(VecScatterCreateToAll(x_, &to_all_, &all_), "VecScatterCreateToAll");
+    if (job_.count > 1) {
+      // all_ without an array of its own: the gathered rows are held only while they are read
+      // (solution_to_nodes). Kept, they would sit through every multigrid set-up, the peak of a
+      // run's memory (65 MB a process at the paper's size).
+      Vec made = nullptr;
+      check(VecScatterCreateToAll(x_, &to_all_, &made), "VecScatterCreateToAll");
+      PetscInt all_rows = 0;
+      check(VecGetSize(made, &all_rows), "VecGetSize");
+      check(VecDestroy(&made), "VecDestroy");
+      check(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, all_rows, nullptr, &all_), "VecCreateSeqWithArray");
+    }
     PetscInt lo = 0, hi = 0;
     check(VecGetOwnershipRange(x_, &lo, &hi), "VecGetOwnershipRange");
     first_row_ = static_cast<std::size_t>(lo);
@@ -462,16 +472,20 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
   /// The solution p~ of every rank's rows (each keeps the whole mesh) at the nodes: from x_
   /// with one process, else gathered into all_ first.
   void solution_to_nodes(std::span<double> full, std::size_t d) {
-    Vec whole = x_;
-    if (to_all_) {
-      check(VecScatterBegin(to_all_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-      check(VecScatterEnd(to_all_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-      whole = all_;
+    const auto rows = static_cast<std::size_t>(rows_->count) * d;
+    if (!to_all_) {
+      const PetscScalar* x = nullptr;
+      check(VecGetArrayRead(x_, &x), "VecGetArrayRead");
+      rows_->scatter({x, rows}, full, d);
+      check(VecRestoreArrayRead(x_, &x), "VecRestoreArrayRead");
+      return;
     }
-    const PetscScalar* x = nullptr;
-    check(VecGetArrayRead(whole, &x), "VecGetArrayRead");
-    rows_->scatter({x, static_cast<std::size_t>(rows_->count) * d}, full, d);
-    check(VecRestoreArrayRead(whole, &x), "VecRestoreArrayRead");
+    std::vector<double> gathered(rows);
+    check(VecPlaceArray(all_, gathered.data()), "VecPlaceArray");
+    check(VecScatterBegin(to_all_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(to_all_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    check(VecResetArray(all_), "VecResetArray");
+    rows_->scatter(gathered, full, d);
   }
 
   SolverOptions options_;
@@ -488,7 +502,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
   Vec in_ = nullptr, out_ = nullptr;  ///< this rank's rows, lent CG's vectors for the products
   std::size_t first_row_ = 0, local_rows_ = 0;  ///< this rank's rows of K~
   VecScatter to_all_ = nullptr;  ///< x_ to all_ on every rank (several processes)
-  Vec all_ = nullptr;
+  Vec all_ = nullptr;            ///< every rank's rows, its array lent by solution_to_nodes
   bool first_step_ = true;  ///< the coming solve is the first of an increment
   bool one_sided_sweeps_ = false;  ///< gamg's default smoother, forward down and backward up (false once CG broke down)
   bool smoother_given_ = false;    ///< the user chose the smoother in PETSC_OPTIONS
