@@ -9,7 +9,7 @@
 #                  16 increments, `linear: auto` (amg at this size) with the Eisenstat-Walker
 #                  forcing term, two ranks of one thread with PETSc's lean triple products
 #                  (docs/performance.md): time per phase, CG iterations, peak memory of both
-#                  ranks and quality (bench_stator_solve). 15 to 18 minutes and 11.8 GiB.
+#                  ranks and quality (bench_stator_solve). 14 to 18 minutes and 11.8 GiB.
 # A full run takes about twenty-five minutes on 2 cores (most of it the stator-well sector solved
 # at 50 000 cells, and both linear solvers on the stator-well sample) and needs about 5 GB of
 # memory (the 100^3 hex block's element matrices). Run it on an otherwise idle machine: the load is printed
