@@ -15,9 +15,11 @@
 //    blocks), cells/s.
 // 3. Product: StiffnessOperator::apply (y = K x), cells/s, GFLOP/s (2 d^2 per block) and
 //    effective GB/s over the bytes a product must move at least:
-//        blocks         blocks x (d^2 x 8 + 4)  (the values and a 32-bit column)
-//        row starts     nodes x 8
-//        vectors        dofs x 8 x 2            (x read, y written)
+//        blocks         stored blocks x (d^2 x 8 + 4)  (on and above the diagonal: the values
+//                                                       and a 32-bit column)
+//        transposes     blocks below the diagonal x 8  (the row that stores each, its number)
+//        row starts     nodes x 16                     (stored and transposed)
+//        vectors        dofs x 8 x 2                   (x read, y written)
 //    and that rate over the triad's with the same number of threads.
 // 3b. The product per cell type (`--types N`): a hex block of N^3 cells as hexes, prisms,
 //    pyramids and tetrahedra (mesh::split_cells), a quad block of (25 N)^2 as quads and
@@ -35,7 +37,7 @@
 // (from /proc/stat): on a shared machine, rows with all threads and other load well above 0
 // are not the machine's speed.
 //
-// Memory: the node blocks take 2.3 kB per hex node (2.3 GB at 100^3, with the cells' block
+// Memory: the node blocks take 1.4 kB per hex node (1.5 GB at 100^3, with the cells' block
 // positions), the paper's stored K_e (part 3b only, at most 40^3 hexes) 4.6 kB per hex; the
 // triad 3 x `--triad-mib` MiB. One mesh is alive at a time.
 #include <omp.h>
@@ -193,9 +195,11 @@ struct ProductModel {
 
 ProductModel product_model(const StiffnessOperator& k) {
   const auto d = static_cast<double>(k.dofs_per_node());
-  const auto blocks = static_cast<double>(k.block_count());
+  const auto stored = static_cast<double>(k.block_count());
+  const auto nonzero = static_cast<double>(k.nonzero_blocks());
   const double nodes = static_cast<double>(k.size()) / d;
-  return {blocks * (d * d * 8.0 + 4.0) + nodes * 8.0 + static_cast<double>(k.size()) * 8.0 * 2.0, 2.0 * d * d * blocks};
+  return {stored * (d * d * 8.0 + 4.0) + (nonzero - stored) * 8.0 + nodes * 16.0 + static_cast<double>(k.size()) * 8.0 * 2.0,
+          2.0 * d * d * nonzero};
 }
 
 /// The paper's storage (section 3, eqs. 9-10), for comparison: every K_e stored, y = K x an
@@ -302,9 +306,9 @@ void types_section(int n, const std::vector<int>& thread_counts, const std::vect
   meshes.push_back({fmt::format("quad4 ({}^2 quads)", 25 * n), quads});
   meshes.push_back({"tri3 (2 per quad)", split(quads, CellSplit::triangles)});
   fmt::print("\n### Product per cell type (StiffnessOperator::apply, and the paper's stored K_e)\n\n");
-  fmt::print("| mesh | cells | nodes | stencil | threads | bytes per node | ns per node | per node / hex or quad "
+  fmt::print("| mesh | cells | nodes | stencil | row order | threads | bytes per node | ns per node | per node / hex or quad "
              "| stencil / hex or quad | GB/s | of triad | stored K_e: colours | bytes per node | ns per node "
-             "| per node / hex or quad | other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+             "| per node / hex or quad | other load |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<double> reference_ns(thread_counts.size()), reference_element_ns(thread_counts.size());
   double reference_stencil = 0.0;
   for (TypeMesh& m : meshes) {
@@ -313,7 +317,7 @@ void types_section(int n, const std::vector<int>& thread_counts, const std::vect
     k.update(m.mesh.points);
     const ElementStorage stored(k.kernel(), m.mesh.points);
     const auto nodes = static_cast<double>(m.mesh.node_count());
-    const double stencil = static_cast<double>(k.block_count()) / nodes;
+    const double stencil = static_cast<double>(k.nonzero_blocks()) / nodes;
     if (reference) reference_stencil = stencil;
     const ProductModel model = product_model(k);
     const auto x = random_vector(k.size());
@@ -328,9 +332,9 @@ void types_section(int n, const std::vector<int>& thread_counts, const std::vect
         reference_element_ns[t] = element_ns;
       }
       const double gbs = model.bytes / apply.seconds * 1e-9;
-      fmt::print("| {} | {} | {} | {:.1f} | {} | {:.0f} | {:.1f} | {:.2f} | {:.2f} | {:.2f} | {:.0f} % | {} | {:.0f} | {:.1f} "
+      fmt::print("| {} | {} | {} | {:.1f} | {} | {} | {:.0f} | {:.1f} | {:.2f} | {:.2f} | {:.2f} | {:.0f} % | {} | {:.0f} | {:.1f} "
                  "| {:.2f} | {:.2f} |\n",
-                 m.label, m.mesh.cell_count(), m.mesh.node_count(), stencil, thread_counts[t],
+                 m.label, m.mesh.cell_count(), m.mesh.node_count(), stencil, k.renumbered() ? "RCM" : "own", thread_counts[t],
                  static_cast<double>(k.bytes()) / nodes, ns, ns / reference_ns[t], stencil / reference_stencil, gbs,
                  100.0 * gbs / memory_rate[t], k.kernel().coloring().colors(), stored.bytes() / nodes, element_ns,
                  element_ns / reference_element_ns[t], std::max(apply.others, element.others));
@@ -529,7 +533,7 @@ int main(int argc, char** argv) {
     k.update(mesh.points);  // touch the matrices once before timing
     const ProductModel model = product_model(k);
     for (int t : thread_counts) {
-      Row row{label, mesh.cell_count(), k.size(), static_cast<double>(k.block_count()) * k.dofs_per_node() / static_cast<double>(k.size()), t, model, measure_operator(k, mesh, t),
+      Row row{label, mesh.cell_count(), k.size(), static_cast<double>(k.nonzero_blocks()) * k.dofs_per_node() / static_cast<double>(k.size()), t, model, measure_operator(k, mesh, t),
               static_cast<double>(k.bytes())};
       std::fprintf(stderr, "%s, %d threads: update %.3f s, apply %.4f s\n", label.c_str(), t,
                    row.rates.update.seconds, row.rates.apply.seconds);

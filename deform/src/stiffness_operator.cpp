@@ -11,6 +11,7 @@
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
+#include "node_order.hpp"
 
 namespace hotmesh::deform {
 NodeCells::NodeCells(const ElementList& list, std::size_t nodes) : start(nodes + 1, 0) {
@@ -82,25 +83,56 @@ StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kern
   const ElementList& cells = kernel_->cells();
   const auto d = static_cast<std::size_t>(kernel_->dofs_per_node());
   const std::size_t nodes = kernel_->size() / d;
-  // Row i's columns: the corners of the cells around i, sorted, each once.
   const NodeCells around(cells, nodes);
+  // The rows in reverse Cuthill-McKee order where that brings a cell's nodes much closer than
+  // the mesh's own numbering does: a row then finds the blocks it reads transposed, and x, in
+  // the rows just before it.
+  order_ = detail::reverse_cuthill_mckee(cells, around);
+  position_.resize(nodes);
+  for (std::size_t r = 0; r < nodes; ++r) position_[static_cast<std::size_t>(order_[r])] = static_cast<NodeId>(r);
+  if (!(detail::mean_spread(cells, position_) < kRenumberSpread * detail::mean_spread(cells, {}))) {
+    order_.clear();
+    position_.clear();
+  }
+  const auto row_of = [&](NodeId n) { return position_.empty() ? n : position_[static_cast<std::size_t>(n)]; };
+  const auto node_of = [&](std::size_t r) { return order_.empty() ? r : static_cast<std::size_t>(order_[r]); };
+  // Row r stores the blocks of the rows q >= r whose nodes share a cell with its node, sorted,
+  // each once; the diagonal block comes first.
   row_start_.assign(nodes + 1, 0);
   std::vector<NodeId> row;
-  for (std::size_t i = 0; i < nodes; ++i) {
+  for (std::size_t r = 0; r < nodes; ++r) {
     row.clear();
-    for (CellId c : around.of(i)) {
-      const auto corners = cells.nodes(static_cast<std::size_t>(c));
-      row.insert(row.end(), corners.begin(), corners.end());
+    for (CellId c : around.of(node_of(r))) {
+      for (NodeId j : cells.nodes(static_cast<std::size_t>(c))) {
+        const NodeId q = row_of(j);
+        if (static_cast<std::size_t>(q) >= r) row.push_back(q);
+      }
     }
     std::sort(row.begin(), row.end());
     row.erase(std::unique(row.begin(), row.end()), row.end());
     columns_.insert(columns_.end(), row.begin(), row.end());
-    row_start_[i + 1] = static_cast<std::int64_t>(columns_.size());
+    row_start_[r + 1] = static_cast<std::int64_t>(columns_.size());
   }
-  if (columns_.size() > std::numeric_limits<std::uint32_t>::max()) {
+  if (columns_.size() > std::numeric_limits<std::uint32_t>::max() - 1) {
     throw std::length_error("StiffnessOperator: " + std::to_string(columns_.size()) + " blocks are more than one process holds");
   }
-  // Where each cell's corner pairs (a, b) add their blocks.
+  // Row q's blocks below the diagonal, K_qr = K_rq^T: where row r < q stores K_rq, by
+  // increasing r (a pass over the stored blocks in row order visits them so).
+  lower_start_.assign(nodes + 1, 0);
+  for (NodeId q : columns_) ++lower_start_[static_cast<std::size_t>(q) + 1];
+  for (std::size_t q = 0; q < nodes; ++q) lower_start_[q + 1] += lower_start_[q] - 1;  // less the diagonal
+  lower_rows_.resize(static_cast<std::size_t>(lower_start_.back()));
+  lower_blocks_.resize(lower_rows_.size());
+  std::vector<std::int64_t> next(lower_start_.begin(), lower_start_.end() - 1);
+  for (std::size_t r = 0; r < nodes; ++r) {
+    for (auto k = row_start_[r] + 1; k < row_start_[r + 1]; ++k) {
+      const auto at = static_cast<std::size_t>(next[static_cast<std::size_t>(columns_[static_cast<std::size_t>(k)])]++);
+      lower_rows_[at] = static_cast<NodeId>(r);
+      lower_blocks_[at] = static_cast<std::uint32_t>(k);
+    }
+  }
+  // Where each cell's corner pairs (a, b) add their blocks: in row(a) when row(a) <= row(b),
+  // none (kNoBlock) otherwise, the block being the transpose of (b, a)'s.
   cell_start_.assign(cells.size() + 1, 0);
   for (std::size_t c = 0; c < cells.size(); ++c) {
     const std::size_t corners = cells.nodes(c).size();
@@ -111,12 +143,17 @@ StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kern
     const auto corners = cells.nodes(c);
     std::uint32_t* at = positions_.data() + cell_start_[c];
     for (NodeId a : corners) {
-      const auto first = columns_.begin() + row_start_[static_cast<std::size_t>(a)];
-      const auto last = columns_.begin() + row_start_[static_cast<std::size_t>(a) + 1];
-      for (NodeId b : corners) *at++ = static_cast<std::uint32_t>(std::lower_bound(first, last, b) - columns_.begin());
+      const auto r = static_cast<std::size_t>(row_of(a));
+      const auto first = columns_.begin() + row_start_[r];
+      const auto last = columns_.begin() + row_start_[r + 1];
+      for (NodeId b : corners) {
+        const NodeId q = row_of(b);
+        *at++ = q < static_cast<NodeId>(r) ? kNoBlock : static_cast<std::uint32_t>(std::lower_bound(first, last, q) - columns_.begin());
+      }
     }
   }
   values_.assign(columns_.size() * d * d, 0.0);
+  if (!order_.empty()) in_order_.resize(nodes * d);
 }
 
 StiffnessOperator::StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, bool drop_jacobian)
@@ -124,14 +161,26 @@ StiffnessOperator::StiffnessOperator(const Mesh& mesh, std::vector<Lame> lame, b
 
 namespace {
 
-/// K_ab += the (a, b) block of K_e for each corner pair of a cell; N = element dofs, D = dofs
-/// per node, `at` the cell's block positions.
+/// The arrays of a StiffnessOperator that a product reads.
+struct SymmetricBlocks {
+  std::span<const std::int64_t> row_start;
+  const NodeId* columns;
+  const double* values;
+  std::span<const std::int64_t> lower_start;
+  const NodeId* lower_rows;
+  const std::uint32_t* lower_blocks;
+};
+
+/// K_ab += the (a, b) block of K_e for each corner pair of a cell whose block row stores it;
+/// N = element dofs, D = dofs per node, `at` the cell's block positions.
 template <std::size_t N, std::size_t D>
 void add_blocks(const double* ke, const std::uint32_t* at, double* values) {
   constexpr std::size_t kCorners = N / D;
   for (std::size_t a = 0; a < kCorners; ++a) {
     for (std::size_t b = 0; b < kCorners; ++b) {
-      double* block = values + static_cast<std::size_t>(at[a * kCorners + b]) * D * D;
+      const std::uint32_t position = at[a * kCorners + b];
+      if (position == StiffnessOperator::kNoBlock) continue;
+      double* block = values + static_cast<std::size_t>(position) * D * D;
       for (std::size_t i = 0; i < D; ++i) {
         for (std::size_t j = 0; j < D; ++j) block[i * D + j] += ke[(a * D + i) * N + b * D + j];
       }
@@ -139,23 +188,35 @@ void add_blocks(const double* ke, const std::uint32_t* at, double* values) {
   }
 }
 
-/// y = K x over the block rows; D = dofs per node. Each row is one thread's, summed in column
-/// order.
+/// y = K x over the block rows; D = dofs per node, x in row order, y written at the node of
+/// each row (`node`, or the row itself if null). Row j sums its blocks below the diagonal
+/// (K_ij^T x_i, read from the rows i < j that store them, by increasing i), then its stored
+/// blocks (K_jk x_k, k >= j). Each row is one thread's and summed in that order, so y is the
+/// same for any number of threads.
 template <std::size_t D>
-void multiply_rows(std::span<const std::int64_t> row_start, const NodeId* columns, const double* values,
-                   const double* x, double* y) {
-  const auto rows = static_cast<std::ptrdiff_t>(row_start.size() - 1);
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(row_start.back()) * static_cast<std::ptrdiff_t>(D * D) >= mesh::kParallelProduct)
-  for (std::ptrdiff_t i = 0; i < rows; ++i) {
+void multiply_rows(const SymmetricBlocks& k, const double* x, const NodeId* node, double* y) {
+  const auto rows = static_cast<std::ptrdiff_t>(k.row_start.size() - 1);
+  const auto blocks = static_cast<std::ptrdiff_t>(2 * k.row_start.back() - rows);
+#pragma omp parallel for schedule(static) if (blocks * static_cast<std::ptrdiff_t>(D * D) >= mesh::kParallelProduct)
+  for (std::ptrdiff_t j = 0; j < rows; ++j) {
+    const auto row = static_cast<std::size_t>(j);
     std::array<double, D> sum{};
-    for (auto k = row_start[static_cast<std::size_t>(i)]; k < row_start[static_cast<std::size_t>(i) + 1]; ++k) {
-      const double* block = values + static_cast<std::size_t>(k) * D * D;
-      const double* xj = x + static_cast<std::size_t>(columns[k]) * D;
-      for (std::size_t r = 0; r < D; ++r) {
-        for (std::size_t j = 0; j < D; ++j) sum[r] += block[r * D + j] * xj[j];
+    for (auto l = k.lower_start[row]; l < k.lower_start[row + 1]; ++l) {
+      const double* block = k.values + static_cast<std::size_t>(k.lower_blocks[l]) * D * D;
+      const double* xi = x + static_cast<std::size_t>(k.lower_rows[l]) * D;
+      for (std::size_t c = 0; c < D; ++c) {
+        for (std::size_t r = 0; r < D; ++r) sum[r] += block[c * D + r] * xi[c];
       }
     }
-    for (std::size_t r = 0; r < D; ++r) y[static_cast<std::size_t>(i) * D + r] = sum[r];
+    for (auto b = k.row_start[row]; b < k.row_start[row + 1]; ++b) {
+      const double* block = k.values + static_cast<std::size_t>(b) * D * D;
+      const double* xk = x + static_cast<std::size_t>(k.columns[b]) * D;
+      for (std::size_t r = 0; r < D; ++r) {
+        for (std::size_t c = 0; c < D; ++c) sum[r] += block[r * D + c] * xk[c];
+      }
+    }
+    const std::size_t at = node ? static_cast<std::size_t>(node[row]) : row;
+    for (std::size_t r = 0; r < D; ++r) y[at * D + r] = sum[r];
   }
 }
 
@@ -181,27 +242,40 @@ void StiffnessOperator::update(std::span<const Vec3> points) {
 }
 
 void StiffnessOperator::apply(std::span<const double> x, std::span<double> y) const {
-  if (kernel_->dofs_per_node() == 2) {
-    multiply_rows<2>(row_start_, columns_.data(), values_.data(), x.data(), y.data());
+  const auto d = static_cast<std::size_t>(kernel_->dofs_per_node());
+  const double* in = x.data();
+  if (!order_.empty()) {  // x in row order
+    const auto rows = static_cast<std::ptrdiff_t>(order_.size());
+#pragma omp parallel for schedule(static) if (rows * static_cast<std::ptrdiff_t>(d) >= mesh::kParallelVector)
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+      const auto from = static_cast<std::size_t>(order_[static_cast<std::size_t>(r)]) * d;
+      for (std::size_t c = 0; c < d; ++c) in_order_[static_cast<std::size_t>(r) * d + c] = x[from + c];
+    }
+    in = in_order_.data();
+  }
+  const SymmetricBlocks k{row_start_, columns_.data(), values_.data(), lower_start_, lower_rows_.data(), lower_blocks_.data()};
+  const NodeId* node = order_.empty() ? nullptr : order_.data();
+  if (d == 2) {
+    multiply_rows<2>(k, in, node, y.data());
   } else {
-    multiply_rows<3>(row_start_, columns_.data(), values_.data(), x.data(), y.data());
+    multiply_rows<3>(k, in, node, y.data());
   }
 }
 
-std::span<const NodeId> StiffnessOperator::columns(NodeId i) const {
-  const auto r = static_cast<std::size_t>(i);
-  return {columns_.data() + row_start_[r], static_cast<std::size_t>(row_start_[r + 1] - row_start_[r])};
-}
-
-std::span<const double> StiffnessOperator::blocks(NodeId i) const {
-  const auto r = static_cast<std::size_t>(i);
-  const auto dd = static_cast<std::size_t>(kernel_->dofs_per_node() * kernel_->dofs_per_node());
-  return {values_.data() + static_cast<std::size_t>(row_start_[r]) * dd,
-          static_cast<std::size_t>(row_start_[r + 1] - row_start_[r]) * dd};
+std::vector<NodeId> StiffnessOperator::coupled_nodes(NodeId i) const {
+  const auto r = static_cast<std::size_t>(position_.empty() ? i : position_[static_cast<std::size_t>(i)]);
+  const auto node_of = [&](NodeId row) { return order_.empty() ? row : order_[static_cast<std::size_t>(row)]; };
+  std::vector<NodeId> nodes;
+  for (auto l = lower_start_[r]; l < lower_start_[r + 1]; ++l) nodes.push_back(node_of(lower_rows_[static_cast<std::size_t>(l)]));
+  for (auto k = row_start_[r]; k < row_start_[r + 1]; ++k) nodes.push_back(node_of(columns_[static_cast<std::size_t>(k)]));
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
 }
 
 std::size_t StiffnessOperator::bytes() const {
   return values_.size() * sizeof(double) + columns_.size() * sizeof(NodeId) + row_start_.size() * sizeof(std::int64_t) +
+         lower_start_.size() * sizeof(std::int64_t) + lower_rows_.size() * (sizeof(NodeId) + sizeof(std::uint32_t)) +
+         (order_.size() + position_.size()) * sizeof(NodeId) + in_order_.size() * sizeof(double) +
          positions_.size() * sizeof(std::uint32_t) + cell_start_.size() * sizeof(std::size_t);
 }
 
@@ -213,13 +287,12 @@ void StiffnessOperator::diagonal(std::span<double> d) const {
 }
 
 void StiffnessOperator::diagonal_blocks(std::span<double> out) const {
-  const auto dim = static_cast<std::size_t>(kernel_->dofs_per_node());
+  const auto dd = static_cast<std::size_t>(kernel_->dofs_per_node() * kernel_->dofs_per_node());
   const std::size_t nodes = row_start_.size() - 1;
-  for (std::size_t i = 0; i < nodes; ++i) {
-    const auto row = columns(static_cast<NodeId>(i));
-    const auto k = static_cast<std::size_t>(std::lower_bound(row.begin(), row.end(), static_cast<NodeId>(i)) - row.begin());
-    const double* block = blocks(static_cast<NodeId>(i)).data() + k * dim * dim;
-    std::copy(block, block + dim * dim, out.data() + i * dim * dim);
+  for (std::size_t i = 0; i < nodes; ++i) {  // each row's first stored block is its diagonal one
+    const auto r = position_.empty() ? i : static_cast<std::size_t>(position_[i]);
+    const double* block = values_.data() + static_cast<std::size_t>(row_start_[r]) * dd;
+    std::copy(block, block + dd, out.data() + i * dd);
   }
 }
 

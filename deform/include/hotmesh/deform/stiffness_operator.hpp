@@ -6,16 +6,17 @@
 // the connectivity (eqs. 9-10):
 //     (K x)_i = sum_{H containing i} [B_i^H] [K^H] {x^H}
 // hotmesh computes the same K_e once per Newton iteration and adds them straight into d x d
-// node blocks, K_ij = sum_{H containing i and j} K^H_ij (block CSR), and the product is a loop
-// over the nodes. The K is the same to round-off, and so are the products; the blocks take
-// less memory than the K_e for every cell type (2.1 kB against 4.6 kB per node on hexes,
-// 1.2 kB against 6.7 kB on tetrahedra) and a product moves only them, so it is faster too
+// node blocks, K_ij = sum_{H containing i and j} K^H_ij (block CSR, only the blocks on and above
+// the diagonal since K is symmetric), and the product is a loop over the rows. The K is the same
+// to round-off, and so are the products; the blocks take less memory than the K_e for every
+// cell type (1.4 kB against 4.3 kB per node on hexes, 1.1 kB against 6.7 kB on tetrahedra, the
+// cells' block positions included) and a product moves only them, so it is faster too
 // (docs/method.md, "Storage of K"; bench_operator). The amg solver assembles the same K_e
 // into a PETSc matrix in nodal frames instead (petsc_solver.cpp).
 // Elements are coloured so that no two of one colour share a node: colours are added one
 // after another, the elements of a colour in parallel. Every block then receives its
 // contributions in the same order whatever the number of threads, and each row of a product
-// is summed by one thread in column order, so results are race-free and bit-identical for
+// is summed by one thread in a fixed order, so results are race-free and bit-identical for
 // any thread count.
 #pragma once
 
@@ -83,8 +84,13 @@ class StiffnessKernel {
   CellColoring coloring_;
 };
 
-/// K in d x d node blocks (block CSR): update() computes every K_e at the current points and
-/// adds it into the blocks of its corners, apply() multiplies node row by node row.
+/// K in d x d node blocks (block CSR), one row of blocks per node, the upper triangle only: K
+/// is symmetric, so a row stores the blocks of the nodes whose rows come at or after its own
+/// that share a cell with its node, and reads the others transposed from the rows that store
+/// them. The rows follow the nodes' numbers, or reverse Cuthill-McKee order where that
+/// numbering scatters a cell's nodes (a mesh from an unstructured mesher): see renumbered().
+/// update() computes every K_e at the current points and adds its blocks on and above the
+/// diagonal; apply() multiplies row by row.
 class StiffnessOperator final : public LinearOperator {
  public:
   explicit StiffnessOperator(std::shared_ptr<const StiffnessKernel> kernel);
@@ -104,25 +110,41 @@ class StiffnessOperator final : public LinearOperator {
   void diagonal_blocks(std::span<double> blocks) const;
 
   /// The nodes that node i shares a cell with, itself included, in increasing order: the
-  /// columns of block row i.
-  std::span<const NodeId> columns(NodeId i) const;
-  /// The d x d blocks K_ij of row i, row-major, in the order of columns(i).
-  std::span<const double> blocks(NodeId i) const;
-  /// Blocks stored (the nonzero blocks of K).
+  /// nonzero blocks of row i of K.
+  std::vector<NodeId> coupled_nodes(NodeId i) const;
+  /// Whether the rows are stored in reverse Cuthill-McKee order rather than the nodes' own.
+  bool renumbered() const { return !order_.empty(); }
+  /// Blocks stored: the nonzero blocks of K on and above the diagonal.
   std::size_t block_count() const { return columns_.size(); }
-  /// Bytes held: blocks, their column numbers and row starts, and each cell's block positions.
+  /// The nonzero blocks of K, below the diagonal too.
+  std::size_t nonzero_blocks() const { return 2 * columns_.size() - (row_start_.size() - 1); }
+  /// Bytes held: blocks, their column numbers, row starts and transposed references, each
+  /// cell's block positions, and the row order with its copy of x.
   std::size_t bytes() const;
 
   const StiffnessKernel& kernel() const { return *kernel_; }
   int dofs_per_node() const { return kernel_->dofs_per_node(); }
   const ElementList& cells() const { return kernel_->cells(); }
 
+  /// A cell's corner pair (a, b) whose a comes after b in row order adds no block: its block
+  /// is stored as (b, a)'s transpose.
+  static constexpr std::uint32_t kNoBlock = 0xffffffffu;
+  /// Rows are stored in reverse Cuthill-McKee order when it brings the mean distance between
+  /// the rows of a cell's nodes below this share of the nodes' own numbering's (bench_renumbering).
+  static constexpr double kRenumberSpread = 0.5;
+
  private:
   std::shared_ptr<const StiffnessKernel> kernel_;
-  std::vector<std::int64_t> row_start_;    ///< row i holds blocks [row_start_[i], row_start_[i + 1])
-  std::vector<NodeId> columns_;            ///< the column (node) of each block
+  std::vector<NodeId> order_;              ///< the node of each row (empty: row i is node i)
+  std::vector<NodeId> position_;           ///< the row of each node (empty: node i is row i)
+  mutable std::vector<double> in_order_;   ///< x in row order, for a product (when renumbered)
+  std::vector<std::int64_t> row_start_;    ///< row i stores blocks [row_start_[i], row_start_[i + 1])
+  std::vector<NodeId> columns_;            ///< the column (row of a node) of each block
+  std::vector<std::int64_t> lower_start_;  ///< row j's blocks below the diagonal: [lower_start_[j], lower_start_[j + 1])
+  std::vector<NodeId> lower_rows_;         ///< ... the row i < j that stores K_ij
+  std::vector<std::uint32_t> lower_blocks_;  ///< ... and the block's number there
   std::vector<std::size_t> cell_start_;    ///< cell c's block positions at positions_[cell_start_[c] ..)
-  std::vector<std::uint32_t> positions_;   ///< block of corners (a, b) of a cell, a * corners + b
+  std::vector<std::uint32_t> positions_;   ///< block of corners (a, b) of a cell, a * corners + b, or kNoBlock
   std::vector<double> values_;             ///< block k at values_[k d^2 ..), row-major
 };
 
