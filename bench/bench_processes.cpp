@@ -10,9 +10,9 @@
 // Cases: the sliding ramp (7 000 quads), and the stator-well sector (sliding, periodic,
 // passive) generated at each size in CELLS (default 18000,60000).
 //
-// Weak scaling (issue 25): build/bench/bench_processes --weak [CELLS] runs the sector with
-// CELLS (default 50000) cells per rank on 1, 2 and 4 ranks (`--oversubscribe` where the
-// machine has fewer cores), as the paper's size runs: `linear: amg`, Eisenstat-Walker forcing.
+// Weak scaling (issue 25): build/bench/bench_processes --weak [CELLS [RANKS,...]] runs the
+// sector with CELLS (default 50000) cells per rank on each number of ranks in RANKS (default
+// 1,2,4,8; `--oversubscribe` where the machine has fewer cores), as the paper's size runs: `linear: amg`, Eisenstat-Walker forcing.
 // On fewer cores than ranks the times say little; the CG iterations per linear solve are the
 // measure: they stay flat when the multigrid scales.
 #include <cstdio>
@@ -34,9 +34,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<long> sizes(int argc, char** argv) {
+/// A comma-separated list of numbers.
+std::vector<long> numbers(const std::string& text) {
   std::vector<long> out;
-  std::stringstream list(argc > 1 ? argv[1] : "18000,60000");
+  std::stringstream list(text);
   for (std::string item; std::getline(list, item, ',');) out.push_back(std::stol(item));
   return out;
 }
@@ -93,8 +94,9 @@ void time_case(const std::string& label, const fs::path& case_file) {
   }
 }
 
-/// Weak scaling: `per_rank` cells per rank on 1, 2 and 4 ranks.
-int weak_scaling(long per_rank) {
+/// Weak scaling: `per_rank` cells per rank on each number of ranks in `rank_counts`, the first
+/// the reference.
+int weak_scaling(long per_rank, const std::vector<long>& rank_counts) {
   const fs::path folder = fs::temp_directory_path() / "hotmesh-bench-weak-scaling";
   fs::remove_all(folder);
   std::printf("### Weak scaling: the sector at %ld cells per rank (`linear: amg`, Eisenstat-Walker, 16 increments)\n\n",
@@ -103,7 +105,7 @@ int weak_scaling(long per_rank) {
               "peak memory rank 0 (MB) | other load |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   double first = 0.0;
-  for (const int ranks : {1, 2, 4}) {
+  for (const long ranks : rank_counts) {
     const long cells = per_rank * ranks;
     const fs::path dir = folder / fmt::format("stator-{}", cells);
     if (!run(fmt::format("{} --cells {} '{}' > /dev/null", HOTMESH_MAKE_STATOR_WELL, cells, dir.string()))) return 1;
@@ -117,15 +119,15 @@ int weak_scaling(long per_rank) {
     const hotmesh::bench::LoadProbe load;
     if (!run(fmt::format("OMP_WAIT_POLICY=passive OMP_NUM_THREADS=1 {}{} -q deform --threads 1 --force '{}' -o '{}'",
                          launcher, HOTMESH_EXE, case_file.string(), out.string()))) {
-      std::printf("| %d | %ld | failed |\n", ranks, cells);
+      std::printf("| %ld | %ld | failed |\n", ranks, cells);
       continue;
     }
     const double other = load.others();
     const auto r = nlohmann::json::parse(hotmesh::io::read_file(out / "report.json"));
     const long newton = r["newton_iterations"].get<long>(), cg = r["pcg_iterations"].get<long>();
     const double per_solve = static_cast<double>(cg) / static_cast<double>(newton);
-    if (ranks == 1) first = per_solve;
-    std::printf("| %d | %ld | %ld | %ld | %.1f | %+.0f %% | %.0f | %.0f | %.2f |\n", ranks, cells, newton, cg, per_solve,
+    if (ranks == rank_counts.front()) first = per_solve;
+    std::printf("| %ld | %ld | %ld | %ld | %.1f | %+.0f %% | %.0f | %.0f | %.2f |\n", ranks, cells, newton, cg, per_solve,
                 100.0 * (per_solve / first - 1.0), r["wall_seconds"].get<double>(),
                 r["peak_memory_bytes"].get<double>() / 1e6, other);
     std::fflush(stdout);
@@ -137,7 +139,9 @@ int weak_scaling(long per_rank) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc > 1 && std::string(argv[1]) == "--weak") return weak_scaling(argc > 2 ? std::stol(argv[2]) : 50000);
+  if (argc > 1 && std::string(argv[1]) == "--weak") {
+    return weak_scaling(argc > 2 ? std::stol(argv[2]) : 50000, numbers(argc > 3 ? argv[3] : "1,2,4,8"));
+  }
   const fs::path folder = fs::temp_directory_path() / "hotmesh-bench-processes";
   fs::remove_all(folder);
   std::printf("### One process against two (`linear: amg`, 16 increments)\n\n");
@@ -150,7 +154,7 @@ int main(int argc, char** argv) {
     fs::copy_file(fs::path(HOTMESH_SAMPLES) / "ramp2d" / name, ramp / name);
   }
   time_case("ramp2d-sliding", amg_case(ramp / "ramp2d-sliding.yaml"));
-  for (const long cells : sizes(argc, argv)) {
+  for (const long cells : numbers(argc > 1 ? argv[1] : "18000,60000")) {
     const fs::path dir = folder / fmt::format("stator-{}", cells);
     if (!run(fmt::format("{} --cells {} '{}' > /dev/null", HOTMESH_MAKE_STATOR_WELL, cells, dir.string()))) return 1;
     time_case(fmt::format("stator well {} cells", cells), amg_case(dir / "case_small.yaml"));

@@ -102,7 +102,8 @@ class StiffnessOperator final : public LinearOperator {
   void update(std::span<const Vec3> points);
 
   std::size_t size() const override { return kernel_->size(); }
-  /// y = K x for dof vectors laid out node after node (x_0, y_0, [z_0,] x_1, ...).
+  /// y = K x for dof vectors laid out node after node (x_0, y_0, [z_0,] x_1, ...). Renumbered,
+  /// it copies x into the operator's own work array first: one product at a time.
   void apply(std::span<const double> x, std::span<double> y) const override;
   /// The diagonal of K.
   void diagonal(std::span<double> d) const;
