@@ -8,6 +8,9 @@
 namespace hotmesh::deform::detail {
 namespace {
 
+/// The number of cells around node n: the degree by which Cuthill-McKee orders neighbours.
+std::size_t degree(const NodeCells& around, NodeId n) { return around.of(static_cast<std::size_t>(n)).size(); }
+
 /// Breadth-first levels from `root` over the nodes not yet numbered: the last level's node
 /// with the fewest cells around it (the lowest number among equals) and the number of levels.
 struct FarNode {
@@ -35,11 +38,10 @@ FarNode farthest_level(const ElementList& cells, const NodeCells& around, NodeId
       }
     }
     if (queue.size() == level_end) {  // the last level
-      const auto degree = [&](NodeId n) { return around.of(static_cast<std::size_t>(n)).size(); };
       NodeId best = queue[level_start];
       for (std::size_t q = level_start; q < level_end; ++q) {
         const NodeId n = queue[q];
-        if (degree(n) < degree(best) || (degree(n) == degree(best) && n < best)) best = n;
+        if (degree(around, n) < degree(around, best) || (degree(around, n) == degree(around, best) && n < best)) best = n;
       }
       return {best, levels};
     }
@@ -58,7 +60,6 @@ std::vector<NodeId> reverse_cuthill_mckee(const ElementList& cells, const NodeCe
   std::vector<std::int32_t> seen(nodes, -1);
   std::vector<NodeId> queue, next;
   std::int32_t stamp = 0;
-  const auto degree = [&](NodeId n) { return around.of(static_cast<std::size_t>(n)).size(); };
   for (std::size_t first = 0; first < nodes; ++first) {
     if (numbered[first]) continue;
     // A pseudo-peripheral node of this part: from the far end of the levels, while they deepen.
@@ -83,7 +84,9 @@ std::vector<NodeId> reverse_cuthill_mckee(const ElementList& cells, const NodeCe
           next.push_back(n);
         }
       }
-      std::sort(next.begin(), next.end(), [&](NodeId a, NodeId b) { return degree(a) != degree(b) ? degree(a) < degree(b) : a < b; });
+      std::sort(next.begin(), next.end(), [&](NodeId a, NodeId b) {
+        return degree(around, a) != degree(around, b) ? degree(around, a) < degree(around, b) : a < b;
+      });
       order.insert(order.end(), next.begin(), next.end());
     }
   }
