@@ -25,6 +25,7 @@
 #include <fmt/format.h>
 
 #include "hotmesh/deform/material.hpp"
+#include "hotmesh/deform/node_order.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "machine_load.hpp"
@@ -91,18 +92,6 @@ std::vector<NodeId> rcm_numbers(const Mesh& mesh) {
   return number;
 }
 
-double mean_spread(const Mesh& mesh) {
-  double sum = 0.0;
-  std::size_t pairs = 0;
-  for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
-    const auto nodes = mesh.cells.nodes(c);
-    for (std::size_t a = 0; a < nodes.size(); ++a) {
-      for (std::size_t b = a + 1; b < nodes.size(); ++b, ++pairs) sum += std::abs(static_cast<double>(nodes[a] - nodes[b]));
-    }
-  }
-  return sum / static_cast<double>(pairs);
-}
-
 struct Seconds {
   double build = 0.0;    ///< the StiffnessOperator's pattern, its row order included
   double update = 0.0;   ///< StiffnessOperator::update, the K_e summed into the blocks
@@ -138,7 +127,7 @@ void rows(std::string_view name, const Mesh& mesh) {
     const hotmesh::bench::LoadProbe load;
     const Seconds one = operator_seconds(m, 1), all = operator_seconds(m, cores);
     fmt::print("| {} | {} | {} | {:.0f} | {} | {:.2f} | {:.3f} | {:.3f} | {:.3f} | {:.2f} |\n", name, m.cell_count(), order,
-               mean_spread(m), one.renumbered ? "yes" : "no", one.build, one.update, one.product, all.product, load.others());
+               hotmesh::deform::mean_spread(m.cells, {}), one.renumbered ? "yes" : "no", one.build, one.update, one.product, all.product, load.others());
   };
   row("as generated", mesh);
   row("RCM", renumbered(mesh, rcm_numbers(mesh)));

@@ -1,11 +1,11 @@
 // hotmesh deform: reverse Cuthill-McKee over the cells' node graph.
-#include "node_order.hpp"
+#include "hotmesh/deform/node_order.hpp"
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 
-namespace hotmesh::deform::detail {
+namespace hotmesh::deform {
 namespace {
 
 /// The number of cells around node n: the degree by which Cuthill-McKee orders neighbours.
@@ -109,4 +109,4 @@ double mean_spread(const ElementList& cells, std::span<const NodeId> position) {
   return pairs == 0 ? 0.0 : sum / static_cast<double>(pairs);
 }
 
-}  // namespace hotmesh::deform::detail
+}  // namespace hotmesh::deform

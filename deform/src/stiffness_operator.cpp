@@ -9,9 +9,9 @@
 #include <string>
 
 #include "hotmesh/deform/element_stiffness.hpp"
+#include "hotmesh/deform/node_order.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
-#include "node_order.hpp"
 
 namespace hotmesh::deform {
 NodeCells::NodeCells(const ElementList& list, std::size_t nodes) : start(nodes + 1, 0) {
@@ -87,10 +87,10 @@ StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kern
   // The rows in reverse Cuthill-McKee order where that brings a cell's nodes much closer than
   // the mesh's own numbering does: a row then finds the blocks it reads transposed, and x, in
   // the rows just before it.
-  order_ = detail::reverse_cuthill_mckee(cells, around);
+  order_ = reverse_cuthill_mckee(cells, around);
   position_.resize(nodes);
   for (std::size_t r = 0; r < nodes; ++r) position_[static_cast<std::size_t>(order_[r])] = static_cast<NodeId>(r);
-  if (!(detail::mean_spread(cells, position_) < kRenumberSpread * detail::mean_spread(cells, {}))) {
+  if (!(mean_spread(cells, position_) < kRenumberSpread * mean_spread(cells, {}))) {
     order_.clear();
     position_.clear();
   }

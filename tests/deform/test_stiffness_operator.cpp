@@ -15,7 +15,7 @@
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/geometry/input_error.hpp"
-#include "node_order.hpp"
+#include "hotmesh/deform/node_order.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::deform {
@@ -111,7 +111,7 @@ TEST(StiffnessOperator, NodeBlocksAgreeWithTheAssemblyOfEveryEntry) {
 TEST(StiffnessOperator, ReverseCuthillMcKeeBandsAShuffledStrip) {
   const Mesh strip = shuffled(test::unit_square(60, 5));
   const NodeCells around(strip.cells, strip.node_count());
-  const auto order = detail::reverse_cuthill_mckee(strip.cells, around);
+  const auto order = reverse_cuthill_mckee(strip.cells, around);
   ASSERT_EQ(order.size(), strip.node_count());
   std::vector<NodeId> position(order.size(), -1);
   for (std::size_t r = 0; r < order.size(); ++r) {
@@ -122,7 +122,7 @@ TEST(StiffnessOperator, ReverseCuthillMcKeeBandsAShuffledStrip) {
   std::iota(own.begin(), own.end(), NodeId{0});
   EXPECT_GT(bandwidth(strip, own), 100);
   EXPECT_LE(bandwidth(strip, position), 2 * 6 + 1);  // two columns of 6 nodes and one more
-  EXPECT_LT(detail::mean_spread(strip.cells, position), 0.05 * detail::mean_spread(strip.cells, {}));
+  EXPECT_LT(mean_spread(strip.cells, position), 0.05 * mean_spread(strip.cells, {}));
 
   Mesh two = test::unit_square(4, 4);  // and a second square beside it, sharing no node
   const auto offset = static_cast<NodeId>(two.node_count());
@@ -133,7 +133,7 @@ TEST(StiffnessOperator, ReverseCuthillMcKeeBandsAShuffledStrip) {
     for (NodeId n : second.cells.nodes(c)) nodes.push_back(n + offset);
     two.cells.add(second.cells.type(c), nodes);
   }
-  const auto parts = detail::reverse_cuthill_mckee(two.cells, NodeCells(two.cells, two.node_count()));
+  const auto parts = reverse_cuthill_mckee(two.cells, NodeCells(two.cells, two.node_count()));
   ASSERT_EQ(parts.size(), two.node_count());
   const auto first_part = [&](NodeId n) { return n < offset; };
   EXPECT_TRUE(std::is_partitioned(parts.begin(), parts.end(), first_part) ||

@@ -7,7 +7,7 @@
 
 #include "hotmesh/deform/stiffness_operator.hpp"
 
-namespace hotmesh::deform::detail {
+namespace hotmesh::deform {
 
 /// Reverse Cuthill-McKee (George and Liu): order[r] is the node at position r. Each connected
 /// part of the mesh starts from a pseudo-peripheral node; a node's unnumbered neighbours
@@ -18,4 +18,4 @@ std::vector<NodeId> reverse_cuthill_mckee(const ElementList& cells, const NodeCe
 /// position[node] given (empty: the nodes' own numbers).
 double mean_spread(const ElementList& cells, std::span<const NodeId> position);
 
-}  // namespace hotmesh::deform::detail
+}  // namespace hotmesh::deform
