@@ -4,7 +4,7 @@
 // tolerance and with the Eisenstat-Walker forcing term (inexact Newton).
 //
 //   ninja -C build bench_linear_solvers && build/bench/bench_linear_solvers [CASE.yaml ...] [--runs 3]
-//       [--threads 1] [--hypre] [--linear jacobi-pcg,amg,direct] [--forcing fixed,eisenstat-walker]
+//       [--threads 1] [--hypre] [--linear jacobi-pcg,amg,direct,icc] [--forcing fixed,eisenstat-walker]
 //
 // Without cases: the samples ramp2d and shear2d, with and without sliding. scripts/bench.sh adds
 // the stator-well sample and the sliding ramp refined by make_ramp2d --refine. --linear and
@@ -59,6 +59,7 @@ struct Run {
   std::size_t linear = 0;
   double others = 0.0;
   bool success = false;
+  std::vector<std::string> notes;  ///< the motion's (icc going over to direct, ...)
 };
 
 Run run_case(const io::Case& base, const io::LoadedMesh& loaded, const io::CaseSetup& setup, const Solver& s) {
@@ -72,6 +73,7 @@ Run run_case(const io::Case& base, const io::LoadedMesh& loaded, const io::CaseS
   r.others = load.others();
   r.motion = result.timings;
   r.success = result.success;
+  r.notes = result.notes;
   for (const auto& increment : result.increments) {
     if (!increment.newton.empty()) r.newton += increment.newton.size() - 1;
     for (const auto& step : increment.newton) r.linear += static_cast<std::size_t>(step.pcg_iterations);
@@ -115,7 +117,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_linear_solvers [CASE.yaml ...] [--runs N] [--threads N] [--hypre] "
-                   "[--linear jacobi-pcg,amg,direct] [--forcing fixed,eisenstat-walker]\n");
+                   "[--linear jacobi-pcg,amg,direct,icc] [--forcing fixed,eisenstat-walker]\n");
       return 2;
     }
   }
@@ -129,7 +131,7 @@ int main(int argc, char** argv) {
   for (const auto forcing : {deform::ForcingTerm::fixed, deform::ForcingTerm::eisenstat_walker}) {
     if (!named(forcing_list, deform::to_string(forcing))) continue;
     for (const auto linear : {deform::LinearSolverKind::jacobi_pcg, deform::LinearSolverKind::amg,
-                              deform::LinearSolverKind::direct}) {
+                              deform::LinearSolverKind::direct, deform::LinearSolverKind::icc}) {
       if (!named(linear_list, deform::to_string(linear))) continue;
       solvers.push_back({linear, deform::AmgPackage::gamg, forcing});
       if (linear == deform::LinearSolverKind::amg && hypre) solvers.push_back({linear, deform::AmgPackage::hypre, forcing});
@@ -175,6 +177,7 @@ int main(int argc, char** argv) {
                    1e3 * solve / static_cast<double>(std::max<std::size_t>(1, first.linear)),
                    column([](const Run& r) { return r.others; }));
         if (!first.success) fmt::print("\nThe motion of {} failed with {}.\n\n", name, s.name());
+        for (const std::string& note : first.notes) fmt::print("\nNote from {} with {}: {}\n\n", name, s.name(), note);
         std::fflush(stdout);
       }
     }

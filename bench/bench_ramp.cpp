@@ -5,8 +5,9 @@
 //
 // (scripts/bench.sh builds and runs it with every other benchmark.) Each run reads and checks
 // the case and its mesh, reconstructs the deflected wall from the FEM table and moves the mesh
-// through all the case's increments (deform::move_mesh: Newton-Raphson, Jacobi-PCG, quality
-// checks), with 1 thread and with all of them. Prints a Markdown table of medians over the
+// through all the case's increments (deform::move_mesh: Newton-Raphson, the paper's Jacobi-PCG
+// unless the case names another solver (`linear: auto` would take icc for this 2D mesh: see
+// bench_linear_solvers), quality checks), with 1 thread and with all of them. Prints a Markdown table of medians over the
 // runs (each column its own median): wall time; the phases from MotionResult::timings (set-up,
 // element matrices, PCG, quality, and the rest of the motion: residual products, updates of
 // the points); Newton and PCG iteration totals and the time per PCG iteration, next to one
@@ -62,7 +63,8 @@ Run run_case(const std::string& file) {
   Run r;
   const bench::LoadProbe load;
   const auto start = Clock::now();
-  const io::Case c = io::read_case(file);
+  io::Case c = io::read_case(file);
+  if (c.solver.linear == deform::LinearSolverKind::automatic) c.solver.linear = deform::LinearSolverKind::jacobi_pcg;
   const io::LoadedMesh loaded = io::read_mesh(c.mesh);
   io::check_case_against_mesh(c, loaded.mesh);
   r.read = seconds_since(start);

@@ -66,9 +66,9 @@ args_for() {
 }
 
 # The linear solvers: the 2D samples, three runs each, then the stator-well sample (20 000 hex
-# cells) once, then the sliding ramp refined 2 times (9 120 cells: amg against direct) and 4
-# times (36 480 cells: direct; amg needed more than 6 minutes for the first 5 of its 16
-# increments there), once: where `linear: auto` goes from one to the other (kDirectCells).
+# cells) once, then the sliding ramp refined 2 times (9 120 cells: amg, direct and icc) and 4
+# times (36 480 cells: direct and icc; amg needed more than 6 minutes for the first 5 of its 16
+# increments there), once: where `linear: auto` goes from icc to amg (kIccCells).
 linear_solvers() {
   if ((quick)); then
     build/bench/bench_linear_solvers --runs 1
@@ -82,7 +82,7 @@ linear_solvers() {
     build/samples/ramp2d/make_ramp2d --refine "$refine" "$folder" >/dev/null
     cp samples/ramp2d/ramp2d-sliding.yaml "$folder/"
     echo
-    build/bench/bench_linear_solvers --runs 1 --linear "$( ((refine < 4)) && echo amg,direct || echo direct)" \
+    build/bench/bench_linear_solvers --runs 1 --linear "$( ((refine < 4)) && echo amg,direct,icc || echo direct,icc)" \
       --forcing fixed "$folder/ramp2d-sliding.yaml"
   done
 }

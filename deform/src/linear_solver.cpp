@@ -19,7 +19,7 @@ std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, c
 }
 
 bool solves_with_node_blocks(const SolverOptions& options) {
-  return options.linear != LinearSolverKind::amg && options.linear != LinearSolverKind::direct;
+  return options.linear == LinearSolverKind::jacobi_pcg || options.linear == LinearSolverKind::automatic;
 }
 
 double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d) {

@@ -7,12 +7,14 @@
 //    blocks (stiffness_operator.hpp);
 //  - amg: the same operator assembled in nodal frames (nodal_frames.hpp) into a PETSc matrix,
 //    solved by CG with algebraic multigrid (petsc_solver.cpp);
-//  - direct: that matrix's sparse Cholesky factors as CG's preconditioner (petsc_solver.cpp).
-// Both see the same system and give the same p to the solver tolerance (tests/deform).
+//  - direct: that matrix's sparse Cholesky factors as CG's preconditioner (petsc_solver.cpp);
+//  - icc: its incomplete Cholesky factors, ICC(2) in the nodes' order (petsc_solver.cpp).
+// All see the same system and give the same p to the solver tolerance (tests/deform).
 #pragma once
 
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -82,6 +84,8 @@ class LinearSolver {
   /// The solver's element pass, if it computes the element matrices itself; null when it
   /// solves with the node blocks of K.
   virtual ElementAssembler* assembler() { return nullptr; }
+  /// What the run's report should say about the solves (a change of method on the way).
+  virtual std::vector<std::string> notes() const { return {}; }
 };
 
 /// ||D^-1 R||: the Newton residual with each node's force divided by the node's stiffness,
@@ -93,12 +97,12 @@ class LinearSolver {
 double scaled_residual_norm(std::span<const double> r, std::span<const double> node_stiffness, std::size_t d);
 
 /// The solver SolverOptions::linear names, for the processes of `ranks`, with K in the node
-/// blocks of `k` (which jacobi-pcg needs: std::invalid_argument without; amg and direct
+/// blocks of `k` (which jacobi-pcg needs: std::invalid_argument without; amg, direct and icc
 /// assemble their own matrix and ignore it). They initialise PETSc (and MPI) on first use.
 std::unique_ptr<LinearSolver> make_linear_solver(const SolverOptions& options, const parallel::RankExchange& ranks,
                                                  const StiffnessOperator* k);
 /// Whether that solver works on K in node blocks (jacobi-pcg) or assembles the element matrices
-/// into a matrix of its own (amg, direct).
+/// into a matrix of its own (amg, direct, icc).
 bool solves_with_node_blocks(const SolverOptions& options);
 
 /// P T^T K T P: the stiffness restricted to the admissible subspace — periodic slaves expanded

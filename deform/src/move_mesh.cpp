@@ -105,6 +105,7 @@ class Motion {
     result_.length_scale = size_;
     result_.max_periodic_mismatch = setup_.periodic.mismatch(result_.points);
     report_corners();
+    for (std::string& note : linear_->notes()) result_.notes.push_back(std::move(note));
     result_.timings.quality += seconds_since(q);
     result_.timings.total = seconds_since(start) + setup_seconds_ + earlier_seconds_;
     return std::move(result_);

@@ -10,6 +10,16 @@
 // K~ p~ = r~ from p~ = 0 on each rank's rows, stopping on the norm the system asks for, and
 // p = T p~. PCGAMG gets the translations written in the frames as near-null space.
 //
+// `icc` runs the same CG with incomplete Cholesky factors of K~, ICC(kIccLevels), made anew at
+// every Newton step (milliseconds on the 2D meshes it is for), in the rows' order: the nodes'
+// own numbers (ICC on each rank's rows, block Jacobi between ranks, with several processes).
+// A 2D mesh generator numbers a boundary layer line by line, and ICC in that order holds the
+// strong coupling across the layer's thin cells that nodal Jacobi or a multigrid's aggregates
+// miss: 4 to 6 CG iterations a solve on the ramps, where reverse Cuthill-McKee took 15 to 800
+// (docs/performance.md). A numbering that does not follow the layer makes ICC slow, so its CG
+// stops after kIccMostIterations iterations; a solve not converged by then goes over to
+// `direct` for the rest of the run, is solved again, and the report says so (notes()).
+//
 // `direct` runs the same CG with a sparse Cholesky factorization of K~ as its preconditioner
 // (CHOLMOD in one process, MUMPS on several), factorized at every Newton step: exact, so CG
 // stops after one iteration. Each increment's first step orders the fixed sparsity and makes
@@ -49,6 +59,9 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "frame_matrix.hpp"
 #include "free_memory.hpp"
@@ -59,6 +72,26 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// `icc`: the levels of fill of the incomplete factors. The sliding ramp refined twice took
+/// 1 170, 818 and 618 CG iterations with 1, 2 and 3 levels, in 3.3, 2.8 and 2.9 s.
+constexpr PetscInt kIccLevels = 2;
+/// `icc` goes over to `direct` after a solve not converged in this many CG iterations: 4 to 6 a solve
+/// on the 2D samples, 30 on the sliding ramp refined four times (36 480 cells, where a
+/// factorization costs about 100 ICC iterations); 100 to 800 where the numbering does not
+/// follow the boundary layer (the ramp's hybrid mesh in reverse Cuthill-McKee order).
+constexpr int kIccMostIterations = 100;
+
+/// What preconditions the assembled solver's CG.
+enum class Preconditioner { multigrid, cholesky, incomplete_cholesky };
+
+Preconditioner preconditioner_of(LinearSolverKind linear) {
+  switch (linear) {
+    case LinearSolverKind::direct: return Preconditioner::cholesky;
+    case LinearSolverKind::icc: return Preconditioner::incomplete_cholesky;
+    default: return Preconditioner::multigrid;
+  }
+}
 
 bool option_given(const char* name) {
   PetscBool set = PETSC_FALSE;
@@ -121,9 +154,9 @@ class RowsOperator final : public LinearOperator {
 class AssembledSolver final : public LinearSolver, public ElementAssembler {
  public:
   AssembledSolver(const SolverOptions& options, const parallel::RankExchange& ranks)
-      : options_(options), job_{ranks.rank(), ranks.ranks()}, direct_(options.linear == LinearSolverKind::direct) {
+      : options_(options), job_{ranks.rank(), ranks.ranks()}, preconditioner_(preconditioner_of(options.linear)) {
     parallel::start_petsc();
-    if (direct_) {
+    if (factors()) {
       reuse_ = AmgReuse::none;  // a fresh factorization at every Newton step (above)
       return;
     }
@@ -186,6 +219,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     }
   }
   ElementAssembler* assembler() override { return this; }
+  std::vector<std::string> notes() const override { return notes_; }
 
   LinearSolveResult solve(const ConstrainedSystem& s, std::span<const double> rhs, std::span<double> p,
                           const LinearTarget& target, MotionTimings& timings) override {
@@ -199,7 +233,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     LinearSolveResult result;
     // CG in the norm the Newton loop asks for: the Newton norm ||D^-1 r~|| with the node
     // stiffness D (the frames are orthonormal per node, so it equals ||D^-1 r||), else ||r~||.
-    PcgOptions cg{.relative_tolerance = target.tolerance, .max_iterations = options_.max_pcg_iterations,
+    PcgOptions cg{.relative_tolerance = target.tolerance, .max_iterations = most_iterations(),
                   .record_history = false, .sum = [this](double local) { return sum_over_ranks(local); }};
     if (target.newton_norm) {
       set_newton_weights(s.node_stiffness, d);
@@ -238,6 +272,16 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
         set_up(rebuild, timings);
         continue;
       }
+      if (preconditioner_ == Preconditioner::incomplete_cholesky && !result.converged && !result.breakdown) {
+        go_over_to_cholesky(timings);
+        cg.max_iterations = most_iterations();
+        if (!set_up(true, timings)) {
+          std::fill(p.begin(), p.end(), 0.0);
+          result.breakdown = true;
+          return result;
+        }
+        continue;
+      }
       note_iterations(last.iterations, rebuild);
       break;
     }
@@ -251,6 +295,9 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
   }
 
  private:
+  /// Factors of K~ (complete or incomplete), made at every Newton step, rather than a multigrid.
+  bool factors() const { return preconditioner_ != Preconditioner::multigrid; }
+
   /// Whether this solve builds the multigrid anew (SolverOptions::amg_reuse).
   bool must_rebuild() const {
     if (!pc_) return true;
@@ -270,7 +317,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     // carries state from one set-up into the next, and a run resumed from a checkpoint would
     // otherwise take other CG iterations than the uninterrupted run.
     if (!pc_ || (rebuild && (first_step_ || reuse_ == AmgReuse::adaptive) && reuse_ != AmgReuse::interpolation)) create_pc();
-    if (rebuild && !direct_) set_near_null_space(a_, *frames_, *rows_);
+    if (rebuild && !factors()) set_near_null_space(a_, *frames_, *rows_);
     if (reuse_ == AmgReuse::interpolation) {
       check(PCGAMGSetReuseInterpolation(pc_, first_step_ ? PETSC_FALSE : PETSC_TRUE), "PCGAMGSetReuseInterpolation");
     }
@@ -281,7 +328,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     // 2.7 million cells it rose by 0.2-0.4 GiB per increment, the history of docs/performance.md).
     if (rebuild) release_free_memory();
     bool factorized = true;
-    if (direct_) {
+    if (factors()) {
       factorized = factorize();
     } else {
       check(PCSetUp(pc_), "PCSetUp");
@@ -293,11 +340,29 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       release_free_memory();  // the set-up's work space
       check(PCViewFromOptions(pc_, nullptr, "-pc_view"), "PCViewFromOptions");
     }
-    if (rebuild && !direct_ && options_.amg == AmgPackage::gamg && !one_sided_sweeps_ && !smoother_given_) {
+    if (rebuild && !factors() && options_.amg == AmgPackage::gamg && !one_sided_sweeps_ && !smoother_given_) {
       make_sweeps_symmetric();
     }
     timings.preconditioner += seconds_since(t);
     return factorized;
+  }
+
+  /// CG's limit: kIccMostIterations for `icc`, which then goes over to `direct`.
+  int most_iterations() const {
+    return preconditioner_ == Preconditioner::incomplete_cholesky ? std::min(options_.max_pcg_iterations, kIccMostIterations)
+                                                                  : options_.max_pcg_iterations;
+  }
+
+  /// `icc` no longer serves (kIccMostIterations): `direct` from this solve on, with a new PC.
+  void go_over_to_cholesky(MotionTimings& timings) {
+    const auto t = Clock::now();
+    notes_.push_back(fmt::format(
+        "linear: icc did not converge in {} CG iterations (the mesh's node numbering does not follow its "
+        "boundary layers, or the mesh is larger than icc is made for); the run went on with linear: direct",
+        kIccMostIterations));
+    preconditioner_ = Preconditioner::cholesky;
+    create_pc();
+    timings.preconditioner += seconds_since(t);
   }
 
   /// PCSetUp of the Cholesky factorization; false on every rank if it failed on any (a pivot
@@ -453,9 +518,18 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     if (pc_) check(PCDestroy(&pc_), "PCDestroy");
     check(PCCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a_)), &pc_), "PCCreate");
     check(PCSetOptionsPrefix(pc_, "hotmesh_"), "PCSetOptionsPrefix");
-    if (direct_) {
+    if (preconditioner_ == Preconditioner::cholesky) {
       check(PCSetType(pc_, PCCHOLESKY), "PCSetType");
       check(PCFactorSetMatSolverType(pc_, job_.count > 1 ? MATSOLVERMUMPS : MATSOLVERCHOLMOD), "PCFactorSetMatSolverType");
+    } else if (preconditioner_ == Preconditioner::incomplete_cholesky && job_.count > 1) {
+      check(PCSetType(pc_, PCBJACOBI), "PCSetType");  // one block per rank, each ICC in its rows' order
+      default_option("-hotmesh_sub_pc_type", "icc");
+      default_option("-hotmesh_sub_pc_factor_levels", std::to_string(kIccLevels).c_str());
+      default_option("-hotmesh_sub_pc_factor_mat_ordering_type", MATORDERINGNATURAL);
+    } else if (preconditioner_ == Preconditioner::incomplete_cholesky) {
+      check(PCSetType(pc_, PCICC), "PCSetType");
+      check(PCFactorSetLevels(pc_, kIccLevels), "PCFactorSetLevels");
+      check(PCFactorSetMatOrderingType(pc_, MATORDERINGNATURAL), "PCFactorSetMatOrderingType");
     } else if (options_.amg == AmgPackage::gamg) {
       check(PCSetType(pc_, PCGAMG), "PCSetType");
       check(PCGAMGSetType(pc_, PCGAMGAGG), "PCGAMGSetType");
@@ -490,7 +564,8 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
 
   SolverOptions options_;
   parallel::Processes job_;  ///< this rank, of how many
-  bool direct_ = false;      ///< Cholesky factors instead of a multigrid (`linear: direct`)
+  Preconditioner preconditioner_;  ///< by `linear`; `icc` may go over to `direct` (go_over_to_cholesky)
+  std::vector<std::string> notes_;  ///< for MotionResult::notes
   std::vector<CellId> local_cells_;  ///< the cells whose element work this rank does
   AmgReuse reuse_ = AmgReuse::automatic;  ///< resolved by create()
   std::optional<NodalFrames> frames_;

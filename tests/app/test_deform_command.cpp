@@ -104,7 +104,7 @@ TEST(DeformCommand, HybridMeshMovesWithEitherSolverAndReportsQualityPerCellType)
   const mesh::Mesh hybrid = mesh::split_cells(quads, split);
   io::write_gmsh(dir / "ramp.msh", hybrid);
   std::vector<std::vector<geometry::Vec3>> results;
-  for (const std::string linear : {"jacobi-pcg", "amg", "direct"}) {
+  for (const std::string linear : {"jacobi-pcg", "amg", "direct", "icc"}) {
     SCOPED_TRACE(linear);
     std::string yaml = test::ramp_case("full.csv", 4);
     yaml.replace(yaml.find("solver: {"), 9, "solver: {linear: " + linear + ", ");
@@ -138,11 +138,11 @@ TEST(DeformCommand, HybridMeshMovesWithEitherSolverAndReportsQualityPerCellType)
   }
 }
 
-/// `linear: auto`, a case file's default, picks direct for a small 2D mesh with a sliding wall
-/// and jacobi-pcg without (deform::choose_linear_solver); the log and report.json say which and why.
+/// `linear: auto`, a case file's default, picks icc for a small 2D mesh, with a sliding wall or
+/// without (deform::choose_linear_solver); the log and report.json say which and why.
 /// The ramp samples leave the choice to it; the runs are on the coarse ramp channel, since the
 /// choice depends on the dimension, the walls and the size only.
-TEST(DeformCommand, LinearAutoPicksTheSolverBySlidingWallsAndSaysWhy) {
+TEST(DeformCommand, LinearAutoPicksTheSolverAndSaysWhy) {
   for (const char* sample : {"ramp2d-sliding.yaml", "ramp2d.yaml"}) {
     EXPECT_EQ(test::read_text(kSample / sample).find("linear:"), std::string::npos) << sample;  // the default
   }
@@ -150,8 +150,8 @@ TEST(DeformCommand, LinearAutoPicksTheSolverBySlidingWallsAndSaysWhy) {
   test::write_coarse_ramp(dir.path());
   test::write_text(dir / "sliding.yaml", test::ramp_case("full.csv", 2));
   test::write_text(dir / "prescribed.yaml", test::prescribed_ramp_case("full.csv", "increments: 2"));
-  const std::array<std::array<std::string, 3>, 2> runs{{{"sliding", "direct", "auto: a 2D mesh with a sliding wall, at most 40 000 cells"},
-                                                       {"prescribed", "jacobi-pcg", "auto: a 2D mesh without sliding walls"}}};
+  const std::array<std::array<std::string, 3>, 2> runs{{{"sliding", "icc", "auto: a 2D mesh of at most 40 000 cells"},
+                                                       {"prescribed", "icc", "auto: a 2D mesh of at most 40 000 cells"}}};
   for (const auto& [name, linear, why] : runs) {
     SCOPED_TRACE(name);
     const auto r = hotmesh("deform " + shell_quote((dir / (name + ".yaml")).string()));

@@ -2,9 +2,14 @@
 // solvers and the sparse Cholesky factors against Jacobi-PCG, the Newton norm they stop on, and
 // the forcing terms of the inexact Newton loop, on small 2D and 3D sectors with fixed, sliding
 // and periodic nodes (sector_system.hpp).
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
+#include <random>
+#include <string>
+#include <vector>
 
 #include "newton.hpp"
 #include "petsc_solver.hpp"
@@ -16,15 +21,17 @@ namespace {
 using namespace sector_test;
 using detail::ConstrainedOperator;
 
-/// `linear: auto`: amg with several processes, for 2D meshes with a sliding wall beyond
-/// kDirectCells cells and 3D meshes beyond kJacobiPcgCells cells; direct for the smaller 2D
-/// meshes with a sliding wall; jacobi-pcg otherwise.
+/// `linear: auto`: amg with several processes; icc for 2D meshes up to kIccCells cells, beyond
+/// amg with a sliding wall and jacobi-pcg without; in 3D jacobi-pcg up to kJacobiPcgCells
+/// cells, amg beyond.
 TEST(LinearSolverChoice, FollowsTheMeasuredRule) {
-  EXPECT_EQ(choose_linear_solver(2, 1000, true, 1).kind, LinearSolverKind::direct);
-  EXPECT_EQ(choose_linear_solver(2, kDirectCells, true, 1).kind, LinearSolverKind::direct);
-  EXPECT_EQ(choose_linear_solver(2, kDirectCells + 1, true, 1).kind, LinearSolverKind::amg);
-  EXPECT_EQ(choose_linear_solver(2, kDirectCells, true, 1).reason, "a 2D mesh with a sliding wall, at most 40 000 cells");
-  EXPECT_EQ(choose_linear_solver(2, kDirectCells + 1, true, 1).reason,
+  EXPECT_EQ(choose_linear_solver(2, 1000, true, 1).kind, LinearSolverKind::icc);
+  EXPECT_EQ(choose_linear_solver(2, 1000, false, 1).kind, LinearSolverKind::icc);
+  EXPECT_EQ(choose_linear_solver(2, kIccCells, true, 1).kind, LinearSolverKind::icc);
+  EXPECT_EQ(choose_linear_solver(2, kIccCells + 1, true, 1).kind, LinearSolverKind::amg);
+  EXPECT_EQ(choose_linear_solver(2, kIccCells + 1, false, 1).kind, LinearSolverKind::jacobi_pcg);
+  EXPECT_EQ(choose_linear_solver(2, kIccCells, false, 1).reason, "a 2D mesh of at most 40 000 cells");
+  EXPECT_EQ(choose_linear_solver(2, kIccCells + 1, true, 1).reason,
             "a 2D mesh with a sliding wall, more than 40 000 cells");
   EXPECT_EQ(choose_linear_solver(3, 1000, true, 1).kind, LinearSolverKind::jacobi_pcg);
   EXPECT_EQ(choose_linear_solver(2, 1000000, false, 1).kind, LinearSolverKind::jacobi_pcg);
@@ -116,7 +123,7 @@ TEST_P(SolversIn, DirectSolverReportsAFailedFactorizationAsABreakdown) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    GamgHypreAndCholesky, LinearSolverOn,
+    GamgHypreCholeskyAndIcc, LinearSolverOn,
     ::testing::Values(SolverCase{{2, false}, LinearSolverKind::amg, AmgPackage::gamg},
                       SolverCase{{3, false}, LinearSolverKind::amg, AmgPackage::gamg},
                       SolverCase{{2, false}, LinearSolverKind::amg, AmgPackage::hypre},
@@ -126,10 +133,15 @@ INSTANTIATE_TEST_SUITE_P(
                       SolverCase{{2, false}, LinearSolverKind::direct, AmgPackage::gamg},
                       SolverCase{{3, false}, LinearSolverKind::direct, AmgPackage::gamg},
                       SolverCase{{2, true}, LinearSolverKind::direct, AmgPackage::gamg},
-                      SolverCase{{3, true}, LinearSolverKind::direct, AmgPackage::gamg}),
+                      SolverCase{{3, true}, LinearSolverKind::direct, AmgPackage::gamg},
+                      SolverCase{{2, false}, LinearSolverKind::icc, AmgPackage::gamg},
+                      SolverCase{{3, false}, LinearSolverKind::icc, AmgPackage::gamg},
+                      SolverCase{{2, true}, LinearSolverKind::icc, AmgPackage::gamg},
+                      SolverCase{{3, true}, LinearSolverKind::icc, AmgPackage::gamg}),
     [](const auto& param_info) {
       const SolverCase& c = param_info.param;
       return cells_name(c.cells) + (c.linear == LinearSolverKind::direct ? "Direct"
+                                    : c.linear == LinearSolverKind::icc  ? "Icc"
                                     : c.amg == AmgPackage::gamg         ? "Gamg"
                                                                         : "Hypre");
     });
@@ -220,6 +232,98 @@ TEST_P(SolversIn, EverySolverStopsOnTheResidualScaledByTheNodeStiffness) {
       EXPECT_GT(plain.second, tolerance);
     }
   }
+}
+
+/// A channel 2 long and 1 high whose cells shrink to 0.001 at its floor (aspect ratio 100 there,
+/// a CFD boundary layer), numbered as the mesh generator numbers it or shuffled: the floor
+/// slides, the inlet and the roof are fixed. K at the mesh's points, with eq. (35)'s stiffness.
+struct BoundaryLayer {
+  Mesh mesh;
+  NodeConstraints constraints;
+  detail::PeriodicCoupling periodic{2};
+  StiffnessOperator stiffness;
+
+  explicit BoundaryLayer(bool shuffle)
+      : mesh(make_mesh(shuffle)), constraints(mesh.node_count(), 2), stiffness(mesh, element_lame(mesh, {}), true) {
+    for (std::size_t n = 0; n < mesh.node_count(); ++n) {
+      const Vec3& p = mesh.points[n];
+      if (p.x == 0.0 || p.y == 1.0) {
+        constraints.fix(static_cast<NodeId>(n));
+      } else if (p.y == 0.0) {
+        constraints.constrain(static_cast<NodeId>(n), {0.0, 1.0, 0.0});
+      }
+    }
+    stiffness.update(mesh.points);
+  }
+  ConstrainedSystem system() const { return {stiffness.kernel(), constraints, periodic, mesh.points, {}}; }
+
+  static Mesh make_mesh(bool shuffle) {
+    const auto xs = mesh::uniform_line(0.0, 2.0, 41);
+    const auto ys = mesh::stretched_line(0.0, 1.0, 31, 0.001);
+    const Mesh given = mesh::structured_quads(xs, ys, {"inlet", "outlet", "floor", "roof"});
+    if (!shuffle) return given;
+    std::vector<NodeId> number(given.node_count());
+    std::iota(number.begin(), number.end(), NodeId{0});
+    std::shuffle(number.begin(), number.end(), std::mt19937(11));
+    Mesh out;
+    out.dimension = 2;
+    out.points.resize(given.points.size());
+    for (std::size_t n = 0; n < number.size(); ++n) out.points[static_cast<std::size_t>(number[n])] = given.points[n];
+    std::vector<NodeId> nodes;
+    for (std::size_t c = 0; c < given.cell_count(); ++c) {
+      nodes.clear();
+      for (NodeId n : given.cells.nodes(c)) nodes.push_back(number[static_cast<std::size_t>(n)]);
+      out.cells.add(given.cells.type(c), nodes);
+    }
+    return out;
+  }
+};
+
+struct LayerSolve {
+  detail::LinearSolveResult result;
+  std::vector<double> p;
+  std::vector<std::string> notes;
+};
+
+LayerSolve solve_layer(const BoundaryLayer& layer, LinearSolverKind kind, double tolerance) {
+  std::vector<double> rhs = random_vector(layer.stiffness.size(), 3);
+  layer.constraints.project(rhs);
+  SolverOptions options;
+  options.linear = kind;
+  auto solver = detail::make_linear_solver(options, parallel::one_process(), &layer.stiffness);
+  MotionTimings timings;
+  solver->begin_increment();
+  LayerSolve out{{}, std::vector<double>(rhs.size()), {}};
+  out.result = solver->solve(layer.system(), rhs, out.p, {tolerance}, timings);
+  out.notes = solver->notes();
+  return out;
+}
+
+/// `linear: icc` in the numbering of a structured boundary layer: its incomplete factors hold
+/// the stiff coupling across the thin cells, so CG needs a small share of Jacobi-PCG's
+/// iterations for the same step (the reason `auto` takes it in 2D).
+TEST(IncompleteCholesky, NeedsAFractionOfJacobiPcgsIterationsInABoundaryLayer) {
+  const BoundaryLayer layer(false);
+  const LayerSolve jacobi = solve_layer(layer, LinearSolverKind::jacobi_pcg, 1e-10);
+  const LayerSolve icc = solve_layer(layer, LinearSolverKind::icc, 1e-10);
+  ASSERT_TRUE(jacobi.result.converged);
+  ASSERT_TRUE(icc.result.converged);
+  EXPECT_LT(icc.result.iterations * 10, jacobi.result.iterations) << icc.result.iterations << " against " << jacobi.result.iterations;
+  EXPECT_LE(max_difference(icc.p, jacobi.p), 1e-7 * max_abs(jacobi.p));
+  EXPECT_TRUE(icc.notes.empty());
+}
+
+/// The same channel with its nodes shuffled: ICC in that order needs more than the iterations
+/// icc allows, so the solver goes over to the exact factors, still solves the step, and says so.
+TEST(IncompleteCholesky, GoesOverToTheExactFactorsWhereTheNumberingHidesTheLayer) {
+  const BoundaryLayer layer(true);
+  const LayerSolve jacobi = solve_layer(layer, LinearSolverKind::jacobi_pcg, 1e-10);
+  const LayerSolve icc = solve_layer(layer, LinearSolverKind::icc, 1e-10);
+  ASSERT_TRUE(icc.result.converged);
+  EXPECT_GT(icc.result.iterations, 100);  // ICC's, then one or two with the exact factors
+  EXPECT_LE(max_difference(icc.p, jacobi.p), 1e-7 * max_abs(jacobi.p));
+  ASSERT_EQ(icc.notes.size(), 1U);
+  EXPECT_THAT(icc.notes[0], ::testing::HasSubstr("the run went on with linear: direct"));
 }
 
 /// The Newton residual's norm weighs a node by the displacement its force stands for: a node

@@ -195,7 +195,7 @@ TEST_F(CaseFile, RejectsUnknownLinearSolverMultigridAndForcing) {
       "  linear: cholesky\n"
       "  amg: [gamg]\n"
       "  forcing: adaptive\n");
-  EXPECT_THAT(error, HasSubstr(at(5) + "solver.linear: expected one of auto, jacobi-pcg, amg, direct, got 'cholesky'"));
+  EXPECT_THAT(error, HasSubstr(at(5) + "solver.linear: expected one of auto, jacobi-pcg, amg, direct, icc, got 'cholesky'"));
   EXPECT_THAT(error, HasSubstr(at(6) + "solver.amg: expected one of gamg, hypre, got a list"));
   EXPECT_THAT(error, HasSubstr(at(7) + "solver.forcing: expected one of fixed, eisenstat-walker, got 'adaptive'"));
 }

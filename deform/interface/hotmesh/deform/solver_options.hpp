@@ -15,6 +15,7 @@ enum class LinearSolverKind {
   jacobi_pcg,  ///< the paper's PCG with nodal Jacobi (section 3), projected for sliding (eq. 16), K in node blocks
   amg,         ///< assembled in nodal frames (PETSc), CG preconditioned by algebraic multigrid
   direct,      ///< assembled in nodal frames (PETSc), sparse Cholesky of every Newton step's matrix
+  icc,         ///< assembled in nodal frames (PETSc), CG preconditioned by its incomplete Cholesky factors ICC(2)
 };
 
 /// The algebraic multigrid of the `amg` solver.
@@ -51,10 +52,11 @@ enum class ForcingTerm {
 };
 
 /// The names the case file and report.json use.
-inline constexpr EnumNames<LinearSolverKind, 4> kLinearSolverNames{{{{LinearSolverKind::automatic, "auto"},
+inline constexpr EnumNames<LinearSolverKind, 5> kLinearSolverNames{{{{LinearSolverKind::automatic, "auto"},
                                                                   {LinearSolverKind::jacobi_pcg, "jacobi-pcg"},
                                                                   {LinearSolverKind::amg, "amg"},
-                                                                  {LinearSolverKind::direct, "direct"}}}};
+                                                                  {LinearSolverKind::direct, "direct"},
+                                                                  {LinearSolverKind::icc, "icc"}}}};
 inline constexpr EnumNames<AmgPackage, 2> kAmgPackageNames{{{{AmgPackage::gamg, "gamg"}, {AmgPackage::hypre, "hypre"}}}};
 inline constexpr EnumNames<AmgReuse, 5> kAmgReuseNames{{{{AmgReuse::automatic, "auto"},
                                                         {AmgReuse::adaptive, "adaptive"},
@@ -70,21 +72,23 @@ constexpr std::string_view to_string(ForcingTerm f) { return kForcingTermNames.n
 /// The linear solver `linear: auto` runs, and why, from what docs/performance.md measured on
 /// whole motions ("AMG against Jacobi-PCG", "Stator-well solve at growing sizes"):
 ///  - amg with several processes: jacobi-pcg runs in one;
-///  - direct for a 2D mesh with a sliding wall of at most kDirectCells cells: Jacobi-PCG needs
-///    10 to 30 times the iterations there; the exact solves took 0.75 times amg's time on the
-///    sliding ramp (2 280 cells), 0.83 times on the ramp refined twice (9 120 cells) and less
-///    than 0.6 times refined four times (36 480 cells, where amg's inexact steps made the
-///    Newton cycle fail and split three of the first five increments). The factorization grows
-///    as N^1.5 or faster, so beyond the sizes measured amg is kept;
-///  - jacobi-pcg for a 2D mesh without sliding walls: 2 to 5 times faster than amg or direct
-///    on the ramp and the shear;
+///  - icc for a 2D mesh of at most kIccCells cells, sliding or not: its factors, in the mesh's
+///    node order, hold the strong coupling across the thin cells of a boundary layer that
+///    nodal Jacobi misses (4 to 6 CG iterations a solve on the ramps against 90 to 400 for
+///    Jacobi-PCG). On the sliding ramp it took 0.37 s against direct's 1.4 s, amg's 1.7 s and
+///    Jacobi-PCG's 3.0 s; refined twice (9 120 cells) 2.8 s against 13.5 s (direct) and 20.7 s
+///    (amg); refined four times (36 480 cells) 63 s against direct's 161 s, with 30 CG
+///    iterations a solve there. Without sliding, the ramp took 0.31 s against Jacobi-PCG's
+///    0.57 s (2.1 against 5.6 s refined twice); the shear, without a boundary layer, 0.06 s
+///    against 0.03 s. Beyond the sizes measured: amg with a sliding wall (the factorization of
+///    `direct` grows as N^1.5 or faster), jacobi-pcg without;
 ///  - in 3D, jacobi-pcg up to kJacobiPcgCells cells, amg beyond: on the sliding stator-well
 ///    sector Jacobi-PCG was faster at 18 000, 50 000 and 200 000 cells (336 s against 388 s
 ///    there, with 40 % less memory), but its time grows faster (N^1.15 against N^1.02 from
 ///    50 000 to 200 000 cells): the two cross near 600 000 cells. direct took 2 to 8 times
 ///    Jacobi-PCG's time at 18 000 cells (the factors of a 3D mesh grow as N^4/3).
 inline constexpr std::size_t kJacobiPcgCells = 500000;
-inline constexpr std::size_t kDirectCells = 40000;
+inline constexpr std::size_t kIccCells = 40000;
 struct LinearSolverChoice {
   LinearSolverKind kind = LinearSolverKind::jacobi_pcg;
   std::string_view reason;
@@ -92,9 +96,9 @@ struct LinearSolverChoice {
 constexpr LinearSolverChoice choose_linear_solver(int dimension, std::size_t cells, bool sliding, int processes) {
   if (processes > 1) return {LinearSolverKind::amg, "several processes"};
   if (dimension == 2) {
-    if (!sliding) return {LinearSolverKind::jacobi_pcg, "a 2D mesh without sliding walls"};
-    return cells <= kDirectCells ? LinearSolverChoice{LinearSolverKind::direct, "a 2D mesh with a sliding wall, at most 40 000 cells"}
-                                 : LinearSolverChoice{LinearSolverKind::amg, "a 2D mesh with a sliding wall, more than 40 000 cells"};
+    if (cells <= kIccCells) return {LinearSolverKind::icc, "a 2D mesh of at most 40 000 cells"};
+    return sliding ? LinearSolverChoice{LinearSolverKind::amg, "a 2D mesh with a sliding wall, more than 40 000 cells"}
+                   : LinearSolverChoice{LinearSolverKind::jacobi_pcg, "a 2D mesh without sliding walls, more than 40 000 cells"};
   }
   return cells > kJacobiPcgCells ? LinearSolverChoice{LinearSolverKind::amg, "a 3D mesh of more than 500 000 cells"}
                                  : LinearSolverChoice{LinearSolverKind::jacobi_pcg, "a 3D mesh of at most 500 000 cells"};
