@@ -8,7 +8,7 @@
 //  - amg: the same operator assembled in nodal frames (nodal_frames.hpp) into a PETSc matrix,
 //    solved by CG with algebraic multigrid (petsc_solver.cpp);
 //  - direct: that matrix's sparse Cholesky factors as CG's preconditioner (petsc_solver.cpp);
-//  - icc: its incomplete Cholesky factors, ICC(2) in the nodes' order (petsc_solver.cpp).
+//  - icc: its incomplete Cholesky factors in the nodes' order (petsc_solver.cpp).
 // All see the same system and give the same p to the solver tolerance (tests/deform).
 #pragma once
 

@@ -10,12 +10,12 @@
 // K~ p~ = r~ from p~ = 0 on each rank's rows, stopping on the norm the system asks for, and
 // p = T p~. PCGAMG gets the translations written in the frames as near-null space.
 //
-// `icc` runs the same CG with incomplete Cholesky factors of K~, ICC(kIccLevels), made anew at
+// `icc` runs the same CG with incomplete Cholesky factors of K~, ICC(icc_levels()), made anew at
 // every Newton step (milliseconds on the 2D meshes it is for), in the rows' order: the nodes'
 // own numbers (ICC on each rank's rows, block Jacobi between ranks, with several processes).
 // A 2D mesh generator numbers a boundary layer line by line, and ICC in that order holds the
 // strong coupling across the layer's thin cells that nodal Jacobi or a multigrid's aggregates
-// miss: 4 to 6 CG iterations a solve on the ramps, where reverse Cuthill-McKee took 15 to 800
+// miss: 3 to 6 CG iterations a solve on the ramps, where reverse Cuthill-McKee took 15 to 800
 // (docs/performance.md). A numbering that does not follow the layer makes ICC slow, so its CG
 // stops after kIccMostIterations iterations; a solve not converged by then goes over to
 // `direct` for the rest of the run, is solved again, and the report says so (notes()).
@@ -73,13 +73,17 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// `icc`: the levels of fill of the incomplete factors. The sliding ramp refined twice took
-/// 1 170, 818 and 618 CG iterations with 1, 2 and 3 levels, in 3.3, 2.8 and 2.9 s.
-constexpr PetscInt kIccLevels = 2;
-/// `icc` goes over to `direct` after a solve not converged in this many CG iterations: 4 to 6 a solve
-/// on the 2D samples, 30 on the sliding ramp refined four times (36 480 cells, where a
-/// factorization costs about 100 ICC iterations); 100 to 800 where the numbering does not
-/// follow the boundary layer (the ramp's hybrid mesh in reverse Cuthill-McKee order).
+/// `icc`: the levels of fill of the incomplete factors, by the mesh's dimension. The sliding
+/// ramp refined twice took 1 170, 818 and 618 CG iterations with 1, 2 and 3 levels, in 3.3, 2.8
+/// and 2.9 s. A hex's node couples to 26 others, a quad's to 8, and the fill grows with them:
+/// the 18 000-cell stator-well sector took 10, 20 and 51 s with 0, 1 and 2 levels (its
+/// factorizations 2, 14 and 43 s of them).
+constexpr PetscInt icc_levels(int dimension) { return dimension == 2 ? 2 : 0; }
+/// `icc` goes over to `direct` after a solve not converged in this many CG iterations: 3 to 6
+/// a solve on the 2D samples, 30 on average on the sliding ramp refined four times (36 480
+/// cells, where a factorization costs about 100 ICC iterations); 100 to 800 where the
+/// numbering does not follow the boundary layer (the ramp's hybrid mesh in reverse
+/// Cuthill-McKee order).
 constexpr int kIccMostIterations = 100;
 
 /// What preconditions the assembled solver's CG.
@@ -423,6 +427,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
 
   void create(const ConstrainedSystem& s) {
     const int d = s.kernel.dofs_per_node();
+    dimension_ = d;
     const std::size_t nodes = s.kernel.size() / static_cast<std::size_t>(d);
     frames_.emplace(nodes, d);
     frames_->update(s.constraints, s.periodic);
@@ -524,11 +529,11 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     } else if (preconditioner_ == Preconditioner::incomplete_cholesky && job_.count > 1) {
       check(PCSetType(pc_, PCBJACOBI), "PCSetType");  // one block per rank, each ICC in its rows' order
       default_option("-hotmesh_sub_pc_type", "icc");
-      default_option("-hotmesh_sub_pc_factor_levels", std::to_string(kIccLevels).c_str());
+      default_option("-hotmesh_sub_pc_factor_levels", std::to_string(icc_levels(dimension_)).c_str());
       default_option("-hotmesh_sub_pc_factor_mat_ordering_type", MATORDERINGNATURAL);
     } else if (preconditioner_ == Preconditioner::incomplete_cholesky) {
       check(PCSetType(pc_, PCICC), "PCSetType");
-      check(PCFactorSetLevels(pc_, kIccLevels), "PCFactorSetLevels");
+      check(PCFactorSetLevels(pc_, icc_levels(dimension_)), "PCFactorSetLevels");
       check(PCFactorSetMatOrderingType(pc_, MATORDERINGNATURAL), "PCFactorSetMatOrderingType");
     } else if (options_.amg == AmgPackage::gamg) {
       check(PCSetType(pc_, PCGAMG), "PCSetType");
@@ -566,6 +571,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
   parallel::Processes job_;  ///< this rank, of how many
   Preconditioner preconditioner_;  ///< by `linear`; `icc` may go over to `direct` (go_over_to_cholesky)
   std::vector<std::string> notes_;  ///< for MotionResult::notes
+  int dimension_ = 0;               ///< of the mesh (create())
   std::vector<CellId> local_cells_;  ///< the cells whose element work this rank does
   AmgReuse reuse_ = AmgReuse::automatic;  ///< resolved by create()
   std::optional<NodalFrames> frames_;

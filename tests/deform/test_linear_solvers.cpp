@@ -6,8 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numeric>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -261,21 +259,7 @@ struct BoundaryLayer {
     const auto xs = mesh::uniform_line(0.0, 2.0, 41);
     const auto ys = mesh::stretched_line(0.0, 1.0, 31, 0.001);
     const Mesh given = mesh::structured_quads(xs, ys, {"inlet", "outlet", "floor", "roof"});
-    if (!shuffle) return given;
-    std::vector<NodeId> number(given.node_count());
-    std::iota(number.begin(), number.end(), NodeId{0});
-    std::shuffle(number.begin(), number.end(), std::mt19937(11));
-    Mesh out;
-    out.dimension = 2;
-    out.points.resize(given.points.size());
-    for (std::size_t n = 0; n < number.size(); ++n) out.points[static_cast<std::size_t>(number[n])] = given.points[n];
-    std::vector<NodeId> nodes;
-    for (std::size_t c = 0; c < given.cell_count(); ++c) {
-      nodes.clear();
-      for (NodeId n : given.cells.nodes(c)) nodes.push_back(number[static_cast<std::size_t>(n)]);
-      out.cells.add(given.cells.type(c), nodes);
-    }
-    return out;
+    return shuffle ? test::shuffled_nodes(given, 11) : given;
   }
 };
 

@@ -9,7 +9,6 @@
 #include <array>
 #include <cstring>
 #include <numeric>
-#include <random>
 
 #include "hotmesh/deform/assembled_stiffness.hpp"
 #include "hotmesh/deform/material.hpp"
@@ -33,24 +32,8 @@ std::vector<double> pseudo_random(std::size_t n) {
   return v;
 }
 
-/// `mesh`'s points and cells with the nodes numbered at random (as a mesh from an
-/// unstructured mesher may come).
-Mesh shuffled(const Mesh& mesh) {
-  std::vector<NodeId> number(mesh.node_count());
-  std::iota(number.begin(), number.end(), NodeId{0});
-  std::shuffle(number.begin(), number.end(), std::mt19937(7));
-  Mesh out;
-  out.dimension = mesh.dimension;
-  out.points.resize(mesh.points.size());
-  for (std::size_t n = 0; n < number.size(); ++n) out.points[static_cast<std::size_t>(number[n])] = mesh.points[n];
-  std::vector<NodeId> nodes;
-  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
-    nodes.clear();
-    for (NodeId n : mesh.cells.nodes(c)) nodes.push_back(number[static_cast<std::size_t>(n)]);
-    out.cells.add(mesh.cells.type(c), nodes);
-  }
-  return out;
-}
+/// `mesh` with the nodes numbered at random.
+Mesh shuffled(const Mesh& mesh) { return test::shuffled_nodes(mesh, 7); }
 
 /// The largest distance between the positions of two nodes of a cell.
 NodeId bandwidth(const Mesh& mesh, const std::vector<NodeId>& position) {

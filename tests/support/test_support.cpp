@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <numeric>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -190,6 +192,23 @@ void jiggle_interior(mesh::Mesh& mesh, double fraction) {
     const double r = fraction * shortest[n];
     mesh.points[n] += geometry::Vec3{r * dx, r * dy, mesh.dimension == 3 ? r * dz : 0.0};
   }
+}
+
+mesh::Mesh shuffled_nodes(const mesh::Mesh& mesh, unsigned seed) {
+  std::vector<mesh::NodeId> number(mesh.node_count());
+  std::iota(number.begin(), number.end(), mesh::NodeId{0});
+  std::shuffle(number.begin(), number.end(), std::mt19937(seed));
+  mesh::Mesh out;
+  out.dimension = mesh.dimension;
+  out.points.resize(mesh.points.size());
+  for (std::size_t n = 0; n < number.size(); ++n) out.points[static_cast<std::size_t>(number[n])] = mesh.points[n];
+  std::vector<mesh::NodeId> nodes;
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    nodes.clear();
+    for (mesh::NodeId n : mesh.cells.nodes(c)) nodes.push_back(number[static_cast<std::size_t>(n)]);
+    out.cells.add(mesh.cells.type(c), nodes);
+  }
+  return out;
 }
 
 }  // namespace hotmesh::test

@@ -61,4 +61,8 @@ mesh::Mesh annular_sector(int nr, int nt, int nz, double r0, double r1, double z
 /// smallest edge length around them, keeping the mesh valid; deterministic.
 void jiggle_interior(mesh::Mesh& mesh, double fraction);
 
+/// The points and cells of `mesh` with its nodes numbered at random, by `seed` (as a mesh from
+/// an unstructured mesher may come); without patches.
+mesh::Mesh shuffled_nodes(const mesh::Mesh& mesh, unsigned seed);
+
 }  // namespace hotmesh::test

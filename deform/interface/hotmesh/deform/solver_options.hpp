@@ -15,7 +15,7 @@ enum class LinearSolverKind {
   jacobi_pcg,  ///< the paper's PCG with nodal Jacobi (section 3), projected for sliding (eq. 16), K in node blocks
   amg,         ///< assembled in nodal frames (PETSc), CG preconditioned by algebraic multigrid
   direct,      ///< assembled in nodal frames (PETSc), sparse Cholesky of every Newton step's matrix
-  icc,         ///< assembled in nodal frames (PETSc), CG preconditioned by its incomplete Cholesky factors ICC(2)
+  icc,         ///< assembled in nodal frames (PETSc), CG preconditioned by its incomplete Cholesky factors
 };
 
 /// The algebraic multigrid of the `amg` solver.
@@ -74,19 +74,19 @@ constexpr std::string_view to_string(ForcingTerm f) { return kForcingTermNames.n
 ///  - amg with several processes: jacobi-pcg runs in one;
 ///  - icc for a 2D mesh of at most kIccCells cells, sliding or not: its factors, in the mesh's
 ///    node order, hold the strong coupling across the thin cells of a boundary layer that
-///    nodal Jacobi misses (4 to 6 CG iterations a solve on the ramps against 90 to 400 for
-///    Jacobi-PCG). On the sliding ramp it took 0.37 s against direct's 1.4 s, amg's 1.7 s and
-///    Jacobi-PCG's 3.0 s; refined twice (9 120 cells) 2.8 s against 13.5 s (direct) and 20.7 s
-///    (amg); refined four times (36 480 cells) 63 s against direct's 161 s, with 30 CG
-///    iterations a solve there. Without sliding, the ramp took 0.31 s against Jacobi-PCG's
-///    0.57 s (2.1 against 5.6 s refined twice); the shear, without a boundary layer, 0.06 s
-///    against 0.03 s. Beyond the sizes measured: amg with a sliding wall (the factorization of
-///    `direct` grows as N^1.5 or faster), jacobi-pcg without;
+///    nodal Jacobi misses (3 to 6 CG iterations a Newton step on the 2D samples against 90 to
+///    400 for Jacobi-PCG). The sliding ramp took 0.38 s against direct's 1.40 s, amg's 1.88 s
+///    and Jacobi-PCG's 2.46 s; refined twice (9 120 cells) 2.5 s against 13.9 s (direct) and
+///    19.9 s (amg); refined four times (36 480 cells) 35 s against direct's 156 s. Without
+///    sliding, the ramp took 0.30 s against Jacobi-PCG's 0.54 s; the shear, without a boundary
+///    layer, 0.06 s against 0.04 s. Beyond the sizes measured: amg with a sliding wall (the
+///    factorization of `direct` grows as N^1.5 or faster), jacobi-pcg without;
 ///  - in 3D, jacobi-pcg up to kJacobiPcgCells cells, amg beyond: on the sliding stator-well
 ///    sector Jacobi-PCG was faster at 18 000, 50 000 and 200 000 cells (336 s against 388 s
 ///    there, with 40 % less memory), but its time grows faster (N^1.15 against N^1.02 from
-///    50 000 to 200 000 cells): the two cross near 600 000 cells. direct took 2 to 8 times
-///    Jacobi-PCG's time at 18 000 cells (the factors of a 3D mesh grow as N^4/3).
+///    50 000 to 200 000 cells): the two cross near 600 000 cells. At 18 000 cells direct took
+///    3 to 8 times Jacobi-PCG's time (the factors of a 3D mesh grow as N^4/3), icc 1.7 to 1.9
+///    times.
 inline constexpr std::size_t kJacobiPcgCells = 500000;
 inline constexpr std::size_t kIccCells = 40000;
 struct LinearSolverChoice {
