@@ -13,9 +13,9 @@
 // `icc` runs the same CG with incomplete Cholesky factors of K~, ICC(icc_levels()), made anew at
 // every Newton step (milliseconds on the 2D meshes it is for), in the rows' order: the nodes'
 // own numbers (ICC on each rank's rows, block Jacobi between ranks, with several processes).
-// A 2D mesh generator numbers a boundary layer line by line, and ICC in that order holds the
-// strong coupling across the layer's thin cells that nodal Jacobi or a multigrid's aggregates
-// miss: 3 to 6 CG iterations a solve on the ramps, where reverse Cuthill-McKee took 15 to 800
+// Structured and extruded 2D meshes number a boundary layer line by line, and ICC in that
+// order holds the strong coupling across the layer's thin cells that nodal Jacobi or a
+// multigrid's aggregates miss: 3 to 6 CG iterations a solve on the ramps, where reverse Cuthill-McKee took 15 to 800
 // (docs/performance.md). A numbering that does not follow the layer makes ICC slow, so its CG
 // stops after kIccMostIterations iterations; a solve not converged by then goes over to
 // `direct` for the rest of the run, is solved again, and the report says so (notes()).
