@@ -358,7 +358,7 @@ class Motion {
     std::vector<Vec3> trial(x.size());
     std::vector<double> r(dofs), node_stiffness(dofs / dim_);
     double r0 = 0.0, previous = 0.0;
-    // Whether this step's element pass assembles the solver's matrix too (amg, direct): not when
+    // Whether this step's element pass assembles the solver's matrix too (amg, direct, icc): not when
     // the residual will likely end the loop (the solve assembles it if not).
     bool matrix_wanted = true;
     linear_->begin_increment();

@@ -1,4 +1,4 @@
-// hotmesh deform: the assembled linear solvers on PETSc (SolverOptions::linear = amg or direct).
+// hotmesh deform: the assembled linear solvers on PETSc (SolverOptions::linear = amg, direct or icc).
 //
 // Per Newton step, in one pass over the cells (ElementAssembler::assemble, which the Newton
 // loop's newton_residual() calls): every K_e is computed at the current points (not stored),

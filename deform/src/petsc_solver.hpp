@@ -1,8 +1,8 @@
-// hotmesh deform (internal): the assembled linear solvers (SolverOptions::linear = amg or
-// direct). The system in nodal frames (nodal_frames.hpp) is assembled into a PETSc matrix with
+// hotmesh deform (internal): the assembled linear solvers (SolverOptions::linear = amg, direct
+// or icc). The system in nodal frames (nodal_frames.hpp) is assembled into a PETSc matrix with
 // block size d, preallocated once from the node graph, and solved by CG with algebraic
-// multigrid (PCGAMG with the rigid-body near-null space, or hypre's BoomerAMG), or with its
-// sparse Cholesky factors (CHOLMOD, MUMPS). PETSc and MPI types stay in
+// multigrid (PCGAMG with the rigid-body near-null space, or hypre's BoomerAMG), with its
+// sparse Cholesky factors (CHOLMOD, MUMPS) or with its incomplete Cholesky factors (PCICC). PETSc and MPI types stay in
 // petsc_solver.cpp and frame_matrix.hpp (the matrix); PETSc is initialised on first use, once
 // per process (hotmesh/parallel/processes.hpp), and finalised at exit.
 #pragma once
