@@ -232,8 +232,8 @@ TEST_P(SolversIn, EverySolverStopsOnTheResidualScaledByTheNodeStiffness) {
   }
 }
 
-/// A channel 2 long and 1 high whose cells shrink to 0.001 at its floor (aspect ratio 100 there,
-/// a CFD boundary layer), numbered as the mesh generator numbers it or shuffled: the floor
+/// A channel 2 long and 1 high whose cells shrink to 0.001 at its floor (aspect ratio 50 there,
+/// a CFD boundary layer), numbered row by row as a structured mesh is, or shuffled: the floor
 /// slides, the inlet and the roof are fixed. K at the mesh's points, with eq. (35)'s stiffness.
 struct BoundaryLayer {
   Mesh mesh;
