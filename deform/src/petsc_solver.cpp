@@ -277,7 +277,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
         continue;
       }
       if (preconditioner_ == Preconditioner::incomplete_cholesky && !result.converged && !result.breakdown) {
-        go_over_to_cholesky(timings);
+        go_over_to_cholesky();
         cg.max_iterations = most_iterations();
         if (!set_up(true, timings)) {
           std::fill(p.begin(), p.end(), 0.0);
@@ -357,16 +357,15 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
                                                                   : options_.max_pcg_iterations;
   }
 
-  /// `icc` no longer serves (kIccMostIterations): `direct` from this solve on, with a new PC.
-  void go_over_to_cholesky(MotionTimings& timings) {
-    const auto t = Clock::now();
+  /// `icc` no longer serves (kIccMostIterations): `direct` from this solve on; the PC goes, so
+  /// that the next set_up() makes the Cholesky one.
+  void go_over_to_cholesky() {
     notes_.push_back(fmt::format(
         "linear: icc did not converge in {} CG iterations (the mesh's node numbering does not follow its "
         "boundary layers, or the mesh is larger than icc is made for); the run went on with linear: direct",
         kIccMostIterations));
     preconditioner_ = Preconditioner::cholesky;
-    create_pc();
-    timings.preconditioner += seconds_since(t);
+    check(PCDestroy(&pc_), "PCDestroy");
   }
 
   /// PCSetUp of the Cholesky factorization; false on every rank if it failed on any (a pivot
