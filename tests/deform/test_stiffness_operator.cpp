@@ -54,9 +54,12 @@ StiffnessOperator make_operator(const Mesh& mesh) {
   return k;
 }
 
+/// The blocks, the product (one chunk of rows on the rings, whose numbering wraps around; many
+/// on the strip and the cube) and the diagonal against K assembled entry by entry.
 TEST(StiffnessOperator, NodeBlocksAgreeWithTheAssemblyOfEveryEntry) {
   for (Mesh given : {test::square_ring(6, 4, 0.3, 1.0), test::square_ring(4, 3, 0.3, 1.0, 2, 0.5),
-                     test::hybrid_ring(6, 4, 0.3, 1.0, 0, 0.0, 1.0, 2), test::hybrid_ring(4, 3, 0.3, 1.0, 2, 0.5, 1.0, 1)}) {
+                     test::hybrid_ring(6, 4, 0.3, 1.0, 0, 0.0, 1.0, 2), test::hybrid_ring(4, 3, 0.3, 1.0, 2, 0.5, 1.0, 1),
+                     test::unit_square(40, 3), test::unit_cube(6)}) {
     test::jiggle_interior(given, 0.2);
     const std::array<Mesh, 2> numberings = {given, shuffled(given)};
     for (const Mesh& mesh : numberings) {
@@ -83,6 +86,9 @@ TEST(StiffnessOperator, NodeBlocksAgreeWithTheAssemblyOfEveryEntry) {
       }
       if (&mesh == &numberings[1]) {
         EXPECT_TRUE(k.renumbered());
+      }
+      if (given.cell_count() == 120 || given.cell_count() == 216) {  // the strip and the cube
+        EXPECT_GE(k.chunk_count(), 3u);
       }
     }
   }
@@ -153,27 +159,39 @@ TEST(StiffnessOperator, ColoursNeverShareANode) {
 }
 
 /// Row i of K has one block for each node that shares a cell with i (itself included), and
-/// half of them (the diagonal counted once) are stored; a node of a hex mesh inside the block
-/// couples with 27.
+/// half of them (the diagonal counted once) are stored: each in one of the two nodes' rows, the
+/// diagonal first. A node of a hex mesh inside the block couples with 27.
 TEST(StiffnessOperator, EachRowHoldsTheNodesThatShareACellWithItsNode) {
   for (const Mesh& mesh : {test::square_ring(5, 3, 0.3, 1.0, 3, 1.0), test::hybrid_ring(5, 3, 0.3, 1.0, 2, 1.0, 1.0, 1)}) {
     const StiffnessOperator k = make_operator(mesh);
-    std::vector<std::vector<NodeId>> expected(mesh.node_count());
+    std::vector<std::vector<NodeId>> expected(mesh.node_count()), coupled(mesh.node_count());
     for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
       for (NodeId a : mesh.cells.nodes(c)) {
         for (NodeId b : mesh.cells.nodes(c)) expected[static_cast<std::size_t>(a)].push_back(b);
       }
     }
+    std::size_t stored = 0;
+    for (std::size_t i = 0; i < mesh.node_count(); ++i) {
+      const auto nodes = k.stored_nodes(static_cast<NodeId>(i));
+      ASSERT_FALSE(nodes.empty());
+      EXPECT_EQ(nodes.front(), static_cast<NodeId>(i));
+      for (NodeId q : nodes) {
+        coupled[i].push_back(q);
+        if (q != static_cast<NodeId>(i)) coupled[static_cast<std::size_t>(q)].push_back(static_cast<NodeId>(i));
+      }
+      stored += nodes.size();
+    }
     std::size_t blocks = 0, most = 0;
     for (std::size_t i = 0; i < mesh.node_count(); ++i) {
+      for (auto* row : {&expected[i], &coupled[i]}) std::sort(row->begin(), row->end());
       auto& row = expected[i];
-      std::sort(row.begin(), row.end());
       row.erase(std::unique(row.begin(), row.end()), row.end());
-      EXPECT_EQ(k.coupled_nodes(static_cast<NodeId>(i)), row) << "row " << i;
+      EXPECT_EQ(coupled[i], row) << "row " << i;  // each coupling stored once
       blocks += row.size();
       most = std::max(most, row.size());
     }
     EXPECT_EQ(k.nonzero_blocks(), blocks);
+    EXPECT_EQ(k.block_count(), stored);
     EXPECT_EQ(k.block_count(), (blocks + mesh.node_count()) / 2);
     if (mesh.cells.type(0) == ElementType::hex8) {
       EXPECT_EQ(most, 27u);
@@ -187,6 +205,7 @@ TEST(StiffnessOperator, BlocksAndProductAreBitIdenticalForAnyThreadCount) {
   Mesh mesh = test::square_ring(16, 16, 0.3, 1.0, 4, 0.6);
   test::jiggle_interior(mesh, 0.2);
   StiffnessOperator k(mesh, element_lame(mesh, {}), true);
+  EXPECT_GE(k.chunk_count(), 3u);  // so that the threads share the rows of a product
   const auto x = pseudo_random(k.size());
   std::vector<std::vector<double>> results;
   const int saved = omp_get_max_threads();

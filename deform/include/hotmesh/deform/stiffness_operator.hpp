@@ -7,7 +7,8 @@
 //     (K x)_i = sum_{H containing i} [B_i^H] [K^H] {x^H}
 // hotmesh computes the same K_e once per Newton iteration and adds them straight into d x d
 // node blocks, K_ij = sum_{H containing i and j} K^H_ij (block CSR, only the blocks on and above
-// the diagonal since K is symmetric), and the product is a loop over the rows. The K is the same
+// the diagonal since K is symmetric), and the product is a loop over the rows that reads each
+// stored block once, for its row and, transposed, for its column's. The K is the same
 // to round-off, and so are the products; the blocks take less memory than the K_e for every
 // cell type (1.4 kB against 4.3 kB per node on hexes, 1.1 kB against 6.7 kB on tetrahedra, the
 // cells' block positions included) and a product moves only them, so it is faster too
@@ -15,9 +16,9 @@
 // into a PETSc matrix in nodal frames instead (petsc_solver.cpp).
 // Elements are coloured so that no two of one colour share a node: colours are added one
 // after another, the elements of a colour in parallel. Every block then receives its
-// contributions in the same order whatever the number of threads, and each row of a product
-// is summed by one thread in a fixed order, so results are race-free and bit-identical for
-// any thread count.
+// contributions in the same order whatever the number of threads, and a product sums fixed
+// chunks of rows, each on one thread in a fixed order, then adds what each chunk scattered into
+// the next: results are race-free and bit-identical for any thread count.
 #pragma once
 
 #include <cstdint>
@@ -86,11 +87,11 @@ class StiffnessKernel {
 
 /// K in d x d node blocks (block CSR), one row of blocks per node, the upper triangle only: K
 /// is symmetric, so a row stores the blocks of the nodes whose rows come at or after its own
-/// that share a cell with its node, and reads the others transposed from the rows that store
-/// them. The rows follow the nodes' numbers, or reverse Cuthill-McKee order where that
-/// numbering scatters a cell's nodes (a mesh from an unstructured mesher): see renumbered().
+/// that share a cell with its node, and the rows before it hold the others as transposes. The
+/// rows follow the nodes' numbers, or reverse Cuthill-McKee order where that numbering
+/// scatters a cell's nodes (a mesh from an unstructured mesher): see renumbered().
 /// update() computes every K_e at the current points and adds its blocks on and above the
-/// diagonal; apply() multiplies row by row.
+/// diagonal; apply() reads each stored block once, for its row and for its transpose.
 class StiffnessOperator final : public LinearOperator {
  public:
   explicit StiffnessOperator(std::shared_ptr<const StiffnessKernel> kernel);
@@ -102,25 +103,27 @@ class StiffnessOperator final : public LinearOperator {
   void update(std::span<const Vec3> points);
 
   std::size_t size() const override { return kernel_->size(); }
-  /// y = K x for dof vectors laid out node after node (x_0, y_0, [z_0,] x_1, ...). Renumbered,
-  /// it copies x into the operator's own work array first: one product at a time.
+  /// y = K x for dof vectors laid out node after node (x_0, y_0, [z_0,] x_1, ...). Row i adds
+  /// K_ij x_j to itself and K_ij^T x_i to row j for each block it stores, chunk of rows by chunk
+  /// (in parallel), then each chunk adds what the chunk before it scattered into its first rows.
+  /// Uses the operator's own work arrays: one product at a time.
   void apply(std::span<const double> x, std::span<double> y) const override;
   /// The diagonal of K.
   void diagonal(std::span<double> d) const;
   /// The d x d diagonal blocks of K, one per node, row-major, node after node.
   void diagonal_blocks(std::span<double> blocks) const;
 
-  /// The nodes that node i shares a cell with, itself included, in increasing order: the
-  /// nonzero blocks of row i of K.
-  std::vector<NodeId> coupled_nodes(NodeId i) const;
+  /// The nodes of the blocks that node i's row stores, in row order: itself first, then the
+  /// nodes it shares a cell with whose rows come after its own.
+  std::vector<NodeId> stored_nodes(NodeId i) const;
   /// Whether the rows are stored in reverse Cuthill-McKee order rather than the nodes' own.
   bool renumbered() const { return !order_.empty(); }
   /// Blocks stored: the nonzero blocks of K on and above the diagonal.
   std::size_t block_count() const { return columns_.size(); }
   /// The nonzero blocks of K, below the diagonal too.
   std::size_t nonzero_blocks() const { return 2 * columns_.size() - (row_start_.size() - 1); }
-  /// Bytes held: blocks, their column numbers, row starts and transposed references, each
-  /// cell's block positions, and the row order with its copy of x.
+  /// Bytes held: blocks, their column numbers, row starts, each cell's block positions, the
+  /// row order with its copies of x and y, and the chunks' overflow.
   std::size_t bytes() const;
 
   const StiffnessKernel& kernel() const { return *kernel_; }
@@ -133,17 +136,24 @@ class StiffnessOperator final : public LinearOperator {
   /// Rows are stored in reverse Cuthill-McKee order when it brings the mean distance between
   /// the rows of a cell's nodes below this share of the nodes' own numbering's (bench_renumbering).
   static constexpr double kRenumberSpread = 0.5;
+  /// A product splits the rows into this many chunks, or fewer where a stored block reaches
+  /// further: a chunk holds at least as many rows as the furthest block lies right of its row.
+  static constexpr std::size_t kProductChunks = 64;
+  /// Rows in a chunk of a product (the same for any number of threads).
+  std::size_t chunk_rows() const { return chunk_rows_; }
+  std::size_t chunk_count() const { return (row_start_.size() - 1 + chunk_rows_ - 1) / chunk_rows_; }
 
  private:
   std::shared_ptr<const StiffnessKernel> kernel_;
   std::vector<NodeId> order_;              ///< the node of each row (empty: row i is node i)
   std::vector<NodeId> position_;           ///< the row of each node (empty: node i is row i)
-  mutable std::vector<double> in_order_;   ///< x in row order, for a product (when renumbered)
   std::vector<std::int64_t> row_start_;    ///< row i stores blocks [row_start_[i], row_start_[i + 1])
   std::vector<NodeId> columns_;            ///< the column (row of a node) of each block
-  std::vector<std::int64_t> lower_start_;  ///< row j's blocks below the diagonal: [lower_start_[j], lower_start_[j + 1])
-  std::vector<NodeId> lower_rows_;         ///< ... the row i < j that stores K_ij
-  std::vector<std::uint32_t> lower_blocks_;  ///< ... and the block's number there
+  std::size_t reach_ = 0;                  ///< most rows a stored block lies right of its row
+  std::size_t chunk_rows_ = 1;             ///< rows in a chunk of a product
+  mutable std::vector<double> overflow_;   ///< per chunk, what it scatters past its end (reach_ rows)
+  mutable std::vector<double> x_rows_;     ///< x in row order, for a product (when renumbered)
+  mutable std::vector<double> y_rows_;     ///< ... and y
   std::vector<std::size_t> cell_start_;    ///< cell c's block positions at positions_[cell_start_[c] ..)
   std::vector<std::uint32_t> positions_;   ///< block of corners (a, b) of a cell, a * corners + b, or kNoBlock
   std::vector<double> values_;             ///< block k at values_[k d^2 ..), row-major
