@@ -117,15 +117,26 @@ StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kern
   if (columns_.size() > std::numeric_limits<std::uint32_t>::max() - 1) {
     throw std::length_error("StiffnessOperator: " + std::to_string(columns_.size()) + " blocks are more than one process holds");
   }
-  // A product runs over chunks of rows (chunk_rows_ below); the blocks a row stores reach at
-  // most reach_ rows past it, so a chunk's scatter lands in its own rows or the next chunk's first.
-  for (std::size_t r = 0; r < nodes; ++r) {
-    if (row_start_[r + 1] == row_start_[r]) continue;  // a node in no cell
-    const auto last = static_cast<std::size_t>(columns_[static_cast<std::size_t>(row_start_[r + 1] - 1)]);
-    reach_ = std::max(reach_, last - r);
-  }
-  chunk_rows_ = std::max({reach_, (nodes + kProductChunks - 1) / kProductChunks, std::size_t{1}});
-  overflow_.resize(chunk_count() * reach_ * d);
+  // A product runs over chunks of rows; each chunk scatters past its end into its own overflow,
+  // which runs up to the furthest row its blocks reach. Chunks of a 64th of the rows, twice as
+  // long while the overflows would hold more than twice x (a mesh whose numbering wraps
+  // around: its first rows reach the last).
+  const auto overflow_rows = [&](std::size_t chunk_rows) {
+    std::vector<std::size_t> start{0};
+    for (std::size_t begin = 0; begin < nodes; begin += chunk_rows) {
+      const std::size_t end = std::min(nodes, begin + chunk_rows);
+      std::size_t last = end;  // one past the furthest row reached
+      for (std::size_t r = begin; r < end; ++r) {
+        if (row_start_[r + 1] > row_start_[r]) last = std::max(last, static_cast<std::size_t>(columns_[static_cast<std::size_t>(row_start_[r + 1] - 1)]) + 1);
+      }
+      start.push_back(start.back() + last - end);
+    }
+    return start;
+  };
+  chunk_rows_ = std::max<std::size_t>(1, (nodes + kProductChunks - 1) / kProductChunks);
+  overflow_start_ = overflow_rows(chunk_rows_);
+  while (overflow_start_.back() > 2 * nodes && chunk_rows_ < nodes) overflow_start_ = overflow_rows(chunk_rows_ *= 2);
+  overflow_.resize(overflow_start_.back() * d);
   // Where each cell's corner pairs (a, b) add their blocks: in row(a) when row(a) <= row(b),
   // none (kNoBlock) otherwise, the block being the transpose of (b, a)'s.
   cell_start_.assign(cells.size() + 1, 0);
@@ -246,12 +257,13 @@ class Row3 {
 constexpr std::int64_t kPrefetchBlocks = 64;
 
 /// The rows [begin, end) of y = K x (`Row` is Row2 or Row3), x and y in row order. Zeroes
-/// their y first; what their blocks scatter past `end` goes to `overflow`, from row `end` on.
+/// their y first; what their blocks scatter past `end` goes to `overflow` (`overflow_rows`
+/// rows from row `end` on).
 template <class Row, std::size_t D>
 void multiply_chunk(std::span<const std::int64_t> row_start, const NodeId* columns, const double* values, std::size_t begin,
-                    std::size_t end, std::size_t reach, const double* x, double* y, double* overflow) {
+                    std::size_t end, std::size_t overflow_rows, const double* x, double* y, double* overflow) {
   std::fill(y + begin * D, y + end * D, 0.0);
-  std::fill(overflow, overflow + reach * D, 0.0);
+  std::fill(overflow, overflow + overflow_rows * D, 0.0);
   const std::int64_t blocks_end = row_start.back() - 1;
   for (std::size_t i = begin; i < end; ++i) {
     auto b = row_start[i];
@@ -311,21 +323,25 @@ void StiffnessOperator::apply(std::span<const double> x, std::span<double> y) co
     }
 #pragma omp for schedule(static)
     for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(chunks); ++c) {
-      const std::size_t begin = static_cast<std::size_t>(c) * chunk_rows_, end = std::min(rows, begin + chunk_rows_);
-      double* overflow = overflow_.data() + static_cast<std::size_t>(c) * reach_ * d;
+      const auto chunk = static_cast<std::size_t>(c);
+      const std::size_t begin = chunk * chunk_rows_, end = std::min(rows, begin + chunk_rows_);
+      const std::size_t overflow_rows = overflow_start_[chunk + 1] - overflow_start_[chunk];
+      double* overflow = overflow_.data() + overflow_start_[chunk] * d;
       if (d == 2) {
-        multiply_chunk<Row2, 2>(row_start_, columns_.data(), values_.data(), begin, end, reach_, in, out, overflow);
+        multiply_chunk<Row2, 2>(row_start_, columns_.data(), values_.data(), begin, end, overflow_rows, in, out, overflow);
       } else {
-        multiply_chunk<Row3, 3>(row_start_, columns_.data(), values_.data(), begin, end, reach_, in, out, overflow);
+        multiply_chunk<Row3, 3>(row_start_, columns_.data(), values_.data(), begin, end, overflow_rows, in, out, overflow);
       }
     }
 #pragma omp for schedule(static)
     for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(chunks); ++c) {
-      const std::size_t begin = static_cast<std::size_t>(c) * chunk_rows_, end = std::min(rows, begin + chunk_rows_);
-      if (c > 0) {  // the rows the chunk before reached
-        const double* overflow = overflow_.data() + (static_cast<std::size_t>(c) - 1) * reach_ * d;
-        const std::size_t head = (std::min(end, begin + reach_) - begin) * d;
-        for (std::size_t e = 0; e < head; ++e) out[begin * d + e] += overflow[e];
+      const auto chunk = static_cast<std::size_t>(c);
+      const std::size_t begin = chunk * chunk_rows_, end = std::min(rows, begin + chunk_rows_);
+      for (std::size_t earlier = 0; earlier < chunk; ++earlier) {  // what the chunks before scattered into this one, in order
+        const std::size_t from = (earlier + 1) * chunk_rows_;       // the first row of the earlier chunk's overflow
+        const std::size_t past = std::min(end, from + overflow_start_[earlier + 1] - overflow_start_[earlier]);
+        const double* overflow = overflow_.data() + overflow_start_[earlier] * d;
+        for (std::size_t e = begin * d; e < past * d; ++e) out[e] += overflow[e - from * d];
       }
       if (renumbered) {
         for (std::size_t r = begin; r < end; ++r) {
@@ -350,7 +366,7 @@ std::vector<NodeId> StiffnessOperator::stored_nodes(NodeId i) const {
 std::size_t StiffnessOperator::bytes() const {
   return values_.size() * sizeof(double) + columns_.size() * sizeof(NodeId) + row_start_.size() * sizeof(std::int64_t) +
          (order_.size() + position_.size()) * sizeof(NodeId) + (x_rows_.size() + y_rows_.size() + overflow_.size()) * sizeof(double) +
-         positions_.size() * sizeof(std::uint32_t) + cell_start_.size() * sizeof(std::size_t);
+         positions_.size() * sizeof(std::uint32_t) + (cell_start_.size() + overflow_start_.size()) * sizeof(std::size_t);
 }
 
 void StiffnessOperator::diagonal(std::span<double> d) const {

@@ -123,7 +123,7 @@ class StiffnessOperator final : public LinearOperator {
   /// The nonzero blocks of K, below the diagonal too.
   std::size_t nonzero_blocks() const { return 2 * columns_.size() - (row_start_.size() - 1); }
   /// Bytes held: blocks, their column numbers, row starts, each cell's block positions, the
-  /// row order with its copies of x and y, and the chunks' overflow.
+  /// row order with its copies of x and y, and the chunks' overflows.
   std::size_t bytes() const;
 
   const StiffnessKernel& kernel() const { return *kernel_; }
@@ -136,8 +136,9 @@ class StiffnessOperator final : public LinearOperator {
   /// Rows are stored in reverse Cuthill-McKee order when it brings the mean distance between
   /// the rows of a cell's nodes below this share of the nodes' own numbering's (bench_renumbering).
   static constexpr double kRenumberSpread = 0.5;
-  /// A product splits the rows into this many chunks, or fewer where a stored block reaches
-  /// further: a chunk holds at least as many rows as the furthest block lies right of its row.
+  /// A product splits the rows into this many chunks, or fewer where the rows reach so far
+  /// that the chunks' overflows (the rows past a chunk that its blocks reach) would hold more
+  /// than twice x.
   static constexpr std::size_t kProductChunks = 64;
   /// Rows in a chunk of a product (the same for any number of threads).
   std::size_t chunk_rows() const { return chunk_rows_; }
@@ -149,9 +150,9 @@ class StiffnessOperator final : public LinearOperator {
   std::vector<NodeId> position_;           ///< the row of each node (empty: node i is row i)
   std::vector<std::int64_t> row_start_;    ///< row i stores blocks [row_start_[i], row_start_[i + 1])
   std::vector<NodeId> columns_;            ///< the column (row of a node) of each block
-  std::size_t reach_ = 0;                  ///< most rows a stored block lies right of its row
   std::size_t chunk_rows_ = 1;             ///< rows in a chunk of a product
-  mutable std::vector<double> overflow_;   ///< per chunk, what it scatters past its end (reach_ rows)
+  std::vector<std::size_t> overflow_start_;  ///< chunk c's overflow: rows [overflow_start_[c], overflow_start_[c + 1]) of overflow_
+  mutable std::vector<double> overflow_;   ///< per chunk, what it scatters past its end
   mutable std::vector<double> x_rows_;     ///< x in row order, for a product (when renumbered)
   mutable std::vector<double> y_rows_;     ///< ... and y
   std::vector<std::size_t> cell_start_;    ///< cell c's block positions at positions_[cell_start_[c] ..)
