@@ -127,7 +127,9 @@ StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kern
       const std::size_t end = std::min(nodes, begin + chunk_rows);
       std::size_t last = end;  // one past the furthest row reached
       for (std::size_t r = begin; r < end; ++r) {
-        if (row_start_[r + 1] > row_start_[r]) last = std::max(last, static_cast<std::size_t>(columns_[static_cast<std::size_t>(row_start_[r + 1] - 1)]) + 1);
+        if (row_start_[r + 1] == row_start_[r]) continue;  // a node in no cell
+        const NodeId furthest = columns_[static_cast<std::size_t>(row_start_[r + 1] - 1)];
+        last = std::max(last, static_cast<std::size_t>(furthest) + 1);
       }
       start.push_back(start.back() + last - end);
     }
@@ -187,10 +189,12 @@ void add_blocks(const double* ke, const std::uint32_t* at, double* values) {
   }
 }
 
-// The product's kernel. Each stored block K_ij (j >= i, row-major) is read once, in row i:
-// row i gathers K_ij x_j into its own sum and scatters K_ji x_i = K_ij^T x_i into row j. Two-wide vectors (GCC and Clang vector extensions: SSE2 on any x86-64, NEON on ARM)
-// hold two entries of a block; row i keeps one sum per block entry, so consecutive blocks add
-// into independent registers and the sums are reduced once, at the end of the row.
+// The product's kernel (eqs. 9-10 over node blocks). Each stored block K_ij (j >= i,
+// row-major) is read once, in row i: row i gathers K_ij x_j into its own sum and scatters
+// K_ji x_i = K_ij^T x_i into row j. Two-wide vectors (GCC's and Clang's vector extensions:
+// SSE2 on any x86-64, NEON on ARM) hold two entries of a block; row i keeps one sum per block
+// entry, so consecutive blocks add into independent registers, and the sums are reduced once,
+// at the end of the row.
 using Pair = double __attribute__((vector_size(16)));
 inline Pair load_pair(const double* p) {
   Pair v;
