@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstring>
 #include <numeric>
 
@@ -219,6 +220,17 @@ TEST(StiffnessOperator, BlocksAndProductAreBitIdenticalForAnyThreadCount) {
   for (std::size_t r = 1; r < results.size(); ++r) {
     EXPECT_EQ(std::memcmp(results[r].data(), results[0].data(), results[0].size() * sizeof(double)), 0);
   }
+}
+
+/// The blocks' memory: 2 MiB aligned from 2 MiB on (where Linux can map it in huge pages),
+/// the vector's values kept as it grows.
+TEST(HugePageAllocator, AlignsLargeArraysToHugePagesAndKeepsTheValues) {
+  std::vector<double, HugePageAllocator<double>> values(1000, 1.5);
+  EXPECT_EQ(values[999], 1.5);
+  values.resize(std::size_t{3} << 18, 2.5);  // 6 MiB
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(values.data()) % (std::uintptr_t{1} << 21), 0u);
+  EXPECT_EQ(values[999], 1.5);
+  EXPECT_EQ(values.back(), 2.5);
 }
 
 TEST(StiffnessOperator, RejectsCellsOfAnotherDimension) {

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "hotmesh/deform/element_stiffness.hpp"
+#include "hotmesh/deform/huge_pages.hpp"
 #include "hotmesh/deform/linear_algebra.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/mesh_names.hpp"
@@ -157,7 +158,7 @@ class StiffnessOperator final : public LinearOperator {
   mutable std::vector<double> y_rows_;     ///< ... and y
   std::vector<std::size_t> cell_start_;    ///< cell c's block positions at positions_[cell_start_[c] ..)
   std::vector<std::uint32_t> positions_;   ///< block of corners (a, b) of a cell, a * corners + b, or kNoBlock
-  std::vector<double> values_;             ///< block k at values_[k d^2 ..), row-major
+  std::vector<double, HugePageAllocator<double>> values_;  ///< block k at values_[k d^2 ..), row-major
 };
 
 }  // namespace hotmesh::deform
