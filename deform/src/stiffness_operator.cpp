@@ -81,24 +81,42 @@ void StiffnessKernel::element_matrix(CellId c, std::span<const Vec3> points, std
 }
 
 StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kernel) : kernel_(std::move(kernel)) {
-  const ElementList& cells = kernel_->cells();
   const auto d = static_cast<std::size_t>(kernel_->dofs_per_node());
   const std::size_t nodes = kernel_->size() / d;
-  const NodeCells around(cells, nodes);
-  // The rows in reverse Cuthill-McKee order where that brings a cell's nodes much closer than
-  // the mesh's own numbering does: a row then finds the blocks it reads transposed, and x, in
-  // the rows just before it.
+  const NodeCells around(kernel_->cells(), nodes);
+  order_rows(around);
+  build_pattern(around);
+  cut_product_chunks();
+  place_cell_blocks();
+  values_.assign(columns_.size() * d * d, 0.0);
+  if (!order_.empty()) {
+    x_rows_.resize(nodes * d);
+    y_rows_.resize(nodes * d);
+  }
+}
+
+NodeId StiffnessOperator::row_of(NodeId node) const { return position_.empty() ? node : position_[static_cast<std::size_t>(node)]; }
+
+std::size_t StiffnessOperator::node_of(std::size_t row) const { return order_.empty() ? row : static_cast<std::size_t>(order_[row]); }
+
+// The rows in reverse Cuthill-McKee order where that brings a cell's nodes much closer than
+// the mesh's own numbering does: a row then finds the rows it scatters into, and x, just after it.
+void StiffnessOperator::order_rows(const NodeCells& around) {
+  const ElementList& cells = kernel_->cells();
   order_ = reverse_cuthill_mckee(cells, around);
-  position_.resize(nodes);
-  for (std::size_t r = 0; r < nodes; ++r) position_[static_cast<std::size_t>(order_[r])] = static_cast<NodeId>(r);
+  position_.resize(order_.size());
+  for (std::size_t r = 0; r < order_.size(); ++r) position_[static_cast<std::size_t>(order_[r])] = static_cast<NodeId>(r);
   if (!(mean_spread(cells, position_) < kRenumberSpread * mean_spread(cells, {}))) {
     order_.clear();
     position_.clear();
   }
-  const auto row_of = [&](NodeId n) { return position_.empty() ? n : position_[static_cast<std::size_t>(n)]; };
-  const auto node_of = [&](std::size_t r) { return order_.empty() ? r : static_cast<std::size_t>(order_[r]); };
-  // Row r stores the blocks of the rows q >= r whose nodes share a cell with its node, sorted,
-  // each once; the diagonal block comes first.
+}
+
+// Row r stores the blocks of the rows q >= r whose nodes share a cell with its node, sorted,
+// each once; the diagonal block comes first.
+void StiffnessOperator::build_pattern(const NodeCells& around) {
+  const ElementList& cells = kernel_->cells();
+  const std::size_t nodes = around.start.size() - 1;
   row_start_.assign(nodes + 1, 0);
   std::vector<NodeId> row;
   for (std::size_t r = 0; r < nodes; ++r) {
@@ -117,10 +135,14 @@ StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kern
   if (columns_.size() > std::numeric_limits<std::uint32_t>::max() - 1) {
     throw std::length_error("StiffnessOperator: " + std::to_string(columns_.size()) + " blocks are more than one process holds");
   }
-  // A product runs over chunks of rows; each chunk scatters past its end into its own overflow,
-  // which runs up to the furthest row its blocks reach. Chunks of a 64th of the rows, twice as
-  // long while the overflows would hold more than twice x (a mesh whose numbering wraps
-  // around: its first rows reach the last).
+}
+
+// A product runs over chunks of rows; each chunk scatters past its end into its own overflow,
+// which runs up to the furthest row its blocks reach. Chunks of a 64th of the rows, twice as
+// long while the overflows would hold more than twice x (a mesh whose numbering wraps around:
+// its first rows reach the last).
+void StiffnessOperator::cut_product_chunks() {
+  const std::size_t nodes = row_start_.size() - 1;
   const auto overflow_rows = [&](std::size_t chunk_rows) {
     std::vector<std::size_t> start{0};
     for (std::size_t begin = 0; begin < nodes; begin += chunk_rows) {
@@ -138,9 +160,13 @@ StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kern
   chunk_rows_ = std::max<std::size_t>(1, (nodes + kProductChunks - 1) / kProductChunks);
   overflow_start_ = overflow_rows(chunk_rows_);
   while (overflow_start_.back() > 2 * nodes && chunk_rows_ < nodes) overflow_start_ = overflow_rows(chunk_rows_ *= 2);
-  overflow_.resize(overflow_start_.back() * d);
-  // Where each cell's corner pairs (a, b) add their blocks: in row(a) when row(a) <= row(b),
-  // none (kNoBlock) otherwise, the block being the transpose of (b, a)'s.
+  overflow_.resize(overflow_start_.back() * static_cast<std::size_t>(kernel_->dofs_per_node()));
+}
+
+// Where each cell's corner pairs (a, b) add their blocks: in row(a) when row(a) <= row(b),
+// none (kNoBlock) otherwise, the block being the transpose of (b, a)'s.
+void StiffnessOperator::place_cell_blocks() {
+  const ElementList& cells = kernel_->cells();
   cell_start_.assign(cells.size() + 1, 0);
   for (std::size_t c = 0; c < cells.size(); ++c) {
     const std::size_t corners = cells.nodes(c).size();
@@ -159,11 +185,6 @@ StiffnessOperator::StiffnessOperator(std::shared_ptr<const StiffnessKernel> kern
         *at++ = q < static_cast<NodeId>(r) ? kNoBlock : static_cast<std::uint32_t>(std::lower_bound(first, last, q) - columns_.begin());
       }
     }
-  }
-  values_.assign(columns_.size() * d * d, 0.0);
-  if (!order_.empty()) {
-    x_rows_.resize(nodes * d);
-    y_rows_.resize(nodes * d);
   }
 }
 
@@ -358,11 +379,10 @@ void StiffnessOperator::apply(std::span<const double> x, std::span<double> y) co
 }
 
 std::vector<NodeId> StiffnessOperator::stored_nodes(NodeId i) const {
-  const auto r = static_cast<std::size_t>(position_.empty() ? i : position_[static_cast<std::size_t>(i)]);
+  const auto r = static_cast<std::size_t>(row_of(i));
   std::vector<NodeId> nodes;
   for (auto k = row_start_[r]; k < row_start_[r + 1]; ++k) {
-    const NodeId q = columns_[static_cast<std::size_t>(k)];
-    nodes.push_back(order_.empty() ? q : order_[static_cast<std::size_t>(q)]);
+    nodes.push_back(static_cast<NodeId>(node_of(static_cast<std::size_t>(columns_[static_cast<std::size_t>(k)]))));
   }
   return nodes;
 }
@@ -384,7 +404,7 @@ void StiffnessOperator::diagonal_blocks(std::span<double> out) const {
   const auto dd = static_cast<std::size_t>(kernel_->dofs_per_node() * kernel_->dofs_per_node());
   const std::size_t nodes = row_start_.size() - 1;
   for (std::size_t i = 0; i < nodes; ++i) {  // each row's first stored block is its diagonal one
-    const auto r = position_.empty() ? i : static_cast<std::size_t>(position_[i]);
+    const auto r = static_cast<std::size_t>(row_of(static_cast<NodeId>(i)));
     const double* block = values_.data() + static_cast<std::size_t>(row_start_[r]) * dd;
     std::copy(block, block + dd, out.data() + i * dd);
   }

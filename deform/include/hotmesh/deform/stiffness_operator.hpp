@@ -146,6 +146,14 @@ class StiffnessOperator final : public LinearOperator {
   std::size_t chunk_count() const { return (row_start_.size() - 1 + chunk_rows_ - 1) / chunk_rows_; }
 
  private:
+  // The constructor's phases, in order.
+  void order_rows(const NodeCells& around);
+  void build_pattern(const NodeCells& around);
+  void cut_product_chunks();
+  void place_cell_blocks();
+  NodeId row_of(NodeId node) const;
+  std::size_t node_of(std::size_t row) const;
+
   std::shared_ptr<const StiffnessKernel> kernel_;
   std::vector<NodeId> order_;              ///< the node of each row (empty: row i is node i)
   std::vector<NodeId> position_;           ///< the row of each node (empty: node i is row i)
