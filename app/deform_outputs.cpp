@@ -282,6 +282,7 @@ json features_json(const mesh::Mesh& mesh, const io::CaseSetup& setup, const def
                  {"point", {f.point.x, f.point.y, f.point.z}},
                  {"nodes", nodes},
                  {"given_nodes", f.given_nodes},
+                 {"held", f.from_start ? "from_start" : "corner_pass"},
                  {"unheld_edges", f.unheld_edges}};
     put_length(feature, "largest_offset", f.largest_offset, result.length_scale);
     put_length(feature, "distance", f.distance, result.length_scale);

@@ -243,7 +243,8 @@ class BoundaryBuilder {
         plane_of_(mesh.patches.size(), -1),
         sliding_index_(mesh.node_count(), -1),
         rim_(mesh.node_count()),
-        follows_sliding_(mesh.node_count(), 0) {
+        follows_sliding_(mesh.node_count(), 0),
+        holds_(mesh.node_count(), 0) {
     if (setup_.reference.size() != mesh.node_count()) {
       throw InputError(fmt::format("the state to restart from has {} nodes, the mesh {}", setup_.reference.size(),
                                    mesh.node_count()));
@@ -391,7 +392,7 @@ class BoundaryBuilder {
       for (int i = 0; i < s.shape_count; ++i) {
         const auto k = static_cast<std::size_t>(i);
         const PatchMotion* m = sliding_motion_of(s.shapes[k]);
-        if (m == nullptr || !m->features.creases) continue;
+        if (m == nullptr) continue;
         auto sides = s.shapes[k]->crease_sides(s.hints[k], m->features.angle);
         if (sides.size() < 2 || s.shape_count + static_cast<int>(sides.size()) - 1 > SlidingNode::kMaxShapes) continue;
         s.shapes[k] = sides[0].get();
@@ -500,9 +501,7 @@ class BoundaryBuilder {
     }
   }
 
-  /// The corners of each sliding wall (wall_features.hpp): the nodes given one become
-  /// prescribed nodes that reach it; the other sliding nodes keep to their segments.
-  /// How a node holds a corner (hold_wall_corners).
+  /// How a node holds a corner (give_corners).
   static constexpr char kPrescribedOntoCorner = 1;
   static constexpr char kSlidesAlongCorner = 2;
 
@@ -521,68 +520,112 @@ class BoundaryBuilder {
     s.shape_count = 2;
   }
 
+  /// Whether sliding node n may be given a corner whose point is q: a node of one wall only,
+  /// free or held on slip planes through the corner (the side of a sector), holding no other.
+  bool can_hold_corner(NodeId n, const Vec3& q, double on_plane) const {
+    const int i = sliding_index_[static_cast<std::size_t>(n)];
+    if (i < 0 || holds_[static_cast<std::size_t>(n)]) return false;
+    const SlidingNode& s = setup_.sliding[static_cast<std::size_t>(i)];
+    const auto planes = std::span(s.planes).first(static_cast<std::size_t>(s.plane_count));
+    return s.shape_count == 1 && std::all_of(planes.begin(), planes.end(), [&](int k) {
+             const SlipPlane& plane = setup_.slip_planes[static_cast<std::size_t>(k)];
+             return std::abs(dot(q - plane.origin, plane.normal)) <= on_plane;
+           });
+  }
+
+  /// The slip planes sliding node n is held on.
+  std::vector<SlipPlane> planes_of(NodeId n) const {
+    std::vector<SlipPlane> planes;
+    const int i = sliding_index_[static_cast<std::size_t>(n)];
+    if (i < 0) return planes;
+    const SlidingNode& s = setup_.sliding[static_cast<std::size_t>(i)];
+    for (const int k : std::span(s.planes).first(static_cast<std::size_t>(s.plane_count))) {
+      planes.push_back(setup_.slip_planes[static_cast<std::size_t>(k)]);
+    }
+    return planes;
+  }
+
+  /// The plan's corners given to its nodes: in 2D a node is prescribed onto its corner point,
+  /// in 3D it goes onto its corner line and slides along it. The wall's other sliding nodes keep
+  /// to their segments. Corners are recorded for the report, creases with the wall's creases.
+  void give_corners(WallFeaturePlan& plan, const PatchMotion& m, const Patch& patch) {
+    for (std::size_t k = 0; k < patch.nodes.size() && !plan.features.empty(); ++k) {
+      const int i = sliding_index_[static_cast<std::size_t>(patch.nodes[k])];
+      if (i < 0) continue;
+      SlidingNode& s = setup_.sliding[static_cast<std::size_t>(i)];
+      const auto j = static_cast<std::size_t>(std::find(s.shapes.begin(), s.shapes.end(), m.shape.get()) - s.shapes.begin());
+      if (j < s.segments.size()) s.segments[j] = plan.segments[k];
+    }
+    for (HeldFeature& held : plan.features) {
+      for (NodeId n : held.nodes) {
+        if (mesh_.dimension == 3) {  // a corner line: the node goes onto it and slides along it
+          holds_[static_cast<std::size_t>(n)] = kSlidesAlongCorner;
+          follow_corner_line(n, *m.shape, {held.feature.parameter, held.crease});
+        } else {  // a corner point: the node is prescribed onto it
+          holds_[static_cast<std::size_t>(n)] = kPrescribedOntoCorner;
+          setup_.prescribed.push_back({n, {.t = held.feature.parameter}, m.shape.get(), true});
+          setup_.constraints.fix(n);
+        }
+      }
+      if (!held.note.empty()) setup_.notes.push_back(held.note);
+      if (held.crease) {
+        note_crease_given_nodes(patch.name, *m.shape, held);
+        continue;
+      }
+      setup_.corners.push_back({patch.name, m.shape.get(), x0_[static_cast<std::size_t>(patch.nodes.front())], std::move(held)});
+    }
+  }
+
+  /// The nodes prescribed onto corners slide no more.
+  void drop_nodes_prescribed_onto_corners() {
+    std::erase_if(setup_.sliding,
+                  [&](const SlidingNode& s) { return holds_[static_cast<std::size_t>(s.node)] == kPrescribedOntoCorner; });
+    std::fill(sliding_index_.begin(), sliding_index_.end(), -1);
+    for (std::size_t k = 0; k < setup_.sliding.size(); ++k) {
+      sliding_index_[static_cast<std::size_t>(setup_.sliding[k].node)] = static_cast<int>(k);
+    }
+  }
+
+  /// The corners that nodes of a sliding wall lie on before the motion (a mesh made from CAD
+  /// has a node on every CAD vertex) are held by those nodes from the start, whatever the
+  /// wall's `features`: the wall has no tangent there for them to slide along. The other nodes
+  /// keep to the segments between these corners (plan_corners_on_nodes; a run that starts from
+  /// an earlier one's mesh takes the nodes on corners to rounding only).
+  void hold_corners_on_nodes() {
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+      const PatchMotion& m = *motion_of_[p];
+      const Patch& patch = mesh_.patches[p];
+      if (m.role != BoundaryRole::sliding || patch.nodes.empty()) continue;
+      const double on_plane = 1e-9 * bounding_diagonal(mesh_.points, patch.nodes);
+      WallFeaturePlan plan =
+          plan_corners_on_nodes(mesh_, x0_, patch, *m.shape, m.features.angle, start_ == nullptr,
+                                [&](NodeId n, const Vec3& q) { return can_hold_corner(n, q, on_plane); });
+      give_corners(plan, m, patch);
+    }
+    drop_nodes_prescribed_onto_corners();
+  }
+
+  /// The corners of each sliding wall with features (wall_features.hpp), in the corner pass:
+  /// the nodes given one become prescribed nodes that reach it; the other sliding nodes keep to
+  /// their segments.
   void hold_wall_corners() {
-    std::vector<char> holds(mesh_.node_count(), 0);
     for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
       const PatchMotion& m = *motion_of_[p];
       const Patch& patch = mesh_.patches[p];
       if (m.role != BoundaryRole::sliding || !m.features.enabled || patch.nodes.empty()) continue;
       const double on_plane = 1e-9 * bounding_diagonal(mesh_.points, patch.nodes);
-      const auto can_hold = [&](NodeId n, const Vec3& q) {
-        const int i = sliding_index_[static_cast<std::size_t>(n)];
-        if (i < 0 || holds[static_cast<std::size_t>(n)]) return false;
-        const SlidingNode& s = setup_.sliding[static_cast<std::size_t>(i)];
-        const auto planes = std::span(s.planes).first(static_cast<std::size_t>(s.plane_count));
-        return s.shape_count == 1 && std::all_of(planes.begin(), planes.end(), [&](int k) {
-                 const SlipPlane& plane = setup_.slip_planes[static_cast<std::size_t>(k)];
-                 return std::abs(dot(q - plane.origin, plane.normal)) <= on_plane;
+      WallFeaturePlan plan = plan_wall_features(
+          mesh_, x0_, patch, *m.shape, m.features.angle,
+          [&](NodeId n, const Vec3& q) { return can_hold_corner(n, q, on_plane); },
+          [&](NodeId n) { return planes_of(n); });
+      std::erase_if(plan.features, [&](const HeldFeature& held) {  // held from the start (hold_corners_on_nodes)
+        return !held.crease && std::any_of(setup_.corners.begin(), setup_.corners.end(), [&](const WallCorner& c) {
+                 return c.patch == patch.name && c.held.feature.parameter == held.feature.parameter;
                });
-      };
-      const auto planes_of = [&](NodeId n) {
-        std::vector<SlipPlane> planes;
-        const int i = sliding_index_[static_cast<std::size_t>(n)];
-        if (i < 0) return planes;
-        const SlidingNode& s = setup_.sliding[static_cast<std::size_t>(i)];
-        for (const int k : std::span(s.planes).first(static_cast<std::size_t>(s.plane_count))) {
-          planes.push_back(setup_.slip_planes[static_cast<std::size_t>(k)]);
-        }
-        return planes;
-      };
-      WallFeaturePlan plan =
-          plan_wall_features(mesh_, x0_, patch, *m.shape, m.features.angle, m.features.creases, can_hold, planes_of);
-      for (std::size_t k = 0; k < patch.nodes.size() && !plan.features.empty(); ++k) {
-        const int i = sliding_index_[static_cast<std::size_t>(patch.nodes[k])];
-        if (i < 0) continue;
-        SlidingNode& s = setup_.sliding[static_cast<std::size_t>(i)];
-        const auto j = static_cast<std::size_t>(std::find(s.shapes.begin(), s.shapes.end(), m.shape.get()) - s.shapes.begin());
-        if (j < s.segments.size()) s.segments[j] = plan.segments[k];
-      }
-      for (HeldFeature& held : plan.features) {
-        for (NodeId n : held.nodes) {
-          if (mesh_.dimension == 3) {  // a corner line: the node goes onto it and slides along it
-            holds[static_cast<std::size_t>(n)] = kSlidesAlongCorner;
-            follow_corner_line(n, *m.shape, {held.feature.parameter, held.crease});
-          } else {  // a corner point: the node is prescribed onto it
-            holds[static_cast<std::size_t>(n)] = kPrescribedOntoCorner;
-            setup_.prescribed.push_back({n, {.t = held.feature.parameter}, m.shape.get(), true});
-            setup_.constraints.fix(n);
-          }
-        }
-        if (!held.note.empty()) setup_.notes.push_back(held.note);
-        if (held.crease) {
-          note_crease_given_nodes(patch.name, *m.shape, held);
-          continue;
-        }
-        setup_.corners.push_back({patch.name, m.shape.get(), x0_[static_cast<std::size_t>(patch.nodes.front())], std::move(held)});
-      }
+      });
+      give_corners(plan, m, patch);
     }
-    // The nodes prescribed onto corners slide no more.
-    std::erase_if(setup_.sliding,
-                  [&](const SlidingNode& s) { return holds[static_cast<std::size_t>(s.node)] == kPrescribedOntoCorner; });
-    std::fill(sliding_index_.begin(), sliding_index_.end(), -1);
-    for (std::size_t k = 0; k < setup_.sliding.size(); ++k) {
-      sliding_index_[static_cast<std::size_t>(setup_.sliding[k].node)] = static_cast<int>(k);
-    }
+    drop_nodes_prescribed_onto_corners();
   }
 
   /// x_F: where each sliding node's material point moves, plus (restart) the slide already
@@ -715,6 +758,7 @@ class BoundaryBuilder {
   std::vector<int> sliding_index_;               ///< per node: its index in setup_.sliding, or -1
   std::vector<std::optional<Vec3>> rim_;         ///< per node: its displacement where known
   std::vector<char> follows_sliding_;            ///< per node: moves with a sliding node
+  std::vector<char> holds_;                      ///< per node: how it holds a corner, or 0
 };
 
 }  // namespace
@@ -729,6 +773,7 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
   builder.collect_sliding_nodes();
   builder.slide_along_creases();
   builder.hold_sliding_rims_on_passive_surfaces();
+  builder.hold_corners_on_nodes();
   builder.hold_wall_corners();
   builder.set_sliding_targets();
   builder.solve_passive_surfaces();

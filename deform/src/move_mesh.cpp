@@ -123,8 +123,16 @@ class Motion {
   /// their nodes are from them at the end.
   void report_corners() {
     for (const detail::WallCorner& c : setup_.corners) {
-      WallFeature f{c.patch, c.held.feature.parameter, c.held.feature.angle, {}, c.held.nodes, c.held.nodes.size(),
-                    c.held.largest_offset, 0.0, c.held.unheld_edges};
+      WallFeature f{c.patch,
+                    c.held.feature.parameter,
+                    c.held.feature.angle,
+                    {},
+                    c.held.nodes,
+                    c.held.nodes.size(),
+                    c.held.largest_offset,
+                    0.0,
+                    c.held.unheld_edges,
+                    c.held.from_start};
       f.nodes.insert(f.nodes.end(), c.held.held_by_role.begin(), c.held.held_by_role.end());
       for (NodeId n : f.nodes) {
         const Vec3& x = result_.points[static_cast<std::size_t>(n)];
@@ -136,8 +144,8 @@ class Motion {
     }
     for (const detail::WallCrease& c : setup_.creases) {
       const Vec3 reference = c.nodes.empty() ? Vec3{} : result_.points[static_cast<std::size_t>(c.nodes.front())];
-      WallFeature f{c.patch,      0.0, c.angle, reference, c.nodes, c.nodes.size(), c.largest_offset, 0.0, c.unheld_edges,
-                    c.faces};
+      WallFeature f{c.patch,        0.0, c.angle, reference, c.nodes, c.nodes.size(), c.largest_offset, 0.0, c.unheld_edges,
+                    c.wall == nullptr, c.faces};
       if (c.wall != nullptr) f.point = c.wall->crease_point(c.line, reference, result_.lambda_reached).point;
       for (NodeId n : c.nodes) {
         const Vec3& x = result_.points[static_cast<std::size_t>(n)];
@@ -517,7 +525,7 @@ bool has_corners(std::span<const PatchMotion> patches) {
   return std::any_of(patches.begin(), patches.end(), [](const PatchMotion& m) {
     return m.role == BoundaryRole::sliding && m.features.enabled && m.shape &&
            (!m.shape->features(m.features.angle).empty() ||
-            (m.features.creases && !m.shape->creases(m.features.angle).empty()));
+            !m.shape->creases(m.features.angle).empty());
   });
 }
 
@@ -650,7 +658,7 @@ MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, c
   require_motion_cells(mesh);  // before eq. (35), which would measure the other cell types
   const bool corners = has_corners(patches);
   std::vector<PatchMotion> sliding_freely(patches.begin(), patches.end());
-  for (PatchMotion& m : sliding_freely) m.features.enabled = false;  // creases stay held
+  for (PatchMotion& m : sliding_freely) m.features.enabled = false;  // corners and creases on nodes stay held
   auto kernel = std::make_shared<const StiffnessKernel>(mesh, element_lame(mesh, material), material.drop_jacobian);
   Motion motion(mesh, sliding_freely, kernel, solver, observers, start, ranks);
   motion.set_setup_time(seconds_since(begin));

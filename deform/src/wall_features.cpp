@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <unordered_map>
 #include <utility>
@@ -144,6 +145,45 @@ class CornerPlanner {
     }
   }
 
+  /// Only the nodes that lie on a corner get it (plan_corners_on_nodes): the nearer end of a
+  /// crossing edge, if it is within reach of the corner.
+  void give_corners_to_nodes_on_them(const CanHold& can_hold, double min_angle, bool drawn_corners) {
+    const double on_corner = 1e-6 * bounding_diagonal(mesh_.points, patch_.nodes);
+    for (const Crossing& c : crossings_) {
+      HeldFeature& held = plan_.features[c.feature];
+      const auto f = static_cast<int>(c.feature);
+      const std::size_t k = offset(c.feature, c.a) <= offset(c.feature, c.b) ? c.a : c.b;
+      if (holds_[k] >= 0) continue;
+      const bool drawn = drawn_corners && held.feature.undeformed_angle >= min_angle;
+      const double share = drawn ? kOnCornerShare : kOnCornerRounding;
+      const Vec3 q = corner_at(c.feature, k);
+      const NodeId n = patch_.nodes[k];
+      if (distance(x(k), q) > share * shortest_edge(k)) continue;
+      if (can_hold(n, q)) {
+        held.nodes.push_back(n);
+        held.largest_offset = std::max(held.largest_offset, distance(x(k), q));
+      } else if (distance(x(k), q) <= on_corner) {
+        held.held_by_role.push_back(n);  // a node of another role already on the corner
+      } else {
+        continue;
+      }
+      holds_[k] = f;
+    }
+  }
+
+  /// Leaves out the corners that no node holds: the segments are those between the others.
+  void keep_held_corners() {
+    std::vector<HeldFeature> kept;
+    corner_parameters_.clear();
+    for (HeldFeature& held : plan_.features) {
+      if (held.nodes.empty() && held.held_by_role.empty()) continue;
+      held.from_start = true;
+      corner_parameters_.push_back(held.feature.parameter);
+      kept.push_back(std::move(held));
+    }
+    plan_.features = std::move(kept);
+  }
+
   /// Where a corner kept edges without a node on it, say so.
   void note_unheld_corners() {
     for (HeldFeature& held : plan_.features) {
@@ -198,6 +238,11 @@ class CornerPlanner {
     return (std::uint64_t{static_cast<std::uint32_t>(std::min(a, b))} << 32) | static_cast<std::uint32_t>(std::max(a, b));
   }
   double offset(std::size_t f, std::size_t k) const { return distance(x(k), corner_at(f, k)); }
+  double shortest_edge(std::size_t k) const {
+    double shortest = std::numeric_limits<double>::infinity();
+    for (const std::size_t j : neighbours_[k]) shortest = std::min(shortest, distance(x(k), x(j)));
+    return shortest;
+  }
   Vec3 position(std::size_t k) const { return holds_[k] >= 0 ? moved_[k] : x(k); }
   /// Giving node k the corner point q shrinks none of its wall edges below kMinEdgeShare.
   bool keeps_edges(std::size_t k, const Vec3& q) const {
@@ -225,10 +270,10 @@ class CornerPlanner {
 }  // namespace
 
 WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
-                                   const geometry::BoundaryShape& shape, double min_angle, bool creases,
-                                   const CanHold& can_hold, const PlanesOf& planes_of) {
+                                   const geometry::BoundaryShape& shape, double min_angle, const CanHold& can_hold,
+                                   const PlanesOf& planes_of) {
   std::vector<geometry::ShapeFeature> corners = shape.features(min_angle);
-  std::vector<geometry::ShapeCrease> lines = creases ? shape.creases(min_angle) : std::vector<geometry::ShapeCrease>{};
+  std::vector<geometry::ShapeCrease> lines = shape.creases(min_angle);
   if ((corners.empty() && lines.empty()) || patch.nodes.empty()) {
     return {{}, {}, std::vector<geometry::ParameterRange>(patch.nodes.size())};
   }
@@ -240,6 +285,19 @@ WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, c
   return std::move(planner).segments(min_angle);
 }
 
+WallFeaturePlan plan_corners_on_nodes(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
+                                      const geometry::BoundaryShape& shape, double min_angle, bool drawn_corners,
+                                      const CanHold& can_hold) {
+  std::vector<geometry::ShapeFeature> corners = shape.features(min_angle);
+  if (corners.empty() || patch.nodes.empty()) return {{}, {}, std::vector<geometry::ParameterRange>(patch.nodes.size())};
+  CornerPlanner planner(mesh, x0, patch, shape, std::move(corners), {}, [](NodeId) { return std::vector<SlipPlane>{}; });
+  planner.locate_nodes();
+  planner.find_crossings();
+  planner.give_corners_to_nodes_on_them(can_hold, min_angle, drawn_corners);
+  planner.keep_held_corners();
+  return std::move(planner).segments(min_angle);
+}
+
 namespace {
 /// How far from a corner (relative to its parameter) the wall's one-sided normals are taken.
 constexpr double kOneSided = 1e-9;
@@ -247,26 +305,26 @@ constexpr double kOneSided = 1e-9;
 
 CornerPath::CornerPath(const geometry::BoundaryShape& wall, CornerLine line, const Vec3& start, int direction)
     : wall_(wall), line_(std::move(line)), direction_(direction) {
-  const Section s = section(start);
+  const Section s = section(start, 0.0);
   for (std::size_t i = 0; i < 2; ++i) offset_[i] = dot(start - s.corner, s.axes[i]);
 }
 
-CornerPath::Section CornerPath::section(const Vec3& p) const {
+CornerPath::Section CornerPath::section(const Vec3& p, double lambda) const {
   Section s;
   Vec3 a, b;
   // The wall's normals on either side of the line span its cross-section (they differ by the
   // corner's angle); Gram-Schmidt makes them an orthonormal pair.
   if (line_.crease) {
-    const geometry::CreasePoint c = wall_.crease_point(*line_.crease, p, 1.0);
+    const geometry::CreasePoint c = wall_.crease_point(*line_.crease, p, lambda);
     s.corner = c.point;
     a = c.normals[0];
     b = c.normals[1];
   } else {
     const double corner = line_.corner;
-    s.corner = wall_.at({.t = corner}, 1.0, p).point;
+    s.corner = wall_.at({.t = corner}, lambda, p).point;
     const double step = kOneSided * (1.0 + std::abs(corner));
-    a = wall_.at({.t = corner - step}, 1.0, p).normal;
-    b = wall_.at({.t = corner + step}, 1.0, p).normal;
+    a = wall_.at({.t = corner - step}, lambda, p).normal;
+    b = wall_.at({.t = corner + step}, lambda, p).normal;
   }
   s.axes[0] = a / norm(a);
   const Vec3 c = b - dot(b, s.axes[0]) * s.axes[0];
@@ -276,7 +334,7 @@ CornerPath::Section CornerPath::section(const Vec3& p) const {
 
 geometry::ShapePoint CornerPath::project(const Vec3& p, double lambda, const geometry::ShapeParameter& /*hint*/,
                                          const geometry::ParameterRange& /*range*/) const {
-  const Section s = section(p);
+  const Section s = section(p, lambda);
   const double fade = 1.0 - lambda;
   geometry::ShapePoint q;
   q.point = s.corner + fade * (offset_[0] * s.axes[0] + offset_[1] * s.axes[1]);

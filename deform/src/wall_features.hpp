@@ -42,6 +42,7 @@ struct HeldFeature {
   double largest_offset = 0.0;  ///< largest distance of a node from the corner before the motion
   std::size_t unheld_edges = 0;  ///< crossing edges left without a node on the corner
   std::string note;              ///< why, where edges were left
+  bool from_start = false;       ///< its nodes lay on it before the motion (plan_corners_on_nodes)
 };
 
 struct WallFeaturePlan {
@@ -60,12 +61,14 @@ struct CornerLine {
 };
 
 /// The way a node given a corner line (a circle of a surface of revolution, or a crease of a
-/// wall made of faces) goes onto it in the corner pass: in the line's cross-section through
-/// the node (for a circle, the meridional plane) it moves from where it starts, `start`,
-/// straight onto the line as the stage goes from 0 to 1; along the line it is free. Seen as a
-/// shape, it constrains one direction of that cross-section (`direction` 0 or 1, of an
-/// orthonormal pair spanning it): a node sliding on both directions' paths slides along the
-/// line only. `wall` is the wall at its final stage (the pass's walls).
+/// wall made of faces) goes onto it: in the line's cross-section through the node (for a
+/// circle, the meridional plane) it moves from where it starts, `start` (its offset from the
+/// line at stage 0), onto the line at stage lambda, the offset fading as (1 - lambda); along the
+/// line it is free. Seen as a shape, it constrains one direction of that cross-section
+/// (`direction` 0 or 1, of an orthonormal pair spanning it): a node sliding on both directions'
+/// paths slides along the line only. In the corner pass `wall` is the wall at its final stage
+/// for every lambda (the pass's walls); a node on a corner circle from the start follows the
+/// circle of each stage through the motion.
 class CornerPath final : public geometry::BoundaryShape {
  public:
   CornerPath(const geometry::BoundaryShape& wall, CornerLine line, const Vec3& start, int direction);
@@ -75,13 +78,13 @@ class CornerPath final : public geometry::BoundaryShape {
   geometry::ShapePoint at(const geometry::ShapeParameter& where, double lambda, const Vec3& reference) const override;
 
  private:
-  /// The corner's point in the cross-section through p, and an orthonormal pair spanning
-  /// that cross-section (from the wall's normals on either side of the corner).
+  /// The corner's point at stage lambda in the cross-section through p, and an orthonormal
+  /// pair spanning that cross-section (from the wall's normals on either side of the corner).
   struct Section {
     Vec3 corner;
     std::array<Vec3, 2> axes;
   };
-  Section section(const Vec3& p) const;
+  Section section(const Vec3& p, double lambda) const;
 
   const geometry::BoundaryShape& wall_;
   CornerLine line_;
@@ -101,12 +104,35 @@ struct SlipPlane {
 /// for a node on a plane is where the crease crosses it, which the node can reach.
 using PlanesOf = std::function<std::vector<SlipPlane>(NodeId n)>;
 
-/// The corners and creases of `shape` (of at least `min_angle`; the creases only if `creases`)
-/// on one sliding patch, and the nodes that hold them. A crease is crossed by the wall edges
+/// The corners and creases of `shape` (of at least `min_angle`) on one sliding patch, and the
+/// nodes that hold them. A crease is crossed by the wall edges
 /// whose ends lie on its two faces. `can_hold`: a sliding node of this wall only, free or held on planes through the
 /// corner (a slip side of a sector). `x0` the positions of stage 0.
 WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
-                                   const geometry::BoundaryShape& shape, double min_angle, bool creases,
-                                   const CanHold& can_hold, const PlanesOf& planes_of);
+                                   const geometry::BoundaryShape& shape, double min_angle, const CanHold& can_hold,
+                                   const PlanesOf& planes_of);
+
+/// The corners of `shape` (of at least `min_angle`) that nodes of the wall lie on before the
+/// motion, as every mesh made from CAD has them. Such a node cannot slide: the wall has no
+/// tangent there, and Newton would alternate between the sides. It holds the corner from the
+/// start; the other nodes keep to the segments between these corners. A node lies on a corner
+/// if it is within kOnCornerRounding of its shortest wall edge from it; in a fresh run
+/// (`drawn_corners`), on a corner of the wall as drawn (a CAD vertex, a kink of the cold FEM
+/// wall: ShapeFeature::undeformed_angle) within kOnCornerShare, since a node that close slides
+/// into the corner and stalls there too. A restarted run and the corner pass start where such
+/// nodes were put on their corners, and take them to rounding only, so that a chain of
+/// restarted runs makes the moves of one straight run. Corners without such a node are left
+/// out (the corner pass gives them nodes). Creases are not planned here: nodes on them slide
+/// along them (BoundaryShape::crease_sides).
+WallFeaturePlan plan_corners_on_nodes(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
+                                      const geometry::BoundaryShape& shape, double min_angle, bool drawn_corners,
+                                      const CanHold& can_hold);
+
+/// A node within this share of its shortest wall edge from a corner of the wall as drawn lies
+/// on it (plan_corners_on_nodes).
+inline constexpr double kOnCornerShare = 0.25;
+/// A node within this share of its shortest wall edge from a corner lies on it up to the
+/// rounding of the files and of the motion.
+inline constexpr double kOnCornerRounding = 1e-6;
 
 }  // namespace hotmesh::deform::detail

@@ -116,13 +116,14 @@ std::vector<ShapeFeature> DeflectedCurve::corners(double min_angle) const {
   std::vector<ShapeFeature> found;
   for (std::size_t k = 0; k + 1 < pieces_.size(); ++k) {
     const double t = pieces_[k].end;
-    double angle = 0.0;
-    for (const double lambda : {0.0, 1.0}) {
+    const auto turn = [&](double lambda) {
       const Vec2 before = direction(derivatives(t, lambda, pieces_[k]));
       const Vec2 after = direction(derivatives(t, lambda, pieces_[k + 1]));
-      angle = std::max(angle, std::atan2(std::abs(cross(before, after)), dot(before, after)));
-    }
-    if (angle >= min_angle) found.push_back({t, angle});
+      return std::atan2(std::abs(cross(before, after)), dot(before, after));
+    };
+    const double undeformed = turn(0.0);
+    const double angle = std::max(undeformed, turn(1.0));
+    if (angle >= min_angle) found.push_back({t, angle, undeformed});
   }
   return found;
 }

@@ -378,7 +378,7 @@ class CaseParser {
   /// `features: off | on | {angle: A}`: which corners of a sliding wall its nodes hold.
   void read_features(const Entry& e, deform::FeatureOptions& features) {
     if (e.value.IsScalar()) {
-      if (const auto on = reader_.boolean(e)) features.enabled = features.creases = *on;
+      if (const auto on = reader_.boolean(e)) features.enabled = *on;
       return;
     }
     if (!reader_.map_or_empty(e, cat("on, off or a map {angle: <degrees>}, e.g. ", kFeaturesExample))) return;

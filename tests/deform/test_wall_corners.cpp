@@ -226,6 +226,74 @@ TEST(WallCorners, OnASurfaceOfRevolutionTheHoldingNodesSlideAlongTheCornerCircle
   EXPECT_GT(turned, 1e-7) << "the nodes holding the corner circles did not move along them";
 }
 
+/// A wall drawn with a step of height kStep whose four corners lie on rows of nodes, as a mesh
+/// made from CAD has them: (r, z) through (1, 0), (1 + 4/12, 0), (1 + 5/12, kStep),
+/// (1 + 7/12, kStep), (1 + 8/12, 0), (2, 0), the mesh's nodes at r = 1 + i/12. The deflection
+/// moves it out and up, more at larger r, so every corner circle moves and turns.
+constexpr double kStep = 0.1;
+const std::vector<Vec2> kStepWall{{1.0, 0.0}, {1.0 + 4.0 / 12, 0.0}, {1.0 + 5.0 / 12, kStep},
+                                  {1.0 + 7.0 / 12, kStep}, {1.0 + 8.0 / 12, 0.0}, {2.0, 0.0}};
+
+DeflectedCurve step_wall() {
+  std::vector<double> t{0.0};
+  for (std::size_t k = 1; k < kStepWall.size(); ++k) t.push_back(t.back() + norm(kStepWall[k] - kStepWall[k - 1]));
+  for (double& v : t) v /= t.back();
+  const std::vector<double> ends{0.0, 1.0};
+  const std::vector<Vec2> d{{0.0, 0.0}, {0.05, 0.08}};
+  return {BSplineCurve2d::polyline(t, kStepWall), BSplineCurve2d::polyline(ends, d), DeflectionForm::displacement};
+}
+
+/// The 10-degree sector with its wall on step_wall(): each node's z lifted by the step's height
+/// at its r, fading to nothing at the top.
+mesh::Mesh stepped_sector_mesh() {
+  mesh::Mesh mesh = sector_mesh(0.0);
+  const geometry::Axis axis({0, 0, 0}, {0, 0, 1});
+  for (Vec3& p : mesh.points) {
+    const double r = std::hypot(p.x, p.y);
+    double lift = 0.0;
+    for (std::size_t k = 0; k + 1 < kStepWall.size(); ++k) {
+      const Vec2 a = kStepWall[k], b = kStepWall[k + 1];
+      if (r >= a.x - 1e-12 && r <= b.x + 1e-12) lift = a.y + (b.y - a.y) * (r - a.x) / (b.x - a.x);
+    }
+    p.z += (1.0 - p.z) * lift;
+  }
+  return mesh;
+}
+
+TEST(WallCorners, OnASurfaceOfRevolutionTheRowsOfNodesOnCornerCirclesHoldThemFromTheStart) {
+  // A wall whose meridional curve has corners on rows of nodes before the motion: those nodes
+  // cannot slide (the wall has no tangent there, Newton would alternate between the sides); they
+  // follow their corner circle through the motion, free round the axis, with or without features.
+  const mesh::Mesh mesh = stepped_sector_mesh();
+  const geometry::Axis axis({0, 0, 0}, {0, 0, 1});
+  const auto wall = std::make_shared<geometry::RevolvedShape>(step_wall(), axis);
+  for (const bool features : {true, false}) {
+    SCOPED_TRACE(features ? "features" : "features off");
+    const MotionResult r = move_mesh(mesh, motions(wall, features, {"side0", "side1"}), {}, {});
+    ASSERT_TRUE(r.success) << r.message;
+    EXPECT_EQ(r.summary.inverted_cells, 0u);
+    ASSERT_EQ(r.features.size(), 4u);
+    for (const WallFeature& f : r.features) {
+      EXPECT_TRUE(f.from_start);
+      EXPECT_EQ(f.given_nodes, 4u) << f.parameter;  // the row of nodes on it, one per meridional plane
+      EXPECT_LT(f.distance, 1e-12);
+      EXPECT_LT(f.largest_offset, 1e-12);
+    }
+    // The wall's nodes end on it (but those of the fixed ends) and none slid across a corner.
+    for (mesh::NodeId n : mesh.find_patch("bottom")->nodes) {
+      const auto i = static_cast<std::size_t>(n);
+      if (r.node_roles[i] == 1 + static_cast<int>(BoundaryRole::fixed)) continue;
+      const auto before = axis.to_cylindrical(mesh.points[i]), after = axis.to_cylindrical(r.points[i]);
+      const double t = wall->project(mesh.points[i], 0.0).parameter.t;
+      const double moved = wall->project(r.points[i], 1.0).parameter.t;
+      EXPECT_LT(wall->project(r.points[i], 1.0).distance, 1e-9);
+      for (const WallFeature& f : r.features) {
+        EXPECT_EQ(t < f.parameter - 1e-9, moved < f.parameter - 1e-9) << "node " << n << " at r " << before.r << " -> " << after.r;
+      }
+    }
+  }
+}
+
 TEST(WallCorners, TheCornerPassRunsWithTheAmgSolverToo) {
   // The sector's corner circles with the assembled solver (nodal frames for the nodes that
   // slide along a circle): the same corners held as with jacobi-pcg.

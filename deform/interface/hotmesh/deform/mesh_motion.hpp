@@ -44,13 +44,13 @@ inline constexpr double kDefaultFeatureAngle = 25.0 * std::numbers::pi / 180.0;
 
 /// Which corners of a sliding patch's shape mesh nodes hold (beyond the paper, whose sliding
 /// rounds them): the case file's `features: {angle: 25}` or `features: off`.
+/// Whatever `enabled` says, the wall nodes that lie on a corner or on an edge where the faces
+/// of a wall meet before the motion (a mesh made from CAD has them on every CAD vertex and
+/// edge) hold it from the start: the wall has no tangent there for them to slide along.
 struct FeatureOptions {
-  /// Corners of curves (and circles of surfaces of revolution): held by the nearest wall nodes
-  /// in a corner pass after the motion.
+  /// Corners of curves (and circles of surfaces of revolution) and edges where faces meet,
+  /// that no node lies on: held by the nearest wall nodes in a corner pass after the motion.
   bool enabled = true;
-  /// Edges where the faces of a wall meet: the wall nodes on them slide along them from the
-  /// start (they lie on them already).
-  bool creases = true;
   double angle = kDefaultFeatureAngle;  ///< radians: corners and edges turning by at least this are held
 };
 
@@ -85,6 +85,9 @@ struct WallFeature {
   double largest_offset = 0.0;   ///< farthest a given node was from the corner before the motion
   double distance = 0.0;         ///< farthest a holding node is from the corner at the end
   std::size_t unheld_edges = 0;  ///< wall edges across it with no node on it (the wall cuts the corner)
+  /// Its nodes lay on it before the motion (a CAD vertex or edge with mesh nodes on it) and held
+  /// it from the start; else the corner pass gave it nodes after the motion.
+  bool from_start = false;
   /// An edge where faces of a wall meet (its nodes slide along it; those on it from the start,
   /// then, where the mesh's lines miss it, those given it): the faces' indices in the wall's
   /// shape; `parameter` is then 0. Empty for the corners of curves.

@@ -64,6 +64,10 @@ struct ShapeFeature {
   /// The largest angle (radians) by which the undeformed or the fully deflected shape turns
   /// there, between the tangents on either side.
   double angle = 0.0;
+  /// The angle (radians) by which the undeformed shape turns there: a corner of the wall as
+  /// drawn (a CAD vertex, a kink of the cold FEM wall), where a mesh made from CAD has a node,
+  /// rather than one the deflection makes.
+  double undeformed_angle = 0.0;
 };
 /// An edge where two faces of a shape meet turning by an angle: the faces' indices (increasing)
 /// and the largest angle (radians) between their normals along the edge, undeformed or fully
