@@ -88,6 +88,9 @@ std::vector<int> face_ids(const std::string& list, const std::string& text) {
     if (item.empty() || error != std::errc() || end != item.data() + item.size() || id < 1) {
       throw InputError(fmt::format("--map {}: face ids are integers from 1, separated by commas, e.g. wall=1,2", text));
     }
+    if (std::find(ids.begin(), ids.end(), id) != ids.end()) {
+      throw InputError(fmt::format("--map {}: face {} is listed twice", text, id));
+    }
     ids.push_back(id);
     start = comma + 1;
   }

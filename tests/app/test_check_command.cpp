@@ -489,6 +489,7 @@ TEST(CheckCommand, UserErrorsNameWhatIsWrong) {
   expect(hotmesh("check" + mesh + cad + " --map inner"), "expected PATCH=FACE_IDS");
   expect(hotmesh("check" + mesh + cad + " --map inner=1,x"), "face ids are integers from 1");
   expect(hotmesh("check" + mesh + cad + " --map inner=9"), "no face 9");
+  expect(hotmesh("check" + mesh + cad + " --map bottom=2,2"), "--map bottom=2,2: face 2 is listed twice");
   expect(hotmesh("check" + mesh + cad + " --map inner=1 --map inner=2"), "mapped twice");
   expect(hotmesh("check" + mesh + cad + " --map inner=1 --axis 0,0,1"), "--axis needs six numbers");
   expect(hotmesh("check" + mesh + " --deflection inner=" + q(dir / "missing.csv")), "missing.csv");
