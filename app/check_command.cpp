@@ -5,10 +5,12 @@
 // tolerance. Nodes on the shape do not make a wall on it (an edge between two nodes cuts a
 // corner of the shape no node lands on), so it also measures the patch's faces against the
 // shape both ways (the Hausdorff distance, wall_deviation_report.hpp) and names where it is
-// worst; that decides too when --wall-tol is given. The patches and their shapes come from options (--map, --deflection) or from a
-// case file (--case): a mesh deformed by `hotmesh deform` against the case's deflected walls,
-// or the case's own mesh against its undeformed walls. A check that cannot be made still
-// writes its JUnit report (a test case in error) before exiting with the error's code.
+// worst; that decides too when --wall-tol is given. The patches and their shapes come from
+// options (--map, --deflection; CAD faces taken meridionally or as surfaces as hotmesh deform
+// takes them, or as --mode says) or from a case file (--case): a mesh deformed by `hotmesh
+// deform` against the case's deflected walls, or the case's own mesh against its undeformed
+// walls. A check that cannot be made still writes its JUnit report (a test case in error)
+// before exiting with the error's code.
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -48,6 +50,7 @@ struct Options {
   std::vector<std::string> maps;
   std::vector<std::string> deflections;
   std::vector<double> axis;
+  std::string mode = "auto";
   double tolerance = 0.0;
   double wall_tolerance = 0.0;  ///< 0: none
   std::string unit = "m";
@@ -59,7 +62,7 @@ struct Options {
 };
 
 /// Options that say what a case file says too.
-constexpr std::array kCaseOptions{"--cad", "--map", "--deflection", "--axis", "--unit", "--degree", "--form"};
+constexpr std::array kCaseOptions{"--cad", "--map", "--deflection", "--axis", "--mode", "--unit", "--degree", "--form"};
 
 bool given(const Options& o, std::string_view option) {
   return std::find(o.given.begin(), o.given.end(), option) != o.given.end();
@@ -84,6 +87,9 @@ std::vector<int> face_ids(const std::string& list, const std::string& text) {
     const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), id);
     if (item.empty() || error != std::errc() || end != item.data() + item.size() || id < 1) {
       throw InputError(fmt::format("--map {}: face ids are integers from 1, separated by commas, e.g. wall=1,2", text));
+    }
+    if (std::find(ids.begin(), ids.end(), id) != ids.end()) {
+      throw InputError(fmt::format("--map {}: face {} is listed twice", text, id));
     }
     ids.push_back(id);
     start = comma + 1;
@@ -264,6 +270,7 @@ CheckResult check_with_options(const Options& o, const std::vector<std::filesyst
   options.reconstruction.degree = o.degree;
   options.reconstruction.form =
       geometry::kDeflectionFormNames.parse(o.form).value();  // CLI::IsMember checked it
+  options.mode = io::kWallModeNames.parse(o.mode).value();  // likewise
   if (!o.axis.empty()) {
     try {
       options.axis = geometry::Axis({o.axis[0], o.axis[1], o.axis[2]}, {o.axis[3], o.axis[4], o.axis[5]});
@@ -309,8 +316,8 @@ CheckResult check_with_case(const Options& o, std::vector<std::filesystem::path>
   }
   if (!conflicts.empty()) {
     throw InputError(fmt::format("{}: not with --case, which gives the CAD file, the faces and tables of every patch, "
-                                 "the axis, the unit, and the degree and form of each table; drop --case to check "
-                                 "other faces or tables",
+                                 "the axis, the unit, the degree and form of each table and the mode of each wall; "
+                                 "drop --case to check other faces or tables",
                                  fmt::join(conflicts, ", ")));
   }
   const io::Case c = io::read_case(o.case_file);
@@ -455,8 +462,16 @@ Command add_check_command(CLI::App& parent) {
   cmd->add_option("--map", options->maps, "PATCH=FACE_IDS: a patch and its CAD faces, e.g. casing=1,2 (repeatable)");
   cmd->add_option("--deflection", options->deflections,
                   "PATCH=CSV: FEM deflections of the patch; its nodes are measured to the deflected shape (repeatable)");
-  cmd->add_option("--axis", options->axis, "Axis of revolution ox,oy,oz,dx,dy,dz (default: the faces' axis)")
+  cmd->add_option("--axis", options->axis,
+                  "Axis of revolution ox,oy,oz,dx,dy,dz: CAD faces that all turn about it are measured "
+                  "meridionally (default: an axis the faces share)")
       ->delimiter(',');
+  cmd->add_option("--mode", options->mode,
+                  "How CAD faces are measured, as the case file's deflection mode: meridional (a surface of "
+                  "revolution, through the faces' meridional curve), surface (the faces themselves), or auto: "
+                  "meridional when every face of the patch turns about one axis, else surface")
+      ->check(CLI::IsMember(io::kWallModeNames.names()))
+      ->capture_default_str();
   cmd->add_option("--tol", options->tolerance,
                   "Largest distance allowed, in the length unit (default: 1e-6 of the mesh's size)")
       ->check(CLI::PositiveNumber);

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "curve_fit.hpp"
+#include "faces_mode.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/geometry/surface_distance.hpp"
@@ -91,8 +92,7 @@ std::string face_text(const std::vector<int>& faces) {
 
 /// Faces of revolution, without deflection: their meridional curve, or one part per profile
 /// when they form several.
-PatchReference revolved_faces(const PatchCheckSpec& spec, const geometry::CadModel& cad, const ReferenceOptions& options) {
-  const std::vector<geometry::MeridionalCurve> profiles = cad.meridional_profiles(spec.faces, {.axis = options.axis});
+PatchReference revolved_faces(const PatchCheckSpec& spec, const std::vector<geometry::MeridionalCurve>& profiles) {
   PatchReference reference;
   for (const geometry::MeridionalCurve& curve : profiles) {
     std::vector<int> faces;  // in the order given
@@ -112,17 +112,41 @@ PatchReference revolved_faces(const PatchCheckSpec& spec, const geometry::CadMod
   return reference;
 }
 
+std::vector<geometry::CadFace> cad_faces(const geometry::CadModel& cad, const std::vector<int>& ids) {
+  std::vector<geometry::CadFace> faces;
+  for (const int id : ids) faces.push_back(cad.cad_face(id));
+  return faces;
+}
+
+/// Why faces the check measures as surfaces are no surface of revolution, for reports; empty
+/// when --mode surface said so.
+std::string surface_reason(const FacesMode& chosen) {
+  return chosen.reason.empty() ? std::string() : " (not one surface of revolution: " + chosen.reason + ")";
+}
+
+/// The faces as --mode and the table ask (faces_mode.hpp): a meridional table makes the wall
+/// meridional under auto, as in hotmesh deform. Throws hotmesh::InputError naming --mode when
+/// meridional is asked and the faces are not surfaces of revolution about one axis.
+FacesMode faces_mode(const PatchCheckSpec& spec, const geometry::CadModel& cad, const ReferenceOptions& options,
+                     bool meridional_table) {
+  const io::WallMode asked =
+      meridional_table && options.mode == io::WallMode::automatic ? io::WallMode::meridional : options.mode;
+  try {
+    return choose_faces_mode(cad, spec.faces, options.axis, asked);
+  } catch (const InputError& e) {
+    if (options.mode != io::WallMode::meridional) throw;
+    throw InputError(fmt::format("--mode meridional: {}", e.what()));
+  }
+}
+
 PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* cad, const mesh::Mesh& mesh,
                          const ReferenceOptions& options) {
   const std::string faces = face_text(spec.faces);
   if (!spec.deflection) {
-    const bool rotational = options.axis || std::any_of(spec.faces.begin(), spec.faces.end(), [&](int id) {
-                              return cad->face(id).axis.has_value();
-                            });
-    if (rotational) return revolved_faces(spec, *cad, options);
-    std::vector<geometry::CadFace> cad_faces;
-    for (const int id : spec.faces) cad_faces.push_back(cad->cad_face(id));
-    return single(std::make_unique<FaceReference>(std::move(cad_faces), fmt::format("CAD {}: their surfaces", faces)));
+    const FacesMode chosen = faces_mode(spec, *cad, options, false);
+    if (chosen.mode == io::WallMode::meridional) return revolved_faces(spec, chosen.profiles);
+    return single(std::make_unique<FaceReference>(cad_faces(*cad, spec.faces),
+                                                  fmt::format("CAD {}: their surfaces{}", faces, surface_reason(chosen))));
   }
 
   const geometry::DeflectionSamples table = io::read_deflection_csv(*spec.deflection);
@@ -133,7 +157,20 @@ PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* c
     if (table.frame == geometry::SampleFrame::meridional && !options.axis) {
       throw InputError::in(source, "meridional (r, z) nodes need --axis: z is measured from the axis origin");
     }
-    const geometry::MeridionalCurve curve = cad->meridional_curve(spec.faces, {.axis = options.axis});
+    FacesMode chosen = faces_mode(spec, *cad, options, table.frame == geometry::SampleFrame::meridional);
+    if (chosen.mode == io::WallMode::surface) {  // as hotmesh deform: d(t, s) on each face, displacement form
+      geometry::ReconstructionOptions fit = options.reconstruction;
+      fit.form = geometry::DeflectionForm::displacement;
+      geometry::SurfaceShapeFit wall = geometry::make_surface_shape(cad_faces(*cad, spec.faces), table, fit);
+      return single(std::make_unique<ShapeReference>(
+          std::move(wall.shape), 1.0,
+          fmt::format("CAD {} deflected by {} (a field d(t, s) on each face, degree {}, displacement form){}", faces,
+                      source, fit.degree, surface_reason(chosen))));
+    }
+    // One profile: the faces' meridional curve; several: meridional_curve says they do not join.
+    const geometry::MeridionalCurve curve = chosen.profiles.size() == 1
+                                                ? std::move(chosen.profiles.front())
+                                                : cad->meridional_curve(spec.faces, {.axis = options.axis});
     const CurveRun run = fit_on_cad_curve(curve, table, options.reconstruction, options.unit, cad->path().string());
     return single(std::make_unique<ShapeReference>(
         shape_of(run), 1.0,

@@ -1,17 +1,18 @@
 // hotmesh app: what `hotmesh check` measures each mesh patch against. A patch mapped to CAD
-// faces is compared with the faces: with their meridional curve (eq. 20) about the axis when
-// they are surfaces of revolution (the way hotmesh deform sees them), else with the faces'
-// surfaces themselves; faces whose meridional curves form several separate profiles (a casing
-// on either side of a blade row) give one part per profile, and each node is measured against
-// the nearest part. A patch with a deflection table is compared with the deflected shape
-// reconstructed through the FEM nodes (section 4.2, eq. 21), on the CAD curve or, without
-// faces, on the curve the nodes define; the mesh is then the deformed one. With a case file the
-// shapes are those hotmesh deform builds for the case (io::set_up_case), undeformed or deflected:
-// curves, CAD faces deflected by a field d(t, s) each, or a table interpolated over a wall
-// without CAD faces. Shapes that are curves (in the x-y plane, or meridional curves of surfaces
-// of revolution) and walls on CAD faces, deflected or not, also measure the patch's faces, both
-// ways (wall_deviation_report.hpp); the table interpolated over a wall has no surface to
-// measure them against, and says so.
+// faces is compared with the faces as hotmesh deform would take them (faces_mode.hpp; --mode
+// forces one way): with their meridional curve (eq. 20) about the axis when every face turns
+// about one axis, else with the faces' surfaces themselves; faces whose meridional curves form
+// several separate profiles (a casing on either side of a blade row) give one part per
+// profile, and each node is measured against the nearest part. A patch with a deflection table
+// is compared with the deflected shape reconstructed through the FEM nodes: on the CAD curve
+// (section 4.2, eq. 21), on CAD faces that are no surface of revolution as a field d(t, s) on
+// each face, or, without faces, on the curve the nodes define; the mesh is then the deformed
+// one. With a case file the shapes are those hotmesh deform builds for the case
+// (io::set_up_case), undeformed or deflected: curves, CAD faces deflected by a field d(t, s)
+// each, or a table interpolated over a wall without CAD faces. Shapes that are curves (in the
+// x-y plane, or meridional curves of surfaces of revolution) and walls on CAD faces, deflected
+// or not, also measure the patch's faces, both ways (wall_deviation_report.hpp); the table
+// interpolated over a wall has no surface to measure them against, and says so.
 #pragma once
 
 #include <filesystem>
@@ -54,7 +55,10 @@ struct PatchCheckSpec {
 };
 
 struct ReferenceOptions {
-  std::optional<geometry::Axis> axis;  ///< overrides the faces' axes; needed for tables without CAD in 3D
+  /// The axis CAD faces must turn about to be measured meridionally (default: one they share);
+  /// needed for tables without CAD in 3D.
+  std::optional<geometry::Axis> axis;
+  io::WallMode mode = io::WallMode::automatic;  ///< how CAD faces are taken (faces_mode.hpp)
   geometry::LengthUnit unit = geometry::LengthUnit::metre;
   geometry::ReconstructionOptions reconstruction;
 };

@@ -5,6 +5,7 @@
 //   "points" -> POST /api/curves/{id}/project (on a curve made at start-up)
 //   "grid"   -> POST /api/surfaces (create_surface; "model": "m1" is the stator-well sample)
 //   "csv"    -> POST /api/curves (create_curve; "model": "m1" is the stator-well sample)
+//   "mode"   -> POST /api/models/m1/mode (faces_mode)
 //   else     -> POST /api/models/m1/meridional
 // A request may fail only with ApiError (4xx) or hotmesh::InputError (422), anything else
 // would be the server's 500, and leaves no file behind in the service's upload folder. What a
@@ -66,6 +67,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       service.delete_surface(service.create_surface(request)["surface"].get<std::string>());
     } else if (request.contains("csv")) {
       service.delete_curve(service.create_curve(request)["curve"].get<std::string>());
+    } else if (request.contains("mode")) {
+      service.faces_mode(fixture.model, request);
     } else {
       service.delete_curve(service.meridional(fixture.model, request)["curve"].get<std::string>());
     }

@@ -236,6 +236,9 @@ void HttpServer::Impl::add_routes() {
   add("GET", R"(/api/models/([A-Za-z0-9]+)/faces)", [&s](const Request& req, Response& res) {
     send_json(res, 200, s.faces(id_of(req)));
   });
+  add("POST", R"(/api/models/([A-Za-z0-9]+)/mode)", [&s](const Request& req, Response& res) {
+    send_json(res, 200, s.faces_mode(id_of(req), json_body(req)));
+  });
   add("POST", R"(/api/models/([A-Za-z0-9]+)/meridional)", [&s](const Request& req, Response& res) {
     send_json(res, 201, s.meridional(id_of(req), json_body(req)));
   });

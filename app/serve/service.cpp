@@ -1,5 +1,6 @@
 // hotmesh serve: the geometry service's CAD side: health, files below the root, loading CAD
-// models (upload or root), listing their faces, and meridional curves of faces (eq. 20).
+// models (upload or root), listing their faces, how faces are taken (as a surface of revolution
+// or as surfaces, faces_mode.hpp) and meridional curves of faces (eq. 20).
 #include "serve/service.hpp"
 
 #include <fmt/format.h>
@@ -9,6 +10,7 @@
 #include <utility>
 
 #include "cad_json.hpp"
+#include "faces_mode.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "serve/service_state.hpp"
 
@@ -182,6 +184,33 @@ Json GeometryService::meridional(std::string_view model_id, const Json& request)
   CurveRun run{{geometry::DeflectedCurve(curve->curve), {}}, {}, curve->axis, model->cad.unit(), curve->faces, model->name};
   Json extra = {{"model", model->id}, {"face_breaks", curve->face_breaks}, {"tolerance", curve->tolerance}};
   return store_curve(*state_, std::move(run), false, samples, std::move(extra));
+}
+
+Json GeometryService::faces_mode(std::string_view model_id, const Json& request) {
+  refuse_unknown_keys(request, {"faces", "axis", "mode"});
+  const auto model = state_->models.get(model_id, "model");
+  const std::vector<int> faces = model_faces_field(request, "faces", *model, state_->limits.max_faces);
+  const std::optional<geometry::Axis> axis = axis_field(request, "axis");
+  const std::string asked_text = string_field(request, "mode", "auto");
+  const auto asked = io::kWallModeNames.parse(asked_text);
+  if (!asked) {
+    throw ApiError::bad_request(
+        fmt::format("mode: expected \"auto\", \"meridional\" or \"surface\", got \"{}\"", asked_text));
+  }
+  std::optional<FacesMode> chosen;
+  try {
+    std::lock_guard lock(model->mutex);
+    chosen.emplace(choose_faces_mode(model->cad, faces, axis, *asked));
+  } catch (const InputError& e) {  // meridional asked, and the faces turn about no one axis
+    throw ApiError::unprocessable("mode meridional: " + replaced(e.what(), model->cad.path().string(), model->name));
+  }
+  const bool meridional = chosen->mode == io::WallMode::meridional;
+  return {{"model", model->id},
+          {"faces", faces},
+          {"mode", std::string(io::kWallModeNames.name(chosen->mode))},
+          {"axis", meridional ? axis_json(chosen->profiles.front().axis) : Json(nullptr)},
+          {"profiles", chosen->profiles.size()},
+          {"reason", chosen->reason.empty() ? Json(nullptr) : Json(chosen->reason)}};
 }
 
 }  // namespace hotmesh::app::serve

@@ -1,8 +1,9 @@
 // hotmesh serve: the geometry service behind the HTTP API, free of HTTP. It keeps the CAD
-// models clients load (uploaded, or read from --root only) and what they build of them:
-// meridional curves of faces (eq. 20), deflected curves reconstructed from FEM nodes (section
-// 4.2, eq. 21) and deflection fields d(t, s) reconstructed on faces of any shape (section 4.2 on
-// B-spline surfaces, issue 23), and answers with JSON. Bad requests throw ApiError (status 4xx and what is wrong).
+// models clients load (uploaded, or read from --root only) and what they build of them: how
+// faces are taken (a surface of revolution or surfaces), meridional curves of faces (eq. 20),
+// deflected curves reconstructed from FEM nodes (section 4.2, eq. 21) and deflection fields
+// d(t, s) reconstructed on faces of any shape (section 4.2 on B-spline surfaces, issue 23), and
+// answers with JSON. Bad requests throw ApiError (status 4xx and what is wrong).
 //
 // Thread safety: every method may be called from any number of threads at once. The stores
 // are guarded by one mutex held only to look up, insert or evict; a CadModel is used by one
@@ -67,6 +68,10 @@ class GeometryService {
   Json model(std::string_view id) const;
   Json faces(std::string_view id) const;
   void delete_model(std::string_view id);
+  /// {"faces": [1, 2], "axis": {...}, "mode": "auto"}: whether the faces are taken as a surface of
+  /// revolution ("meridional", with the axis) or as surfaces ("surface", with the reason under
+  /// "auto"), as hotmesh deform and check take them (faces_mode.hpp).
+  Json faces_mode(std::string_view model_id, const Json& request);
   /// {"faces": [1, 2], "axis": {...}, "samples": 400}: the faces' meridional curve, kept as a curve.
   Json meridional(std::string_view model_id, const Json& request);
 

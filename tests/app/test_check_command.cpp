@@ -5,8 +5,10 @@
 // the stator-well sample's casing, whose two faces lie on either side of the blade row; checks
 // driven by a case file (--case: the ramp2d sliding case deformed, the stator-well case's own
 // mesh); the faces' two-sided distance, which sees the corner of the prescribed ramp that an
-// edge cuts (--wall-tol); the JSON and JUnit reports, also of a check that cannot be made; user
-// errors.
+// edge cuts (--wall-tol); how CAD faces are taken (issue 45: a forward-facing step written with
+// OpenCASCADE, planes and one cylinder fillet, is measured on its faces, undeformed and
+// deflected; faces all about one axis through their meridional curve; --mode); the JSON and
+// JUnit reports, also of a check that cannot be made; user errors.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -16,11 +18,13 @@
 #include <numbers>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/geometry/cad_export.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
+#include "occt_fixtures.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
 
@@ -177,23 +181,37 @@ mesh::Mesh annulus_sector() {
   return mesh;
 }
 
-/// Face 1: the quarter cylinder r = 0.5, 0 < z < 1 about the z axis (rational quadratic arcs);
-/// face 2: the plane z = 0 over [0, 1]^2.
-void write_cylinder_and_plane(const std::filesystem::path& path) {
-  const double r = 0.5, w = std::sqrt(0.5);
-  const std::vector<geometry::Vec3> arc{{r, 0, 0}, {r, r, 0}, {0, r, 0}};
+/// The segment from (r, z) = a to b turned a quarter about the z axis, from the x axis to the y
+/// axis: a B-spline surface, rational quadratic arcs by linear.
+geometry::BSplineSurface quarter_turn(geometry::Vec2 a, geometry::Vec2 b) {
+  const double w = std::sqrt(0.5);
   std::vector<geometry::Vec3> poles;
   std::vector<double> weights;
-  for (std::size_t i = 0; i < 3; ++i) {
-    for (const double z : {0.0, 1.0}) {
-      poles.push_back({arc[i].x, arc[i].y, z});
-      weights.push_back(i == 1 ? w : 1.0);
+  for (const auto& [cx, cy, weight] : {std::tuple{1.0, 0.0, 1.0}, std::tuple{1.0, 1.0, w}, std::tuple{0.0, 1.0, 1.0}}) {
+    for (const geometry::Vec2& end : {a, b}) {
+      poles.push_back({cx * end.x, cy * end.x, end.y});
+      weights.push_back(weight);
     }
   }
+  return geometry::BSplineSurface(2, 1, {0, 0, 0, 1, 1, 1}, {0, 0, 1, 1}, poles, weights);
+}
+
+/// Face 1: the quarter cylinder r = 0.5, 0 < z < 1 about the z axis; face 2: the plane z = 0
+/// over [0, 1]^2.
+void write_cylinder_and_plane(const std::filesystem::path& path) {
   geometry::CadExport content;
-  content.surfaces.push_back({"cylinder", geometry::BSplineSurface(2, 1, {0, 0, 0, 1, 1, 1}, {0, 0, 1, 1}, poles, weights)});
+  content.surfaces.push_back({"cylinder", quarter_turn({0.5, 0.0}, {0.5, 1.0})});
   content.surfaces.push_back(
       {"plane", geometry::BSplineSurface(1, 1, {0, 0, 1, 1}, {0, 0, 1, 1}, {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}})});
+  io::write_file_atomically(path, geometry::to_step(content));
+}
+
+/// Face 1: the quarter cylinder r = 0.5, 0 < z < 1 about the z axis; face 2: the quarter ring
+/// 0.5 < r < 0.7 of the plane z = 0 at its foot. Both turn about the z axis.
+void write_cylinder_and_ring(const std::filesystem::path& path) {
+  geometry::CadExport content;
+  content.surfaces.push_back({"cylinder", quarter_turn({0.5, 0.0}, {0.5, 1.0})});
+  content.surfaces.push_back({"ring", quarter_turn({0.5, 0.0}, {0.7, 0.0})});
   io::write_file_atomically(path, geometry::to_step(content));
 }
 
@@ -275,6 +293,162 @@ TEST(CheckCommand, RevolvedMeshAgainstCadFacesAndTheDeflectedCylinder) {
   EXPECT_NEAR(still["patches"][0]["max_distance"].get<double>(), deflection(1.0) / std::hypot(1.0, 0.02), 1e-9);
 }
 
+/// A user's hexahedral mesh over the forward-facing step of occt_fixtures.hpp (mm): the wall
+/// "step" has its nodes on the floor (1 mm apart), the fillet (8 chords of pi/16), the riser
+/// (0.5 mm apart) and the top (1 mm apart), each column of nodes rising from the wall to the
+/// channel's top y = 8 (over the fillet and the riser leaning upstream, so that no cell folds);
+/// "inlet", "outlet", "upper", "side0", "side1" bound the rest.
+mesh::Mesh forward_facing_step_mesh() {
+  std::vector<geometry::Vec2> feet;  // (x, y) of each column's foot, along the wall
+  std::vector<double> heads;         // x of its head, at y = 8
+  for (int i = 0; i <= 10; ++i) {
+    feet.push_back({i * 1.0, 0.0});
+    heads.push_back(i * 1.0);
+  }
+  for (int k = 1; k <= 8; ++k) {
+    const double angle = std::numbers::pi / 2 * (k / 8.0 - 1.0);
+    feet.push_back({10.0 + std::cos(angle), 1.0 + std::sin(angle)});
+    heads.push_back(10.0 + 0.0375 * k);
+  }
+  for (int m = 1; m <= 4; ++m) {
+    feet.push_back({11.0, 1.0 + 0.5 * m});
+    heads.push_back(10.3 + 0.1 * m);  // leaning back over the riser, up to its top
+  }
+  for (int j = 1; j <= 9; ++j) {
+    feet.push_back({11.0 + j, 3.0});
+    heads.push_back(11.0 + j);
+  }
+  const int columns = static_cast<int>(feet.size());
+  mesh::Mesh mesh = mesh::structured_hexes(mesh::uniform_line(0.0, 1.0, columns - 1), mesh::uniform_line(0.0, 1.0, 4),
+                                           mesh::uniform_line(0.0, 4.0, 2),
+                                           {"inlet", "outlet", "step", "upper", "side0", "side1"});
+  for (auto& p : mesh.points) {
+    const auto column = static_cast<std::size_t>(std::lround(p.x * (columns - 1)));
+    const geometry::Vec2 foot = feet[column];
+    p = {foot.x + (heads[column] - foot.x) * p.y, foot.y + (8.0 - foot.y) * p.y, p.z};
+  }
+  return mesh;
+}
+
+// Issue 45: on a part without an axis, one fillet (a cylinder) among the planes of a patch made
+// check take the fillet's axis and refuse the planes. Now it chooses as hotmesh deform does:
+// meridional only when every face turns about one axis, else the faces themselves.
+TEST(CheckCommand, APartWithoutAnAxisIsMeasuredOnItsFacesThoughOneIsACylinder) {
+  test::TempDir dir;
+  geometry::test::write_forward_facing_step(dir / "step.step");
+  const auto faces = hotmesh("cad --json --unit mm " + q(dir / "step.step"));
+  ASSERT_EQ(faces.exit_code, 0) << faces.output;
+  const Json listed = Json::parse(faces.output);
+  std::vector<std::string> kinds;
+  for (const Json& face : listed["faces"]) kinds.push_back(face["kind"]);
+  ASSERT_THAT(kinds, ::testing::ElementsAre("plane", "cylinder", "plane", "plane"));
+
+  const mesh::Mesh mesh = forward_facing_step_mesh();
+  io::write_gmsh(dir / "step.msh", mesh);
+  const std::string check = "--unit mm --cad " + q(dir / "step.step") + " --map step=1,2,3,4 --mesh ";
+  const auto [code, report] = check_json(check + q(dir / "step.msh"));
+  ASSERT_EQ(code, 0) << report.dump(2);
+  const Json& patch = report["patches"][0];
+  EXPECT_EQ(patch["nodes"], 32 * 3);
+  EXPECT_LT(patch["max_distance"].get<double>(), 1e-9);
+  EXPECT_THAT(patch["reference"].get<std::string>(),
+              HasSubstr("CAD faces 1, 2, 3, 4: their surfaces (not one surface of revolution: face 1 (plane) is not a "
+                        "surface of revolution about the axis (10, 1, 0) along (0, 0, 1): its point "));
+  // The faces in space: the fillet's quads are chords of pi/16 across it, the planes' lie on them.
+  EXPECT_EQ(patch["wall"]["shape"], "faces");
+  EXPECT_NEAR(patch["wall"]["hausdorff"].get<double>(), 1.0 - std::cos(std::numbers::pi / 32), 1e-4);
+
+  // A node of the fillet 0.1 mm into the part is found.
+  mesh::Mesh perturbed = mesh;
+  const mesh::NodeId moved = nearest_node(mesh, "step", {10.0 + std::sqrt(0.5), 1.0 - std::sqrt(0.5), 2.0});
+  auto& p = perturbed.points[static_cast<std::size_t>(moved)];
+  p = p + 0.1 * geometry::Vec3{std::sqrt(0.5), -std::sqrt(0.5), 0.0};
+  io::write_gmsh(dir / "perturbed.msh", perturbed);
+  const auto [fail_code, fail] = check_json(check + q(dir / "perturbed.msh"));
+  EXPECT_EQ(fail_code, 1);
+  EXPECT_EQ(fail["patches"][0]["worst_node"]["id"], mesh.node_id(moved));
+  EXPECT_NEAR(fail["patches"][0]["max_distance"].get<double>(), 0.1, 1e-9);
+
+  // --mode surface says so itself; --mode meridional is refused, naming the plane.
+  const auto [surface_code, surface] = check_json(check + q(dir / "step.msh") + " --mode surface");
+  EXPECT_EQ(surface_code, 0) << surface.dump(2);
+  EXPECT_EQ(surface["patches"][0]["reference"], "CAD faces 1, 2, 3, 4: their surfaces");
+  EXPECT_LT(surface["patches"][0]["max_distance"].get<double>(), 1e-9);
+  const auto meridional = hotmesh("check " + check + q(dir / "step.msh") + " --mode meridional");
+  EXPECT_EQ(meridional.exit_code, 2) << meridional.output;
+  EXPECT_THAT(meridional.output, HasSubstr("patch 'step': --mode meridional: "));
+  EXPECT_THAT(meridional.output,
+              HasSubstr("face 1 (plane) is not a surface of revolution about the axis (10, 1, 0) along (0, 0, 1)"));
+  // The fillet alone does turn about its axis.
+  const auto [fillet_code, fillet] =
+      check_json("--unit mm --cad " + q(dir / "step.step") + " --map step=2 --mode meridional --mesh " + q(dir / "step.msh"));
+  EXPECT_EQ(fillet_code, 1);  // the other faces' nodes are off the fillet
+  EXPECT_THAT(fillet["patches"][0]["reference"].get<std::string>(),
+              HasSubstr("CAD face 2: its meridional curve about the axis (10, 1, 0) along (0, 0, 1)"));
+  EXPECT_EQ(hotmesh("check " + check + q(dir / "step.msh") + " --mode sideways").exit_code, 2);
+}
+
+// The deformed step against its deflected faces: a table of FEM nodes on the four faces, all
+// moved 0.01 mm up, makes a field d(t, s) on each face (as hotmesh deform's surface walls), not
+// a meridional curve about the fillet's axis.
+TEST(CheckCommand, DeflectedPartWithoutAnAxisIsMeasuredOnItsDeflectedFaces) {
+  test::TempDir dir;
+  geometry::test::write_forward_facing_step(dir / "step.step");
+  constexpr double lift = 0.01;
+  std::ostringstream table;
+  table.precision(17);
+  table << "id,x,y,z,dx,dy,dz\n";
+  int id = 0;
+  for (const double f : {0.05, 0.35, 0.65, 0.95}) {  // along each face
+    const double angle = std::numbers::pi / 2 * (f - 1.0);
+    for (const geometry::Vec2 q :
+         {geometry::Vec2{10.0 * f, 0.0}, geometry::Vec2{10.0 + std::cos(angle), 1.0 + std::sin(angle)},
+          geometry::Vec2{11.0, 1.0 + 2.0 * f}, geometry::Vec2{11.0 + 9.0 * f, 3.0}}) {
+      for (const double z : {0.2, 2.0, 3.8}) table << ++id << "," << q.x << "," << q.y << "," << z << ",0," << lift << ",0\n";
+    }
+  }
+  test::write_text(dir / "step.csv", table.str());
+  const mesh::Mesh mesh = forward_facing_step_mesh();
+  io::write_gmsh(dir / "step.msh", mesh);
+  mesh::Mesh lifted = mesh;
+  for (const mesh::NodeId n : mesh.find_patch("step")->nodes) lifted.points[static_cast<std::size_t>(n)].y += lift;
+  io::write_gmsh(dir / "lifted.msh", lifted);
+
+  const std::string check = "--unit mm --cad " + q(dir / "step.step") + " --map step=1,2,3,4 --deflection step=" +
+                            q(dir / "step.csv") + " --mesh ";
+  const auto [code, report] = check_json(check + q(dir / "lifted.msh"));
+  ASSERT_EQ(code, 0) << report.dump(2);
+  EXPECT_LT(report["patches"][0]["max_distance"].get<double>(), 1e-9);
+  EXPECT_THAT(report["patches"][0]["reference"].get<std::string>(),
+              HasSubstr("(a field d(t, s) on each face, degree 1, displacement form) (not one surface of revolution: "
+                        "face 1 (plane)"));
+  // The undeformed mesh: the floor and the top are 0.01 mm below the deflected wall.
+  const auto [still_code, still] = check_json(check + q(dir / "step.msh"));
+  EXPECT_EQ(still_code, 1);
+  EXPECT_NEAR(still["patches"][0]["max_distance"].get<double>(), lift, 1e-9);
+  EXPECT_EQ(hotmesh("check " + check + q(dir / "lifted.msh") + " --mode meridional").exit_code, 2);
+}
+
+// Faces that all turn about one axis are still measured through their meridional curve under
+// auto: a cylinder and the ring of the plane across its foot (fitted axes: B-spline faces).
+TEST(CheckCommand, FacesAllTurningAboutOneAxisAreMeasuredThroughTheirMeridionalCurve) {
+  test::TempDir dir;
+  write_cylinder_and_ring(dir / "corner.step");
+  io::write_gmsh(dir / "sector.msh", annulus_sector());
+  const std::string check = "--cad " + q(dir / "corner.step") + " --map inner=1,2 --map bottom=1,2 --mesh " +
+                            q(dir / "sector.msh");
+  const auto [code, report] = check_json(check);
+  ASSERT_EQ(code, 0) << report.dump(2);
+  for (const Json& patch : report["patches"]) {
+    EXPECT_LT(patch["max_distance"].get<double>(), 1e-9) << patch["patch"];
+    EXPECT_THAT(patch["reference"].get<std::string>(), HasSubstr("CAD faces 1, 2: their meridional curve about the axis"));
+  }
+  const auto [surface_code, surface] = check_json(check + " --mode surface");
+  ASSERT_EQ(surface_code, 0) << surface.dump(2);
+  EXPECT_EQ(surface["patches"][0]["reference"], "CAD faces 1, 2: their surfaces");
+  EXPECT_LT(surface["patches"][0]["max_distance"].get<double>(), 1e-9);
+}
+
 TEST(CheckCommand, JunitReportFileIsWellFormedXmlWithATestCasePerPatch) {
   test::TempDir dir;
   write_cylinder_and_plane(dir / "sector.step");
@@ -315,6 +489,7 @@ TEST(CheckCommand, UserErrorsNameWhatIsWrong) {
   expect(hotmesh("check" + mesh + cad + " --map inner"), "expected PATCH=FACE_IDS");
   expect(hotmesh("check" + mesh + cad + " --map inner=1,x"), "face ids are integers from 1");
   expect(hotmesh("check" + mesh + cad + " --map inner=9"), "no face 9");
+  expect(hotmesh("check" + mesh + cad + " --map bottom=2,2"), "--map bottom=2,2: face 2 is listed twice");
   expect(hotmesh("check" + mesh + cad + " --map inner=1 --map inner=2"), "mapped twice");
   expect(hotmesh("check" + mesh + cad + " --map inner=1 --axis 0,0,1"), "--axis needs six numbers");
   expect(hotmesh("check" + mesh + " --deflection inner=" + q(dir / "missing.csv")), "missing.csv");
@@ -500,6 +675,7 @@ TEST(CheckCommand, CaseFileRefusesTheOptionsItGivesAndMeshesOfOtherCases) {
     EXPECT_THAT(r.output, HasSubstr(text));
   };
   expect(hotmesh("check" + ramp + " --map bottom=1 --unit mm"), "--map, --unit: not with --case, which gives");
+  expect(hotmesh("check" + ramp + " --mode surface"), "--mode: not with --case");
   expect(hotmesh("check" + ramp + " --deflection bottom=" + q(kSamples / "ramp2d/ramp.csv")), "--deflection: not with --case");
   expect(hotmesh("check " + q(kSamples / "shear2d/shear2d.msh") + ramp), "give a mesh the case was deformed into");
   // A case whose patches follow no boundary has nothing to check.

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cone_nodes.hpp"
+#include "occt_fixtures.hpp"
 #include "run_command.hpp"
 #include "serve_client.hpp"
 #include "serve_process.hpp"
@@ -191,6 +192,60 @@ TEST_F(ServeApi, MeridionalCurveOfFaces) {
   expect_error(api_->post(path, {{"faces", {1}}, {"axis", {{"origin", {0, 0}}}}}), 400, "axis: expected");
   expect_error(api_->post(path, {{"faces", {1}}, {"samples", 1}}), 400, "samples: expected an integer from 2");
   expect_error(api_->post("/api/models/m77/meridional", {{"faces", {1}}}), 404, "no model 'm77'");
+}
+
+// Issue 45: how faces are taken, as hotmesh deform and check take them. The forward-facing step
+// (planes and one cylinder fillet, written with OpenCASCADE) is surfaces, the reason naming the
+// first plane, and forcing meridional is refused; the fillet alone and the cone's faces turn
+// about one axis; a typed axis is the one the faces must turn about.
+TEST_F(ServeApi, FacesAreMeridionalOnlyWhenEveryOneTurnsAboutOneAxis) {
+  test::TempDir dir;
+  geometry::test::write_forward_facing_step(dir / "step.step");
+  const Reply loaded = api_->upload("step.step", test::read_text(dir / "step.step"), "mm");
+  ASSERT_EQ(loaded.status, 201) << loaded.text;
+  const std::string path = "/api/models/" + loaded.body["model"].get<std::string>() + "/mode";
+
+  const Reply step = api_->post(path, {{"faces", {1, 2, 3, 4}}});
+  ASSERT_EQ(step.status, 200) << step.text;
+  EXPECT_EQ(step.body["mode"], "surface");
+  EXPECT_EQ(step.body["faces"], Json({1, 2, 3, 4}));
+  EXPECT_TRUE(step.body["axis"].is_null());
+  EXPECT_EQ(step.body["profiles"], 0);
+  const std::string reason = step.body["reason"];
+  EXPECT_THAT(reason, HasSubstr("face 1 (plane) is not a surface of revolution about the axis (10, 1, 0) along (0, 0, 1)"));
+  EXPECT_THAT(reason, Not(HasSubstr("step")));  // no file name, least of all the service's copy's
+  expect_error(api_->post(path, {{"faces", {1, 2, 3, 4}}, {"mode", "meridional"}}), 422,
+               "mode meridional: step.step: face 1 (plane) is not a surface of revolution");
+  const Reply forced = api_->post(path, {{"faces", {2}}, {"mode", "surface"}});
+  ASSERT_EQ(forced.status, 200) << forced.text;
+  EXPECT_EQ(forced.body["mode"], "surface");
+  EXPECT_TRUE(forced.body["reason"].is_null());
+
+  const Reply fillet = api_->post(path, {{"faces", {2}}});
+  ASSERT_EQ(fillet.status, 200) << fillet.text;
+  EXPECT_EQ(fillet.body["mode"], "meridional");
+  EXPECT_EQ(fillet.body["profiles"], 1);
+  EXPECT_TRUE(fillet.body["reason"].is_null());
+  const Json& axis = fillet.body["axis"];
+  EXPECT_NEAR(axis["origin"][0].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(axis["origin"][1].get<double>(), 1.0, 1e-9);
+  EXPECT_NEAR(std::abs(axis["direction"][2].get<double>()), 1.0, 1e-12);
+  const Json z_axis = {{"origin", {0, 0, 0}}, {"direction", {0, 0, 1}}};
+  const Reply about_z = api_->post(path, {{"faces", {2}}, {"axis", z_axis}});
+  ASSERT_EQ(about_z.status, 200) << about_z.text;
+  EXPECT_EQ(about_z.body["mode"], "surface");
+  EXPECT_THAT(about_z.body["reason"].get<std::string>(),
+              HasSubstr("face 2 (cylinder) is not a surface of revolution about the axis (0, 0, 0) along (0, 0, 1)"));
+
+  const Reply cone = api_->post("/api/models/" + load_cone() + "/mode", {{"faces", {1, 2}}});
+  ASSERT_EQ(cone.status, 200) << cone.text;
+  EXPECT_EQ(cone.body["mode"], "meridional");
+
+  expect_error(api_->post(path, {{"faces", {2}}, {"mode", "sideways"}}), 400,
+               "mode: expected \"auto\", \"meridional\" or \"surface\", got \"sideways\"");
+  expect_error(api_->post(path, {{"faces", {9}}}), 400, "the model has 4 faces; there is no face 9");
+  expect_error(api_->post(path, {{"faces", {2}}, {"samples", 10}}), 400, "unknown key \"samples\"");
+  expect_error(api_->post("/api/models/m77/mode", {{"faces", {1}}}), 404, "no model 'm77'");
 }
 
 TEST_F(ServeApi, ReconstructsTheDeflectedConeWithFitStatistics) {

@@ -6,7 +6,9 @@
 // that a meridional curve and a 2D table without CAD (the ramp2d sample) are drawn too, that a
 // new curve takes the old one's tooltip away, and that the stator-well sample works as a user
 // meets it: its 44 faces scroll inside the sidebar, the axis field is prefilled from the ticked
-// faces, so that the sample's own (r, z) table fits them; and that a surface works (issue 23):
+// faces, so that the sample's own (r, z) table fits them; that the service chooses "Surface
+// (t, s)" as hotmesh deform would (issue 45): a plane along the axis of screw.step's cylinder
+// ticks it, the cylinder alone does not; and that a surface works (issue 23):
 // the duct's B-spline floor (samples/duct3d, face 1, mm) ticks "Surface (t, s)" by itself, and
 // Reconstruct with floor.csv draws the residual map over (t, s) with its tooltip and the 3D view
 // (both checked to have drawn pixels), which rotates and follows the amplification. Keeps three
@@ -397,6 +399,7 @@ async function run() {
     check(await page.inputValue('#axis') === '0,0,0,0,0,1', 'an emptied axis field is prefilled again');
     check(!problems.some((p) => p.startsWith('page error')), `no script errors on the page: ${problems.join('; ')}`);
 
+    await checkMode(page);
     await checkSurface(page, url);
     check(!problems.some((p) => p.startsWith('page error')), `no script errors on the page: ${problems.join('; ')}`);
   } finally {
@@ -405,6 +408,34 @@ async function run() {
   }
   const { code, signal } = await exited;
   check(code === 0 && signal === null, `hotmesh serve stops with code 0 on SIGTERM (code ${code}, signal ${signal})`);
+}
+
+/// After the faces `ids` were ticked, the service's answer (`#mode-note` names the faces it is for).
+async function modeChosen(page, ids) {
+  await page.waitForFunction((faces) => document.getElementById('mode-note').dataset.faces === faces, ids.join(','));
+  return { surface: await page.isChecked('#surface-mode'), note: await page.textContent('#mode-note') };
+}
+
+/// Issue 45: screw.step (tests/data/cad) has a cylinder shank (face 8) and the planes of its slot
+/// along the axis (faces 1, 2). The page once took the cylinder's axis for both and refused the
+/// plane; the service now says they are surfaces, as hotmesh deform would take them.
+async function checkMode(page) {
+  await page.selectOption('#root-file', 'screw.step');
+  await page.selectOption('#unit', 'mm');
+  await page.click('#load-cad');
+  await page.waitForFunction(() => document.getElementById('model-info').textContent.startsWith('screw.step'));
+  await page.check('#faces input[value="1"]');
+  await page.check('#faces input[value="8"]');
+  const both = await modeChosen(page, [1, 8]);
+  check(both.surface, 'a plane along the cylinder\'s axis ticks Surface (t, s)');
+  check(both.note.includes('face 1 (plane) is not a surface of revolution about the axis'), `the note says why: ${both.note}`);
+  check(await page.isDisabled('#form'), 'surfaces have no form to choose');
+  await page.uncheck('#faces input[value="1"]');
+  const shank = await modeChosen(page, [8]);
+  check(!shank.surface && shank.note.includes('one surface of revolution'), `the cylinder alone turns: ${shank.note}`);
+  check(!(await page.isDisabled('#form')), 'a curve has its form to choose again');
+  await page.uncheck('#faces input[value="8"]');
+  await page.selectOption('#root-file', '');
 }
 
 /// The duct's B-spline floor and its FEM nodes (samples/duct3d: face 1 of duct.step, floor.csv,
@@ -418,7 +449,7 @@ async function checkSurface(page, url) {
   await page.waitForFunction(() => document.getElementById('model-info').textContent.startsWith('duct.step'));
   check(!(await page.isChecked('#surface-mode')), 'no face ticked: the curve workflow');
   await page.check('#faces input[value="1"]');
-  check(await page.isChecked('#surface-mode'), 'ticking the B-spline floor (no axis) ticks Surface (t, s)');
+  check((await modeChosen(page, [1])).surface, 'ticking the B-spline floor (no axis) ticks Surface (t, s)');
   check(await page.isDisabled('#form'), 'surfaces have no form to choose');
   await page.setInputFiles('#csv-file', floor);
   await page.selectOption('#degree', '3');

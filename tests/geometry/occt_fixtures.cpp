@@ -5,6 +5,8 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -29,8 +31,13 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <UnitsMethods.hxx>
+#include <gp.hxx>
 #include <gp_Ax2.hxx>
+#include <gp_Ax3.hxx>
+#include <gp_Cylinder.hxx>
 
+#include <initializer_list>
+#include <numbers>
 #include <stdexcept>
 
 namespace hotmesh::geometry::test {
@@ -81,14 +88,7 @@ TopoDS_Shape build(Primitive primitive, const Axis& axis) {
   throw std::logic_error("unknown primitive");
 }
 
-}  // namespace
-
-BSplineCurve2d profile() {
-  return BSplineCurve2d(3, {0, 0, 0, 0, 0.5, 1, 1, 1, 1}, {{2, 0}, {3, 1}, {2.5, 2}, {3.5, 2.5}, {4, 3}});
-}
-
-void write_primitive(const std::filesystem::path& path, Primitive primitive, const Axis& axis) {
-  const TopoDS_Shape shape = build(primitive, axis);
+void write_step_or_iges(const std::filesystem::path& path, const TopoDS_Shape& shape) {
   // Writers scale from the process-wide unit that readers leave behind: millimetres here.
   UnitsMethods::SetCasCadeLengthUnit(1.0, UnitsMethods_LengthUnit_Millimeter);
   if (path.extension() == ".igs" || path.extension() == ".iges") {
@@ -106,6 +106,36 @@ void write_primitive(const std::filesystem::path& path, Primitive primitive, con
       writer.Write(path.string().c_str()) != IFSelect_RetDone) {
     throw std::runtime_error("STEP fixture not written");
   }
+}
+
+/// The planar face bounded by the polygon through `corners`.
+TopoDS_Face polygon_face(std::initializer_list<gp_Pnt> corners) {
+  BRepBuilderAPI_MakePolygon polygon;
+  for (const gp_Pnt& p : corners) polygon.Add(p);
+  polygon.Close();
+  return BRepBuilderAPI_MakeFace(polygon.Wire(), true).Face();
+}
+
+}  // namespace
+
+BSplineCurve2d profile() {
+  return BSplineCurve2d(3, {0, 0, 0, 0, 0.5, 1, 1, 1, 1}, {{2, 0}, {3, 1}, {2.5, 2}, {3.5, 2.5}, {4, 3}});
+}
+
+void write_primitive(const std::filesystem::path& path, Primitive primitive, const Axis& axis) {
+  write_step_or_iges(path, build(primitive, axis));
+}
+
+void write_forward_facing_step(const std::filesystem::path& path) {
+  constexpr double depth = 4.0;
+  const gp_Cylinder fillet(gp_Ax3(gp_Pnt(10, 1, 0), gp::DZ(), gp::DX()), 1.0);
+  BRepBuilderAPI_Sewing sewing;
+  sewing.Add(polygon_face({gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0), gp_Pnt(10, 0, depth), gp_Pnt(0, 0, depth)}));
+  sewing.Add(BRepBuilderAPI_MakeFace(fillet, -std::numbers::pi / 2, 0.0, 0.0, depth).Face());
+  sewing.Add(polygon_face({gp_Pnt(11, 1, 0), gp_Pnt(11, 3, 0), gp_Pnt(11, 3, depth), gp_Pnt(11, 1, depth)}));
+  sewing.Add(polygon_face({gp_Pnt(11, 3, 0), gp_Pnt(20, 3, 0), gp_Pnt(20, 3, depth), gp_Pnt(11, 3, depth)}));
+  sewing.Perform();
+  write_step_or_iges(path, sewing.SewedShape());
 }
 
 std::vector<std::vector<Vec3>> edge_points(const std::filesystem::path& path, int samples) {

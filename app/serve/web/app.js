@@ -3,9 +3,9 @@
 // for the reconstructed curve (POST /api/curves) and draws in SVG the CAD curve, the FEM nodes,
 // their deflections (amplified by a slider) and the reconstructed curve, with zoom, pan, a
 // tooltip per node, the fit residual per node and download links. With "Surface (t, s)" ticked
-// (by itself for faces that do not turn about an axis) Reconstruct asks for the deflection
-// field on the faces instead (POST /api/surfaces), which surface.js shows. Plain JavaScript, no
-// library: users are often offline.
+// (by itself unless the ticked faces are one surface of revolution, as the service says)
+// Reconstruct asks for the deflection field on the faces instead (POST /api/surfaces), which
+// surface.js shows. Plain JavaScript, no library: users are often offline.
 'use strict';
 
 const SVG = 'http://www.w3.org/2000/svg';
@@ -15,6 +15,7 @@ const state = {
   model: null,       // answer of POST /api/models
   curve: null,       // answer of POST /api/curves or .../meridional
   surface: null,     // answer of POST /api/surfaces (surface.js), when that is on show
+  modeChosen: null,  // the last question of POST /api/models/{id}/mode (surface.js), while it may be pending
   view: null,        // {x, y, w, h} in plot coordinates (y up)
   amplification: 1,
 };
@@ -231,6 +232,7 @@ async function reconstruct() {
   };
   const tolerance = $('tolerance').value;
   if (tolerance !== '') request.tolerance = Number(tolerance);
+  await state.modeChosen;  // the service's choice for the faces ticked last
   if ($('surface-mode').checked) {
     delete request.form;  // surfaces take the displacement form
     await reconstructSurface(request);
@@ -578,6 +580,7 @@ function start() {
     event.target.dataset.typed = String(typed);
     $('axis-note').textContent = typed ? 'your own axis' : '';
   });
+  $('axis').addEventListener('change', updateSurfaceMode);  // a typed axis, complete
   $('amplification').addEventListener('input', (event) => {
     setAmplification(Math.pow(10, Number(event.target.value)));
     if (state.surface) drawSurface3d();

@@ -12,15 +12,52 @@
 
 const view3d = { yaw: 0, pitch: 0, zoom: 1, center: [0, 0, 0], size: 1 };
 
-/// Surface (t, s) is the natural workflow when a ticked face has nothing to turn about: neither
-/// an axis of its own nor a plane (which the curve workflow cuts with the meridional plane).
-/// Ticking faces sets it; the user may change it afterwards.
+/// Surface (t, s) is ticked unless the ticked faces are one surface of revolution: the service
+/// chooses as hotmesh deform and check do (POST /api/models/{id}/mode: meridional only when every
+/// face turns about one axis, the typed one or else one they share) and the note says why.
+/// Ticking faces or typing an axis asks again; the user may change the box afterwards. An
+/// answer a later question has overtaken is dropped; Reconstruct waits for the last one.
+let modeQuestions = 0;
+
 function updateSurfaceMode() {
   if (!state.model) return;
-  const ticked = selectedFaces();
-  const free = state.model.faces.filter((f) => ticked.includes(f.id) && !f.axis && f.kind !== 'plane');
-  $('surface-mode').checked = free.length > 0;
-  $('form').disabled = free.length > 0;
+  state.modeChosen = chooseSurfaceMode(++modeQuestions);
+}
+
+/// Asks the service for the ticked faces' mode and ticks the box by its answer, unless a later
+/// question came since. Never throws: a failed question leaves the box and says so.
+async function chooseSurfaceMode(question) {
+  const faces = selectedFaces();
+  const note = $('mode-note');
+  let text = '';
+  if (faces.length === 0) {
+    setSurfaceMode(false);
+  } else {
+    const request = { faces };
+    if ($('axis').dataset.typed === 'true') {
+      try {
+        request.axis = axisRequest();
+      } catch {
+        // a malformed axis is Reconstruct's error to show; meanwhile the faces' own applies
+      }
+    }
+    try {
+      const chosen = await api('POST', `/api/models/${state.model.model}/mode`, request);
+      if (question !== modeQuestions) return;
+      setSurfaceMode(chosen.mode === 'surface');
+      text = chosen.mode === 'surface' ? `surfaces: ${chosen.reason}` : 'one surface of revolution: its meridional curve';
+    } catch (error) {
+      if (question !== modeQuestions) return;
+      text = `mode not chosen: ${error.message}`;
+    }
+  }
+  note.textContent = text;
+  note.dataset.faces = faces.join(',');
+}
+
+function setSurfaceMode(on) {
+  $('surface-mode').checked = on;
+  $('form').disabled = on;
 }
 
 async function reconstructSurface(request) {
