@@ -5,6 +5,9 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <GC_MakeArcOfCircle.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -25,12 +28,16 @@
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TopExp_Explorer.hxx>
+#include <BRep_Builder.hxx>
+#include <Geom_TrimmedCurve.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <UnitsMethods.hxx>
 #include <gp_Ax2.hxx>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace hotmesh::geometry::test {
@@ -81,24 +88,43 @@ TopoDS_Shape build(Primitive primitive, const Axis& axis) {
   throw std::logic_error("unknown primitive");
 }
 
-}  // namespace
-
-BSplineCurve2d profile() {
-  return BSplineCurve2d(3, {0, 0, 0, 0, 0.5, 1, 1, 1, 1}, {{2, 0}, {3, 1}, {2.5, 2}, {3.5, 2.5}, {4, 3}});
+/// The step wall's edges (StepWall), in the plane z = 0 unless the drawing moves them.
+std::vector<TopoDS_Edge> step_wall_edges(StepWallDrawing drawing) {
+  const std::vector<Vec2> v = StepWall::vertices();
+  const auto at = [](const Vec2& p, double z = 0.0) { return gp_Pnt(p.x, p.y, z); };
+  const double lift = drawing == StepWallDrawing::lifted ? 0.5 : 0.0;
+  const Vec2 c = StepWall::fillet_centre();
+  const double r = StepWall::kFilletRadius * std::sqrt(0.5);  // the arc's middle point
+  const Handle(Geom_TrimmedCurve) arc =
+      GC_MakeArcOfCircle(at(v[2], lift), at({c.x - r, c.y + r}, lift), at(v[3], lift)).Value();
+  const Vec2 top_start = drawing == StepWallDrawing::gap ? Vec2{v[3].x + 0.5, v[3].y} : v[3];
+  return {BRepBuilderAPI_MakeEdge(at(v[0]), at(v[1])).Edge(), BRepBuilderAPI_MakeEdge(at(v[1]), at(v[2])).Edge(),
+          BRepBuilderAPI_MakeEdge(arc).Edge(), BRepBuilderAPI_MakeEdge(at(top_start), at(v[4])).Edge()};
 }
 
-void write_primitive(const std::filesystem::path& path, Primitive primitive, const Axis& axis) {
-  const TopoDS_Shape shape = build(primitive, axis);
+TopoDS_Shape step_wall_shape(StepWallDrawing drawing) {
+  const std::vector<TopoDS_Edge> wall = step_wall_edges(drawing);
+  BRepBuilderAPI_MakeWire wire;
+  for (const TopoDS_Edge& e : wall) wire.Add(e);
+  if (drawing != StepWallDrawing::face) {
+    if (drawing == StepWallDrawing::edges) return wire.Wire();
+    TopoDS_Compound loose;  // lifted or broken: no wire joins them
+    BRep_Builder builder;
+    builder.MakeCompound(loose);
+    for (const TopoDS_Edge& e : wall) builder.Add(loose, e);
+    return loose;
+  }
+  const gp_Pnt end(StepWall::kLength, StepWall::kStepHeight, 0), top_end(StepWall::kLength, StepWall::kChannelHeight, 0);
+  const gp_Pnt top_start(0, StepWall::kChannelHeight, 0), start(0, 0, 0);
+  wire.Add(BRepBuilderAPI_MakeEdge(end, top_end).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(top_end, top_start).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(top_start, start).Edge());
+  return BRepBuilderAPI_MakeFace(wire.Wire(), true).Face();
+}
+
+void write_step(const std::filesystem::path& path, const TopoDS_Shape& shape) {
   // Writers scale from the process-wide unit that readers leave behind: millimetres here.
   UnitsMethods::SetCasCadeLengthUnit(1.0, UnitsMethods_LengthUnit_Millimeter);
-  if (path.extension() == ".igs" || path.extension() == ".iges") {
-    IGESControl_Controller::Init();
-    IGESControl_Writer writer("MM", 1);
-    writer.AddShape(shape);
-    writer.ComputeModel();
-    if (!writer.Write(path.string().c_str())) throw std::runtime_error("IGES fixture not written");
-    return;
-  }
   STEPControl_Writer writer;
   Interface_Static::SetCVal("xstep.cascade.unit", "MM");
   Interface_Static::SetCVal("write.step.unit", "MM");
@@ -107,6 +133,29 @@ void write_primitive(const std::filesystem::path& path, Primitive primitive, con
     throw std::runtime_error("STEP fixture not written");
   }
 }
+
+}  // namespace
+
+BSplineCurve2d profile() {
+  return BSplineCurve2d(3, {0, 0, 0, 0, 0.5, 1, 1, 1, 1}, {{2, 0}, {3, 1}, {2.5, 2}, {3.5, 2.5}, {4, 3}});
+}
+
+void write_primitive(const std::filesystem::path& path, Primitive primitive, const Axis& axis) {
+  const TopoDS_Shape shape = build(primitive, axis);
+  if (path.extension() != ".igs" && path.extension() != ".iges") return write_step(path, shape);
+  UnitsMethods::SetCasCadeLengthUnit(1.0, UnitsMethods_LengthUnit_Millimeter);
+  IGESControl_Controller::Init();
+  IGESControl_Writer writer("MM", 1);
+  writer.AddShape(shape);
+  writer.ComputeModel();
+  if (!writer.Write(path.string().c_str())) throw std::runtime_error("IGES fixture not written");
+}
+
+void write_step_wall(const std::filesystem::path& path, StepWallDrawing drawing) {
+  write_step(path, step_wall_shape(drawing));
+}
+
+void write_lone_vertex(const std::filesystem::path& path) { write_step(path, BRepBuilderAPI_MakeVertex(gp_Pnt(1, 2, 3)).Vertex()); }
 
 std::vector<std::vector<Vec3>> edge_points(const std::filesystem::path& path, int samples) {
   TopoDS_Shape shape;
