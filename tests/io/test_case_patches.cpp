@@ -1,6 +1,6 @@
 // Tests of a case file's patches (hotmesh::io::read_case, check_case_against_mesh): roles and
-// where deflections are allowed, deflection tables and their modes, the axis, periodic pairs,
-// and the case checked against the mesh's patches and dimension.
+// where deflections are allowed, deflection tables and their modes, CAD faces and edges, the
+// axis, periodic pairs, and the case checked against the mesh's patches and dimension.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -178,18 +178,58 @@ TEST_F(CaseAgainstMesh, ChecksTableFrameAgainstMeshDimension) {
                              "  ymax: {role: fixed}\n  ymin: {role: sliding, deflection: {file: blade.csv}}\n";
   EXPECT_EQ(mesh_error(square, test::unit_square(2, 2)),
             at(6) + "patches.ymin.deflection: a cartesian (x, y, z) table is for 3D meshes but the mesh is 2D; give "
-                    "its columns as x,y,dx,dy");
+                    "its columns as x,y,dx,dy (or r,z,dr,dz in an axisymmetric case, with the axis)");
   const std::string cube = "mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n"
                            "  ymax: {role: fixed}\n  zmin: {role: fixed}\n  zmax: {role: fixed}\n"
                            "  ymin: {role: sliding, deflection: {file: plane.csv}}\n";
   EXPECT_EQ(mesh_error(cube, test::unit_cube(1)),
             at(8) + "patches.ymin.deflection: a planar (x, y) table is for 2D meshes but the mesh is 3D; give its "
                     "columns as x,y,z,dx,dy,dz or r,z,dr,dz");
+  // With an axis a 2D case is axisymmetric: its (x, y) are (z, r), and a meridional table fits.
   const std::string meridional = "mesh: mesh.msh\naxis: {origin: [0, 0, 0], direction: [0, 1, 0]}\npatches:\n"
                                  "  xmin: {role: fixed}\n  xmax: {role: fixed}\n  ymax: {role: fixed}\n"
                                  "  ymin: {role: sliding, deflection: {file: ramp.csv}}\n";
-  EXPECT_THAT(mesh_error(meridional, test::unit_square(2, 2)),
-              StartsWith(at(7) + "patches.ymin.deflection: a meridional (r, z) table is for 3D meshes but the mesh is 2D"));
+  EXPECT_EQ(mesh_error(meridional, test::unit_square(2, 2)), "no error");
+}
+
+TEST_F(CaseFile, EdgesNeedCadAndAreNotGivenWithFaces) {
+  const auto lines = lines_of(error_with("  a: {role: sliding, deflection: {file: plane.csv, edges: [1, 2, 1]}}\n"
+                                         "  b: {role: sliding, deflection: {file: plane.csv, edges: []}}\n"));
+  ASSERT_THAT(lines, SizeIs(3));
+  EXPECT_EQ(lines[0], at(4) + "patches.a.deflection.edges[2]: edge 1 is listed twice");
+  EXPECT_EQ(lines[1], at(4) + "patches.a.deflection.edges: CAD edge numbers need a CAD file; add `cad: <file.step>` at "
+                              "the top level");
+  EXPECT_EQ(lines[2], at(5) + "patches.b.deflection.edges: expected a list of CAD edge numbers (>= 1), e.g. [3, 4], "
+                              "got an empty list");
+  const std::string with_cad = "mesh: mesh.msh\ncad: part.step\npatches:\n"
+                               "  a: {role: sliding, deflection: {file: plane.csv, faces: [1], edges: [2]}}\n";
+  EXPECT_THAT(error_of(with_cad), StartsWith(at(4) + "patches.a.deflection.edges: give either `faces:` (CAD faces: "
+                                                     "3D walls, or an axisymmetric 2D case's) or `edges:`"));
+  EXPECT_EQ(parse("mesh: mesh.msh\ncad: part.step\npatches:\n"
+                  "  a: {role: sliding, deflection: {file: plane.csv, edges: [4, 2]}}\n")
+                .find_patch("a")
+                ->deflection->edges,
+            (std::vector<int>{4, 2}));
+}
+
+// A 3D wall is on CAD faces, a planar 2D wall on CAD edges, and an axisymmetric 2D case (one
+// with an axis) takes faces, whose meridional curve it reads in its (z, r) plane.
+TEST_F(CaseAgainstMesh, EdgesAreFor2DMeshesAndFacesIn2DNeedTheAxis) {
+  const std::string cube = "mesh: mesh.msh\ncad: part.step\npatches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n"
+                           "  ymax: {role: fixed}\n  zmin: {role: fixed}\n  zmax: {role: fixed}\n"
+                           "  ymin: {role: sliding, deflection: {file: blade.csv, edges: [1]}}\n";
+  EXPECT_EQ(mesh_error(cube, test::unit_cube(1)),
+            at(9) + "patches.ymin.deflection.edges: CAD edges are the walls of 2D cases (curves in the plane z = 0); a "
+                    "3D wall is on CAD faces: give them, `faces: [...]`");
+  const std::string square = "mesh: mesh.msh\ncad: part.step\npatches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n"
+                             "  ymax: {role: fixed}\n  ymin: {role: sliding, deflection: {file: plane.csv, faces: [1]}}\n";
+  EXPECT_THAT(mesh_error(square, test::unit_square(2, 2)),
+              StartsWith(at(7) + "patches.ymin.deflection.faces: CAD faces are surfaces: a 2D case takes them only when "
+                                 "it is axisymmetric, with the top-level axis"));
+  const std::string axisymmetric = "mesh: mesh.msh\ncad: part.step\naxis: {origin: [0, 0, 0], direction: [1, 0, 0]}\n"
+                                   "patches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n  ymax: {role: fixed}\n"
+                                   "  ymin: {role: sliding, deflection: {file: ramp.csv, faces: [1]}}\n";
+  EXPECT_EQ(mesh_error(axisymmetric, test::unit_square(2, 2)), "no error");
 }
 
 // The deflection's `mode` (how a 3D wall is built): its values, a meridional wall without the
