@@ -74,7 +74,7 @@ std::string edges_text(const geometry::CadModel& model, double noise) {
   return text;
 }
 
-std::string faces_text(const geometry::CadModel& model, bool with_edges) {
+std::string listing_text(const geometry::CadModel& model, bool with_edges) {
   const double noise = 1e-12 * model_size(model);
   std::string text = fmt::format("{}: {} faces, {} edges, lengths in {}\n", model.path().string(), model.faces().size(),
                                  model.edges().size(), geometry::to_string(model.unit()));
@@ -123,7 +123,7 @@ Command add_cad_command(CLI::App& parent) {
     read.unit = parse_unit_option(options->unit);
     const geometry::CadModel model = geometry::CadModel::read(options->file, read);
     std::cout << (options->json ? model_json(model).dump(2) + "\n"
-                                : faces_text(model, options->edges || planar_drawing(model)));
+                                : listing_text(model, options->edges || planar_drawing(model)));
     return 0;
   };
 }
