@@ -4,6 +4,7 @@
 //    named by its CAD edges (`edges:`), deflected by a rigid shift given at FEM nodes at most
 //    0.8 mm apart; the deflected wall is then the CAD wall shifted, fillet included, which the
 //    nodes are measured against;
+//  - the next coupling iteration, restarted on the same edges with a new shift;
 //  - an axisymmetric case: a 2D mesh in the (z, r) half plane of a hub (a cylinder, then a cone)
 //    whose revolved solid is the CAD, the wall named by the hub's faces, the axis given;
 //  - the inputs a 2D case refuses: edges out of the mesh's plane, edges that do not chain, CAD
@@ -42,15 +43,16 @@ struct WallMotion {
   std::vector<Vec2> after;   ///< the same nodes, deformed
 };
 
-/// `hotmesh deform` of the case in `folder`, and where the nodes of patch `wall` of its mesh
-/// `mesh_name` went.
-WallMotion deform(const std::filesystem::path& folder, const std::string& mesh_name, const std::string& wall) {
+/// `hotmesh deform` of the case in `folder` into `folder`/`out`, and where the nodes of patch
+/// `wall` of its mesh `mesh_name` went.
+WallMotion deform(const std::filesystem::path& folder, const std::string& mesh_name, const std::string& wall,
+                  const std::string& out = "out") {
   WallMotion m;
   m.result = hotmesh("-q deform " + shell_quote((folder / "case.yaml").string()) + " -o " +
-                     shell_quote((folder / "out").string()));
+                     shell_quote((folder / out).string()));
   if (m.result.exit_code != 0) return m;
   const mesh::Mesh before = io::read_gmsh(folder / mesh_name);
-  const mesh::Mesh after = io::read_gmsh(folder / "out/deformed.msh");
+  const mesh::Mesh after = io::read_gmsh(folder / out / "deformed.msh");
   for (const mesh::NodeId n : before.find_patch(wall)->nodes) {
     const auto& p = before.points[static_cast<std::size_t>(n)];
     const auto& q = after.points[static_cast<std::size_t>(n)];
@@ -68,17 +70,17 @@ WallMotion shifted_channel(const ChannelStep& channel, const std::string& form) 
   return deform(channel.dir(), "channel.msh", "bottom");
 }
 
-/// The largest distance from the shifted fillet's circle of the deformed nodes within its arc
-/// (seen from its centre: up and to the left; nodes slide, so a node that started at an end of
-/// the arc may end on the line next to it), and how many there are.
-std::pair<double, int> fillet_miss(const WallMotion& m) {
+/// The largest distance from the fillet's circle moved by `shift` of the deformed nodes within
+/// its arc (seen from its centre: up and to the left; nodes slide, so a node that started at an
+/// end of the arc may end on the line next to it), and how many there are.
+std::pair<double, int> fillet_miss(const WallMotion& m, const Vec2& shift = kShift) {
   double worst = 0.0;
   int count = 0;
   for (const Vec2& q : m.after) {
-    const Vec2 r = q - (StepWall::centre() + kShift);
+    const Vec2 r = q - (StepWall::centre() + shift);
     if (r.x > 0.0 || r.y < 0.0) continue;
     ++count;
-    worst = std::max(worst, StepWall::off_fillet(q, kShift));
+    worst = std::max(worst, StepWall::off_fillet(q, shift));
   }
   return {worst, count};
 }
@@ -109,6 +111,27 @@ TEST(DeformCad2d, CurveFormThroughTheFemNodesCutsTheFilletBetweenThem) {
   const auto [fillet, count] = fillet_miss(m);
   EXPECT_GE(count, 3);
   EXPECT_GT(fillet, 1e-3);
+}
+
+// The next coupling iteration (section 4.3, eq. 22): restarted from the first run's state with a
+// new table, the wall goes from the first deflected wall to the new one, both on the CAD's
+// edges: the restart keeps them, and the fillet is the CAD's circle moved by the new shift.
+TEST(DeformCad2d, RestartGoesOnOnTheCadEdgesToTheNewDeflection) {
+  const ChannelStep channel;
+  ASSERT_EQ(shifted_channel(channel, "displacement").result.exit_code, 0);
+  const Vec2 next{0.0, 0.05};
+  channel.write_table("bottom.csv", next);
+  channel.write_case(fmt::format("{{role: sliding, deflection: {{file: bottom.csv, edges: [{}], form: displacement}}}}",
+                                 channel.wall_edge_list()),
+                     "cad: channel.step\nrestart: out/restart.hmr\n");
+  const WallMotion m = deform(channel.dir(), "channel.msh", "bottom", "second");
+  ASSERT_EQ(m.result.exit_code, 0) << m.result.output;
+  const auto [fillet, count] = fillet_miss(m, next);
+  EXPECT_GE(count, 3);
+  EXPECT_LT(fillet, 1e-9 * StepWall::kRadius);
+  double worst = 0.0;
+  for (const Vec2& q : m.after) worst = std::max(worst, StepWall::off_wall(q, next));
+  EXPECT_LT(worst, 1e-9);
 }
 
 TEST(DeformCad2d, EdgesOutOfTheMeshPlaneAreRefusedNamingTheEdgeAndItsDistance) {
