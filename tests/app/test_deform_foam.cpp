@@ -2,7 +2,8 @@
 // installed): the ramp channel of samples/ramp2d as a one-cell-thick case with empty front
 // and back moves exactly as the same mesh does as a .msh file, its written polyMesh passes
 // checkMesh, --foam-time writes only the new time folder into the case, and bad requests exit
-// with code 2 before any work.
+// with code 2 before any work; as a wedge case, axisymmetric with its axis, its wall taken from
+// a revolved CAD part.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -228,6 +229,41 @@ TEST(DeformFoam, RampAsAWedgeCaseMovesInTheMeridionalPlaneAndPassesCheckMesh) {
   const auto k = tf::check_mesh(cfd, out / "polyMesh", dir / "check");
   EXPECT_EQ(k.exit_code, 0) << k.output;
   EXPECT_THAT(k.output, HasSubstr("Mesh OK.")) << k.output;
+}
+
+// A wedge case is axisymmetric: with the wedge's axis in the case file, its inner wall (radius 1
+// about the x axis) is the cylinder face of a revolved CAD part (hub_axisymmetric.geo, drawn by
+// gmsh), deflected by a meridional (r, z) table that grows the radius by 0.05: the inner wall's
+// points end at radius 1.05 on both wedge planes.
+TEST(DeformFoam, WedgeCaseTakesItsWallFromTheRevolvedCadAboutItsAxis) {
+  SKIP_WITHOUT_BLOCKMESH();
+  test::TempDir dir;
+  const auto cfd = dir / "cfd";
+  tf::write_block_mesh_case(cfd, ramp_wedge());
+  ASSERT_EQ(tf::run_block_mesh(cfd).exit_code, 0);
+  const std::string geo = shell_quote(test::data_path("gmsh/hub_axisymmetric.geo").string());
+  ASSERT_EQ(test::run_command("gmsh -0 -setnumber part 3 " + geo + " -o " + shell_quote((dir / "hub.step").string())).exit_code, 0);
+  std::string table = "r,z,dr,dz\n";
+  for (int j = 0; j <= 20; ++j) table += fmt::format("1,{},0.05,0\n", 0.1 * j);
+  test::write_text(dir / "hub.csv", table);
+  // Face 1 of the hub: its cylinder of radius 1 (hotmesh cad lists it first, see test_deform_cad_2d.cpp).
+  test::write_text(dir / "wedge.yaml",
+                   "mesh: cfd\ncad: hub.step\nlength_unit: mm\naxis: {origin: [0, 0, 0], direction: [1, 0, 0]}\n"
+                   "patches:\n  left: {role: slip}\n  right: {role: slip}\n  top: {role: fixed}\n"
+                   "  bottom: {role: sliding, deflection: {file: hub.csv, faces: [1], form: displacement}}\n");
+  const auto out = dir / "out";
+  const auto r = hotmesh("deform " + shell_quote((dir / "wedge.yaml").string()) + " -o " + shell_quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto original = tf::ascii_points(cfd / "constant" / "polyMesh" / "points");
+  const auto moved = tf::ascii_points(out / "polyMesh" / "points");
+  ASSERT_EQ(moved.size(), original.size());
+  int inner = 0;
+  for (std::size_t q = 0; q < moved.size(); ++q) {
+    if (std::abs(std::hypot(original[q].y, original[q].z) - 1.0) > 1e-12) continue;
+    ++inner;
+    EXPECT_NEAR(std::hypot(moved[q].y, moved[q].z), 1.05, 1e-9) << q;
+  }
+  EXPECT_EQ(inner, 44);  // 22 points along the wall on each wedge plane
 }
 
 TEST(DeformFoam, InfoShowsTheCasesPatchesAndConvertWritesItsMeshAsMsh) {
