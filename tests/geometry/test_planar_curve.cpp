@@ -115,7 +115,7 @@ TEST(PlanarCurve, FaceEdgesGiveTheSameCurveAsTheDrawnEdges) {
   }
 }
 
-// Eq. (21) on the edges' curve: a rigid shift of the wall, given at FEM nodes 1.3 mm apart,
+// Eq. (21) on the edges' curve: a rigid shift of the wall, given at 21 FEM nodes along it,
 // interpolated as a displacement d(t) (constant: interpolation keeps constants) leaves the
 // fillet a circle, the CAD's curvature between the nodes; interpolated through the deflected
 // nodes (form curve) it becomes a cubic through a few of its points, off the circle between
@@ -125,7 +125,6 @@ TEST(PlanarCurve, DisplacementFormKeepsTheFilletsCurvatureBetweenFemNodes) {
   const PlanarCurve c = drawn(StepWallDrawing::edges, dir).planar_curve(std::vector<int>{1, 2, 3, 4});
   const Vec2 shift{0.01, 0.03};
   CurveSamples nodes;
-  const DeflectedCurve cad(c.curve);
   for (int j = 0; j <= 20; ++j) {
     nodes.points.push_back(c.curve.point(j / 20.0));
     nodes.deflections.push_back(shift);
