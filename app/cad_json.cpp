@@ -1,4 +1,4 @@
-// hotmesh app: CAD faces and axes as JSON (see cad_json.hpp).
+// hotmesh app: CAD faces, edges and axes as JSON (see cad_json.hpp).
 #include "cad_json.hpp"
 
 namespace hotmesh::app {
@@ -26,6 +26,20 @@ nlohmann::json faces_json(const geometry::CadModel& model) {
   nlohmann::json faces = nlohmann::json::array();
   for (const geometry::FaceInfo& face : model.faces()) faces.push_back(face_json(face));
   return faces;
+}
+
+nlohmann::json edge_json(const geometry::EdgeInfo& edge) {
+  return {{"id", edge.id},
+          {"kind", geometry::to_string(edge.kind)},
+          {"start", vec3_json(edge.start)},
+          {"end", vec3_json(edge.end)},
+          {"length", edge.length}};
+}
+
+nlohmann::json edges_json(const geometry::CadModel& model) {
+  nlohmann::json edges = nlohmann::json::array();
+  for (const geometry::EdgeInfo& edge : model.edges()) edges.push_back(edge_json(edge));
+  return edges;
 }
 
 }  // namespace hotmesh::app

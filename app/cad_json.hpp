@@ -1,4 +1,4 @@
-// hotmesh app: CAD faces and axes as JSON, the same for `hotmesh cad --json`, summary.json and
+// hotmesh app: CAD faces, edges and axes as JSON, the same for `hotmesh cad --json`, summary.json and
 // the service's answers.
 #pragma once
 
@@ -15,5 +15,9 @@ nlohmann::json axis_json(const geometry::Axis& axis);
 nlohmann::json face_json(const geometry::FaceInfo& face);
 /// [face_json, ...] in id order.
 nlohmann::json faces_json(const geometry::CadModel& model);
+/// {"id", "kind", "start": [x, y, z], "end": [x, y, z], "length"}
+nlohmann::json edge_json(const geometry::EdgeInfo& edge);
+/// [edge_json, ...] in id order.
+nlohmann::json edges_json(const geometry::CadModel& model);
 
 }  // namespace hotmesh::app

@@ -459,12 +459,14 @@ Command add_check_command(CLI::App& parent) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--cad", options->cad, "CAD file (.step, .stp, .iges, .igs) with the faces --map names")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--map", options->maps, "PATCH=FACE_IDS: a patch and its CAD faces, e.g. casing=1,2 (repeatable)");
+  cmd->add_option("--map", options->maps,
+                  "PATCH=FACE_IDS: a patch and its CAD faces, e.g. casing=1,2 (repeatable); on a 2D mesh its CAD edges "
+                  "in the plane z = 0, or with --axis (x along it, y the radius) its faces");
   cmd->add_option("--deflection", options->deflections,
                   "PATCH=CSV: FEM deflections of the patch; its nodes are measured to the deflected shape (repeatable)");
   cmd->add_option("--axis", options->axis,
                   "Axis of revolution ox,oy,oz,dx,dy,dz: CAD faces that all turn about it are measured "
-                  "meridionally (default: an axis the faces share)")
+                  "meridionally (default: an axis the faces share); on a 2D mesh: the mesh is axisymmetric about it")
       ->delimiter(',');
   cmd->add_option("--mode", options->mode,
                   "How CAD faces are measured, as the case file's deflection mode: meridional (a surface of "

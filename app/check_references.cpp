@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <string_view>
 #include <utility>
 
 #include "curve_fit.hpp"
@@ -86,8 +87,9 @@ std::shared_ptr<const geometry::BoundaryShape> shape_of(const CurveRun& run) {
   return std::make_shared<geometry::PlanarCurveShape>(run.fit.curve);
 }
 
-std::string face_text(const std::vector<int>& faces) {
-  return fmt::format("{} {}", faces.size() == 1 ? "face" : "faces", fmt::join(faces, ", "));
+/// "face 3", "faces 3, 4" (or edges, with `word` "edge").
+std::string face_text(const std::vector<int>& faces, std::string_view word = "face") {
+  return fmt::format("{}{} {}", word, faces.size() == 1 ? "" : "s", fmt::join(faces, ", "));
 }
 
 /// Faces of revolution, without deflection: their meridional curve, or one part per profile
@@ -139,8 +141,38 @@ FacesMode faces_mode(const PatchCheckSpec& spec, const geometry::CadModel& cad, 
   }
 }
 
+/// A 2D mesh's patch mapped to CAD: its ids are edges, whose curve in the plane z = 0 is the
+/// wall; with an axis (an axisymmetric mesh: x along the axis, y the radius) they are faces,
+/// whose meridional curve, as (z, r), is. With a table, that wall deflected by it (eq. 21).
+PatchReference plane_cad_reference(const PatchCheckSpec& spec, const geometry::CadModel& cad,
+                                   const ReferenceOptions& options) {
+  std::string what;
+  const geometry::BSplineCurve2d curve = [&] {
+    if (!options.axis) {
+      what = fmt::format("CAD {}: {} curve in the x-y plane", face_text(spec.faces, "edge"),
+                         spec.faces.size() == 1 ? "its" : "their");
+      return cad.planar_curve(spec.faces).curve;
+    }
+    const geometry::MeridionalCurve meridional = cad.meridional_curve(spec.faces, {.axis = options.axis});
+    what = fmt::format("CAD {}: {} meridional curve about {}, as (z, r) in the mesh's plane", face_text(spec.faces),
+                       spec.faces.size() == 1 ? "its" : "their", axis_text(meridional.axis));
+    return meridional.curve.swapped_coordinates();
+  }();
+  if (!spec.deflection) {
+    return single(std::make_unique<ShapeReference>(
+        std::make_shared<geometry::PlanarCurveShape>(geometry::DeflectedCurve(curve)), 1.0, what));
+  }
+  const geometry::DeflectionSamples table = io::read_deflection_csv(*spec.deflection);
+  const CurveRun run =
+      fit_on_plane_cad_curve(curve, table, options.axis, options.reconstruction, options.unit, cad.path().string());
+  return single(std::make_unique<ShapeReference>(
+      shape_of(run), 1.0,
+      fmt::format("{}, deflected by {} (eq. 21, degree {})", what, spec.deflection->string(), run.fit.report.degree)));
+}
+
 PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* cad, const mesh::Mesh& mesh,
                          const ReferenceOptions& options) {
+  if (mesh.dimension == 2 && !spec.faces.empty()) return plane_cad_reference(spec, *cad, options);
   const std::string faces = face_text(spec.faces);
   if (!spec.deflection) {
     const FacesMode chosen = faces_mode(spec, *cad, options, false);
@@ -152,7 +184,6 @@ PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* c
   const geometry::DeflectionSamples table = io::read_deflection_csv(*spec.deflection);
   const std::string source = spec.deflection->string();
   if (!spec.faces.empty()) {
-    if (mesh.dimension == 2) throw InputError("CAD faces describe surfaces of revolution: map them on 3D meshes only");
     require_cad_frame(table);
     if (table.frame == geometry::SampleFrame::meridional && !options.axis) {
       throw InputError::in(source, "meridional (r, z) nodes need --axis: z is measured from the axis origin");
@@ -217,20 +248,21 @@ std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, io::Wal
                                      name(d.file));
     } else {
       const std::string fit = fmt::format("(eq. 21, {} form, degree {})", geometry::to_string(d.form), d.degree);
-      if (d.faces.empty()) {
+      if (d.faces.empty() && d.edges.empty()) {
         what = fmt::format("the curve through the FEM nodes of {}{}", name(d.file),
                            deflected ? ", deflected by them " + fit : std::string());
       } else {
-        what = fmt::format("CAD {} of {}{}", face_text(d.faces), name(*c.cad),
-                           deflected ? fmt::format(", deflected by {} {}", name(d.file), fit) : std::string());
+        what = fmt::format("CAD {} of {}{}", d.edges.empty() ? face_text(d.faces) : face_text(d.edges, "edge"),
+                           name(*c.cad), deflected ? fmt::format(", deflected by {} {}", name(d.file), fit) : std::string());
       }
     }
   }
-  // A curve lies in the x-y plane (2D) or is the meridional curve about the case's axis (3D).
+  // A curve lies in the x-y plane (2D; with an axis, the (z, r) plane about it) or is the
+  // meridional curve about the case's axis (3D).
   std::string where;
   if (kind == io::WallKind::curve) {
     if (dimension == 2) {
-      where = " in the x-y plane";
+      where = c.axis ? " in the x-y plane, (z, r) about " + axis_text(*c.axis) : std::string(" in the x-y plane");
     } else if (c.axis) {
       where = " about " + axis_text(*c.axis);
     }

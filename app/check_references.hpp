@@ -1,6 +1,8 @@
-// hotmesh app: what `hotmesh check` measures each mesh patch against. A patch mapped to CAD
-// faces is compared with the faces as hotmesh deform would take them (faces_mode.hpp; --mode
-// forces one way): with their meridional curve (eq. 20) about the axis when every face turns
+// hotmesh app: what `hotmesh check` measures each mesh patch against. On a 2D mesh a patch is
+// mapped to CAD edges, and compared with their curve in the plane z = 0, or, given an axis (an
+// axisymmetric mesh in (z, r)), to CAD faces, compared with their meridional curve as (z, r).
+// Otherwise a patch mapped to CAD faces is compared with the faces as hotmesh deform would take
+// them (faces_mode.hpp; --mode forces one way): with their meridional curve (eq. 20) about the axis when every face turns
 // about one axis, else with the faces' surfaces themselves; faces whose meridional curves form
 // several separate profiles (a casing on either side of a blade row) give one part per
 // profile, and each node is measured against the nearest part. A patch with a deflection table
@@ -50,7 +52,7 @@ struct PatchReference {
 
 struct PatchCheckSpec {
   std::string patch;
-  std::vector<int> faces;                               ///< CAD faces; empty: none mapped
+  std::vector<int> faces;                               ///< CAD faces (edges on a 2D mesh without axis); empty: none mapped
   std::optional<std::filesystem::path> deflection;      ///< FEM deflection table
 };
 

@@ -23,6 +23,23 @@ CurveRun fit_on_cad_curve(const geometry::MeridionalCurve& curve, const geometry
   return {std::move(fit), std::move(nodes), curve.axis, unit, curve.faces, std::move(cad)};
 }
 
+CurveRun fit_on_plane_cad_curve(const geometry::BSplineCurve2d& curve, const geometry::DeflectionSamples& samples,
+                                const std::optional<geometry::Axis>& axis,
+                                const geometry::ReconstructionOptions& options, geometry::LengthUnit unit,
+                                std::string cad) {
+  geometry::CurveSamples nodes;
+  if (samples.frame == geometry::SampleFrame::planar) {
+    nodes = geometry::planar_samples(samples);
+  } else if (samples.frame == geometry::SampleFrame::meridional && axis) {
+    nodes = geometry::axial_plane_samples(samples, *axis);
+  } else {
+    throw InputError::in(samples.source, "a 2D mesh's CAD wall needs planar (x,y,dx,dy) nodes, or meridional "
+                                         "(r,z,dr,dz) ones with the axis of an axisymmetric case");
+  }
+  geometry::Reconstruction fit = geometry::fit_curve(nodes, &curve, options);
+  return {std::move(fit), std::move(nodes), std::nullopt, unit, {}, std::move(cad), {}};
+}
+
 CurveRun fit_without_cad(const geometry::DeflectionSamples& samples, std::optional<geometry::Axis> axis,
                          const geometry::ReconstructionOptions& options, geometry::LengthUnit unit,
                          std::string_view axis_name) {

@@ -23,6 +23,7 @@ struct CurveRun {
   geometry::LengthUnit unit = geometry::LengthUnit::metre;
   std::vector<int> faces;               ///< CAD faces along the curve; empty without CAD
   std::string cad;                      ///< CAD file, empty without CAD
+  std::vector<int> edges;               ///< CAD edges along a 2D curve (instead of faces)
 };
 
 /// Throws hotmesh::InputError unless the table can lie on a CAD surface of revolution:
@@ -34,6 +35,16 @@ void require_cad_frame(const geometry::DeflectionSamples& samples);
 /// hotmesh::InputError for planar tables and for nodes the reconstruction refuses.
 CurveRun fit_on_cad_curve(const geometry::MeridionalCurve& curve, const geometry::DeflectionSamples& samples,
                           const geometry::ReconstructionOptions& options, geometry::LengthUnit unit, std::string cad);
+
+/// A 2D case's wall from CAD: `curve` lies in the mesh's plane (the edges' curve, or a 2D
+/// axisymmetric mesh's meridional curve in its (x, y) = (z, r)); the nodes are planar (x, y) or,
+/// with `axis` (axisymmetric), meridional (r, z) about it, taken as (z, r). The run has no
+/// axis: its curve is a 2D one. Throws hotmesh::InputError for cartesian tables, meridional ones
+/// without axis, and nodes the reconstruction refuses.
+CurveRun fit_on_plane_cad_curve(const geometry::BSplineCurve2d& curve, const geometry::DeflectionSamples& samples,
+                                const std::optional<geometry::Axis>& axis,
+                                const geometry::ReconstructionOptions& options, geometry::LengthUnit unit,
+                                std::string cad);
 
 /// Without CAD: planar (x, y) tables define a 2D curve; cartesian or meridional tables a
 /// meridional one about `axis` (required for cartesian tables, the z axis by default for

@@ -116,13 +116,15 @@ bool bool_field(const Json& object, const char* key, bool fallback) {
   return value->get<bool>();
 }
 
-std::vector<int> face_list_field(const Json& object, const char* key, std::size_t max_count) {
+std::vector<int> face_list_field(const Json& object, const char* key, std::size_t max_count, std::string_view word) {
   const Json* value = find(object, key);
-  if (!value) throw ApiError::bad_request(fmt::format("{}: required: the ids of the boundary's faces, e.g. [1, 2]", key));
-  const std::string expected = fmt::format("{}: expected an array of face ids (integers from 1), e.g. [1, 2]", key);
+  if (!value) {
+    throw ApiError::bad_request(fmt::format("{}: required: the ids of the boundary's {}s, e.g. [1, 2]", key, word));
+  }
+  const std::string expected = fmt::format("{}: expected an array of {} ids (integers from 1), e.g. [1, 2]", key, word);
   if (!value->is_array() || value->empty()) throw ApiError::bad_request(expected + ", got " + shown(*value));
   if (value->size() > max_count) {
-    throw ApiError::bad_request(fmt::format("{}: at most {} faces, got {}", key, max_count, value->size()));
+    throw ApiError::bad_request(fmt::format("{}: at most {} {}s, got {}", key, max_count, word, value->size()));
   }
   std::vector<int> ids;
   std::set<int> seen;
@@ -131,7 +133,7 @@ std::vector<int> face_list_field(const Json& object, const char* key, std::size_
       throw ApiError::bad_request(expected + ", got " + shown(item) + " in it");
     }
     const int id = item.get<int>();
-    if (!seen.insert(id).second) throw ApiError::bad_request(fmt::format("{}: face {} is listed twice", key, id));
+    if (!seen.insert(id).second) throw ApiError::bad_request(fmt::format("{}: {} {} is listed twice", key, word, id));
     ids.push_back(id);
   }
   return ids;

@@ -36,8 +36,10 @@ long long integer_field(const Json& object, const char* key, long long lo, long 
 double number_field(const Json& object, const char* key, double lo, double hi,
                     std::optional<double> fallback = std::nullopt);
 bool bool_field(const Json& object, const char* key, bool fallback);
-/// A non-empty array of positive integers (face ids), at most `max_count`, without repeats.
-std::vector<int> face_list_field(const Json& object, const char* key, std::size_t max_count);
+/// A non-empty array of positive integers (face ids, or the ids of what `word` names: "edge"),
+/// at most `max_count`, without repeats.
+std::vector<int> face_list_field(const Json& object, const char* key, std::size_t max_count,
+                                 std::string_view word = "face");
 /// {"origin": [x, y, z], "direction": [dx, dy, dz]}, or absent/null.
 std::optional<geometry::Axis> axis_field(const Json& object, const char* key);
 

@@ -1,12 +1,13 @@
 // hotmesh serve: the geometry service's CAD side: health, files below the root, loading CAD
-// models (upload or root), listing their faces, how faces are taken (as a surface of revolution
-// or as surfaces, faces_mode.hpp) and meridional curves of faces (eq. 20).
+// models (upload or root), listing their faces and edges, how faces are taken (as a surface of
+// revolution or as surfaces, faces_mode.hpp) and meridional curves of faces (eq. 20).
 #include "serve/service.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "cad_json.hpp"
@@ -40,7 +41,20 @@ Json model_summary(const StoredModel& model) {
           {"name", model.name},
           {"source", model.source},
           {"unit", geometry::to_string(model.cad.unit())},
-          {"face_count", model.cad.faces().size()}};
+          {"face_count", model.cad.faces().size()},
+          {"edge_count", model.cad.edges().size()}};
+}
+
+/// The ids of request[key], each at most `count` (the model's faces or edges, as `word` says).
+std::vector<int> ids_field(const Json& request, const char* key, std::size_t count, std::string_view word,
+                           std::size_t max_ids) {
+  std::vector<int> ids = face_list_field(request, key, max_ids, word);
+  for (const int id : ids) {
+    if (static_cast<std::size_t>(id) > count) {
+      throw ApiError::bad_request(fmt::format("{}: the model has {} {}s; there is no {} {}", key, count, word, word, id));
+    }
+  }
+  return ids;
 }
 
 }  // namespace
@@ -54,12 +68,11 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 std::vector<int> model_faces_field(const Json& request, const char* key, const StoredModel& model, std::size_t max_faces) {
-  std::vector<int> faces = face_list_field(request, key, max_faces);
-  const auto count = static_cast<int>(model.cad.faces().size());
-  for (const int id : faces) {
-    if (id > count) throw ApiError::bad_request(fmt::format("{}: the model has {} faces; there is no face {}", key, count, id));
-  }
-  return faces;
+  return ids_field(request, key, model.cad.faces().size(), "face", max_faces);
+}
+
+std::vector<int> model_edges_field(const Json& request, const char* key, const StoredModel& model, std::size_t max_edges) {
+  return ids_field(request, key, model.cad.edges().size(), "edge", max_edges);
 }
 
 GeometryService::GeometryService(const std::optional<std::filesystem::path>& root, ServiceLimits limits)
@@ -115,8 +128,9 @@ std::shared_ptr<StoredModel> read_model(GeometryService::State& state, PrivateFi
     throw ApiError::unprocessable(replaced(e.what(), file.path().string(), name));
   }
   auto model = std::shared_ptr<StoredModel>(
-      new StoredModel{state.models.next_id(), std::move(name), std::move(source), std::move(*cad), {}, {}});
+      new StoredModel{state.models.next_id(), std::move(name), std::move(source), std::move(*cad), {}, {}, {}});
   model->faces = faces_json(model->cad);
+  model->edges = edges_json(model->cad);
   state.models.insert(model, model->id);
   return model;
 }
@@ -124,6 +138,7 @@ std::shared_ptr<StoredModel> read_model(GeometryService::State& state, PrivateFi
 Json model_answer(const StoredModel& model) {
   Json answer = model_summary(model);
   answer["faces"] = model.faces;
+  answer["edges"] = model.edges;
   return answer;
 }
 

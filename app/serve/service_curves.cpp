@@ -1,6 +1,7 @@
 // hotmesh serve: the geometry service's curves: deflected curves reconstructed through FEM
-// nodes (section 4.2, eq. 21), projection of points onto a stage of a curve, and the curves
-// as STEP, IGES or CSV files.
+// nodes (section 4.2, eq. 21) on CAD faces' meridional curves, on CAD edges in the plane z = 0
+// (2D walls) or without CAD, projection of points onto a stage of a curve, and the curves as
+// STEP, IGES or CSV files.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -99,7 +100,7 @@ geometry::ReconstructionOptions reconstruction_field(const Json& request) {
 }
 
 Json GeometryService::create_curve(const Json& request) {
-  refuse_unknown_keys(request, {"model", "faces", "axis", "csv", "csv_name", "degree", "form", "tolerance",
+  refuse_unknown_keys(request, {"model", "faces", "edges", "axis", "csv", "csv_name", "degree", "form", "tolerance",
                                 "drop_far_nodes", "samples", "unit"});
   const ServiceLimits& limits = state_->limits;
   const auto samples =
@@ -107,14 +108,38 @@ Json GeometryService::create_curve(const Json& request) {
   const geometry::ReconstructionOptions options = reconstruction_field(request);
   const std::optional<geometry::Axis> axis = axis_field(request, "axis");
   const bool with_cad = request.contains("model") && !request["model"].is_null();
-  if (!with_cad && request.contains("faces")) throw ApiError::bad_request("faces: needs \"model\", the CAD model they belong to");
+  for (const char* key : {"faces", "edges"}) {
+    if (!with_cad && request.contains(key)) {
+      throw ApiError::bad_request(fmt::format("{}: needs \"model\", the CAD model they belong to", key));
+    }
+  }
+  if (request.contains("faces") && request.contains("edges")) {
+    throw ApiError::bad_request("edges: give either \"faces\" (a surface of revolution) or \"edges\" (a 2D wall in "
+                                "the plane z = 0), not both");
+  }
   if (with_cad && request.contains("unit")) {
     throw ApiError::bad_request("unit: a CAD model's unit applies (load the model with another unit instead)");
   }
 
   std::optional<CurveRun> run;
   Json extra = Json::object();
-  if (with_cad) {
+  if (with_cad && request.contains("edges")) {
+    const auto model = state_->models.get(string_field(request, "model"), "model");
+    const std::vector<int> edges = model_edges_field(request, "edges", *model, limits.max_faces);
+    const geometry::DeflectionSamples table = table_field(request, limits);
+    try {
+      std::optional<geometry::PlanarCurve> curve;
+      {
+        std::lock_guard lock(model->mutex);
+        curve.emplace(model->cad.planar_curve(edges));
+      }
+      run.emplace(fit_on_plane_cad_curve(curve->curve, table, axis, options, model->cad.unit(), model->name));
+      run->edges = curve->edges;
+      extra = {{"model", model->id}, {"edges", curve->edges}, {"edge_breaks", curve->edge_breaks}};
+    } catch (const InputError& e) {
+      throw ApiError::unprocessable(e.what());
+    }
+  } else if (with_cad) {
     const auto model = state_->models.get(string_field(request, "model"), "model");
     const std::vector<int> faces = model_faces_field(request, "faces", *model, limits.max_faces);
     const geometry::DeflectionSamples table = table_field(request, limits);

@@ -36,6 +36,7 @@ struct StoredModel {
   std::string source;  ///< "upload" or "root"
   geometry::CadModel cad;
   Json faces;          ///< faces_json(cad), made once
+  Json edges;          ///< edges_json(cad), made once
   std::mutex mutex;    ///< a CadModel is for one thread at a time
 };
 
@@ -152,6 +153,8 @@ struct GeometryService::State {
 
 /// The face ids of request[key] (face_list_field), each checked to be a face of `model`.
 std::vector<int> model_faces_field(const Json& request, const char* key, const StoredModel& model, std::size_t max_faces);
+/// The edge ids of request[key], each checked to be an edge of `model` (2D walls).
+std::vector<int> model_edges_field(const Json& request, const char* key, const StoredModel& model, std::size_t max_edges);
 
 /// The FEM table of a request: "csv", CSV text as in a deflection file, named "csv_name"; at
 /// most limits.max_nodes nodes.

@@ -148,4 +148,10 @@ BSplineCurve2d BSplineCurve2d::translated(const Vec2& offset) const {
   return BSplineCurve2d(degree_, knots_, std::move(poles), weights_);
 }
 
+BSplineCurve2d BSplineCurve2d::swapped_coordinates() const {
+  std::vector<Vec2> poles(poles_);
+  for (Vec2& q : poles) q = {q.y, q.x};
+  return BSplineCurve2d(degree_, knots_, std::move(poles), weights_);
+}
+
 }  // namespace hotmesh::geometry

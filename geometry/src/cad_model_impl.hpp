@@ -19,7 +19,10 @@ struct CadModel::Impl {
   TopoDS_Shape shape;
   std::vector<TopoDS_Face> faces;  // faces[id - 1]
   std::vector<FaceInfo> info;      // info[id - 1]
-  TopTools_IndexedMapOfShape edges;  // every edge of the faces (sewn where they came apart), numbered from 1
+  // Every edge: those of the faces (sewn where they came apart), then those outside any face;
+  // numbered from 1 (cad_model.hpp).
+  TopTools_IndexedMapOfShape edges;
+  std::vector<EdgeInfo> edge_info;  // edge_info[id - 1]
 };
 
 }  // namespace hotmesh::geometry

@@ -1,6 +1,7 @@
 // hotmesh geometry: reading STEP and IGES files into a CadModel: the transfer (serialised,
 // in the caller's length unit), the faces in file order with their names, kinds, bounds and
-// axes, and clear errors for files that are not CAD, are empty or hold no faces.
+// axes, the edges numbered (those of the faces, then those outside any face), and clear errors
+// for files that are not CAD, are empty or hold neither faces nor edges.
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
@@ -41,6 +42,7 @@
 
 #include "cad_face_set.hpp"
 #include "cad_model_impl.hpp"
+#include "edge_analysis.hpp"
 #include "face_analysis.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "occt_convert.hpp"
@@ -167,8 +169,10 @@ void transfer(Reader& reader, const std::filesystem::path& path, const char* for
   if (map.IsEmpty()) {
     TopTools_IndexedMapOfShape edges;
     TopExp::MapShapes(shape, TopAbs_EDGE, edges);
-    throw InputError::in(path.string(), "the file holds no faces (" + std::to_string(edges.Extent()) +
-                                            " edges): hotmesh needs the boundary's surfaces");
+    if (edges.IsEmpty()) {
+      throw InputError::in(path.string(), "the file holds no faces and no edges: hotmesh needs the boundary's "
+                                          "surfaces, or the edges of a 2D case's walls");
+    }
   }
   const Handle(XSControl_TransferReader) records = reader.WS()->TransferReader();
   for (Standard_Integer i = 1; i <= map.Extent(); ++i) {
@@ -303,6 +307,16 @@ const std::filesystem::path& CadModel::path() const { return impl_->path; }
 LengthUnit CadModel::unit() const { return impl_->unit; }
 const std::vector<FaceInfo>& CadModel::faces() const { return impl_->info; }
 
+const std::vector<EdgeInfo>& CadModel::edges() const { return impl_->edge_info; }
+
+const EdgeInfo& CadModel::edge(int id) const {
+  if (id < 1 || static_cast<std::size_t>(id) > impl_->edge_info.size()) {
+    throw InputError::in(impl_->path.string(), "no edge " + std::to_string(id) + ": the edges are 1 to " +
+                                                   std::to_string(impl_->edge_info.size()));
+  }
+  return impl_->edge_info[static_cast<std::size_t>(id - 1)];
+}
+
 const FaceInfo& CadModel::face(int id) const {
   if (id < 1 || static_cast<std::size_t>(id) > impl_->info.size()) {
     throw InputError::in(impl_->path.string(), "no face " + std::to_string(id) + ": the faces are 1 to " +
@@ -351,6 +365,10 @@ CadModel CadModel::read(const std::filesystem::path& path, const CadReadOptions&
     }
     sew_faces(impl->faces);
     for (const TopoDS_Face& f : impl->faces) TopExp::MapShapes(f, TopAbs_EDGE, impl->edges);
+    for (TopExp_Explorer it(impl->shape, TopAbs_EDGE, TopAbs_FACE); it.More(); it.Next()) impl->edges.Add(it.Current());
+    for (Standard_Integer i = 1; i <= impl->edges.Extent(); ++i) {
+      impl->edge_info.push_back(detail::describe_edge(TopoDS::Edge(impl->edges(i)), i));
+    }
   } catch (const Standard_Failure& e) {
     // A fault (FaultsAsFailures) comes as OSD_SIGSEGV, or as a plain failure when it was a
     // stack overflow; either way the file, not hotmesh, is at fault.

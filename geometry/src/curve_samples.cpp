@@ -1,5 +1,6 @@
 // hotmesh geometry: FEM samples brought into the plane of a curve: (x, y) for 2D cases, (r, z)
-// about an axis for axisymmetric ones (Fig. 4: everything happens in the meridional plane).
+// about an axis for axisymmetric ones (Fig. 4: everything happens in the meridional plane), and
+// (z, r) for 2D axisymmetric meshes, drawn in that plane with x along the axis.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -66,6 +67,13 @@ CurveSamples meridional_samples(const DeflectionSamples& samples, const Axis& ax
     out.deflections.push_back({dot(d, radial), dot(d, axis.direction())});
     out.max_out_of_plane_deflection = std::max(out.max_out_of_plane_deflection, std::abs(dot(d, circumferential)));
   }
+  return out;
+}
+
+CurveSamples axial_plane_samples(const DeflectionSamples& samples, const Axis& axis) {
+  CurveSamples out = meridional_samples(samples, axis);
+  for (Vec2& p : out.points) p = {p.y, p.x};
+  for (Vec2& d : out.deflections) d = {d.y, d.x};
   return out;
 }
 

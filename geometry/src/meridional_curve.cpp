@@ -5,12 +5,10 @@
 #include <BRepAlgoAPI_Section.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
-#include <GeomConvert.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_Surface.hxx>
-#include <Geom_TrimmedCurve.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -62,28 +60,14 @@ bool same_axis(const Axis& a, const Axis& b, double tolerance, double size) {
 bool to_meridional(const Handle(Geom_BSplineCurve)& curve, const Axis& axis, const Vec3& radial, double tolerance,
                    BSplineCurve2d& out) {
   const Vec3 normal = cross(radial, axis.direction());
-  std::vector<Vec2> poles;
-  std::vector<double> weights;
   for (Standard_Integer i = 1; i <= curve->NbPoles(); ++i) {
-    const Vec3 d = detail::to_vec3(curve->Pole(i)) - axis.origin();
-    if (std::abs(dot(d, normal)) > tolerance) return false;
-    poles.push_back({dot(d, radial), dot(d, axis.direction())});
-    weights.push_back(curve->Weight(i));
+    if (std::abs(dot(detail::to_vec3(curve->Pole(i)) - axis.origin(), normal)) > tolerance) return false;
   }
-  if (!curve->IsRational()) weights.clear();
-  std::vector<double> knots;
-  for (Standard_Integer i = 1; i <= curve->NbKnots(); ++i) {
-    knots.insert(knots.end(), static_cast<std::size_t>(curve->Multiplicity(i)), curve->Knot(i));
-  }
-  out = BSplineCurve2d(curve->Degree(), std::move(knots), std::move(poles), std::move(weights));
+  out = detail::to_plane_curve(curve, [&](const Vec3& p) {
+    const Vec3 d = p - axis.origin();
+    return Vec2{dot(d, radial), dot(d, axis.direction())};
+  });
   return true;
-}
-
-Handle(Geom_BSplineCurve) bspline_of(const Handle(Geom_Curve)& curve, double first, double last) {
-  Handle(Geom_BSplineCurve) result =
-      GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(curve, first, last, true, false));
-  if (result->IsPeriodic()) result->SetNotPeriodic();
-  return result;
 }
 
 /// Unit radial direction, about the axis, of the point of `points` farthest from it.
@@ -111,7 +95,7 @@ bool iso_profile(const TopoDS_Face& face, const Axis& axis, double tolerance, BS
   const double first = iso->IsPeriodic() ? v0 : std::max(v0, iso->FirstParameter());
   const double last = iso->IsPeriodic() ? v1 : std::min(v1, iso->LastParameter());
   if (!(last > first)) return false;
-  const Handle(Geom_BSplineCurve) curve = bspline_of(iso, first, last);
+  const Handle(Geom_BSplineCurve) curve = detail::to_bspline(iso, first, last);
   std::vector<Vec3> points;
   for (int i = 0; i <= 16; ++i) points.push_back(detail::to_vec3(curve->Value(first + (last - first) * i / 16)));
   Vec3 radial;
@@ -195,7 +179,7 @@ std::vector<BSplineCurve2d> section_profile(const TopoDS_Face& face, const Axis&
     double last = 0.0;
     const Handle(Geom_Curve) curve = BRep_Tool::Curve(TopoDS::Edge(it.Current()), first, last);
     if (curve.IsNull() || !(last > first)) continue;
-    const Handle(Geom_BSplineCurve) bspline = bspline_of(curve, first, last);
+    const Handle(Geom_BSplineCurve) bspline = detail::to_bspline(curve, first, last);
     BSplineCurve2d piece = BSplineCurve2d::polyline(std::vector<double>{0, 1}, std::vector<Vec2>{{0, 0}, {1, 0}});
     // The section lies in the plane up to the intersection's approximation.
     if (!to_meridional(bspline, axis, radial, 10 * tolerance, piece)) continue;

@@ -1,6 +1,8 @@
 // hotmesh geometry (internal): B-spline curves and surfaces between hotmesh and OpenCASCADE.
 #include "occt_convert.hpp"
 
+#include <GeomConvert.hxx>
+#include <Geom_TrimmedCurve.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColStd_Array2OfReal.hxx>
@@ -81,6 +83,28 @@ Handle(Geom2d_BSplineCurve) to_occt(const BSplineCurve2d& curve) {
   unflatten(curve.knots(), knots, mults);
   if (curve.is_rational()) return new Geom2d_BSplineCurve(poles, weights, knots, mults, curve.degree());
   return new Geom2d_BSplineCurve(poles, knots, mults, curve.degree());
+}
+
+Handle(Geom_BSplineCurve) to_bspline(const Handle(Geom_Curve)& curve, double first, double last) {
+  Handle(Geom_BSplineCurve) result =
+      GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(curve, first, last, true, false));
+  if (result->IsPeriodic()) result->SetNotPeriodic();
+  return result;
+}
+
+BSplineCurve2d to_plane_curve(const Handle(Geom_BSplineCurve)& curve, const std::function<Vec2(const Vec3&)>& to_plane) {
+  std::vector<Vec2> poles;
+  std::vector<double> weights;
+  for (Standard_Integer i = 1; i <= curve->NbPoles(); ++i) {
+    poles.push_back(to_plane(to_vec3(curve->Pole(i))));
+    weights.push_back(curve->Weight(i));
+  }
+  if (!curve->IsRational()) weights.clear();
+  std::vector<double> knots;
+  for (Standard_Integer i = 1; i <= curve->NbKnots(); ++i) {
+    knots.insert(knots.end(), static_cast<std::size_t>(curve->Multiplicity(i)), curve->Knot(i));
+  }
+  return BSplineCurve2d(curve->Degree(), std::move(knots), std::move(poles), std::move(weights));
 }
 
 Handle(Geom_BSplineCurve) to_occt_3d(const BSplineCurve2d& curve, const Vec3& origin, const Vec3& u, const Vec3& v) {

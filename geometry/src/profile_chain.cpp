@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
+#include <tuple>
 
 #include "hotmesh/geometry/curve_projector.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -40,13 +42,14 @@ bool covered_by(const BSplineCurve2d& a, const CurveProjector& b, double toleran
   return true;
 }
 
-std::string face_list(const std::vector<ProfilePiece>& pieces) {
-  std::vector<int> faces;
-  for (const auto& piece : pieces) faces.push_back(piece.face);
-  std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  std::string text;
-  for (std::size_t i = 0; i < faces.size(); ++i) text += (i ? ", " : "") + std::to_string(faces[i]);
+/// "faces 3, 4" (or edges), sorted, each once.
+std::string id_list(const std::vector<ProfilePiece>& pieces, const PieceWords& words) {
+  std::vector<int> ids;
+  for (const auto& piece : pieces) ids.push_back(piece.id);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::string text = std::string(words.piece) + (ids.size() == 1 ? " " : "s ");
+  for (std::size_t i = 0; i < ids.size(); ++i) text += (i ? ", " : "") + std::to_string(ids[i]);
   return text;
 }
 
@@ -68,8 +71,8 @@ namespace {
 
 /// The pieces less those that repeat (part of) another one, longest first.
 std::vector<ProfilePiece> distinct_pieces(std::vector<ProfilePiece> pieces, double tolerance,
-                                          const std::string& source) {
-  if (pieces.empty()) throw InputError::in(source, "the faces have no meridional curve");
+                                          const std::string& source, const PieceWords& words) {
+  if (pieces.empty()) throw InputError::in(source, std::string("the ") + words.piece + "s have no " + words.curve);
   std::stable_sort(pieces.begin(), pieces.end(), [](const ProfilePiece& a, const ProfilePiece& b) {
     return length_of(a.curve) > length_of(b.curve);
   });
@@ -94,9 +97,10 @@ bool ends_meet(const BSplineCurve2d& a, const BSplineCurve2d& b, double toleranc
 }
 
 /// 2. The pieces chained end to end, starting from an end that no other piece touches (any,
-/// if closed); each piece reversed where it runs the other way.
+/// if closed) and growing at whichever end of the chain the nearest remaining piece meets; each
+/// piece reversed where it runs the other way. A gap is reported as the smallest there is.
 std::vector<ProfilePiece> chain_pieces(const std::vector<ProfilePiece>& distinct, double tolerance,
-                                       const std::string& source) {
+                                       const std::string& source, const PieceWords& words) {
   const auto touches = [&](const Vec2& p, std::size_t self) {
     for (std::size_t k = 0; k < distinct.size(); ++k) {
       if (k == self) continue;
@@ -107,12 +111,12 @@ std::vector<ProfilePiece> chain_pieces(const std::vector<ProfilePiece>& distinct
     return false;
   };
   std::vector<char> used(distinct.size(), 0);
-  std::vector<ProfilePiece> chain;
+  std::deque<ProfilePiece> chain;
   for (std::size_t k = 0; k < distinct.size() && chain.empty(); ++k) {
     if (!touches(start_of(distinct[k].curve), k)) {
       chain.push_back(distinct[k]);
     } else if (!touches(end_of(distinct[k].curve), k)) {
-      chain.push_back({distinct[k].curve.reversed(), distinct[k].face});
+      chain.push_back({distinct[k].curve.reversed(), distinct[k].id});
     }
     if (!chain.empty()) used[k] = 1;
   }
@@ -121,37 +125,49 @@ std::vector<ProfilePiece> chain_pieces(const std::vector<ProfilePiece>& distinct
     used[0] = 1;
   }
   for (;;) {
-    const Vec2 end = end_of(chain.back().curve);
+    const Vec2 back = end_of(chain.back().curve), front = start_of(chain.front().curve);
     std::size_t best = distinct.size();
-    bool reverse = false;
+    bool at_back = true, reverse = false;
     double best_gap = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < distinct.size(); ++k) {
       if (used[k]) continue;
-      const double to_start = distance(end, start_of(distinct[k].curve));
-      const double to_end = distance(end, end_of(distinct[k].curve));
-      if (std::min(to_start, to_end) < best_gap) {
-        best_gap = std::min(to_start, to_end);
-        best = k;
-        reverse = to_end < to_start;
+      const Vec2 start = start_of(distinct[k].curve), end = end_of(distinct[k].curve);
+      // (gap, joins at the back, reversed): after the back it must start there, before the front end there.
+      for (const auto& [gap, back_end, reversed] : {std::tuple{distance(back, start), true, false},
+                                                   std::tuple{distance(back, end), true, true},
+                                                   std::tuple{distance(front, end), false, false},
+                                                   std::tuple{distance(front, start), false, true}}) {
+        if (gap < best_gap) {
+          best_gap = gap;
+          best = k;
+          at_back = back_end;
+          reverse = reversed;
+        }
       }
     }
     if (best == distinct.size()) break;
     if (best_gap > tolerance) {
-      throw InputError::in(source, "the meridional curves of faces " + face_list(distinct) +
-                                       " do not form one connected profile: face " +
-                                       std::to_string(distinct[best].face) + " is " + std::to_string(best_gap) +
+      throw InputError::in(source, std::string("the ") + words.curve + "s of " + id_list(distinct, words) +
+                                       " do not form " + words.whole + ": " + words.piece + " " +
+                                       std::to_string(distinct[best].id) + " is " + std::to_string(best_gap) +
                                        " away from the end of the others (tolerance " + std::to_string(tolerance) +
                                        ")");
     }
     used[best] = 1;
-    chain.push_back({reverse ? distinct[best].curve.reversed() : distinct[best].curve, distinct[best].face});
+    ProfilePiece piece{reverse ? distinct[best].curve.reversed() : distinct[best].curve, distinct[best].id};
+    if (at_back) {
+      chain.push_back(std::move(piece));
+    } else {
+      chain.push_front(std::move(piece));
+    }
   }
-  return chain;
+  return {chain.begin(), chain.end()};
 }
 
 /// 3. The chain oriented (runs_backwards), and the parameters of its joints, proportional to
 /// length on [0, 1].
-std::vector<double> orient_and_measure(std::vector<ProfilePiece>& chain, double tolerance, const std::string& source) {
+std::vector<double> orient_and_measure(std::vector<ProfilePiece>& chain, double tolerance, const std::string& source,
+                                       const PieceWords& words) {
   if (runs_backwards(start_of(chain.front().curve), end_of(chain.back().curve), tolerance)) {
     std::reverse(chain.begin(), chain.end());
     for (auto& piece : chain) piece.curve = piece.curve.reversed();
@@ -162,7 +178,9 @@ std::vector<double> orient_and_measure(std::vector<ProfilePiece>& chain, double 
     total += length_of(piece.curve);
     breaks.push_back(total);
   }
-  if (!(total > 0.0)) throw InputError::in(source, "the meridional curve of faces " + face_list(chain) + " has no length");
+  if (!(total > 0.0)) {
+    throw InputError::in(source, std::string("the ") + words.curve + " of " + id_list(chain, words) + " has no length");
+  }
   for (double& b : breaks) b /= total;
   breaks.back() = 1.0;
   return breaks;
@@ -172,7 +190,7 @@ std::vector<double> orient_and_measure(std::vector<ProfilePiece>& chain, double 
 /// scaled (which leaves a rational curve unchanged) to match at the joints, knot multiplicity
 /// = degree there.
 Profile concatenate(const std::vector<ProfilePiece>& chain, const std::vector<double>& breaks,
-                    const std::string& source) {
+                    const std::string& source, const PieceWords& words) {
   int degree = 1;
   bool rational = false;
   for (const auto& piece : chain) {
@@ -186,7 +204,8 @@ Profile concatenate(const std::vector<ProfilePiece>& chain, const std::vector<do
   Profile profile{chain.front().curve, {}, {}};
   for (std::size_t k = 0; k < chain.size(); ++k) {
     if (breaks[k + 1] <= breaks[k]) {
-      throw InputError::in(source, "face " + std::to_string(chain[k].face) + " has a meridional curve of no length");
+      throw InputError::in(source, std::string(words.piece) + " " + std::to_string(chain[k].id) + " has a " +
+                                       words.curve + " of no length");
     }
     const BSplineCurve2d c = with_degree(chain[k].curve, degree).reparametrized(breaks[k], breaks[k + 1]);
     std::vector<double> w = c.is_rational() ? c.weights() : std::vector<double>(c.poles().size(), 1.0);
@@ -202,8 +221,8 @@ Profile concatenate(const std::vector<ProfilePiece>& chain, const std::vector<do
     knots.insert(knots.end(), c.knots().begin() + static_cast<std::ptrdiff_t>(k == 0 ? 0 : p + 1), c.knots().end());
     poles.insert(poles.end(), c.poles().begin() + static_cast<std::ptrdiff_t>(first), c.poles().end());
     weights.insert(weights.end(), w.begin() + static_cast<std::ptrdiff_t>(first), w.end());
-    if (profile.faces.empty() || profile.faces.back() != chain[k].face) {
-      profile.faces.push_back(chain[k].face);
+    if (profile.faces.empty() || profile.faces.back() != chain[k].id) {
+      profile.faces.push_back(chain[k].id);
       profile.face_breaks.push_back(breaks[k]);
     }
   }
@@ -214,24 +233,26 @@ Profile concatenate(const std::vector<ProfilePiece>& chain, const std::vector<do
 }
 
 /// Distinct pieces ordered end to end into one profile (steps 2 to 4 of join_profile).
-Profile chain_profile(const std::vector<ProfilePiece>& distinct, double tolerance, const std::string& source) {
-  std::vector<ProfilePiece> chain = chain_pieces(distinct, tolerance, source);
-  const std::vector<double> breaks = orient_and_measure(chain, tolerance, source);
-  return concatenate(chain, breaks, source);
+Profile chain_profile(const std::vector<ProfilePiece>& distinct, double tolerance, const std::string& source,
+                      const PieceWords& words) {
+  std::vector<ProfilePiece> chain = chain_pieces(distinct, tolerance, source, words);
+  const std::vector<double> breaks = orient_and_measure(chain, tolerance, source, words);
+  return concatenate(chain, breaks, source, words);
 }
 
 }  // namespace
 
-Profile join_profile(std::vector<ProfilePiece> pieces, double tolerance, const std::string& source) {
-  return chain_profile(distinct_pieces(std::move(pieces), tolerance, source), tolerance, source);
+Profile join_profile(std::vector<ProfilePiece> pieces, double tolerance, const std::string& source,
+                     const PieceWords& words) {
+  return chain_profile(distinct_pieces(std::move(pieces), tolerance, source, words), tolerance, source, words);
 }
 
 std::vector<Profile> join_profiles(std::vector<ProfilePiece> pieces, double tolerance, const std::string& source) {
   std::vector<int> face_order;  // faces in the order given
   for (const auto& piece : pieces) {
-    if (std::find(face_order.begin(), face_order.end(), piece.face) == face_order.end()) face_order.push_back(piece.face);
+    if (std::find(face_order.begin(), face_order.end(), piece.id) == face_order.end()) face_order.push_back(piece.id);
   }
-  const std::vector<ProfilePiece> distinct = distinct_pieces(std::move(pieces), tolerance, source);
+  const std::vector<ProfilePiece> distinct = distinct_pieces(std::move(pieces), tolerance, source, kFaceWords);
   // Connected groups: pieces whose ends meet, directly or through others (union-find).
   std::vector<std::size_t> group(distinct.size());
   for (std::size_t k = 0; k < group.size(); ++k) group[k] = k;
@@ -259,7 +280,7 @@ std::vector<Profile> join_profiles(std::vector<ProfilePiece> pieces, double tole
   const auto first_face = [&](const std::vector<ProfilePiece>& g) {
     std::size_t first = face_order.size();
     for (const auto& piece : g) {
-      first = std::min(first, static_cast<std::size_t>(std::find(face_order.begin(), face_order.end(), piece.face) -
+      first = std::min(first, static_cast<std::size_t>(std::find(face_order.begin(), face_order.end(), piece.id) -
                                                        face_order.begin()));
     }
     return first;
@@ -267,7 +288,7 @@ std::vector<Profile> join_profiles(std::vector<ProfilePiece> pieces, double tole
   std::stable_sort(groups.begin(), groups.end(),
                    [&](const auto& a, const auto& b) { return first_face(a) < first_face(b); });
   std::vector<Profile> profiles;
-  for (const auto& g : groups) profiles.push_back(chain_profile(g, tolerance, source));
+  for (const auto& g : groups) profiles.push_back(chain_profile(g, tolerance, source, kFaceWords));
   return profiles;
 }
 

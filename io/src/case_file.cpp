@@ -48,7 +48,7 @@ constexpr std::array<std::string_view, 5> kPatchKeys{"role", "deflection", "part
 constexpr std::array<std::string_view, 1> kFeatureKeys{"angle"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"folder", "series"};
 constexpr std::string_view kFeaturesExample = "`features: {angle: 25}` (degrees) or `features: off`";
-constexpr std::array<std::string_view, 6> kDeflectionKeys{"file", "calculix", "degree", "faces", "form", "mode"};
+constexpr std::array<std::string_view, 7> kDeflectionKeys{"file", "calculix", "degree", "faces", "edges", "form", "mode"};
 constexpr std::array<std::string_view, 5> kCalculixKeys{"frd", "inp", "set", "step", "time"};
 constexpr std::string_view kCalculixExample = "`calculix: {frd: disc.frd, inp: disc.inp, set: DISC_FACE}`";
 constexpr std::string_view kRoleList = "fixed, prescribed, slip, sliding, passive, periodic";
@@ -431,7 +431,15 @@ class CaseParser {
                         std::to_string(spec.samples.size())));
       ok = false;
     }
-    if (const Entry* faces = m.find("faces")) ok = read_faces(*faces, spec.faces) && ok;
+    const Entry* faces = m.find("faces");
+    const Entry* edges = m.find("edges");
+    if (faces != nullptr) ok = read_cad_ids(*faces, "face", spec.faces) && ok;
+    if (edges != nullptr) ok = read_cad_ids(*edges, "edge", spec.edges) && ok;
+    if (faces != nullptr && edges != nullptr) {
+      reader_.error(*edges, "give either `faces:` (CAD faces: 3D walls, or an axisymmetric 2D case's) or `edges:` "
+                            "(CAD edges in the plane of a 2D case), not both");
+      ok = false;
+    }
     if (const Entry* form = m.find("form")) {
       const auto value = reader_.choice(*form, geometry::kDeflectionFormNames);
       ok = ok && value.has_value();
@@ -547,26 +555,28 @@ class CaseParser {
     });
   }
 
-  bool read_faces(const Entry& e, std::vector<int>& faces) {
+  /// `faces: [...]` or `edges: [...]`: numbers of CAD faces or edges (`what`), as `hotmesh cad`
+  /// lists them.
+  bool read_cad_ids(const Entry& e, std::string_view what, std::vector<int>& ids) {
     if (!e.value.IsSequence() || e.value.size() == 0) {
       const std::string got = e.value.IsSequence() ? "an empty list" : describe(e.value);
-      reader_.error(e, "expected a list of CAD face numbers (>= 1), e.g. [3, 4], got " + got);
+      reader_.error(e, cat("expected a list of CAD ", what, " numbers (>= 1), e.g. [3, 4], got ", got));
       return false;
     }
     bool ok = true;
     for (std::size_t i = 0; i < e.value.size(); ++i) {
       const Entry entry = e.item(i);
-      const auto face = reader_.integer_in(entry, 1);
-      if (face && std::find(faces.begin(), faces.end(), *face) != faces.end()) {
-        reader_.error(entry, cat("face ", std::to_string(*face), " is listed twice"));
-      } else if (face) {
-        faces.push_back(*face);
+      const auto id = reader_.integer_in(entry, 1);
+      if (id && std::find(ids.begin(), ids.end(), *id) != ids.end()) {
+        reader_.error(entry, cat(what, " ", std::to_string(*id), " is listed twice"));
+      } else if (id) {
+        ids.push_back(*id);
         continue;
       }
       ok = false;
     }
     if (!has_cad_) {
-      reader_.error(e, "CAD face numbers need a CAD file; add `cad: <file.step>` at the top level");
+      reader_.error(e, cat("CAD ", what, " numbers need a CAD file; add `cad: <file.step>` at the top level"));
       ok = false;
     }
     return ok;
@@ -688,7 +698,9 @@ class CaseParser {
     }
   }
 
-  /// A planar table belongs to a 2D mesh, cartesian and meridional ones to a 3D mesh.
+  /// A planar table belongs to a 2D mesh, cartesian and meridional ones to a 3D mesh; with an
+  /// axis, planar and meridional tables go together too (a 2D axisymmetric case; the mesh
+  /// decides, check_case_against_mesh).
   void check_tables_agree() {
     const PatchSpec* first = nullptr;
     for (const PatchSpec& p : c_.patches) {
@@ -696,7 +708,8 @@ class CaseParser {
       if (first == nullptr) first = &p;
       const SampleFrame mine = p.deflection->samples.frame;
       const SampleFrame theirs = first->deflection->samples.frame;
-      if ((mine == SampleFrame::planar) != (theirs == SampleFrame::planar)) {
+      const bool axisymmetric_2d = has_axis_ && mine != SampleFrame::cartesian && theirs != SampleFrame::cartesian;
+      if ((mine == SampleFrame::planar) != (theirs == SampleFrame::planar) && !axisymmetric_2d) {
         reader_.error(p.deflection->line, cat("patches.", p.name, ".deflection"),
                       cat("its table is ", geometry::to_string(mine), " but the table of patch '", first->name,
                           "' (line ", std::to_string(first->deflection->line), ") is ", geometry::to_string(theirs),
@@ -760,17 +773,33 @@ void check_case_against_mesh(const Case& c, const mesh::Mesh& mesh) {
                        mesh_names.empty() ? std::string("(none)") : join(mesh_names)));
     }
     if (!spec.deflection) continue;
-    if (mesh.dimension == 2 && spec.deflection->mode != WallMode::automatic) {
-      problems.add(spec.deflection->line, key + ".deflection.mode",
+    const DeflectionSpec& d = *spec.deflection;
+    if (mesh.dimension == 2 && d.mode != WallMode::automatic) {
+      problems.add(d.line, key + ".deflection.mode",
                    "is for the walls of 3D meshes (a surface of revolution or CAD faces); a 2D wall is a curve");
     }
-    const SampleFrame frame = spec.deflection->samples.frame;
+    if (mesh.dimension == 3 && !d.edges.empty()) {
+      problems.add(d.line, key + ".deflection.edges",
+                   "CAD edges are the walls of 2D cases (curves in the plane z = 0); a 3D wall is on CAD faces: "
+                   "give them, `faces: [...]`");
+    }
+    if (mesh.dimension == 2 && !d.faces.empty() && !c.axis) {
+      problems.add(d.line, key + ".deflection.faces",
+                   cat("CAD faces are surfaces: a 2D case takes them only when it is axisymmetric, with the "
+                       "top-level axis (the mesh's x, y are then z, r about it; ", kAxisExample,
+                       "); a planar 2D wall is CAD edges in the plane z = 0, `edges: [...]` (hotmesh cad lists "
+                       "them)"));
+    }
+    const SampleFrame frame = d.samples.frame;
+    // 2D axisymmetric cases (an axis) take meridional tables too: (r, z) becomes (x, y) = (z, r).
+    const bool axial_plane = mesh.dimension == 2 && c.axis && frame == SampleFrame::meridional;
     const int wanted = frame == SampleFrame::planar ? 2 : 3;
-    if (mesh.dimension != wanted) {
-      problems.add(spec.deflection->line, key + ".deflection",
+    if (mesh.dimension != wanted && !axial_plane) {
+      problems.add(d.line, key + ".deflection",
                    cat("a ", geometry::to_string(frame), " table is for ", dimension_name(wanted),
                        " meshes but the mesh is ", dimension_name(mesh.dimension), "; give its columns as ",
-                       mesh.dimension == 2 ? "x,y,dx,dy" : "x,y,z,dx,dy,dz or r,z,dr,dz"));
+                       mesh.dimension == 2 ? "x,y,dx,dy (or r,z,dr,dz in an axisymmetric case, with the axis)"
+                                           : "x,y,z,dx,dy,dz or r,z,dr,dz"));
     }
   }
   if (!problems.empty()) problems.raise(c.file.string());

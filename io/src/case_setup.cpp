@@ -90,8 +90,9 @@ class CurveBuilder {
   Curve curve(const PatchSpec& spec, const std::optional<DeflectionSpec>& deflection) {
     if (!deflection) return {own_curve(spec), {}};
     const geometry::CurveSamples samples = curve_samples(*deflection);
-    const std::optional<geometry::BSplineCurve2d> cad =
-        deflection->faces.empty() ? std::nullopt : std::optional(cad_curve(*deflection));
+    const std::optional<geometry::BSplineCurve2d> cad = deflection->faces.empty() && deflection->edges.empty()
+                                                            ? std::nullopt
+                                                            : std::optional(cad_curve(*deflection));
     geometry::Reconstruction rebuilt =
         geometry::fit_curve(samples, cad ? &*cad : nullptr, reconstruction_options(*deflection));
     return {std::move(rebuilt.curve), std::move(rebuilt.report)};
@@ -134,7 +135,12 @@ class CurveBuilder {
     return *c_.axis;
   }
 
+  /// The table in the plane of the patch's curve: (r, z) about the axis in 3D; in 2D the mesh's
+  /// (x, y), which a 2D axisymmetric case's meridional table gives as (z, r).
   geometry::CurveSamples curve_samples(const DeflectionSpec& d) const {
+    if (mesh_.dimension == 2 && d.samples.frame == geometry::SampleFrame::meridional) {
+      return geometry::axial_plane_samples(d.samples, axis());
+    }
     return geometry::curve_samples(d.samples, mesh_.dimension == 2 ? nullptr : &axis());
   }
 
@@ -145,9 +151,26 @@ class CurveBuilder {
     return options;
   }
 
+  /// The undeformed wall r(t) from CAD: the faces' meridional curve about the axis (eq. 20) in
+  /// 3D; in 2D (plane_cad_curve) errors name the key at fault.
   geometry::BSplineCurve2d cad_curve(const DeflectionSpec& d) {
-    if (mesh_.dimension == 2) throw InputError("CAD faces describe surfaces of revolution: 3D cases only");
-    return cad_.model().meridional_curve(d.faces, {.axis = axis()}).curve;
+    if (mesh_.dimension == 3) return cad_.model().meridional_curve(d.faces, {.axis = axis()}).curve;
+    try {
+      return plane_cad_curve(d);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("deflection.{}: {}", d.edges.empty() ? "faces" : "edges", e.what()));
+    }
+  }
+
+  /// A 2D wall from CAD: the curve of the edges in the plane z = 0; in an axisymmetric case the
+  /// faces' meridional curve, in the mesh's (x, y) = (z, r).
+  geometry::BSplineCurve2d plane_cad_curve(const DeflectionSpec& d) {
+    if (!d.edges.empty()) return cad_.model().planar_curve(d.edges).curve;
+    if (!c_.axis) {
+      throw InputError("CAD faces in a 2D case need the top-level axis (an axisymmetric case); a planar wall is "
+                       "CAD edges, `edges: [...]`");
+    }
+    return cad_.model().meridional_curve(d.faces, {.axis = *c_.axis}).curve.swapped_coordinates();
   }
 
   /// A sliding patch without table slides over its own undeformed shape: the polyline through

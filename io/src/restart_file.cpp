@@ -33,6 +33,7 @@ json samples_json(const DeflectionSpec& d) {
           {"degree", d.degree},
           {"form", geometry::to_string(d.form)},
           {"faces", d.faces},
+          {"edges", d.edges},
           {"frame", static_cast<int>(d.samples.frame)},
           {"source", d.samples.source},
           {"points", points},
@@ -54,6 +55,7 @@ DeflectionSpec samples_from_json(const json& j) {
   if (!known_form) throw std::domain_error("unknown form '" + form + "'");
   d.form = *known_form;
   d.faces = detail::integer_values<int>(j.at("faces"));
+  if (j.contains("edges")) d.edges = detail::integer_values<int>(j.at("edges"));  // since 2D walls from CAD
   const int frame = integer_value<int>(j.at("frame"));
   if (frame < 0 || frame > static_cast<int>(geometry::SampleFrame::meridional)) {
     throw std::out_of_range("unknown frame " + std::to_string(frame));

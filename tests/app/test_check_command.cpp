@@ -8,7 +8,9 @@
 // edge cuts (--wall-tol); how CAD faces are taken (issue 45: a forward-facing step written with
 // OpenCASCADE, planes and one cylinder fillet, is measured on its faces, undeformed and
 // deflected; faces all about one axis through their meridional curve; --mode); the JSON and
-// JUnit reports, also of a check that cannot be made; user errors.
+// JUnit reports, also of a check that cannot be made; user errors; 2D meshes against CAD edges (a
+// channel with a forward-facing step drawn and meshed by gmsh) and, axisymmetric, against revolved
+// faces about an axis.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -24,6 +26,7 @@
 #include "hotmesh/geometry/cad_export.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/gmsh.hpp"
+#include "channel_step.hpp"
 #include "occt_fixtures.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -686,6 +689,84 @@ TEST(CheckCommand, CaseFileRefusesTheOptionsItGivesAndMeshesOfOtherCases) {
   // The case's own errors, with its file and line.
   test::write_text(dir / "typo.yaml", "mesh: ramp2d.msh\n");
   expect(hotmesh("check --case " + q(dir / "typo.yaml")), "typo.yaml:1: mesh:");
+}
+
+// Issue 45, item 2: a 2D mesh against its CAD. --map names the wall's CAD edges; the nodes on
+// them (gmsh put them on the CAD's lines and arc) are at round-off, and a node moved off the wall
+// by a known amount, on the floor or radially off the fillet, is reported with that distance:
+// the wall is the CAD's circle, not a polygon.
+TEST(CheckCommand, TwoDMeshIsMeasuredAgainstItsCadEdgesAndAMovedNodeIsFound) {
+  const test::ChannelStep channel;
+  ASSERT_EQ(channel.wall_edges().size(), 4u);
+  const std::string map = fmt::format(" --cad {} --unit mm --map bottom={}", q(channel.path("channel.step")),
+                                      fmt::join(channel.wall_edges(), ","));
+  const auto [code, report] = check_json(q(channel.path("channel.msh")) + map);
+  ASSERT_EQ(code, 0) << report.dump(2);
+  const Json& patch = report["patches"][0];
+  EXPECT_LT(patch["max_distance"].get<double>(), 1e-9);
+  EXPECT_THAT(patch["reference"].get<std::string>(), HasSubstr("curve in the x-y plane"));
+
+  const mesh::Mesh mesh = io::read_gmsh(channel.path("channel.msh"));
+  const auto check_moved = [&](const geometry::Vec3& near, const auto& move, double expected) {
+    mesh::Mesh moved = mesh;
+    const mesh::NodeId n = nearest_node(moved, "bottom", near);
+    geometry::Vec3& p = moved.points[static_cast<std::size_t>(n)];
+    p = move(p);
+    io::write_gmsh(channel.path("moved.msh"), moved);
+    const auto [fail_code, fail] = check_json(q(channel.path("moved.msh")) + map);
+    EXPECT_EQ(fail_code, 1);
+    EXPECT_EQ(fail["patches"][0]["worst_node"]["id"], moved.node_id(n));
+    EXPECT_NEAR(fail["patches"][0]["max_distance"].get<double>(), expected, 1e-9);
+  };
+  // A node of the floor, 0.01 up.
+  check_moved({5, 0, 0}, [](const geometry::Vec3& p) { return p + geometry::Vec3{0, 0.01, 0}; }, 0.01);
+  // The node of the fillet nearest to its middle, 0.004 out along its radius.
+  const geometry::Vec3 centre{12, 3, 0};
+  check_moved({12 - std::sqrt(2.0), 3 + std::sqrt(2.0), 0},
+              [&](const geometry::Vec3& p) {
+                EXPECT_NEAR(distance(p, centre), 2.0, 1e-9) << "not a node of the fillet";
+                return centre + (1.0 + 0.004 / 2.0) * (p - centre);
+              },
+              0.004);
+}
+
+// With --case, the walls hotmesh deform builds: the case's own mesh on the wall the CAD edges
+// give, the mesh it deforms into on the wall the FEM table deflects (displacement form).
+TEST(CheckCommand, CaseWithAWallOnCadEdgesChecksItsMeshBeforeAndAfterDeformation) {
+  const test::ChannelStep channel;
+  channel.write_table("bottom.csv", {0.0, 0.03});
+  const std::string case_file = channel.write_case(fmt::format(
+      "{{role: sliding, deflection: {{file: bottom.csv, edges: [{}], form: displacement}}}}", channel.wall_edge_list()));
+  const auto [own_code, own] = check_json("--case " + case_file);
+  ASSERT_EQ(own_code, 0) << own.dump(2);
+  EXPECT_LT(own["patches"][0]["max_distance"].get<double>(), 1e-9);
+  EXPECT_THAT(own["patches"][0]["reference"].get<std::string>(), HasSubstr("CAD edges"));
+  const auto deformed = hotmesh("-q deform " + case_file + " -o " + q(channel.path("out")));
+  ASSERT_EQ(deformed.exit_code, 0) << deformed.output;
+  const auto [code, report] = check_json(q(channel.path("out/deformed.msh")) + " --case " + case_file);
+  ASSERT_EQ(code, 0) << report.dump(2);
+  EXPECT_LT(report["patches"][0]["max_distance"].get<double>(), 1e-9);
+}
+
+// An axisymmetric 2D mesh, x along the axis and y the radius, against the revolved CAD: --map
+// names faces, read about --axis as (z, r).
+TEST(CheckCommand, AxisymmetricTwoDMeshIsMeasuredAgainstTheFacesAboutTheAxis) {
+  test::TempDir dir;
+  const std::string geo = q(test::data_path("gmsh/hub_axisymmetric.geo"));
+  ASSERT_EQ(run_command("gmsh -2 -nt 1 " + geo + " -format msh41 -o " + q(dir / "hub.msh")).exit_code, 0);
+  ASSERT_EQ(run_command("gmsh -0 -setnumber part 3 " + geo + " -o " + q(dir / "hub.step")).exit_code, 0);
+  const auto listing = hotmesh("-q cad --json " + q(dir / "hub.step"));
+  ASSERT_EQ(listing.exit_code, 0) << listing.output;
+  const Json model = Json::parse(listing.output);
+  std::vector<int> faces;
+  for (const auto& face : model["faces"]) {
+    if (face["kind"] == "cylinder" || face["kind"] == "cone") faces.push_back(face["id"].get<int>());
+  }
+  const auto [code, report] = check_json(fmt::format("{} --cad {} --unit mm --axis 0,0,0,1,0,0 --map hub={}", q(dir / "hub.msh"),
+                                                     q(dir / "hub.step"), fmt::join(faces, ",")));
+  ASSERT_EQ(code, 0) << report.dump(2);
+  EXPECT_LT(report["patches"][0]["max_distance"].get<double>(), 1e-9);
+  EXPECT_THAT(report["patches"][0]["reference"].get<std::string>(), HasSubstr("as (z, r) in the mesh's plane"));
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 // installed): the ramp channel of samples/ramp2d as a one-cell-thick case with empty front
 // and back moves exactly as the same mesh does as a .msh file, its written polyMesh passes
 // checkMesh, --foam-time writes only the new time folder into the case, and bad requests exit
-// with code 2 before any work.
+// with code 2 before any work; as a wedge case, axisymmetric with its axis, its wall taken from
+// a revolved CAD part.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -191,13 +192,35 @@ boundary (
 )";
 }
 
+/// The ramp channel's wedge case made by blockMesh in a temporary folder (cfd/), and its
+/// points moved by `hotmesh deform`.
+struct RampWedge {
+  test::TempDir dir;
+  RampWedge() {
+    tf::write_block_mesh_case(dir / "cfd", ramp_wedge());
+    const auto b = tf::run_block_mesh(dir / "cfd");
+    EXPECT_EQ(b.exit_code, 0) << b.output;
+  }
+
+  struct Moved {
+    test::CommandResult result;
+    std::vector<Vec3> original, moved;  ///< the case's points, before and after
+  };
+  /// `hotmesh deform` of the case `yaml` (as wedge.yaml, mesh: cfd) into out/.
+  Moved deform(const std::string& yaml) const {
+    test::write_text(dir / "wedge.yaml", yaml);
+    Moved m;
+    m.result = hotmesh("deform " + shell_quote((dir / "wedge.yaml").string()) + " -o " + shell_quote((dir / "out").string()));
+    if (m.result.exit_code != 0) return m;
+    m.original = tf::ascii_points(dir / "cfd" / "constant" / "polyMesh" / "points");
+    m.moved = tf::ascii_points(dir / "out" / "polyMesh" / "points");
+    return m;
+  }
+};
+
 TEST(DeformFoam, RampAsAWedgeCaseMovesInTheMeridionalPlaneAndPassesCheckMesh) {
   SKIP_WITHOUT_BLOCKMESH();
-  test::TempDir dir;
-  const auto cfd = dir / "cfd";
-  tf::write_block_mesh_case(cfd, ramp_wedge());
-  const auto b = tf::run_block_mesh(cfd);
-  ASSERT_EQ(b.exit_code, 0) << b.output;
+  const RampWedge wedge;
   // The sample's table in the meridional plane: the lower wall at radius 1.
   std::istringstream sample(test::read_text(test::kSample / "ramp.csv"));
   std::string table;
@@ -209,25 +232,50 @@ TEST(DeformFoam, RampAsAWedgeCaseMovesInTheMeridionalPlaneAndPassesCheckMesh) {
       table += line + "\n";
     }
   }
-  test::write_text(dir / "ramp.csv", table);
-  test::write_text(dir / "wedge.yaml", ramp_case("cfd"));
-  const auto out = dir / "out";
-  const auto r = hotmesh("deform " + shell_quote((dir / "wedge.yaml").string()) + " -o " + shell_quote(out.string()));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto original = tf::ascii_points(cfd / "constant" / "polyMesh" / "points");
-  const auto moved = tf::ascii_points(out / "polyMesh" / "points");
-  ASSERT_EQ(moved.size(), original.size());
+  test::write_text(wedge.dir / "ramp.csv", table);
+  const RampWedge::Moved m = wedge.deform(ramp_case("cfd"));
+  ASSERT_EQ(m.result.exit_code, 0) << m.result.output;
+  ASSERT_EQ(m.moved.size(), m.original.size());
   const double tan_a = std::tan(2.5 * std::numbers::pi / 180.0);
   double lowest_past_ramp = 9.0;
-  for (std::size_t q = 0; q < moved.size(); ++q) {
-    const Vec3& p = moved[q];
-    EXPECT_NEAR(p.z, (original[q].z < 0 ? -tan_a : tan_a) * p.y, 1e-14) << q;  // on its own wedge plane
+  for (std::size_t q = 0; q < m.moved.size(); ++q) {
+    const Vec3& p = m.moved[q];
+    EXPECT_NEAR(p.z, (m.original[q].z < 0 ? -tan_a : tan_a) * p.y, 1e-14) << q;  // on its own wedge plane
     if (p.x > 1.1) lowest_past_ramp = std::min(lowest_past_ramp, std::hypot(p.y, p.z));
   }
   EXPECT_NEAR(lowest_past_ramp, 1.5, 1e-9);  // the inner wall past the ramp, raised by h/2
-  const auto k = tf::check_mesh(cfd, out / "polyMesh", dir / "check");
+  const auto k = tf::check_mesh(wedge.dir / "cfd", wedge.dir / "out" / "polyMesh", wedge.dir / "check");
   EXPECT_EQ(k.exit_code, 0) << k.output;
   EXPECT_THAT(k.output, HasSubstr("Mesh OK.")) << k.output;
+}
+
+// A wedge case is axisymmetric: with the wedge's axis in the case file, its inner wall (radius 1
+// about the x axis) is the cylinder face of a revolved CAD part (hub_axisymmetric.geo, drawn by
+// gmsh), deflected by a meridional (r, z) table that grows the radius by 0.05: the inner wall's
+// points end at radius 1.05 on both wedge planes.
+TEST(DeformFoam, WedgeCaseTakesItsWallFromTheRevolvedCadAboutItsAxis) {
+  SKIP_WITHOUT_BLOCKMESH();
+  const RampWedge wedge;
+  const std::string geo = shell_quote(test::data_path("gmsh/hub_axisymmetric.geo").string());
+  const auto cad = test::run_command("gmsh -0 -setnumber part 3 " + geo + " -o " + shell_quote((wedge.dir / "hub.step").string()));
+  ASSERT_EQ(cad.exit_code, 0) << cad.output;
+  std::string table = "r,z,dr,dz\n";
+  for (int j = 0; j <= 20; ++j) table += fmt::format("1,{},0.05,0\n", 0.1 * j);
+  test::write_text(wedge.dir / "hub.csv", table);
+  // Face 1 of the hub: its cylinder of radius 1 (hotmesh cad lists it first, see test_deform_cad_2d.cpp).
+  const RampWedge::Moved m =
+      wedge.deform("mesh: cfd\ncad: hub.step\nlength_unit: mm\naxis: {origin: [0, 0, 0], direction: [1, 0, 0]}\n"
+                   "patches:\n  left: {role: slip}\n  right: {role: slip}\n  top: {role: fixed}\n"
+                   "  bottom: {role: sliding, deflection: {file: hub.csv, faces: [1], form: displacement}}\n");
+  ASSERT_EQ(m.result.exit_code, 0) << m.result.output;
+  ASSERT_EQ(m.moved.size(), m.original.size());
+  int inner = 0;
+  for (std::size_t q = 0; q < m.moved.size(); ++q) {
+    if (std::abs(std::hypot(m.original[q].y, m.original[q].z) - 1.0) > 1e-12) continue;
+    ++inner;
+    EXPECT_NEAR(std::hypot(m.moved[q].y, m.moved[q].z), 1.05, 1e-9) << q;
+  }
+  EXPECT_EQ(inner, 44);  // 22 points along the wall on each wedge plane
 }
 
 TEST(DeformFoam, InfoShowsTheCasesPatchesAndConvertWritesItsMeshAsMsh) {

@@ -1,5 +1,6 @@
-// Tests of `hotmesh cad` and `hotmesh curve`: face listings of real CAD files, the outputs of a
-// reconstruction with and without CAD (checked values, not just files), and user errors.
+// Tests of `hotmesh cad` and `hotmesh curve`: face and edge listings of real CAD files, the
+// outputs of a reconstruction with and without CAD (checked values, not just files), and user
+// errors.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -19,6 +20,7 @@ namespace hotmesh::app {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using test::run_command;
 using test::shell_quote;
 
@@ -55,7 +57,8 @@ TEST(CadCli, CadAndCurveHaveHelp) {
 TEST(CadCli, ListsFacesWithKindsAndAxes) {
   const auto text = hotmesh("cad --unit mm " + cad("OCC8842_cone_CATIA.igs"));
   ASSERT_EQ(text.exit_code, 0) << text.output;
-  EXPECT_THAT(text.output, HasSubstr("3 faces, lengths in mm"));
+  EXPECT_THAT(text.output, HasSubstr("3 faces, 6 edges, lengths in mm"));
+  EXPECT_THAT(text.output, Not(HasSubstr("edge  kind")));  // a 3D part: its edges on request (--edges)
   EXPECT_THAT(text.output, HasSubstr("revolution  (0, 0, 80) along (0, 0, 1) [analytic]"));
 
   const auto json = hotmesh("-q cad --json " + cad("OCC8842_cone_Ideas.igs"));
@@ -71,10 +74,27 @@ TEST(CadCli, ListsFacesWithKindsAndAxes) {
   EXPECT_NEAR(j["faces"][0]["bounds"]["max"][1].get<double>(), 0.1, 1e-6);  // 100 mm
 }
 
-TEST(CadCli, FilesWithoutFacesOrNotCadAreUserErrors) {
+// The walls of 2D cases are CAD edges: listed by default for a drawing without faces (or in one
+// plane), on request (--edges) for any other file, and always in the JSON.
+TEST(CadCli, ListsEdgesOfDrawingsAndOnRequest) {
   const auto disc = hotmesh("cad " + cad("Disc.igs"));
-  EXPECT_EQ(disc.exit_code, 2);
-  EXPECT_THAT(disc.output, HasSubstr("Disc.igs: the file holds no faces (46 edges)"));
+  ASSERT_EQ(disc.exit_code, 0) << disc.output;
+  EXPECT_THAT(disc.output, HasSubstr("Disc.igs: 0 faces, 46 edges, lengths in m"));
+  EXPECT_THAT(disc.output, HasSubstr("\n  46  "));
+  const auto asked = hotmesh("cad --edges --unit mm " + cad("OCC8842_cone_CATIA.igs"));
+  ASSERT_EQ(asked.exit_code, 0) << asked.output;
+  EXPECT_THAT(asked.output, HasSubstr("edge  kind        start"));
+  EXPECT_THAT(asked.output, HasSubstr("circle"));
+  const auto json = hotmesh("-q cad --json " + cad("Disc.igs"));
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  const auto edges = nlohmann::json::parse(json.output)["edges"];
+  ASSERT_EQ(edges.size(), 46u);
+  EXPECT_EQ(edges[0]["id"], 1);
+  EXPECT_EQ(edges[0]["kind"], "line");
+  EXPECT_NEAR(edges[0]["length"].get<double>(), 0.1116, 1e-6);  // from (-0.500716, -0.657282) to (-0.612316, -0.657282)
+}
+
+TEST(CadCli, FilesWithoutShapesOrNotCadAreUserErrors) {
   test::TempDir dir;
   test::write_text(dir / "notes.step", "not a step file\n");
   const auto notes = hotmesh("cad " + shell_quote((dir / "notes.step").string()));

@@ -1,7 +1,7 @@
 // Tests of `hotmesh serve`'s JSON API, route by route: the happy path with checked values (the
-// CATIA cone and its FEM nodes: the deflected curve is known in closed form) and every error
-// path with its status and a message that says what is wrong. The server runs as a child
-// process on a free loopback port (serve_process.hpp).
+// CATIA cone and its FEM nodes: the deflected curve is known in closed form; a 2D wall on the CAD
+// edges of a channel drawn by gmsh) and every error path with its status and a message that says
+// what is wrong. The server runs as a child process on a free loopback port (serve_process.hpp).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
@@ -11,6 +11,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "channel_step.hpp"
 #include "cone_nodes.hpp"
 #include "occt_fixtures.hpp"
 #include "run_command.hpp"
@@ -317,6 +318,47 @@ TEST_F(ServeApi, ReconstructsA2DTableWithoutCad) {
   EXPECT_TRUE(r.body["summary"]["cad"].is_null());
   EXPECT_GT(r.body["summary"]["nodes"].get<int>(), 100);
   EXPECT_EQ(r.body["summary"]["max_node_distance_to_cad"], 0.0);
+}
+
+// Issue 45, item 2: a 2D drawing (gmsh's channel with a forward-facing step) loads with its
+// edges, and a wall on some of them is the curve of those edges: a planar table deflects it, and
+// in displacement form the fillet stays a circle (moved by the table's rigid shift).
+TEST_F(ServeApi, ReconstructsA2DWallOnCadEdges) {
+  const test::ChannelStep channel;
+  const Reply loaded = api_->upload("channel.step", test::read_text(channel.path("channel.step")));
+  ASSERT_EQ(loaded.status, 201) << loaded.text;
+  EXPECT_EQ(loaded.body["face_count"], 1);
+  EXPECT_EQ(loaded.body["edge_count"], 7);
+  ASSERT_EQ(loaded.body["edges"].size(), 7u);
+  const std::string model = loaded.body["model"];
+  channel.write_table("bottom.csv", {0.0, 0.03});
+  Json request = {{"model", model},
+                  {"edges", channel.wall_edges()},
+                  {"csv", test::read_text(channel.path("bottom.csv"))},
+                  {"form", "displacement"},
+                  {"samples", 400}};
+  const Reply r = api_->post("/api/curves", request);
+  ASSERT_EQ(r.status, 201) << r.text;
+  EXPECT_EQ(r.body["frame"], "xy");
+  EXPECT_EQ(r.body["edges"], Json(channel.wall_edges()));
+  const Json& breaks = r.body["edge_breaks"];
+  ASSERT_EQ(breaks.size(), 5u);
+  int on_fillet = 0;
+  for (const Json& sample : r.body["deformed"]["samples"]) {
+    const double t = sample[0].get<double>();
+    if (t <= breaks[2].get<double>() || t >= breaks[3].get<double>()) continue;
+    ++on_fillet;
+    EXPECT_LT(test::StepWall::off_fillet({sample[1].get<double>(), sample[2].get<double>()}, {0.0, 0.03}), 1e-9) << t;
+  }
+  EXPECT_GT(on_fillet, 10);
+
+  request["faces"] = {1};
+  expect_error(api_->post("/api/curves", request), 400, "edges: give either \"faces\"");
+  request.erase("faces");
+  request["edges"] = {1, 9};
+  expect_error(api_->post("/api/curves", request), 400, "edges: the model has 7 edges; there is no edge 9");
+  request["edges"] = {1, 2, 4};
+  expect_error(api_->post("/api/curves", request), 422, "do not form one chain");
 }
 
 // A body the fuzz target of the service made from the ramp's table (docs/fuzzing.md): one node

@@ -6,6 +6,8 @@
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
@@ -13,6 +15,7 @@
 #include <BRepPrimAPI_MakeRevol.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <GeomConvert.hxx>
+#include <GC_MakeArcOfCircle.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_SurfaceOfRevolution.hxx>
@@ -27,7 +30,10 @@
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TopExp_Explorer.hxx>
+#include <BRep_Builder.hxx>
+#include <Geom_TrimmedCurve.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <UnitsMethods.hxx>
@@ -36,6 +42,7 @@
 #include <gp_Ax3.hxx>
 #include <gp_Cylinder.hxx>
 
+#include <cmath>
 #include <initializer_list>
 #include <numbers>
 #include <stdexcept>
@@ -116,6 +123,40 @@ TopoDS_Face polygon_face(std::initializer_list<gp_Pnt> corners) {
   return BRepBuilderAPI_MakeFace(polygon.Wire(), true).Face();
 }
 
+/// The step wall's edges (StepWall), in the plane z = 0 unless the drawing moves them.
+std::vector<TopoDS_Edge> step_wall_edges(StepWallDrawing drawing) {
+  const std::vector<Vec2> v = StepWall::vertices();
+  const auto at = [](const Vec2& p, double z = 0.0) { return gp_Pnt(p.x, p.y, z); };
+  const double lift = drawing == StepWallDrawing::lifted ? 0.5 : 0.0;
+  const Vec2 c = StepWall::fillet_centre();
+  const double r = StepWall::kFilletRadius * std::sqrt(0.5);  // the arc's middle point
+  const Handle(Geom_TrimmedCurve) arc =
+      GC_MakeArcOfCircle(at(v[2], lift), at({c.x - r, c.y + r}, lift), at(v[3], lift)).Value();
+  const Vec2 top_start = drawing == StepWallDrawing::gap ? Vec2{v[3].x + 0.5, v[3].y} : v[3];
+  return {BRepBuilderAPI_MakeEdge(at(v[0]), at(v[1])).Edge(), BRepBuilderAPI_MakeEdge(at(v[1]), at(v[2])).Edge(),
+          BRepBuilderAPI_MakeEdge(arc).Edge(), BRepBuilderAPI_MakeEdge(at(top_start), at(v[4])).Edge()};
+}
+
+TopoDS_Shape step_wall_shape(StepWallDrawing drawing) {
+  const std::vector<TopoDS_Edge> wall = step_wall_edges(drawing);
+  BRepBuilderAPI_MakeWire wire;
+  for (const TopoDS_Edge& e : wall) wire.Add(e);
+  if (drawing != StepWallDrawing::face) {
+    if (drawing == StepWallDrawing::edges) return wire.Wire();
+    TopoDS_Compound loose;  // lifted or broken: no wire joins them
+    BRep_Builder builder;
+    builder.MakeCompound(loose);
+    for (const TopoDS_Edge& e : wall) builder.Add(loose, e);
+    return loose;
+  }
+  const gp_Pnt end(StepWall::kLength, StepWall::kStepHeight, 0), top_end(StepWall::kLength, StepWall::kChannelHeight, 0);
+  const gp_Pnt top_start(0, StepWall::kChannelHeight, 0), start(0, 0, 0);
+  wire.Add(BRepBuilderAPI_MakeEdge(end, top_end).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(top_end, top_start).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(top_start, start).Edge());
+  return BRepBuilderAPI_MakeFace(wire.Wire(), true).Face();
+}
+
 }  // namespace
 
 BSplineCurve2d profile() {
@@ -136,6 +177,14 @@ void write_forward_facing_step(const std::filesystem::path& path) {
   sewing.Add(polygon_face({gp_Pnt(11, 3, 0), gp_Pnt(20, 3, 0), gp_Pnt(20, 3, depth), gp_Pnt(11, 3, depth)}));
   sewing.Perform();
   write_step_or_iges(path, sewing.SewedShape());
+}
+
+void write_step_wall(const std::filesystem::path& path, StepWallDrawing drawing) {
+  write_step_or_iges(path, step_wall_shape(drawing));
+}
+
+void write_lone_vertex(const std::filesystem::path& path) {
+  write_step_or_iges(path, BRepBuilderAPI_MakeVertex(gp_Pnt(1, 2, 3)).Vertex());
 }
 
 std::vector<std::vector<Vec3>> edge_points(const std::filesystem::path& path, int samples) {

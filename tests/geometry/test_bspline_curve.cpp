@@ -1,5 +1,6 @@
 // Tests of BSplineCurve2d: de Boor evaluation of points and derivatives (checked against exact
-// circles and finite differences), spans at knots, validation, reversal and reparametrisation.
+// circles and finite differences), spans at knots, validation, reversal, reparametrisation and
+// exchanged coordinates.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -67,6 +68,18 @@ TEST(BSplineCurve2d, ReversedAndReparametrizedTraceTheSamePoints) {
   EXPECT_EQ(moved.first_parameter(), 2.0);
   EXPECT_EQ(moved.last_parameter(), 6.0);
   EXPECT_EQ(arc.translated({1, 2}).point(0.0), (Vec2{2, 2}));
+}
+
+// A rational arc about (1, -1) with its coordinates exchanged is the mirror arc about (-1, 1):
+// every point (a, b) becomes (b, a), weights and all.
+TEST(BSplineCurve2d, SwappedCoordinatesMirrorEveryPointInTheDiagonal) {
+  const BSplineCurve2d arc = quarter_circle(2.0, {1.0, -1.0});
+  const BSplineCurve2d mirror = arc.swapped_coordinates();
+  for (int i = 0; i <= 10; ++i) {
+    const Vec2 p = arc.point(i / 10.0), q = mirror.point(i / 10.0);
+    EXPECT_NEAR(distance(q, Vec2{p.y, p.x}), 0.0, 1e-15) << i;
+    EXPECT_NEAR(distance(q, Vec2{-1.0, 1.0}), 2.0, 1e-14) << i;
+  }
 }
 
 TEST(BSplineCurve2d, RejectsInvalidDefinitions) {

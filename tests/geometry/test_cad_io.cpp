@@ -1,6 +1,7 @@
 // Tests of CAD files written and read back: shapes built in code (cylinders, cones, tori,
-// revolved B-spline profiles, rotational B-spline surfaces) in STEP and IGES, hotmesh's own
-// export of B-spline curves and surfaces, and clear errors for files that are not CAD.
+// revolved B-spline profiles, rotational B-spline surfaces, the plane drawing of a 2D wall) in
+// STEP and IGES, their edges numbered and listed, hotmesh's own export of B-spline curves and
+// surfaces, and clear errors for files that are not CAD.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -206,6 +207,62 @@ TEST(CadFiles, MalformedEmptyAndNonCadFilesGiveClearErrors) {
 // Issue 18, item 3: one bad reference in a real STEP file (the stator-well sample's) made
 // OpenCASCADE's translation follow a null pointer or recurse without end (exit 139, no
 // message), or it left a face out and renumbered the rest.
+/// The edge of `model` from `a` to `b` (either way), in the model's unit.
+const EdgeInfo* edge_between(const CadModel& model, Vec3 a, Vec3 b) {
+  for (const EdgeInfo& e : model.edges()) {
+    if ((distance(e.start, a) < 1e-9 && distance(e.end, b) < 1e-9) || (distance(e.start, b) < 1e-9 && distance(e.end, a) < 1e-9)) {
+      return &e;
+    }
+  }
+  return nullptr;
+}
+
+TEST(CadFiles, ADrawingOfEdgesAloneIsReadWithEveryEdgeListed) {
+  hotmesh::test::TempDir dir;
+  test::write_step_wall(dir / "wall.step", test::StepWallDrawing::edges);
+  const CadModel model = read_mm(dir / "wall.step");
+  EXPECT_TRUE(model.faces().empty());
+  ASSERT_EQ(model.edges().size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(model.edges()[i].id, static_cast<int>(i) + 1);
+  const struct {
+    Vec3 a, b;
+    EdgeKind kind;
+    double length;
+  } expected[] = {{{0, 0, 0}, {10, 0, 0}, EdgeKind::line, 10.0},
+                  {{10, 0, 0}, {10, 3, 0}, EdgeKind::line, 3.0},
+                  {{10, 3, 0}, {12, 5, 0}, EdgeKind::circle, std::numbers::pi},  // a quarter of radius 2
+                  {{12, 5, 0}, {25, 5, 0}, EdgeKind::line, 13.0}};
+  for (const auto& e : expected) {
+    const EdgeInfo* found = edge_between(model, e.a, e.b);
+    ASSERT_NE(found, nullptr) << "no edge from (" << e.a.x << ", " << e.a.y << ") to (" << e.b.x << ", " << e.b.y << ")";
+    EXPECT_EQ(found->kind, e.kind) << to_string(found->kind);
+    EXPECT_NEAR(found->length, e.length, 1e-9);
+  }
+}
+
+// The edges of faces keep the numbers a wall on faces (CadFace) gives them: the same list serves
+// `hotmesh cad`, a 2D case's `edges:` and the joins of walls on faces.
+TEST(CadFiles, EdgesOfAFaceAreNumberedAsItsCadFaceNumbersThem) {
+  hotmesh::test::TempDir dir;
+  test::write_step_wall(dir / "channel.step", test::StepWallDrawing::face);
+  const CadModel model = read_mm(dir / "channel.step");
+  ASSERT_EQ(model.faces().size(), 1u);
+  EXPECT_EQ(model.edges().size(), 7u);
+  const CadFace face = model.cad_face(1);
+  ASSERT_EQ(face.edges.size(), 7u);
+  for (const FaceEdge& edge : face.edges) {
+    const EdgeInfo& listed = model.edge(edge.edge);
+    EXPECT_EQ(edge_between(model, edge.points.front(), edge.points.back()), &listed) << "edge " << edge.edge;
+  }
+}
+
+TEST(CadFiles, AFileWithNeitherFacesNorEdgesIsRefused) {
+  hotmesh::test::TempDir dir;
+  test::write_lone_vertex(dir / "point.step");
+  EXPECT_THAT([&] { CadModel::read(dir / "point.step"); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("point.step: the file holds no faces and no edges")));
+}
+
 TEST(CadFiles, DamagedReferencesAreUserErrorsNotCrashes) {
   hotmesh::test::TempDir dir;
   const std::filesystem::path sample = std::filesystem::path(HOTMESH_SOURCE_DIR) / "samples" / "stator_well" / "stator_well.step";

@@ -254,9 +254,20 @@ TEST(CadRealFiles, StatorWellCasingOnEitherSideOfTheBladeIsTwoSeparateProfiles) 
   EXPECT_EQ(groups[1].faces, std::vector<int>{4});
 }
 
-TEST(CadRealFiles, DrawingWithoutSurfacesIsRejected) {
-  EXPECT_THAT([] { CadModel::read(cad_file("Disc.igs")); },
-              ::testing::ThrowsMessage<InputError>(HasSubstr("Disc.igs: the file holds no faces (46 edges)")));
+// A 2D drawing (lines and arcs, no surface) is read for its edges: the walls of 2D cases.
+TEST(CadRealFiles, DrawingWithoutSurfacesIsReadAsItsEdges) {
+  const CadModel model = read_mm("Disc.igs");
+  EXPECT_TRUE(model.faces().empty());
+  ASSERT_EQ(model.edges().size(), 46u);
+  int lines = 0, circles = 0;
+  for (const EdgeInfo& e : model.edges()) {
+    lines += e.kind == EdgeKind::line;
+    circles += e.kind == EdgeKind::circle;
+    EXPECT_NEAR(e.start.z, 0.0, 1e-9) << "edge " << e.id;  // drawn in the plane z = 0
+    EXPECT_GT(e.length, 0.0) << "edge " << e.id;
+  }
+  EXPECT_EQ(lines + circles, 46);
+  EXPECT_GT(circles, 0);
 }
 
 TEST(CadRealFiles, FaceAsBSplineSurfaceMatchesTheFace) {

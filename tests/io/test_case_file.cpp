@@ -296,7 +296,7 @@ TEST_F(CaseFile, RejectsUnknownPatchKey) {
 TEST_F(CaseFile, RejectsUnknownDeflectionKey) {
   EXPECT_EQ(error_with("  ramp:\n    role: sliding\n    deflection:\n      file: plane.csv\n      degre: 2\n"),
             at(8) + "patches.ramp.deflection.degre: unknown key (did you mean 'degree'?); allowed in "
-                    "patches.ramp.deflection: file, calculix, degree, faces, form, mode");
+                    "patches.ramp.deflection: file, calculix, degree, faces, edges, form, mode");
 }
 
 TEST_F(CaseFile, RejectsRepeatedKeys) {

@@ -1,10 +1,11 @@
 // Tests of a case file's patches (hotmesh::io::read_case, check_case_against_mesh): roles and
-// where deflections are allowed, deflection tables and their modes, the axis, periodic pairs,
-// and the case checked against the mesh's patches and dimension.
+// where deflections are allowed, deflection tables and their modes, CAD faces and edges, the
+// axis, periodic pairs, and the case checked against the mesh's patches and dimension.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "case_file_fixture.hpp"
@@ -173,23 +174,60 @@ TEST_F(CaseAgainstMesh, ReportsMeshPatchesWithoutRoleAndUnknownPatches) {
                               "ymin, ymax");
 }
 
+/// A case of test::unit_square (`top`: top-level keys after `mesh`): patch ymin sliding with
+/// `deflection`, on the last line (6, plus the lines of `top`).
+std::string square_case(std::string_view top, std::string_view deflection) {
+  return "mesh: mesh.msh\n" + std::string(top) + "patches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n" +
+         "  ymax: {role: fixed}\n  ymin: {role: sliding, deflection: " + std::string(deflection) + "}\n";
+}
+
+/// The same for test::unit_cube(1): ymin on line 8, plus the lines of `top`.
+std::string cube_case(std::string_view top, std::string_view deflection) {
+  return "mesh: mesh.msh\n" + std::string(top) + "patches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n" +
+         "  ymax: {role: fixed}\n  zmin: {role: fixed}\n  zmax: {role: fixed}\n  ymin: {role: sliding, deflection: " +
+         std::string(deflection) + "}\n";
+}
+
+constexpr std::string_view kAxisX = "axis: {origin: [0, 0, 0], direction: [1, 0, 0]}\n";
+
 TEST_F(CaseAgainstMesh, ChecksTableFrameAgainstMeshDimension) {
-  const std::string square = "mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n"
-                             "  ymax: {role: fixed}\n  ymin: {role: sliding, deflection: {file: blade.csv}}\n";
-  EXPECT_EQ(mesh_error(square, test::unit_square(2, 2)),
+  EXPECT_EQ(mesh_error(square_case("", "{file: blade.csv}"), test::unit_square(2, 2)),
             at(6) + "patches.ymin.deflection: a cartesian (x, y, z) table is for 3D meshes but the mesh is 2D; give "
-                    "its columns as x,y,dx,dy");
-  const std::string cube = "mesh: mesh.msh\npatches:\n  xmin: {role: fixed}\n  xmax: {role: fixed}\n"
-                           "  ymax: {role: fixed}\n  zmin: {role: fixed}\n  zmax: {role: fixed}\n"
-                           "  ymin: {role: sliding, deflection: {file: plane.csv}}\n";
-  EXPECT_EQ(mesh_error(cube, test::unit_cube(1)),
+                    "its columns as x,y,dx,dy (or r,z,dr,dz in an axisymmetric case, with the axis)");
+  EXPECT_EQ(mesh_error(cube_case("", "{file: plane.csv}"), test::unit_cube(1)),
             at(8) + "patches.ymin.deflection: a planar (x, y) table is for 2D meshes but the mesh is 3D; give its "
                     "columns as x,y,z,dx,dy,dz or r,z,dr,dz");
-  const std::string meridional = "mesh: mesh.msh\naxis: {origin: [0, 0, 0], direction: [0, 1, 0]}\npatches:\n"
-                                 "  xmin: {role: fixed}\n  xmax: {role: fixed}\n  ymax: {role: fixed}\n"
-                                 "  ymin: {role: sliding, deflection: {file: ramp.csv}}\n";
-  EXPECT_THAT(mesh_error(meridional, test::unit_square(2, 2)),
-              StartsWith(at(7) + "patches.ymin.deflection: a meridional (r, z) table is for 3D meshes but the mesh is 2D"));
+  // With an axis a 2D case is axisymmetric: its (x, y) are (z, r), and a meridional table fits.
+  EXPECT_EQ(mesh_error(square_case(kAxisX, "{file: ramp.csv}"), test::unit_square(2, 2)), "no error");
+}
+
+TEST_F(CaseFile, EdgesNeedCadAndAreNotGivenWithFaces) {
+  const auto lines = lines_of(error_with("  a: {role: sliding, deflection: {file: plane.csv, edges: [1, 2, 1]}}\n"
+                                         "  b: {role: sliding, deflection: {file: plane.csv, edges: []}}\n"));
+  ASSERT_THAT(lines, SizeIs(3));
+  EXPECT_EQ(lines[0], at(4) + "patches.a.deflection.edges[2]: edge 1 is listed twice");
+  EXPECT_EQ(lines[1], at(4) + "patches.a.deflection.edges: CAD edge numbers need a CAD file; add `cad: <file.step>` at "
+                              "the top level");
+  EXPECT_EQ(lines[2], at(5) + "patches.b.deflection.edges: expected a list of CAD edge numbers (>= 1), e.g. [3, 4], "
+                              "got an empty list");
+  EXPECT_THAT(error_of(square_case("cad: part.step\n", "{file: plane.csv, faces: [1], edges: [2]}")),
+              StartsWith(at(7) + "patches.ymin.deflection.edges: give either `faces:` (CAD faces: 3D walls, or an "
+                                 "axisymmetric 2D case's) or `edges:`"));
+  EXPECT_EQ(parse(square_case("cad: part.step\n", "{file: plane.csv, edges: [4, 2]}")).find_patch("ymin")->deflection->edges,
+            (std::vector<int>{4, 2}));
+}
+
+// A 3D wall is on CAD faces, a planar 2D wall on CAD edges, and an axisymmetric 2D case (one
+// with an axis) takes faces, whose meridional curve it reads in its (z, r) plane.
+TEST_F(CaseAgainstMesh, EdgesAreFor2DMeshesAndFacesIn2DNeedTheAxis) {
+  EXPECT_EQ(mesh_error(cube_case("cad: part.step\n", "{file: blade.csv, edges: [1]}"), test::unit_cube(1)),
+            at(9) + "patches.ymin.deflection.edges: CAD edges are the walls of 2D cases (curves in the plane z = 0); a "
+                    "3D wall is on CAD faces: give them, `faces: [...]`");
+  EXPECT_THAT(mesh_error(square_case("cad: part.step\n", "{file: plane.csv, faces: [1]}"), test::unit_square(2, 2)),
+              StartsWith(at(7) + "patches.ymin.deflection.faces: CAD faces are surfaces: a 2D case takes them only when "
+                                 "it is axisymmetric, with the top-level axis"));
+  EXPECT_EQ(mesh_error(square_case("cad: part.step\n" + std::string(kAxisX), "{file: ramp.csv, faces: [1]}"), test::unit_square(2, 2)),
+            "no error");
 }
 
 // The deflection's `mode` (how a 3D wall is built): its values, a meridional wall without the

@@ -64,6 +64,9 @@ class BSplineCurve2d {
   BSplineCurve2d reparametrized(double first, double last) const;
   /// The curve moved by `offset`.
   BSplineCurve2d translated(const Vec2& offset) const;
+  /// The curve with its two coordinates exchanged, (a, b) -> (b, a): a meridional curve (r, z)
+  /// in the plane of a 2D axisymmetric mesh, whose (x, y) are (z, r).
+  BSplineCurve2d swapped_coordinates() const;
 
  private:
   int degree_;

@@ -1,9 +1,13 @@
 // hotmesh geometry: CAD files (STEP, IGES) read with OpenCASCADE, seen as a list of faces and
-// as the source of meridional curves (section 4.2: "the intersection of a CAD surface with a
-// meridional plane is a B-Spline curve r(t)").
+// edges, and as the source of the walls' curves: meridional curves of faces (section 4.2: "the
+// intersection of a CAD surface with a meridional plane is a B-Spline curve r(t)") and, for 2D
+// cases drawn in the plane z = 0, the curve of some edges in that plane.
 //
 // Faces are numbered 1, 2, ... in the order OpenCASCADE explores the transferred shape, which
 // follows the file; a face used by several instances of an assembly appears once per instance.
+// Edges are numbered 1, 2, ...: first those of the faces, face by face in face order (the numbers
+// a CadFace's edges carry), then those outside any face (the wires and loose edges of a
+// drawing), in the order OpenCASCADE explores the shape.
 // Coordinates are converted on import to the length unit asked for (metres by default), so
 // FEM tables and meshes in that unit match. Surfaces of revolution are recognised from their
 // type (revolved curves, cylinders, cones, spheres, tori: the axis is the file's) or, for
@@ -61,6 +65,19 @@ struct Box3 {
   Vec3 max;
 };
 
+/// The kind of curve an edge follows.
+enum class EdgeKind { line, circle, ellipse, hyperbola, parabola, bezier, bspline, offset, other, degenerated };
+
+const char* to_string(EdgeKind kind);  ///< "line", "circle", ..., "degenerated" (collapsed to a point)
+
+struct EdgeInfo {
+  int id = 0;  ///< 1-based (see the top of this file)
+  EdgeKind kind = EdgeKind::other;
+  Vec3 start;  ///< the ends of its curve, in the curve's direction
+  Vec3 end;
+  double length = 0.0;
+};
+
 struct FaceInfo {
   int id = 0;        ///< 1-based, file order
   std::string name;  ///< from the file (STEP item name, IGES name or label); empty if none
@@ -91,10 +108,25 @@ struct MeridionalCurve {
   double tolerance = 0.0;           ///< the absolute tolerance used
 };
 
+struct PlanarCurveOptions {
+  /// Tolerance relative to the size of the edges (their bounding-box diagonal): for an edge to
+  /// lie in the plane z = 0 and for the ends of two edges to meet.
+  double relative_tolerance = 1e-4;
+};
+
+/// The curve of some edges in the plane z = 0: (x, y), parameter [0, 1].
+struct PlanarCurve {
+  BSplineCurve2d curve;
+  std::vector<int> edges;           ///< the edges in order along the curve
+  std::vector<double> edge_breaks;  ///< parameter where each of `edges` starts, then 1
+  double tolerance = 0.0;           ///< the absolute tolerance used
+};
+
 class CadModel {
  public:
   /// Reads a STEP (.step, .stp) or IGES (.iges, .igs) file. Throws hotmesh::InputError naming
-  /// the file if it cannot be read, is empty, is not STEP/IGES, or holds no faces.
+  /// the file if it cannot be read, is empty, is not STEP/IGES, or holds neither faces nor edges
+  /// (a drawing of edges alone is read: a 2D case's walls).
   static CadModel read(const std::filesystem::path& path, const CadReadOptions& options = {});
 
   CadModel(CadModel&&) noexcept;
@@ -106,6 +138,9 @@ class CadModel {
   const std::vector<FaceInfo>& faces() const;
   /// Throws hotmesh::InputError if there is no face `id`.
   const FaceInfo& face(int id) const;
+  const std::vector<EdgeInfo>& edges() const;
+  /// Throws hotmesh::InputError if there is no edge `id`.
+  const EdgeInfo& edge(int id) const;
 
   /// The face's surface as a B-spline, trimmed to the face's parameter bounds.
   BSplineSurface face_bspline(int id) const;
@@ -129,6 +164,15 @@ class CadModel {
   /// one profile. Throws as meridional_curve does, except for separate profiles.
   std::vector<MeridionalCurve> meridional_profiles(std::span<const int> face_ids,
                                                    const MeridionalOptions& options = {}) const;
+
+  /// The wall of a 2D case drawn in CAD: the curves of the edges, which must lie in the mesh's
+  /// plane z = 0, joined end to end into one curve in (x, y) as meridional_curve joins faces
+  /// (C0 at the edges' common vertices, so that the wall's corners are the CAD vertices), ordered
+  /// along the chain, oriented so that x (then y) grows from start to end, with a parameter
+  /// proportional to arc length per edge. Circles and other conics are exact (rational). Throws
+  /// hotmesh::InputError naming the edge when one is off the plane (with its distance), collapsed
+  /// to a point or without a curve, or when the edges do not form one chain.
+  PlanarCurve planar_curve(std::span<const int> edge_ids, const PlanarCurveOptions& options = {}) const;
 
  private:
   struct Impl;

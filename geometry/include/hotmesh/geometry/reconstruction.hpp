@@ -43,6 +43,9 @@ CurveSamples planar_samples(const DeflectionSamples& samples);
 /// dropped and reported); meridional samples are taken as they are. Throws hotmesh::InputError
 /// for planar samples.
 CurveSamples meridional_samples(const DeflectionSamples& samples, const Axis& axis);
+/// Samples in the plane of a 2D axisymmetric mesh, whose (x, y) are (z, r) about `axis`: the
+/// meridional_samples with the two coordinates of every point and deflection exchanged.
+CurveSamples axial_plane_samples(const DeflectionSamples& samples, const Axis& axis);
 
 /// What to do with FEM nodes farther than the tolerance from the undeformed curve.
 enum class FarNodePolicy {

@@ -60,6 +60,8 @@ struct DeflectionSpec {
   int degree = 1;                       ///< B-spline degree q of the reconstruction, 1..5
   geometry::DeflectionForm form = geometry::DeflectionForm::curve;  ///< eq. (21), or c = r + d
   std::vector<int> faces;               ///< CAD face ids (1-based); needs `cad`
+  /// CAD edge ids (1-based; 2D cases, instead of faces): the wall is their curve in the plane z = 0
+  std::vector<int> edges;
   WallMode mode = WallMode::automatic;  ///< 3D walls: meridional or on the faces themselves
   geometry::DeflectionSamples samples;  ///< the table, read during validation
   std::size_t line = 0;                 ///< line of the `deflection` key in the case file

@@ -1,11 +1,17 @@
 // hotmesh io: from a validated case and its mesh to what the solver needs. For every patch
 // its role and, for patches that follow a boundary, the boundary's shape (the paper's section
 // 4.2): in 2D a curve in the x-y plane; in 3D a surface of revolution about the case's axis
-// (meridional), or the CAD faces themselves (surface). A curve r(t) comes from the CAD faces
-// named in the case, else from the FEM nodes of the table (or, for a sliding patch without
-// table, from the patch's own nodes); the deflected curve is reconstructed through the FEM
-// deflections (eq. 21). On faces, a deflection field d(t, s) is fitted per face; a prescribed
-// 3D wall without faces or axis moves by the table interpolated over it (ScatteredShape).
+// (meridional), or the CAD faces themselves (surface). A curve r(t) comes from CAD: the faces'
+// meridional curve, or in 2D the CAD edges named in the case (their curve in the plane z = 0);
+// else from the FEM nodes of the table (or, for a sliding patch without table, from the patch's
+// own nodes); the deflected curve is reconstructed through the FEM deflections (eq. 21). On
+// faces, a deflection field d(t, s) is fitted per face; a prescribed 3D wall without faces or
+// axis moves by the table interpolated over it (ScatteredShape).
+//
+// A 2D case with an axis is axisymmetric: its mesh's (x, y) are (z, r) about the axis, z the
+// signed distance along it from its origin and r the distance from it (an OpenFOAM wedge case
+// flattened, or a mesh drawn in the meridional half plane). Its walls on CAD faces are their
+// meridional curves, and its meridional (r, z) tables are taken, in that plane, as (z, r).
 //
 // A 3D wall is meridional when its deflection says `mode: meridional`, or by default when its
 // table is meridional, or when the case has an axis and the wall's faces (if any) are
