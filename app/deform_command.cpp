@@ -13,6 +13,9 @@
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
+#include <array>
+#include <map>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -300,13 +303,36 @@ int write_run_outputs(const RunInputs& in, const io::CaseSetup& setup, const def
 
   if (!result.success) {
     spdlog::error("{}", result.message);
-    spdlog::error("kept the last valid mesh (stage {:.4f}) in {}; failed.vtu marks the failed cells",
-                  result.lambda_reached, output.string());
+    const bool residual = !result.failure.residual.empty();
+    spdlog::error("kept the last valid mesh (stage {:.4f}) in {}; failed.vtu holds the failed attempt ({}{})",
+                  result.lambda_reached, output.string(), failure_text(result.failure),
+                  residual ? "; its point data newton_residual shows where" : "");
     return 1;
   }
   spdlog::info("done in {:.2f} s: min scaled Jacobian {:.3f}, outputs in {}", timings.wall,
                result.summary.min_scaled_jacobian, output.string());
   return 0;
+}
+
+/// How far each moving wall of the mesh was from its undeformed wall before the motion put it
+/// on it, and the corners the sliding walls' nodes hold.
+void log_walls(const mesh::Mesh& mesh, const deform::MotionResult& result) {
+  for (const deform::WallGap& gap : result.wall_gaps) {
+    if (gap.node < 0) continue;
+    const geometry::Vec3& x = mesh.points[static_cast<std::size_t>(gap.node)];
+    spdlog::info("patch {}: its nodes lay within {:.3g} of its undeformed wall before the motion put them on it (the "
+                 "farthest: node {} at ({:.6g}, {:.6g}, {:.6g}))",
+                 gap.patch, gap.distance, mesh.node_id(gap.node), x.x, x.y, x.z);
+  }
+  std::map<std::string, std::array<std::size_t, 4>> held;  // corners from the start, by the pass; creases likewise
+  for (const deform::WallFeature& f : result.features) {
+    ++held[f.patch][(f.faces.empty() ? 0u : 2u) + (f.from_start ? 0u : 1u)];
+  }
+  for (const auto& [patch, counts] : held) {
+    spdlog::info("patch {}: {} corners and {} creases held from the start by the nodes on them, {} corners and {} "
+                 "creases given nodes by the corner pass",
+                 patch, counts[0], counts[2], counts[1], counts[3]);
+  }
 }
 
 int run_deform(const Options& options, RunState& state) {
@@ -351,6 +377,7 @@ int run_deform(const Options& options, RunState& state) {
   }
   const std::optional<io::CheckpointInfo> resumed_from = in.resumed ? std::optional(in.resumed->info) : std::nullopt;
   in.resumed.reset();  // its copy of the mesh is no longer needed
+  log_walls(in.loaded.mesh, result);
   for (const auto& note : result.notes) spdlog::warn("{}", note);
   if (const auto& repair = result.corner_repair; repair.cells_below > 0) {
     spdlog::info("corner pass: {} cells below the motion's worst cell; {} interior nodes moved, worst cell {:.3f} -> {:.3f}",

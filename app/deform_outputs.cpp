@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <numbers>
 
@@ -82,6 +83,17 @@ std::vector<std::string> output_names(const io::Case& c, const io::LoadedMesh& l
   return names;
 }
 
+std::string failure_text(const deform::MotionFailure& failure) {
+  switch (failure.kind) {
+    case deform::MotionFailure::Kind::inverted_cells: return "cells inverted (dark red)";
+    case deform::MotionFailure::Kind::newton_stalled: return "Newton did not converge; no cell inverted";
+    case deform::MotionFailure::Kind::newton_diverged: return "Newton diverged; no cell inverted";
+    case deform::MotionFailure::Kind::linear_breakdown: return "the linear solver broke down; no cell inverted";
+    case deform::MotionFailure::Kind::none: break;
+  }
+  return "it did not fail";
+}
+
 RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
                          const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh,
                          const io::WriteBackOptions& write_back) {
@@ -97,7 +109,9 @@ RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c,
   io::write_vtu(folder / "deformed.vtu", mesh, result.points, deform_fields(mesh, result.points, result));
   out.files.push_back(folder / "deformed.vtu");
   if (!result.success) {
-    io::write_vtu(folder / "failed.vtu", mesh, result.failed_points, deform_fields(mesh, result.failed_points, result));
+    io::VtuFields fields = deform_fields(mesh, result.failed_points, result);
+    if (!result.failure.residual.empty()) fields.point_data.push_back({"newton_residual", 1, result.failure.residual});
+    io::write_vtu(folder / "failed.vtu", mesh, result.failed_points, fields);
     out.files.push_back(folder / "failed.vtu");
   }
   if (mesh.dimension == 2) {
@@ -113,7 +127,7 @@ RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c,
       out.files.push_back(folder / (view.name + ".png"));
     }
     if (!result.success) {
-      picture(folder / "failed.png", fmt::format("{}: the failed increment (inverted cells dark red)", name), mesh,
+      picture(folder / "failed.png", fmt::format("{}: the failed increment: {}", name, failure_text(result.failure)), mesh,
               result.failed_points, result.failed_quality, setup, nullptr);
       out.files.push_back(folder / "failed.png");
     }
@@ -335,6 +349,41 @@ deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh&
   return deform::choose_linear_solver(mesh, setup.motions, parallel::processes().count);
 }
 
+namespace {
+
+/// Each patch's role; for a prescribed or sliding patch, how far its nodes lay from its
+/// undeformed wall before the motion put them on it.
+json patches_json(const mesh::Mesh& mesh, const io::CaseSetup& setup, const deform::MotionResult& result) {
+  json patches = json::array();
+  for (const auto& m : setup.motions) {
+    json patch{{"name", m.patch}, {"role", deform::to_string(m.role)}};
+    const auto gap = std::find_if(result.wall_gaps.begin(), result.wall_gaps.end(),
+                                  [&](const deform::WallGap& g) { return g.patch == m.patch; });
+    if (gap != result.wall_gaps.end() && gap->node >= 0) {
+      put_length(patch, "undeformed_gap", gap->distance, result.length_scale);
+      patch["undeformed_gap_node"] = mesh.node_id(gap->node);
+    }
+    patches.push_back(std::move(patch));
+  }
+  return patches;
+}
+
+/// What a failed run ran into, and the nodes where its last Newton residual is largest.
+json failure_json(const mesh::Mesh& mesh, const deform::MotionResult& result) {
+  static constexpr std::array<const char*, 5> kinds{"none", "inverted_cells", "newton_stalled", "newton_diverged",
+                                                    "linear_breakdown"};
+  json nodes = json::array();
+  for (const auto& r : result.failure.largest_residuals) {
+    const geometry::Vec3& x = result.failed_points[static_cast<std::size_t>(r.node)];
+    json node{{"node", mesh.node_id(r.node)}, {"point", {x.x, x.y, x.z}}};
+    put_length(node, "residual", r.residual, result.length_scale);
+    nodes.push_back(std::move(node));
+  }
+  return {{"kind", kinds[static_cast<std::size_t>(result.failure.kind)]}, {"largest_residuals", std::move(nodes)}};
+}
+
+}  // namespace
+
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
                   const io::CaseSetup& setup, const deform::MotionResult& result, const RunTimings& timings,
                   RunOutputs& outputs, const io::CheckpointInfo* resumed) {
@@ -345,8 +394,8 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["status"] = result.success ? "success" : "failed";
   j["message"] = result.message;
   j["mesh"] = mesh_summary(loaded, c.mesh);
-  j["patches"] = json::array();
-  for (const auto& m : setup.motions) j["patches"].push_back({{"name", m.patch}, {"role", deform::to_string(m.role)}});
+  j["patches"] = patches_json(loaded.mesh, setup, result);
+  if (!result.success) j["failure"] = failure_json(loaded.mesh, result);
   j["deflections"] = deflections_json(c, setup, result.length_scale);
   j["solver"] = solver_json(c.solver, linear_solver_of(c, loaded.mesh, setup));
   put_increments(j, result);

@@ -35,6 +35,9 @@ struct RunOutputs {
 /// to the output folder.
 std::vector<std::string> output_names(const io::Case& c, const io::LoadedMesh& loaded);
 
+/// What a failed run ran into, in words: "Newton did not converge; no cell inverted", ...
+std::string failure_text(const deform::MotionFailure& failure);
+
 /// deformed.msh, deformed.vtu, the pictures and, for a mesh read from another solver's format,
 /// the mesh written back in it (`write_back`).
 RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,

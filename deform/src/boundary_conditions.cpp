@@ -66,10 +66,16 @@ SlipPlane slip_plane(const Mesh& mesh, const Patch& patch) {
   return {origin, normal / norm(normal)};
 }
 
+/// Where `nodes` lie on the undeformed shape (stage 0), and the farthest of them from it.
+struct Located {
+  std::vector<geometry::ShapeParameter> parameters;
+  WallGap gap;
+};
+
 /// Parameters of `nodes` on the undeformed shape (stage 0); throws if any is farther from it
 /// than 1e-3 times the diagonal of the patch's bounding box, listing them.
-std::vector<geometry::ShapeParameter> locate(const Mesh& mesh, std::span<const Vec3> points, const Patch& patch, const PatchMotion& m,
-                           std::span<const NodeId> nodes) {
+Located locate(const Mesh& mesh, std::span<const Vec3> points, const Patch& patch, const PatchMotion& m,
+               std::span<const NodeId> nodes) {
   const double tolerance = 1e-3 * bounding_diagonal(mesh.points, patch.nodes);
   std::vector<geometry::ShapePoint> found(nodes.size());
   mesh::LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
@@ -83,9 +89,10 @@ std::vector<geometry::ShapeParameter> locate(const Mesh& mesh, std::span<const V
   errors.rethrow();
   std::size_t off = 0;
   std::string examples;
-  std::vector<geometry::ShapeParameter> parameters(nodes.size());
+  Located located{std::vector<geometry::ShapeParameter>(nodes.size()), {patch.name, 0.0, -1}};
   for (std::size_t k = 0; k < nodes.size(); ++k) {
-    parameters[k] = found[k].parameter;
+    located.parameters[k] = found[k].parameter;
+    if (found[k].distance > located.gap.distance || located.gap.node < 0) located.gap = {patch.name, found[k].distance, nodes[k]};
     if (found[k].distance > tolerance || !std::isfinite(found[k].distance)) {
       if (off++ < 5) {
         const Vec3& x = points[static_cast<std::size_t>(nodes[k])];
@@ -100,7 +107,7 @@ std::vector<geometry::ShapeParameter> locate(const Mesh& mesh, std::span<const V
                                  "units, same axis).",
                                  patch.name, off, tolerance, to_string(m.role), examples));
   }
-  return parameters;
+  return located;
 }
 
 /// The unit normal of a patch's undeformed surface (in 2D: of its curve, in the x-y plane) at
@@ -329,9 +336,10 @@ class BoundaryBuilder {
         for (NodeId n : patch.nodes) {
           if (owner_[static_cast<std::size_t>(n)] == static_cast<int>(p) && !is_slave(n)) nodes.push_back(n);
         }
-        const auto parameters = locate(mesh_, x0_, patch, m, nodes);
+        const Located located = locate(mesh_, x0_, patch, m, nodes);
+        setup_.wall_gaps.push_back(located.gap);
         for (std::size_t k = 0; k < nodes.size(); ++k) {
-          setup_.prescribed.push_back({nodes[k], parameters[k], m.shape.get()});
+          setup_.prescribed.push_back({nodes[k], located.parameters[k], m.shape.get()});
           setup_.constraints.fix(nodes[k]);
         }
       }
@@ -370,7 +378,9 @@ class BoundaryBuilder {
       for (NodeId n : mesh_.patches[p].nodes) {
         if (has_role(n, BoundaryRole::sliding)) nodes.push_back(n);
       }
-      const auto parameters = locate(mesh_, x0_, mesh_.patches[p], m, nodes);
+      const Located located = locate(mesh_, x0_, mesh_.patches[p], m, nodes);
+      setup_.wall_gaps.push_back(located.gap);
+      const auto& parameters = located.parameters;
       for (std::size_t k = 0; k < nodes.size(); ++k) {
         SlidingNode& s = setup_.sliding[static_cast<std::size_t>(sliding_index_[static_cast<std::size_t>(nodes[k])])];
         const auto i =
@@ -386,7 +396,6 @@ class BoundaryBuilder {
   /// shape of its own instead of by the wall, so it never rounds the edge off; where three
   /// faces meet it stays at their corner.
   void slide_along_creases() {
-    std::size_t held = 0;
     std::map<std::pair<std::string, std::vector<int>>, std::size_t> crease_of;
     for (SlidingNode& s : setup_.sliding) {
       for (int i = 0; i < s.shape_count; ++i) {
@@ -404,14 +413,8 @@ class BoundaryBuilder {
         }
         note_crease(crease_of, m->patch, s.node, sides);
         for (auto& side : sides) setup_.corner_paths.push_back(std::move(side));
-        ++held;
         break;
       }
-    }
-    if (held > 0) {
-      setup_.notes.push_back(fmt::format("{} sliding nodes slide along edges where the faces of their walls meet at an "
-                                         "angle (features)",
-                                         held));
     }
   }
 
@@ -617,7 +620,7 @@ class BoundaryBuilder {
       WallFeaturePlan plan = plan_wall_features(
           mesh_, x0_, patch, *m.shape, m.features.angle,
           [&](NodeId n, const Vec3& q) { return can_hold_corner(n, q, on_plane); },
-          [&](NodeId n) { return planes_of(n); });
+          [&](NodeId n) { return planes_of(n); }, [&](NodeId n) { return setup_.periodic.master_of(n); });
       std::erase_if(plan.features, [&](const HeldFeature& held) {  // held from the start (hold_corners_on_nodes)
         return !held.crease && std::any_of(setup_.corners.begin(), setup_.corners.end(), [&](const WallCorner& c) {
                  return c.patch == patch.name && c.held.feature.parameter == held.feature.parameter;

@@ -110,6 +110,7 @@ struct BoundarySetup {
   std::vector<std::shared_ptr<const geometry::BoundaryShape>> corner_paths;
   std::vector<NodeRoleCode> roles;
   std::vector<std::string> notes;
+  std::vector<WallGap> wall_gaps;  ///< how far each moving patch's nodes lay from its undeformed wall
 };
 
 /// Throws hotmesh::InputError for set-ups the solver cannot take.

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "boundary_conditions.hpp"
 #include "free_memory.hpp"
@@ -38,6 +39,8 @@ using Clock = std::chrono::steady_clock;
 /// of the thinnest cells scales with 1/h^2 and follows the geometry, so the ramp case passes
 /// through residuals 1e5 times the initial one on its way to converging.
 constexpr double kDivergence = 1e10;
+/// A failed run names this many nodes where its residual is largest.
+constexpr std::size_t kResidualNodesShown = 3;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 static_assert(std::tuple_size_v<decltype(SlidingState::hints)> == detail::SlidingNode::kMaxShapes);
@@ -65,6 +68,7 @@ class Motion {
     const auto start = Clock::now();
     result_.node_roles = setup_.roles;
     result_.notes = setup_.notes;
+    result_.wall_gaps = setup_.wall_gaps;
     result_.sliding_nodes = sliding_.size();
     result_.passive_nodes = setup_.passive.size();
     result_.periodic_pairs = setup_.periodic.pairs().size();
@@ -202,14 +206,87 @@ class Motion {
     result_.failed_points = std::move(moved);
     result_.failed_quality = scaled_jacobians(mesh_.cells, result_.failed_points);
     const auto worst = summarize_quality(result_.failed_quality);
+    result_.failure = std::move(failure_);
     result_.message = fmt::format("increment {} of {} failed (stage {:.6g} to {:.6g}{}): {}", increment,
                                   increments(), a, b,
                                   depth > 0 ? fmt::format(", after splitting it {} times", depth) : "", record.failure);
-    if (record.inverted_cells == 0) {  // name the cell that suffered most in the failed attempt
-      result_.message += fmt::format("; worst cell {} (scaled Jacobian {:.3g})", mesh_.cell_id(worst.worst_cell),
-                                     worst.min_scaled_jacobian);
+    if (record.inverted_cells == 0) {  // the cell that suffered most in the failed attempt
+      result_.message += fmt::format("; no cell inverted, the worst at the failed stage is cell {} (scaled Jacobian {:.3g})",
+                                     mesh_.cell_id(worst.worst_cell), worst.min_scaled_jacobian);
     }
+    result_.message += where_it_failed();
     return false;
+  }
+
+  /// What the last attempt ran into, and, where Newton did not converge, the residual
+  /// ||D^-1 R|| of its last step at each node (from r and the node stiffness k of that step;
+  /// none where the linear solver broke down or cells inverted).
+  void note_failure(MotionFailure::Kind kind, std::span<const double> r = {}, std::span<const double> k = {}) {
+    failure_ = {};
+    failure_.kind = kind;
+    if (k.empty()) return;
+    failure_.residual.assign(k.size(), 0.0);
+    for (std::size_t node = 0; node < k.size(); ++node) {
+      if (!(k[node] > 0.0)) continue;
+      double sum = 0.0;
+      for (std::size_t c = 0; c < dim_; ++c) sum += (r[node * dim_ + c] / k[node]) * (r[node * dim_ + c] / k[node]);
+      failure_.residual[node] = std::sqrt(sum);
+    }
+    std::vector<NodeId> order(k.size());
+    for (std::size_t n = 0; n < order.size(); ++n) order[n] = static_cast<NodeId>(n);
+    const std::size_t shown = std::min<std::size_t>(kResidualNodesShown, order.size());
+    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(), [&](NodeId a, NodeId b) {
+      return failure_.residual[static_cast<std::size_t>(a)] > failure_.residual[static_cast<std::size_t>(b)];
+    });
+    for (std::size_t i = 0; i < shown; ++i) {
+      const double value = failure_.residual[static_cast<std::size_t>(order[i])];
+      if (value > 0.0) failure_.largest_residuals.push_back({order[i], value});
+    }
+  }
+
+  /// Where the failed attempt's Newton residual is largest, each node with its place and role,
+  /// and what the user can try.
+  std::string where_it_failed() const {
+    const MotionFailure& f = result_.failure;
+    if (f.kind == MotionFailure::Kind::inverted_cells) {
+      return ". Try more increments (solver.increments) or splits (solver.max_increment_splits); a deflection as "
+             "large as the cells beside the wall needs finer cells there";
+    }
+    if (f.largest_residuals.empty()) return "";
+    std::string text = "; the residual is largest at";
+    bool on_walls = false;
+    for (const MotionFailure::ResidualNode& r : f.largest_residuals) {
+      const Vec3& x = result_.failed_points[static_cast<std::size_t>(r.node)];
+      const std::string role = role_of(r.node);
+      on_walls = on_walls || role.find("sliding") != std::string::npos;
+      text += fmt::format("{} node {} at ({:.6g}, {:.6g}, {:.6g}), {} ({:.3g})", &r == &f.largest_residuals.front() ? "" : ",",
+                          mesh_.node_id(r.node), x.x, x.y, x.z, role, r.residual);
+    }
+    text += on_walls ? ". A sliding wall may turn sharply there between its nodes, or fold: look at the deflection "
+                       "table there (its degree, a missing FEM node on a corner), or split the patch where it turns; "
+                       "more increments (solver.increments) help a large motion"
+                     : ". Try more increments (solver.increments), or a looser solver.newton_tolerance";
+    return text;
+  }
+
+  /// "sliding on 'floor'", "sliding where 'floor' meets 'outlet'", "interior", ...: what moves
+  /// node n, and the patches it lies on.
+  std::string role_of(NodeId n) const {
+    std::vector<std::string> patches;
+    for (const Patch& p : mesh_.patches) {
+      if (std::find(p.nodes.begin(), p.nodes.end(), n) != p.nodes.end()) patches.push_back("'" + p.name + "'");
+    }
+    const NodeRoleCode code = setup_.roles[static_cast<std::size_t>(n)];
+    if (code == 0) return "interior";
+    const std::string role(to_string(static_cast<BoundaryRole>(code - 1)));
+    const auto sliding = std::find_if(setup_.sliding.begin(), setup_.sliding.end(),
+                                      [n](const detail::SlidingNode& s) { return s.node == n; });
+    const bool on_corner_line = sliding != setup_.sliding.end() && std::any_of(setup_.corner_paths.begin(), setup_.corner_paths.end(), [&](const auto& path) {
+                                  return path.get() == sliding->shapes[0];
+                                });
+    if (on_corner_line) return fmt::format("{} along a corner of {}", role, fmt::join(patches, ", "));
+    if (patches.size() > 1) return fmt::format("{} where {} meet", role, fmt::join(patches, " and "));
+    return fmt::format("{} on {}", role, fmt::join(patches, ", "));
   }
 
   /// The state to resume from after an accepted step, `pieces` those of a split increment left.
@@ -395,6 +472,7 @@ class Motion {
       if (!std::isfinite(residual) || residual > kDivergence * r0) {
         record.failure = fmt::format("the Newton-Raphson cycle diverged (residual {:.3g} times the initial one)",
                                      residual / r0);
+        note_failure(MotionFailure::Kind::newton_diverged, r, node_stiffness);
         break;
       }
       if (residual <= solver_.newton_tolerance * r0 || residual <= round_off_residual(dofs)) {
@@ -405,6 +483,7 @@ class Motion {
         record.failure = fmt::format("the Newton-Raphson cycle did not converge in {} iterations (residual reduced "
                                      "to {:.3g}, tolerance {:.3g})",
                                      solver_.max_newton_iterations, record.residual_reduction, solver_.newton_tolerance);
+        note_failure(MotionFailure::Kind::newton_stalled, r, node_stiffness);
         break;
       }
       // K(n) p = -R(n) on the free degrees of freedom, from p = 0 (eq. 8, section 3); at
@@ -426,6 +505,7 @@ class Motion {
       step.linear_newton_norm = target.newton_norm;
       if (solved.breakdown) {
         record.failure = "the linear solver broke down (the stiffness is not positive definite on the free nodes)";
+        note_failure(MotionFailure::Kind::linear_breakdown);
         break;
       }
       record.max_normal_slip = std::max(record.max_normal_slip, sliding_.normal_component(p));
@@ -436,7 +516,10 @@ class Motion {
       result_.timings.projection += seconds_since(t);
       setup_.periodic.expand(u);
     }
-    if (record.converged) accept_if_valid(trial, u, record);
+    if (record.converged) {
+      accept_if_valid(trial, u, record);
+      if (!record.accepted) note_failure(MotionFailure::Kind::inverted_cells);
+    }
     record.seconds = seconds_since(start);
     return trial;
   }
@@ -480,6 +563,7 @@ class Motion {
   double earlier_seconds_ = 0.0;  ///< total of the interrupted run this one resumes
   std::vector<Vec3> previous_points_;  ///< the mesh at the start of the last accepted step (predict())
   double previous_stage_ = 0.0;        ///< its stage
+  MotionFailure failure_;              ///< of the last attempt that failed
   MotionResult result_;
 };
 
@@ -530,6 +614,10 @@ bool has_corners(std::span<const PatchMotion> patches) {
 }
 
 MotionResult with_corner_pass(const Mesh& mesh, MotionResult moved, MotionResult pass);
+
+/// The corner pass is kept only if its worst cell, after the repair, keeps at least this share
+/// of the motion's worst: holding corners must not ruin the mesh it sharpens.
+constexpr double kPassKeepsQuality = 0.5;
 
 /// Sweeps of the repair after the corner pass (quality_repair.hpp), at most.
 constexpr int kRepairSweeps = 50;
@@ -592,9 +680,17 @@ MotionResult hold_corners(const Mesh& mesh, std::span<const PatchMotion> patches
   const MotionStart from{moved.points, moved.sliding_origins};
   const auto begin = Clock::now();
   auto kernel = std::make_shared<const StiffnessKernel>(motion_kernel.with_lame(element_lame(mesh, moved.points, material)));
-  Motion motion(mesh, final_walls, std::move(kernel), pass_options, pass_observers, &from, ranks);
-  motion.set_setup_time(seconds_since(begin));
-  MotionResult pass = motion.run(nullptr);
+  std::optional<Motion> motion;
+  try {  // the motion's mesh as the pass's input: a node it left off its walls is no user error now
+    motion.emplace(mesh, final_walls, std::move(kernel), pass_options, pass_observers, &from, ranks);
+  } catch (const InputError& e) {
+    moved.notes.push_back(fmt::format("the corners of the sliding walls could not be given nodes ({}); the mesh is the "
+                                      "one the motion gave, whose walls may cut them",
+                                      e.what()));
+    return moved;
+  }
+  motion->set_setup_time(seconds_since(begin));
+  MotionResult pass = motion->run(nullptr);
 
   for (const IncrementRecord& r : pass.increments) moved.increments.push_back(as_corner_pass(r));
   return with_corner_pass(mesh, std::move(moved), std::move(pass));
@@ -630,6 +726,15 @@ MotionResult with_corner_pass(const Mesh& mesh, MotionResult moved, MotionResult
     if (same != moved.features.end()) f.angle = std::max(f.angle, same->angle);
   }
   if (pass.summary.min_scaled_jacobian < moved.summary.min_scaled_jacobian) restore_worst_cell(mesh, moved.summary, pass);
+  if (pass.summary.min_scaled_jacobian < kPassKeepsQuality * moved.summary.min_scaled_jacobian) {
+    moved.notes.push_back(fmt::format(
+        "the corner pass was undone: holding the corners of the sliding walls would leave cell {} at a scaled "
+        "Jacobian of {:.3g}, against the motion's worst {:.3g} (corners within a cell of each other: a deflection "
+        "table without a node on a corner of the wall cuts it with kinks of its own; give it a node there, or take "
+        "form: displacement); the mesh is the one the motion gave, whose walls may cut the corners it did not hold",
+        mesh.cell_id(pass.summary.worst_cell), pass.summary.min_scaled_jacobian, moved.summary.min_scaled_jacobian));
+    return moved;
+  }
   moved.corner_repair = pass.corner_repair;
   moved.restart_points = std::exchange(moved.points, std::move(pass.points));
   moved.quality = std::move(pass.quality);

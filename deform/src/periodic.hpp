@@ -49,6 +49,10 @@ class PeriodicCoupling {
   std::span<const PeriodicPair> pairs() const { return pairs_; }
   const Rotation& rotation(std::size_t i) const { return rotations_[i]; }
   bool is_slave(NodeId n) const { return !slave_of_.empty() && slave_of_[static_cast<std::size_t>(n)] >= 0; }
+  /// The master a slave node follows; -1 for other nodes.
+  NodeId master_of(NodeId n) const {
+    return is_slave(n) ? pairs_[static_cast<std::size_t>(slave_of_[static_cast<std::size_t>(n)])].master : NodeId{-1};
+  }
 
   void expand(std::span<double> u) const;         ///< u_s = R u_m
   void fold(std::span<double> f) const;           ///< f_m += R^T f_s, f_s = 0

@@ -114,8 +114,11 @@ class CornerPlanner {
                      [](const Crossing& l, const Crossing& r) { return l.nearest < r.nearest; });
   }
 
-  /// One end of every crossing edge gets its corner: the nearer one if it can take it.
-  void give_corners(const CanHold& can_hold) {
+  /// One end of every crossing edge gets its corner: the nearer one if it can take it. An edge
+  /// neither of whose ends can is held through a periodic slave end whose master holds the
+  /// corner (the slave follows it onto the corner); else it is left cutting the corner.
+  void give_corners(const CanHold& can_hold, const MasterOf& master_of) {
+    std::vector<const Crossing*> left;
     const double on_corner = 1e-6 * bounding_diagonal(mesh_.points, patch_.nodes);
     for (const Crossing& c : crossings_) {
       HeldFeature& held = plan_.features[c.feature];
@@ -141,7 +144,16 @@ class CornerPlanner {
         done = true;
         break;
       }
-      if (!done) ++held.unheld_edges;
+      if (!done) left.push_back(&c);
+    }
+    std::unordered_map<NodeId, std::size_t> index;
+    for (std::size_t k = 0; k < count_; ++k) index[patch_.nodes[k]] = k;
+    for (const Crossing* c : left) {
+      const auto held_by_master = [&](std::size_t k) {
+        const auto master = index.find(master_of(patch_.nodes[k]));
+        return master != index.end() && holds_[master->second] == static_cast<int>(c->feature);
+      };
+      if (!held_by_master(c->a) && !held_by_master(c->b)) ++plan_.features[c->feature].unheld_edges;
     }
   }
 
@@ -271,7 +283,7 @@ class CornerPlanner {
 
 WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
                                    const geometry::BoundaryShape& shape, double min_angle, const CanHold& can_hold,
-                                   const PlanesOf& planes_of) {
+                                   const PlanesOf& planes_of, const MasterOf& master_of) {
   std::vector<geometry::ShapeFeature> corners = shape.features(min_angle);
   std::vector<geometry::ShapeCrease> lines = shape.creases(min_angle);
   if ((corners.empty() && lines.empty()) || patch.nodes.empty()) {
@@ -280,7 +292,7 @@ WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, c
   CornerPlanner planner(mesh, x0, patch, shape, std::move(corners), std::move(lines), planes_of);
   planner.locate_nodes();
   planner.find_crossings();
-  planner.give_corners(can_hold);
+  planner.give_corners(can_hold, master_of);
   planner.note_unheld_corners();
   return std::move(planner).segments(min_angle);
 }

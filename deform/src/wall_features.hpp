@@ -95,6 +95,10 @@ class CornerPath final : public geometry::BoundaryShape {
 /// Whether node n may be given the corner whose point (in its meridional plane) is q.
 using CanHold = std::function<bool(NodeId n, const Vec3& q)>;
 
+/// The node a periodic slave n follows (its master), or -1: where a slave's master holds a
+/// corner, the slave holds it too.
+using MasterOf = std::function<NodeId(NodeId n)>;
+
 /// The plane a slip patch keeps its nodes on (u . n = 0, eq. 11).
 struct SlipPlane {
   Vec3 origin;
@@ -107,10 +111,11 @@ using PlanesOf = std::function<std::vector<SlipPlane>(NodeId n)>;
 /// The corners and creases of `shape` (of at least `min_angle`) on one sliding patch, and the
 /// nodes that hold them. A crease is crossed by the wall edges
 /// whose ends lie on its two faces. `can_hold`: a sliding node of this wall only, free or held on planes through the
-/// corner (a slip side of a sector). `x0` the positions of stage 0.
+/// corner (a slip side of a sector). A crossing edge with an end on a periodic slave whose master
+/// holds the corner is held through it (`master_of`). `x0` the positions of stage 0.
 WallFeaturePlan plan_wall_features(const Mesh& mesh, std::span<const Vec3> x0, const Patch& patch,
                                    const geometry::BoundaryShape& shape, double min_angle, const CanHold& can_hold,
-                                   const PlanesOf& planes_of);
+                                   const PlanesOf& planes_of, const MasterOf& master_of);
 
 /// The corners of `shape` (of at least `min_angle`) that nodes of the wall lie on before the
 /// motion, as every mesh made from CAD has them. Such a node cannot slide: the wall has no

@@ -238,6 +238,73 @@ TEST(DeformCommand, FailedMotionKeepsLastValidMeshAndMarksFailedCells) {
   const mesh::Mesh kept = io::read_gmsh(out / "deformed.msh");
   EXPECT_EQ(mesh::summarize_quality(mesh::scaled_jacobians(kept.cells, kept.points)).inverted_cells, 0u);
   EXPECT_THAT(test::read_text(out / "failed.vtu"), HasSubstr("Name=\"inverted\""));
+  // Newton fails long before a cell inverts here, and the messages say so (issue 45 item 4).
+  EXPECT_EQ(report["failure"]["kind"], "newton_stalled");
+  EXPECT_THAT(r.output, HasSubstr("failed.vtu holds the failed attempt (Newton did not converge; no cell inverted"));
+  EXPECT_THAT(r.output, HasSubstr("Try more increments"));
+}
+
+TEST(DeformCommand, HowFarAWallWasFromItsUndeformedShapeIsReported) {
+  // Issue 45 item 2: a table whose floor lies 1e-4 above the mesh's (an FEM wall that does not
+  // quite match the CFD one): the sliding floor's nodes are put on it, and the log and
+  // report.json say by how much they moved for it, besides the deflection.
+  test::TempDir dir;
+  test::write_coarse_ramp(dir.path());
+  test::write_text(dir / "raised.csv", "x,y,dx,dy\n0,0.0001,0,0\n0.975,0.0001,0,0\n1.025,0.0001,0,0.1\n2,0.0001,0,0.1\n");
+  test::write_text(dir / "case.yaml", test::ramp_case("raised.csv", 2));
+  const auto r = hotmesh("deform " + shell_quote((dir / "case.yaml").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("patch bottom: its nodes lay within 0.0001 of its undeformed wall before the motion "
+                                  "put them on it"));
+  const auto report = read_json(dir / "case-out" / "report.json");
+  bool found = false;
+  for (const auto& patch : report["patches"]) {
+    if (patch["name"] != "bottom") continue;
+    found = true;
+    EXPECT_NEAR(patch["undeformed_gap"].get<double>(), 1e-4, 1e-12);
+    EXPECT_GT(patch["undeformed_gap_node"].get<int>(), 0);
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(DeformCommand, AFailedNewtonCycleSaysWhereAndThatNoCellInverted) {
+  // Issue 45 item 4: one Newton step allowed, a tolerance it cannot reach, no splits: the run
+  // fails with every cell valid. The message names the nodes where the residual is largest,
+  // with their places and roles, and what to try; failed.vtu and failed.png say that Newton did
+  // not converge and no cell inverted, and failed.vtu holds the residual.
+  test::TempDir dir;
+  test::write_coarse_ramp(dir.path());
+  test::write_text(dir / "case.yaml",
+                   "mesh: ramp.msh\nsolver: {increments: 4, max_newton_iterations: 1, newton_tolerance: 1.0e-12, "
+                   "max_increment_splits: 0}\npatches:\n  left: {role: fixed}\n  right: {role: slip}\n"
+                   "  top: {role: sliding}\n  bottom: {role: sliding, deflection: {file: full.csv}}\n");
+  const auto r = hotmesh("deform " + shell_quote((dir / "case.yaml").string()));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("did not converge in 1 iterations"));
+  EXPECT_THAT(r.output, HasSubstr("no cell inverted, the worst at the failed stage is cell"));
+  EXPECT_THAT(r.output, HasSubstr("the residual is largest at node"));
+  EXPECT_THAT(r.output, ::testing::ContainsRegex("node [0-9]+ at \\([-0-9.e]+, [-0-9.e]+, 0\\), (interior|sliding on 'bottom')"));
+  EXPECT_THAT(r.output, HasSubstr("failed.vtu holds the failed attempt (Newton did not converge; no cell inverted; its "
+                                  "point data newton_residual shows where)"));
+  const auto out = dir / "case-out";
+  const auto report = read_json(out / "report.json");
+  EXPECT_EQ(report["failure"]["kind"], "newton_stalled");
+  ASSERT_FALSE(report["failure"]["largest_residuals"].empty());
+  double previous = std::numeric_limits<double>::infinity();
+  for (const auto& node : report["failure"]["largest_residuals"]) {  // largest first
+    EXPECT_LE(node["residual"].get<double>(), previous);
+    EXPECT_GT(node["residual"].get<double>(), 0.0);
+    previous = node["residual"].get<double>();
+  }
+  const std::string vtu = test::read_text(out / "failed.vtu");
+  EXPECT_THAT(vtu, HasSubstr("Name=\"newton_residual\""));
+  EXPECT_TRUE(std::filesystem::exists(out / "failed.png"));
+  // The bottom wall's nodes lay on its undeformed wall (the table's flat floor) before the motion.
+  for (const auto& patch : report["patches"]) {
+    if (patch["name"] == "bottom") {
+      EXPECT_LT(patch["undeformed_gap"].get<double>(), 1e-12);
+    }
+  }
 }
 
 TEST(DeformCommand, BadCaseIsAUserErrorAndWritesNothing) {

@@ -27,6 +27,7 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "channel_step.hpp"
 #include "deform_cases.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/mesh/quality.hpp"
@@ -226,6 +227,38 @@ TEST_F(CornerChannel, WithoutFeaturesTheNodesOnCornersHoldThemToo) {
 }
 
 TEST_F(CornerChannel, TrianglesHoldTheirCornersAsQuadsDo) { expect_on_the_deflected_wall(run(false, true), 0.5); }
+
+TEST(CornerOnANodeTheTableMisses, KeepsTheMotionsMeshWhenTheCornerPassWouldRuinIt) {
+  // The channel with a forward-facing step of channel_step.geo, its lower wall on its CAD edges,
+  // but an FEM table every 1.3 mm of the wall that has no node on the step's foot. With
+  // `form: curve` the deflected wall is the polyline through the deflected FEM nodes: it cuts
+  // the foot with two kinks of its own, within a cell of the node that holds the CAD's foot.
+  // Holding them all would squash that cell to nothing (0.000 before): the corner pass is
+  // undone, with a note that says why and what to do, and the motion's mesh stands.
+  // `form: displacement` keeps the CAD's foot and has no such kinks.
+  const test::ChannelStep channel;
+  const double length = 10.0 + 3.0 + 0.5 * std::numbers::pi * test::StepWall::kRadius + 13.0;
+  std::string table = "x,y,dx,dy\n";
+  for (double s = 0.0; s < length + 0.65; s += 1.3) {
+    const Vec2 p = test::StepWall::at(std::min(s, length));
+    table += fmt::format("{:.17g},{:.17g},0,0.35\n", p.x, p.y);
+  }
+  test::write_text(channel.dir() / "coarse.csv", table);
+  for (const std::string form : {"curve", "displacement"}) {
+    SCOPED_TRACE(form);
+    channel.write_case(fmt::format("{{role: sliding, deflection: {{file: coarse.csv, edges: [{}], form: {}}}}}",
+                                   channel.wall_edge_list(), form));
+    const auto r = hotmesh("deform " + shell_quote(channel.path("case.yaml")) + " -o " + shell_quote(channel.path("out")));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto report = read_json(channel.dir() / "out" / "report.json");
+    EXPECT_GT(report["min_scaled_jacobian"].get<double>(), 0.3);
+    const bool undone = r.output.find("the corner pass was undone") != std::string::npos;
+    EXPECT_EQ(undone, form == "curve") << r.output;
+    if (undone) {
+      EXPECT_THAT(r.output, ::testing::HasSubstr("give it a node there, or take form: displacement"));
+    }
+  }
+}
 
 // ---- 3D: the duct's stepped floor -------------------------------------------------------------
 

@@ -3,6 +3,8 @@
 // without sliding, determinism, and honest failure.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <fmt/format.h>
 #include <omp.h>
 #include <sys/resource.h>
 
@@ -338,6 +340,16 @@ TEST(MeshMotion, ImpossibleMotionStopsWithLastValidMeshNamingCellAndIncrement) {
               r.message.find("Newton") != std::string::npos);
   EXPECT_FALSE(r.increments.back().accepted);
   EXPECT_EQ(r.increments.back().split_depth, 2);
+  // What failed, as measured: inverted cells, or Newton, with the nodes where its residual is
+  // largest (issue 45 item 4).
+  if (r.failure.kind == MotionFailure::Kind::inverted_cells) {
+    EXPECT_TRUE(std::any_of(r.failed_quality.begin(), r.failed_quality.end(), [](double q) { return q <= 0.0; }));
+  } else {
+    EXPECT_THAT(r.message, HasSubstr("no cell inverted"));
+    ASSERT_FALSE(r.failure.largest_residuals.empty());
+    EXPECT_THAT(r.message, HasSubstr(fmt::format("the residual is largest at node {}", mesh.node_id(r.failure.largest_residuals[0].node))));
+    EXPECT_EQ(r.failure.residual.size(), mesh.node_count());
+  }
 }
 
 /// The inner square of a clustered ring, rotated as rotating_inner_square does, at `scale`.

@@ -294,6 +294,32 @@ TEST(WallCorners, OnASurfaceOfRevolutionTheRowsOfNodesOnCornerCirclesHoldThemFro
   }
 }
 
+TEST(WallCorners, OnAPeriodicSectorTheCornerCirclesAreHeldAcrossItsBorderWithoutANote) {
+  // The sector with periodic sides instead of slip planes: the slave side's wall nodes follow
+  // their masters, which hold the corner circles where they cross the side, so no wall edge is
+  // left cutting a corner and no note says one is.
+  const mesh::Mesh mesh = sector_mesh(0.0);
+  const geometry::Axis axis({0, 0, 0}, {0, 0, 1});
+  const auto wall = std::make_shared<geometry::RevolvedShape>(bump_wall(), axis);
+  std::vector<PatchMotion> m = motions(wall, true, {});
+  m.push_back({"side0", BoundaryRole::periodic, nullptr, "side1", kSector, axis});
+  m.push_back({"side1", BoundaryRole::periodic, nullptr});
+  const MotionResult r = move_mesh(mesh, m, {}, {});
+  ASSERT_TRUE(r.success) << r.message;
+  ASSERT_EQ(r.features.size(), 4u);
+  for (const WallFeature& f : r.features) {
+    EXPECT_EQ(f.unheld_edges, 0u) << f.parameter;
+    EXPECT_LT(f.distance, 1e-12);
+  }
+  for (const std::string& note : r.notes) EXPECT_EQ(note.find("has no node on"), std::string::npos) << note;
+  const auto rz = [&](const Vec3& p) {
+    const auto c = axis.to_cylindrical(p);
+    return Vec2{c.r, c.z};
+  };
+  EXPECT_LT(largest_corner_gap(mesh, r, rz), 1e-12);
+  EXPECT_LT(r.max_periodic_mismatch, 1e-12);
+}
+
 TEST(WallCorners, TheCornerPassRunsWithTheAmgSolverToo) {
   // The sector's corner circles with the assembled solver (nodal frames for the nodes that
   // slide along a circle): the same corners held as with jacobi-pcg.

@@ -156,6 +156,31 @@ struct MotionStart {
   std::vector<SlidingOrigin> sliding;
 };
 
+/// How far a prescribed or sliding patch's nodes lay from its undeformed wall (stage 0 of its
+/// shape: the CAD curve or faces, or the wall through the FEM nodes) when the run began: the
+/// motion puts them on it, so this is how much the mesh's own wall is changed besides the
+/// deflection.
+struct WallGap {
+  std::string patch;
+  double distance = 0.0;  ///< the largest, mesh units
+  NodeId node = -1;       ///< the node that far (-1: the patch has no node of its role)
+};
+
+/// What a failed run's last attempt ran into, and where.
+struct MotionFailure {
+  enum class Kind { none, inverted_cells, newton_stalled, newton_diverged, linear_breakdown };
+  Kind kind = Kind::none;
+  /// The nodes where the attempt's last Newton residual ||D^-1 R|| (a length: each node's force
+  /// divided by its stiffness) is largest, largest first: where Newton did not converge.
+  struct ResidualNode {
+    NodeId node = 0;
+    double residual = 0.0;
+  };
+  std::vector<ResidualNode> largest_residuals;
+  /// That residual at every node (empty when the linear solver broke down: it had none).
+  std::vector<double> residual;
+};
+
 struct MotionResult {
   bool success = false;
   std::string message;                 ///< on failure: what failed, naming cell and increment
@@ -199,6 +224,8 @@ struct MotionResult {
     double min_after = 0.0;
   } corner_repair;
   std::vector<std::string> notes;      ///< things worth a warning (set-up conflicts, ...)
+  std::vector<WallGap> wall_gaps;      ///< per prescribed patch, then per sliding patch
+  MotionFailure failure;               ///< on failure
   MotionTimings timings;
 };
 
