@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <numbers>
 #include <regex>
 #include <string>
@@ -20,12 +19,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../geometry/curve_fixtures.hpp"
 #include "calculix_runs.hpp"
 #include "hotmesh/geometry/vec2.hpp"
-#include "hotmesh/io/calculix.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "run_command.hpp"
+#include "sample_folder.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::samples {
@@ -93,24 +93,12 @@ class DeflectedWall {
   Vec2 at(double s) const { return CadWall::at(s) + displacement(s); }
 
   /// The distance of q from the deflected wall and the s of its nearest point, searched within
-  /// `reach` of s0: a scan every 1e-3 mm, then golden sections about the best sample.
+  /// `reach` of s0: samples 1e-3 mm apart, then golden sections about the best.
   std::pair<double, double> distance(const Vec2& q, double s0, double reach = 1.0) const {
     const double lo = std::max(0.0, s0 - reach), hi = std::min(CadWall::kEnd, s0 + reach);
-    const auto off = [&](double s) { return norm(at(s) - q); };
-    double best = lo;
-    for (double s = lo; s <= hi; s += 1e-3) best = off(s) < off(best) ? s : best;
-    double a = std::max(lo, best - 1e-3), b = std::min(hi, best + 1e-3);
-    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-    for (int i = 0; i < 60; ++i) {
-      const double c = b - g * (b - a), d = a + g * (b - a);
-      if (off(c) < off(d)) {
-        b = d;
-      } else {
-        a = c;
-      }
-    }
-    const double s = 0.5 * (a + b);
-    return {off(s), s};
+    const geometry::test::BruteForce nearest = geometry::test::sampled_minimum(
+        [&](double s) { return norm(at(s) - q); }, lo, hi, static_cast<int>(std::ceil((hi - lo) / 1e-3)));
+    return {nearest.distance, nearest.parameter};
   }
 
  private:
@@ -122,39 +110,25 @@ class DeflectedWall {
 };
 
 /// The committed sample in a temporary folder (run.sh writes beside its inputs).
-struct ForwardStep {
-  test::TempDir dir;
-  fs::path folder = dir / "forward_step";
-
-  ForwardStep() {
+struct ForwardStep : SampleFolder {
+  ForwardStep() : SampleFolder("forward_step") {
     fs::create_directories(folder);
     for (const char* name : {"forward_step.step", "forward_step.msh", "forward_step-split.msh", "metal_mesh.inp", "metal.inp",
                              "forward_step.yaml", "forward_step-nofeatures.yaml", "forward_step-split.yaml", "run.sh"}) {
       fs::copy_file(kSample / name, folder / name);
     }
   }
-  nlohmann::json report(const std::string& run) const {
-    return nlohmann::json::parse(test::read_text(folder / (run + "-out") / "report.json"));
-  }
-  mesh::Mesh deformed(const std::string& run) const { return io::read_gmsh(folder / (run + "-out") / "deformed.msh"); }
 };
-
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
 
 TEST(ForwardStepSample, OneSlidingWallOverTheFootAndFilletFollowsTheFemWallAsTheSplitWallDoes) {
   if (!test::have_ccx()) GTEST_SKIP() << "ccx (Debian package calculix-ccx) is not installed; scripts/install-deps.sh installs it";
   const ForwardStep sample;
-  const auto run = test::run_command("HOTMESH=" + shell_quote(HOTMESH_EXE) + " sh " +
-                                     shell_quote((sample.folder / "run.sh").string()) + " 2>&1");
+  const auto run = sample.run_script("run.sh");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   // hotmesh fem listed the wall's set; hotmesh check found each moved wall on its deflected CAD
   // wall, nodes to rounding and faces within 1e-3 of the channel height.
   EXPECT_THAT(run.output, ::testing::ContainsRegex("WALL +[0-9]+ nodes"));
-  EXPECT_EQ(count(run.output, "patches within the tolerance"), 3u) << run.output;
+  EXPECT_EQ(occurrences(run.output, "patches within the tolerance"), 3u) << run.output;
 
   const mesh::Mesh before = io::read_gmsh(sample.folder / "forward_step.msh");
   const mesh::Mesh one = sample.deformed("forward_step");
