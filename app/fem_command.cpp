@@ -3,7 +3,8 @@
 // it. Without --set: the output steps (the DISP blocks, with the largest displacement and the
 // temperature range of each) and, with --inp, the deck's node sets and surfaces with their
 // node counts and largest displacement at the chosen step. With --set: the deflection table
-// hotmesh would use, as CSV (io/deflection_csv.hpp), on stdout or into -o.
+// hotmesh would use, as CSV (io/deflection_csv.hpp), on stdout or into -o (never one of the
+// files it read).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -18,6 +19,7 @@
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/calculix.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
+#include "hotmesh/io/output_folder.hpp"
 
 namespace hotmesh::app {
 
@@ -127,6 +129,7 @@ int run_fem(const FemOptions& o) {
     std::cout << csv;
     return 0;
   }
+  io::refuse_overwriting_input(o.output, table.files);  // the .frd, the deck and its *INCLUDEs
   io::write_file_atomically(o.output, csv);
   std::cout << fmt::format("{}: {} table of set {} ({} nodes), step {} (time {:.6g})\n", o.output,
                            geometry::to_string(table.samples.frame), o.set, table.samples.size(), table.step,
@@ -146,7 +149,7 @@ Command add_fem_command(CLI::App& parent) {
   cmd->add_option("--inp", options->inp, "The input deck ccx solved (.inp): its node sets and surfaces")
       ->check(CLI::ExistingFile);
   cmd->add_option("--set", options->set, "Node set or surface of the deck whose table to write (needs --inp)");
-  cmd->add_option("-o,--output", options->output, "Write the table to this CSV file (default: stdout)");
+  cmd->add_option("-o,--output", options->output, "Write the table to this CSV file (default: stdout); never the .frd, the deck or a file it includes");
   cmd->add_option("--step", options->step, "Analysis step: `last` (default) or its number");
   cmd->add_option("--time", options->time, "Step time of the output to read");
   return [options] { return run_fem(*options); };

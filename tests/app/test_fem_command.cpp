@@ -1,7 +1,8 @@
 // Tests of `hotmesh fem` on results of the real ccx (the ring of tests/support/
 // calculix_runs.hpp): it lists the output steps and the deck's sets with their node counts,
 // writes the table of one set as CSV that reads back to the same numbers, and refuses a set,
-// a step or a file it cannot read with exit code 2 and a message naming the file.
+// a step or a file it cannot read, and an output that would replace one of its inputs, with
+// exit code 2 and a message naming the file.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -72,6 +73,37 @@ TEST_F(FemCommand, RefusesUnknownSetStepAndTruncatedFile) {
   const test::CommandResult cut = fem("");
   EXPECT_EQ(cut.exit_code, 2) << cut.output;
   EXPECT_THAT(cut.output, ::testing::ContainsRegex("ring\\.frd:[0-9]+: .*truncated"));
+}
+
+// -o naming the .frd replaced the results with the table and exited 0; so did -o naming the
+// deck or a file it includes.
+TEST_F(FemCommand, RefusesAnOutputThatIsOneOfItsInputs) {
+  for (const char* input : {"ring.frd", "ring.inp", "ring_sets.inp"}) {
+    const std::string before = test::read_text(dir / input);
+    const test::CommandResult r = fem("--set outer -o " + shell_quote((dir / input).string()));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_THAT(r.output, HasSubstr((dir / input).string() + ": this output would replace an input file"));
+    EXPECT_EQ(test::read_text(dir / input), before) << input;
+  }
+}
+
+// A deck that redefines an element after a *SURFACE used one of its faces: a segmentation
+// fault while the surfaces were listed.
+TEST(FemCommandDecks, DeckRedefiningAnElementASurfaceUsedIsRefusedWithExitCode2) {
+  const auto deck = test::data_path("calculix/element-redefined-as-beam.inp");
+  const test::CommandResult r = test::hotmesh("fem " + shell_quote(test::data_path("calculix/plate.frd").string()) +
+                                              " --inp " + shell_quote(deck.string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(deck.string() + ":14: element 1 is defined already"));
+}
+
+// NaN displacements were listed as "largest |u| nan" (or hidden behind the other nodes').
+TEST(FemCommandDecks, ResultsWithNanDisplacementsAreRefusedWithExitCode2) {
+  const auto frd = test::data_path("calculix/plate-nan-displacement.frd");
+  const test::CommandResult r = test::hotmesh("fem " + shell_quote(frd.string()) + " --inp " +
+                                              shell_quote(test::data_path("calculix/plate.inp").string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(frd.string() + ":31: node 3 has the value nan in the DISP block"));
 }
 
 }  // namespace
