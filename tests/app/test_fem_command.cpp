@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include "calculix_runs.hpp"
 #include "deform_cases.hpp"
 #include "hotmesh/io/calculix.hpp"
@@ -104,6 +106,37 @@ TEST(FemCommandDecks, ResultsWithNanDisplacementsAreRefusedWithExitCode2) {
                                               shell_quote(test::data_path("calculix/plate.inp").string()));
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_THAT(r.output, HasSubstr(frd.string() + ":31: node 3 has the value nan in the DISP block"));
+}
+
+/// An ASCII .frd of `n` nodes on a line, x = 1 + i/1000, each displaced by 1e-6 along x.
+std::string line_of_nodes_frd(int n) {
+  std::string frd = fmt::format("    1C\n    2C{:18}{:12}{:37}1\n", "", n, "");
+  for (int i = 1; i <= n; ++i) frd += fmt::format(" -1{:10}{:12.5E}{:12.5E}{:12.5E}\n", i, 1 + i * 1e-3, 0.0, 0.0);
+  frd += fmt::format(" -3\n  100CL  101 1.000000000{:12}                     0    1           1\n", n);
+  frd += " -4  DISP        4    1\n -5  D1          1    2    1    0\n -5  D2          1    2    2    0\n"
+         " -5  D3          1    2    3    0\n -5  ALL         1    2    0    0    1ALL\n";
+  for (int i = 1; i <= n; ++i) frd += fmt::format(" -1{:10}{:12.5E}{:12.5E}{:12.5E}\n", i, 1e-6, 0.0, 0.0);
+  return frd + " -3\n 9999\n";
+}
+
+// Each set's largest |u| indexed the whole DISP block again: 10 000 sets of one node with
+// results of 50 000 nodes took half a minute, a deck of 10^5 small sets many minutes. The
+// index is made once (a fraction of a second here; the bound leaves room for the sanitizers).
+TEST(FemCommandDecks, ManySetsAreListedWithOneIndexOfTheResults) {
+  test::TempDir dir;
+  constexpr int kNodes = 50'000;
+  constexpr int kSets = 10'000;
+  std::string deck = "*NODE\n";
+  for (int i = 1; i <= kNodes; ++i) deck += fmt::format("{}, {}, 0\n", i, 1 + i * 1e-3);
+  deck += "*ELEMENT, TYPE=CAX4\n1, 1, 2, 3, 4\n";
+  for (int k = 1; k <= kSets; ++k) deck += fmt::format("*NSET, NSET=S{}\n{}\n", k, k);
+  test::write_text(dir / "many.inp", deck);
+  test::write_text(dir / "many.frd", line_of_nodes_frd(kNodes));
+  const test::CommandResult r = test::run_command("timeout 20 " + std::string(HOTMESH_EXE) + " fem " +
+                                                  shell_quote((dir / "many.frd").string()) + " --inp " +
+                                                  shell_quote((dir / "many.inp").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output.substr(0, 2000);
+  EXPECT_THAT(r.output, ::testing::ContainsRegex("nset +S9999 +1 nodes  largest \\|u\\| 1e-06 at node 9999"));
 }
 
 }  // namespace

@@ -51,7 +51,8 @@ struct FrdResults {
 };
 
 /// Parses an .frd file; `source` names it in messages. Throws InputError "<source>:<line>: ..."
-/// on a truncated file, a block shorter than its header says, a value that is not a number.
+/// on a truncated file, a block shorter than its header says, a value that is not a number,
+/// a node coordinate, step time, DISP or NDTEMP value that is not finite (nan, inf).
 FrdResults parse_frd(std::string_view content, std::string_view source);
 FrdResults read_frd(const std::filesystem::path& path);
 
