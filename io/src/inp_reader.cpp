@@ -157,12 +157,14 @@ class DeckLines {
   DeckLines(InpDeck& deck, const InpLimits& limits) : deck_(deck), limits_(limits) {}
 
   std::vector<DeckLine> read(const fs::path& file) {
-    add(file, {});
+    std::vector<fs::path> chain;
+    add(file, chain);
     return std::move(lines_);
   }
 
  private:
-  void add(const fs::path& file, std::vector<fs::path> chain) {
+  /// Splices in `file`, included through `chain` (the files that include it, the main deck first).
+  void add(const fs::path& file, std::vector<fs::path>& chain) {
     if (std::find(chain.begin(), chain.end(), file) != chain.end()) {
       throw InputError::in(chain.back().string(), "*INCLUDE of " + file.string() + " includes itself (through " +
                                                       std::to_string(chain.size()) + " files)");
@@ -170,7 +172,6 @@ class DeckLines {
     if (chain.size() > limits_.include_depth) {
       throw InputError::in(file.string(), "*INCLUDEs nested deeper than " + std::to_string(limits_.include_depth) + " files");
     }
-    chain.push_back(file);
     const auto [index, text] = load(file);
     std::size_t number = 0;
     for (std::size_t at = 0; at <= text.size();) {
@@ -181,7 +182,9 @@ class DeckLines {
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
       if (is_comment(line)) continue;
       if (is_keyword(line) && parse_keyword(line).name == "INCLUDE") {
+        chain.push_back(file);
         include(parse_keyword(line), file, number, chain);
+        chain.pop_back();
         continue;
       }
       if (lines_.size() == limits_.lines) {
@@ -203,7 +206,7 @@ class DeckLines {
     return {known->second, contents_[known->second]};
   }
 
-  void include(const Keyword& keyword, const fs::path& file, std::size_t line, const std::vector<fs::path>& chain) {
+  void include(const Keyword& keyword, const fs::path& file, std::size_t line, std::vector<fs::path>& chain) {
     const auto input = keyword.parameter("INPUT");
     const std::string place = file.string();
     if (!input || input->empty()) throw InputError::at(place, line, "*INCLUDE needs INPUT=<file>");
