@@ -4,7 +4,9 @@
 #   2. gathers each target's seeds in build-fuzz/fuzz/seeds/<target>/: the samples, the test
 #      data, fuzz/corpus/<target>/, a restart and a checkpoint file of a short run of the
 #      ramp2d sample, the coupled_disc sample's deck solved by ccx (ASCII and binary .frd),
-#      and the small decks and results of Debian's CalculiX tests (calculix-ccx-test),
+#      and the small decks and results of Debian's CalculiX tests (calculix-ccx-test), the
+#      stator well's sector as a binary gzipped polyMesh and the polyMesh folders of Debian's
+#      OpenFOAM tutorials (openfoam-examples: some as shipped, two made by blockMesh),
 #   3. runs each target for SECONDS (default 60), one after the other (-j N: N at a time),
 #      growing its corpus in build-fuzz/fuzz/corpus/<target>/ (kept between runs), and prints
 #      the executions each reached.
@@ -25,7 +27,7 @@ set -euo pipefail
 main() {
   cd "$(dirname "$0")/.."
 
-  all_targets=(gmsh deflection_csv case_yaml restart checkpoint frd inp serve_json serve_upload step iges)
+  all_targets=(gmsh deflection_csv case_yaml restart checkpoint frd inp foam serve_json serve_upload step iges)
   seconds=60
   parallel=1
   seed_hotmesh=""
@@ -57,6 +59,7 @@ main() {
   out=$build/fuzz
   jobs=$(nproc)
   ccx_tests=/usr/share/doc/calculix-ccx-test/examples/test
+  foam_tutorials=/usr/share/doc/openfoam-examples/examples
   if ! command -v clang++ >/dev/null || ! command -v gmsh >/dev/null || ! command -v ccx >/dev/null ||
      [[ ! -d $ccx_tests ]]; then
     echo "hotmesh: the fuzz targets need clang++, gmsh, ccx and CalculiX's tests (calculix-ccx-test):" \
@@ -162,6 +165,54 @@ main() {
   }
   unpacked '*.inp*' "$seeds/inp" 8192
   unpacked '*.frd.ref*' "$seeds/frd" 16384
+  # OpenFOAM: one input per polyMesh folder, each file after a line `//> NAME` (fuzz_foam.cpp).
+  # fuzz/corpus/foam/ (the block of two cubes in every file form, a cell of each type, a 2D
+  # case, uniform lists); the stator well's sector (samples/stator_well, case_small_foam.yaml's
+  # mesh) as make_stator_well --engine-formats writes it (hotmesh convert of its .msh: the same
+  # polyMesh writer), binary and gzipped (720 KB); the polyMesh folders of Debian's OpenFOAM
+  # tutorials (openfoam-examples) below 1 MB uncompressed, as shipped (gzipped, in OpenFOAM
+  # 1.4's format), and blockMesh's meshes of two tutorials: the cavity (2D, empty) and the
+  # moving cone (2D, wedge).
+  foam_input() {  # foam_input <polyMesh folder> <input file>
+    local name file
+    for name in points faces owner neighbour boundary; do
+      for file in "$1/$name" "$1/$name.gz"; do
+        [[ -f $file ]] || continue
+        printf '//> %s\n' "$(basename "$file")"
+        cat "$file"
+        echo
+      done
+    done > "$2"
+  }
+  foam_runs=$out/foam-runs
+  if [[ ! -f $foam_runs/done || $hotmesh -nt $foam_runs/done ]]; then
+    echo "== hotmesh: the stator well's polyMesh and blockMesh's meshes of two tutorials for the foam seeds"
+    rm -rf "$foam_runs"
+    mkdir -p "$foam_runs"
+    ASAN_OPTIONS=detect_leaks=0 "$hotmesh" -q convert samples/stator_well/stator_well.msh \
+      "$foam_runs/stator_well/polyMesh" --binary
+    gzip -9 "$foam_runs"/stator_well/polyMesh/*
+    if [[ -d $foam_tutorials ]] && command -v blockMesh >/dev/null; then
+      for tutorial in incompressible/icoFoam/cavity/cavity incompressible/pimpleFoam/laminar/movingCone; do
+        cp -r "$foam_tutorials/$tutorial" "$foam_runs/$(basename "$tutorial")"
+        WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} blockMesh -case "$foam_runs/$(basename "$tutorial")" \
+          > "$foam_runs/$(basename "$tutorial").log" 2>&1 ||
+          { echo "hotmesh: blockMesh failed on $tutorial (see $foam_runs/)" >&2; exit 1; }
+      done
+    fi
+    touch "$foam_runs/done"
+  fi
+  foam_input "$foam_runs/stator_well/polyMesh" "$seeds/foam/stator_well"
+  for mesh in "$foam_runs"/*/constant/polyMesh; do
+    [[ -d $mesh ]] && foam_input "$mesh" "$seeds/foam/blockMesh-$(basename "$(dirname "$(dirname "$mesh")")")"
+  done
+  if [[ -d $foam_tutorials ]]; then
+    for mesh in $(find "$foam_tutorials" -type d -name polyMesh | sort); do
+      [[ -f $mesh/points || -f $mesh/points.gz ]] || continue
+      (($(zcat -f "$mesh"/* | wc -c) < 1048576)) || continue  # below 1 MB uncompressed
+      foam_input "$mesh" "$seeds/foam/tutorial-$(echo "${mesh#"$foam_tutorials"/}" | tr / -)"
+    done
+  fi
   cp "$state_runs/restart/restart.hmr" "$seeds/restart/"
   cp "$state_runs/checkpoint/checkpoint.hmc" "$seeds/checkpoint/"
   cp $(cad_files "step|stp") "$seeds/step/"
