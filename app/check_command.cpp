@@ -30,6 +30,7 @@
 
 #include "check_references.hpp"
 #include "check_report.hpp"
+#include "mesh_summary.hpp"
 #include "commands.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
@@ -287,6 +288,7 @@ CheckResult check_with_options(const Options& o, const std::vector<std::filesyst
 
   CheckResult result;
   result.mesh = o.mesh;
+  result.quality = mesh_quality_json(loaded);
   result.cad = o.cad;
   result.unit = geometry::to_string(options.unit);
   result.tolerance = o.tolerance > 0.0 ? o.tolerance : default_tolerance(mesh);
@@ -349,6 +351,7 @@ CheckResult check_with_case(const Options& o, std::vector<std::filesystem::path>
 
   CheckResult result;
   result.mesh = mesh_path.string();
+  result.quality = mesh_quality_json(deformed ? *deformed : case_mesh);
   result.case_file = o.case_file;
   result.cad = c.cad ? c.cad->string() : std::string();
   result.unit = geometry::to_string(c.length_unit);

@@ -1,5 +1,6 @@
 // hotmesh app: the report of `hotmesh check` as text, JSON and JUnit XML (see check_report.hpp).
 #include "check_report.hpp"
+#include "mesh_summary.hpp"
 
 #include <fmt/format.h>
 
@@ -106,6 +107,7 @@ std::string check_text(const CheckResult& result) {
   }
   text += fmt::format("{} of {} patches within the tolerance\n", result.patches.size() - failures(result),
                       result.patches.size());
+  if (!result.quality.is_null()) text += "cells of the mesh:\n  " + quality_text(result.quality, "  ");
   return text;
 }
 
@@ -132,7 +134,8 @@ std::string check_json(const CheckResult& result) {
                                                                         : nlohmann::json(nullptr)},
                                {"unit", result.unit},
                                {"passed", result.passed()},
-                               {"patches", patches}};
+                               {"patches", patches},
+                               {"quality", result.quality}};
   return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "hotmesh/geometry/vec3.hpp"
 #include "wall_deviation_report.hpp"
 
@@ -46,6 +48,9 @@ struct CheckResult {
   std::optional<double> wall_tolerance;
   std::string unit;
   std::vector<PatchCheck> patches;
+  /// The checked mesh's cell quality (mesh_quality_json): the scaled Jacobian and the measures
+  /// a flow solver uses; reported, not judged.
+  nlohmann::json quality;
 
   bool passed() const;
 };

@@ -49,7 +49,7 @@ Command add_convert_command(CLI::App& parent) {
     } else if (io::mesh_format(options->output) == io::MeshFormat::foam) {
       io::write_foam(options->output, mesh, mesh.points, {.binary = options->binary});
     } else {
-      io::write_mesh(options->output, mesh, mesh.points, io::quality_fields(mesh, mesh.points));
+      io::write_mesh(options->output, mesh, mesh.points, io::quality_fields(mesh, mesh.points, loaded.layer));
     }
     spdlog::info("wrote {} ({} nodes, {} cells)", options->output, mesh.node_count(), mesh.cell_count());
     return 0;

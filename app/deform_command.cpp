@@ -288,7 +288,8 @@ int write_run_outputs(const RunInputs& in, const io::CaseSetup& setup, const def
   const auto t = Clock::now();
   io::WriteBackOptions write_back;
   if (!options.foam_time.empty()) write_back.foam_time = options.foam_time;
-  RunOutputs outputs = write_outputs(output, c, in.loaded, setup, result, options.binary, write_back);
+  const mesh::SolverQuality solver = mesh::solver_quality(mesh, result.points, in.loaded.layer);
+  RunOutputs outputs = write_outputs(output, c, in.loaded, setup, result, solver, options.binary, write_back);
   if (result.success) {  // the state the next coupling iteration restarts from
     io::write_restart(output / "restart.hmr", io::restart_state(c, mesh, result));
     outputs.files.push_back(output / "restart.hmr");
@@ -298,7 +299,7 @@ int write_run_outputs(const RunInputs& in, const io::CaseSetup& setup, const def
   timings.checkpoint = checkpoints.seconds();
   timings.checkpoint_bytes = checkpoints.bytes();
   timings.wall = seconds_since(start);
-  write_report(output, c, in.loaded, setup, result, timings, outputs, resumed_from);
+  write_report(output, c, in.loaded, setup, result, solver, timings, outputs, resumed_from);
   checkpoints.remove();  // the run has ended: the outputs supersede it
 
   if (!result.success) {
@@ -309,8 +310,14 @@ int write_run_outputs(const RunInputs& in, const io::CaseSetup& setup, const def
                   residual ? "; its point data newton_residual shows where" : "");
     return 1;
   }
-  spdlog::info("done in {:.2f} s: min scaled Jacobian {:.3f}, outputs in {}", timings.wall,
-               result.summary.min_scaled_jacobian, output.string());
+  const mesh::SolverQualitySummary& measured = solver.summary;
+  spdlog::info("done in {:.2f} s: min scaled Jacobian {:.3f}; as a flow solver sees the cells: max non-orthogonality "
+               "{:.1f} deg (average {:.1f}, {} faces over {:.0f}), max skewness {:.2f}, volume ratio {:.3g}, aspect ratio "
+               "{:.3g}; outputs in {}",
+               timings.wall, result.summary.min_scaled_jacobian, measured.max_non_orthogonality.value,
+               measured.mean_non_orthogonality, measured.severely_non_orthogonal_faces, mesh::kSevereNonOrthogonality,
+               measured.max_skewness.value, measured.max_volume_ratio.value, measured.max_aspect_ratio.value,
+               output.string());
   return 0;
 }
 
@@ -362,9 +369,9 @@ int run_deform(const Options& options, RunState& state) {
   if ((options.series || in.c.series) && parallel::processes().root()) {
     const int n = in.c.solver.increments;
     if (in.resumed) {
-      series.emplace(in.output, in.loaded.mesh, setup.motions, in.resumed->state.lambda * n);
+      series.emplace(in.output, in.loaded.mesh, in.loaded.layer, setup.motions, in.resumed->state.lambda * n);
     } else {
-      series.emplace(in.output, in.loaded.mesh, setup.motions);
+      series.emplace(in.output, in.loaded.mesh, in.loaded.layer, setup.motions);
       series->add(0.0, 0.0, in.restart ? std::span<const geometry::Vec3>(in.restart->points) : in.loaded.mesh.points);
     }
   }

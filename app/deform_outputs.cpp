@@ -25,9 +25,9 @@
 namespace hotmesh::app {
 namespace {
 
-io::VtuFields deform_fields(const mesh::Mesh& mesh, const std::vector<geometry::Vec3>& points,
+/// The quality fields (`fields`) with the displacement and each node's role.
+io::VtuFields deform_fields(io::VtuFields fields, const mesh::Mesh& mesh, const std::vector<geometry::Vec3>& points,
                             const deform::MotionResult& result) {
-  io::VtuFields fields = io::quality_fields(mesh, points);
   std::vector<double> displacement;
   displacement.reserve(3 * points.size());
   for (std::size_t n = 0; n < points.size(); ++n) {
@@ -95,8 +95,8 @@ std::string failure_text(const deform::MotionFailure& failure) {
 }
 
 RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
-                         const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh,
-                         const io::WriteBackOptions& write_back) {
+                         const io::CaseSetup& setup, const deform::MotionResult& result,
+                         const mesh::SolverQuality& solver, bool binary_msh, const io::WriteBackOptions& write_back) {
   RunOutputs out;
   const mesh::Mesh& mesh = loaded.mesh;
   mesh::Mesh moved = mesh;
@@ -106,10 +106,12 @@ RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c,
   if (loaded.write_back) {
     for (auto& path : loaded.write_back->write(folder, result.points, write_back)) out.files.push_back(std::move(path));
   }
-  io::write_vtu(folder / "deformed.vtu", mesh, result.points, deform_fields(mesh, result.points, result));
+  io::write_vtu(folder / "deformed.vtu", mesh, result.points,
+                deform_fields(io::quality_fields(mesh, result.points, solver), mesh, result.points, result));
   out.files.push_back(folder / "deformed.vtu");
   if (!result.success) {
-    io::VtuFields fields = deform_fields(mesh, result.failed_points, result);
+    io::VtuFields fields =
+        deform_fields(io::quality_fields(mesh, result.failed_points, loaded.layer), mesh, result.failed_points, result);
     if (!result.failure.residual.empty()) fields.point_data.push_back({"newton_residual", 1, result.failure.residual});
     io::write_vtu(folder / "failed.vtu", mesh, result.failed_points, fields);
     out.files.push_back(folder / "failed.vtu");
@@ -118,7 +120,9 @@ RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c,
     const std::string name = c.file.stem().string();
     const std::string stage = result.success ? "" : fmt::format(" at stage {:.3f} (last valid)", result.lambda_reached);
     const std::string title =
-        fmt::format("{}: deformed mesh{}, min scaled Jacobian {:.3f}", name, stage, result.summary.min_scaled_jacobian);
+        fmt::format("{}: deformed mesh{}, min scaled Jacobian {:.3f}, max non-orthogonality {:.1f} deg, max skewness {:.2f}",
+                    name, stage, result.summary.min_scaled_jacobian, solver.summary.max_non_orthogonality.value,
+                    solver.summary.max_skewness.value);
     picture(folder / "deformed.png", title, mesh, result.points, result.quality, setup, nullptr);
     out.files.push_back(folder / "deformed.png");
     for (const auto& view : c.pictures) {
@@ -307,7 +311,8 @@ json features_json(const mesh::Mesh& mesh, const io::CaseSetup& setup, const def
 }
 
 /// The motion's results: stage, node counts, memory, the lengths and the quality.
-void put_motion(json& j, const mesh::Mesh& mesh, const io::CaseSetup& setup, const deform::MotionResult& result) {
+void put_motion(json& j, const mesh::Mesh& mesh, const io::CaseSetup& setup, const deform::MotionResult& result,
+                const mesh::SolverQuality& solver) {
   const double scale = result.length_scale;
   j["stage_reached"] = result.lambda_reached;
   j["sliding_nodes"] = result.sliding_nodes;
@@ -324,7 +329,7 @@ void put_motion(json& j, const mesh::Mesh& mesh, const io::CaseSetup& setup, con
   j["max_sliding_projection_distance"] = j["final_projection_distance_relative"];
   j["min_scaled_jacobian"] = result.summary.min_scaled_jacobian;
   j["inverted_cells"] = result.summary.inverted_cells;
-  j["quality"] = quality_json(mesh, result.summary, result.quality);
+  j["quality"] = quality_json(mesh, result.points, result.summary, result.quality, solver);
   j["notes"] = result.notes;
   j["features"] = features_json(mesh, setup, result);
   const auto& repair = result.corner_repair;
@@ -385,8 +390,8 @@ json failure_json(const mesh::Mesh& mesh, const deform::MotionResult& result) {
 }  // namespace
 
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
-                  const io::CaseSetup& setup, const deform::MotionResult& result, const RunTimings& timings,
-                  RunOutputs& outputs, const io::CheckpointInfo* resumed) {
+                  const io::CaseSetup& setup, const deform::MotionResult& result, const mesh::SolverQuality& solver,
+                  const RunTimings& timings, RunOutputs& outputs, const io::CheckpointInfo* resumed) {
   json j;
   j["hotmesh_version"] = HOTMESH_VERSION;
   j["command"] = "deform";
@@ -399,7 +404,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   j["deflections"] = deflections_json(c, setup, result.length_scale);
   j["solver"] = solver_json(c.solver, linear_solver_of(c, loaded.mesh, setup));
   put_increments(j, result);
-  put_motion(j, loaded.mesh, setup, result);
+  put_motion(j, loaded.mesh, setup, result, solver);
   j["peak_memory_bytes_all_ranks"] = std::max(timings.peak_memory_all_ranks, j["peak_memory_bytes"].get<std::uint64_t>());
   j["wall_deviations"] = wall_deviations_json(loaded.mesh, result.points, setup, result.lambda_reached, result.length_scale);
   if (c.restart) j["restarted_from"] = c.restart->string();

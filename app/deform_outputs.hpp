@@ -39,17 +39,18 @@ std::vector<std::string> output_names(const io::Case& c, const io::LoadedMesh& l
 std::string failure_text(const deform::MotionFailure& failure);
 
 /// deformed.msh, deformed.vtu, the pictures and, for a mesh read from another solver's format,
-/// the mesh written back in it (`write_back`).
+/// the mesh written back in it (`write_back`). `solver`: the flow solver's measures of the
+/// result's mesh.
 RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
-                         const io::CaseSetup& setup, const deform::MotionResult& result, bool binary_msh,
-                         const io::WriteBackOptions& write_back);
+                         const io::CaseSetup& setup, const deform::MotionResult& result,
+                         const mesh::SolverQuality& solver, bool binary_msh, const io::WriteBackOptions& write_back);
 
 /// report.json: status, increments with Newton and PCG iterations, quality, times per phase;
 /// for a resumed run (`resumed`: the checkpoint it continued from) every increment, those of
 /// the interrupted run included.
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
-                  const io::CaseSetup& setup, const deform::MotionResult& result, const RunTimings& timings,
-                  RunOutputs& outputs, const io::CheckpointInfo* resumed = nullptr);
+                  const io::CaseSetup& setup, const deform::MotionResult& result, const mesh::SolverQuality& solver,
+                  const RunTimings& timings, RunOutputs& outputs, const io::CheckpointInfo* resumed = nullptr);
 
 /// The linear solver a run of case `c` on `mesh` with `setup` uses, and why: the case file's, or
 /// what `linear: auto` picks for the mesh, its sliding walls and the processes

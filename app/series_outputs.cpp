@@ -52,9 +52,9 @@ void write_collection(const std::filesystem::path& path, const std::vector<std::
 
 }  // namespace
 
-SeriesWriter::SeriesWriter(std::filesystem::path folder, const mesh::Mesh& mesh,
+SeriesWriter::SeriesWriter(std::filesystem::path folder, const mesh::Mesh& mesh, const mesh::Extrusion& layer,
                            std::span<const deform::PatchMotion> motions, double resumed_time)
-    : folder_(std::move(folder)), mesh_(mesh), motions_(motions) {
+    : folder_(std::move(folder)), mesh_(mesh), layer_(layer), motions_(motions) {
   if (resumed_time < 0.0) return;
   const auto meshes = read_collection(folder_ / "deformed.pvd");
   const auto walls = read_collection(folder_ / "walls.pvd");
@@ -69,7 +69,7 @@ void SeriesWriter::add(double time, double lambda, std::span<const geometry::Vec
   const std::size_t index = steps_.size();
   Step step{time, fmt::format("{}/mesh_{:04d}.vtu", kSeriesFolder, index),
             fmt::format("{}/walls_{:04d}.vtp", kSeriesFolder, index)};
-  io::VtuFields fields = io::quality_fields(mesh_, points);
+  io::VtuFields fields = io::quality_fields(mesh_, points, layer_);
   std::vector<double> displacement(3 * points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const geometry::Vec3 d = points[i] - mesh_.points[i];

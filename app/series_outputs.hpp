@@ -13,6 +13,7 @@
 
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/mesh/mesh.hpp"
+#include "hotmesh/mesh/solver_quality.hpp"
 
 namespace hotmesh::app {
 
@@ -21,8 +22,8 @@ class SeriesWriter {
   /// The series of a run of `increments` increments in `folder`. A resumed run (`resumed_time`
   /// >= 0) keeps the steps of the interrupted run up to that time, as its deformed.pvd lists
   /// them; a new run starts empty.
-  SeriesWriter(std::filesystem::path folder, const mesh::Mesh& mesh, std::span<const deform::PatchMotion> motions,
-               double resumed_time = -1.0);
+  SeriesWriter(std::filesystem::path folder, const mesh::Mesh& mesh, const mesh::Extrusion& layer,
+               std::span<const deform::PatchMotion> motions, double resumed_time = -1.0);
 
   /// Writes one step: the mesh at `points`, the walls at stage `lambda`, and both .pvd files
   /// listing every step so far (each file atomically, so an interrupted run leaves a series
@@ -42,6 +43,7 @@ class SeriesWriter {
 
   std::filesystem::path folder_;
   const mesh::Mesh& mesh_;
+  mesh::Extrusion layer_;  ///< a 2D mesh's layer of cells, for the flow solver's measures
   std::span<const deform::PatchMotion> motions_;
   std::vector<Step> steps_;
 };

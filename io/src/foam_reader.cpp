@@ -329,6 +329,7 @@ FoamMesh read_foam(const fs::path& path) {
   if (foam::is_2d(poly)) {
     foam::FlatMesh flat = foam::flatten(poly, cells, folder.string());
     result.mesh = std::move(flat.mesh);
+    result.layer = {flat.map.frames[0], flat.map.frames[1]};
     data.map = std::move(flat.map);
   } else {
     result.mesh = foam::volume_mesh(poly, cells, folder.string());

@@ -12,14 +12,12 @@
 
 #include "foam_file.hpp"
 #include "hotmesh/io/mesh_files.hpp"
+#include "hotmesh/mesh/solver_quality.hpp"
 
 namespace hotmesh::io::foam {
 
 /// A plane of a 2D case: the 2D point (x, y) is origin + x u + y v in it.
-struct PlaneFrame {
-  geometry::Vec3 origin, u, v;
-  geometry::Vec3 at(double x, double y) const { return origin + x * u + y * v; }
-};
+using PlaneFrame = mesh::PlaneMap;
 
 /// For a 2D case, each OpenFOAM point's 2D node and plane (0 back, 1 front); empty for 3D
 /// (point i is node i).

@@ -129,7 +129,7 @@ class FoamWriteBack final : public MeshWriteBack {
     std::vector<geometry::Vec3> out(d_.map.node.size());
     for (std::size_t q = 0; q < out.size(); ++q) {
       const geometry::Vec3& p = points[static_cast<std::size_t>(d_.map.node[q])];
-      out[q] = d_.map.frames[d_.map.plane[q]].at(p.x, p.y);
+      out[q] = d_.map.frames[d_.map.plane[q]].at(p);
     }
     return out;
   }

@@ -39,6 +39,7 @@ LoadedMesh read_mesh(const std::filesystem::path& path) {
       FoamMesh foam = read_foam(path);
       loaded.mesh = std::move(foam.mesh);
       loaded.write_back = std::move(foam.write_back);
+      loaded.layer = foam.layer;
       break;
     }
     case MeshFormat::vtu: throw InputError::in(path.string(), "hotmesh writes .vtu files but does not read them");

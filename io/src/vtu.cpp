@@ -214,13 +214,22 @@ void write_vtp(const std::filesystem::path& path, const PolyData& data) {
   file.commit();
 }
 
-VtuFields quality_fields(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points) {
+VtuFields quality_fields(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points, const mesh::Extrusion& layer) {
+  return quality_fields(mesh, points, mesh::solver_quality(mesh, points, layer));
+}
+
+VtuFields quality_fields(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
+                         const mesh::SolverQuality& solver) {
   VtuFields fields;
   std::vector<double> quality = mesh::scaled_jacobians(mesh.cells, points);
   std::vector<std::uint8_t> inverted(quality.size());
   std::transform(quality.begin(), quality.end(), inverted.begin(), [](double q) { return q <= 0.0 ? 1 : 0; });
   fields.cell_data.push_back({"scaled_jacobian", 1, std::move(quality)});
   fields.cell_data.push_back({"inverted", 1, std::move(inverted)});
+  fields.cell_data.push_back({"non_orthogonality", 1, solver.non_orthogonality});
+  fields.cell_data.push_back({"skewness", 1, solver.skewness});
+  fields.cell_data.push_back({"volume_ratio", 1, solver.volume_ratio});
+  fields.cell_data.push_back({"aspect_ratio", 1, solver.aspect_ratio});
   std::vector<std::int32_t> patch(mesh.node_count(), 0);
   for (std::size_t p = mesh.patches.size(); p-- > 0;) {
     for (mesh::NodeId n : mesh.patches[p].nodes) patch[static_cast<std::size_t>(n)] = static_cast<std::int32_t>(p + 1);

@@ -96,6 +96,15 @@ TEST(CheckCommand, RampSampleDeformedMeshLiesOnTheDeflectedWallAndAMovedNodeIsFo
   EXPECT_EQ(pass["patches"][0]["nodes"], 58);
   EXPECT_LT(pass["patches"][0]["max_distance"].get<double>(), 1e-12);
   EXPECT_NEAR(pass["tolerance"].get<double>(), 1e-6 * std::sqrt(5.0), 1e-12);  // 1e-6 of the 2 x 1 channel
+  // The checked mesh's cells as a flow solver sees them, as deform's report.json gave them.
+  const auto report = nlohmann::json::parse(test::read_text(dir / "out/report.json"));
+  for (const char* measure : {"non_orthogonality", "skewness", "volume_ratio", "aspect_ratio"}) {
+    const double reported = report["quality"][measure]["max"].get<double>();
+    EXPECT_NEAR(pass["quality"][measure]["max"].get<double>(), reported, 1e-9 * reported) << measure;
+    EXPECT_EQ(pass["quality"][measure]["worst_cell"], report["quality"][measure]["worst_cell"]) << measure;
+  }
+  EXPECT_GT(report["quality"]["non_orthogonality"]["max"].get<double>(), 1.0);
+  EXPECT_THAT(hotmesh("check --mesh " + q(dir / "out/deformed.msh") + table).output, HasSubstr("non-orthogonality max"));
 
   // Move one node of the flat part of the wall 1 mm up: the check fails and names it.
   mesh::Mesh mesh = io::read_gmsh(dir / "out/deformed.msh");

@@ -52,6 +52,7 @@ void write_foam(const std::filesystem::path& path, const mesh::Mesh& m, std::spa
 struct FoamMesh {
   mesh::Mesh mesh;  ///< not yet validated (see read_mesh in mesh_files.hpp)
   std::shared_ptr<const MeshWriteBack> write_back;
+  mesh::Extrusion layer;  ///< a 2D case's back and front planes (empty or wedge)
 };
 
 /// Reads the polyMesh of `path` (a polyMesh folder or a case folder).

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "hotmesh/mesh/mesh.hpp"
+#include "hotmesh/mesh/solver_quality.hpp"
 #include "hotmesh/mesh/validate.hpp"
 #include "hotmesh/io/vtu.hpp"
 
@@ -51,6 +52,9 @@ struct LoadedMesh {
   mesh::Mesh mesh;
   mesh::ValidationReport validation;
   std::shared_ptr<const MeshWriteBack> write_back;  ///< null for Gmsh files (deformed.msh is theirs)
+  /// The layer of cells a 2D mesh stands for in its flow solver: an OpenFOAM case's empty or
+  /// wedge planes, else a slab (mesh::solver_quality).
+  mesh::Extrusion layer;
 };
 
 /// The files a mesh input is made of, for fingerprints: the file itself, or the files of a

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hotmesh/mesh/mesh.hpp"
+#include "hotmesh/mesh/solver_quality.hpp"
 
 namespace hotmesh::io {
 
@@ -31,9 +32,15 @@ struct VtuFields {
 /// VTK cell type number of a hotmesh element type (VTK_QUAD = 9, VTK_HEXAHEDRON = 12, ...).
 std::uint8_t vtk_cell_type(mesh::ElementType type);
 
-/// Cell quality (scaled_jacobian, inverted) and, per node, the 1-based index of the first
-/// patch it lies on (0 inside): the arrays every VTU from hotmesh carries.
-VtuFields quality_fields(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points);
+/// Cell quality (scaled_jacobian, inverted, and the flow solver's non_orthogonality in
+/// degrees, skewness, volume_ratio and aspect_ratio of mesh::SolverQuality) and, per node, the
+/// 1-based index of the first patch it lies on (0 inside): the arrays every VTU from hotmesh
+/// carries. `layer`: what a 2D mesh's cells stand for (io::LoadedMesh::layer).
+VtuFields quality_fields(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
+                         const mesh::Extrusion& layer = {});
+/// The same with the solver's measures already made.
+VtuFields quality_fields(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
+                         const mesh::SolverQuality& solver);
 
 /// Writes the cells of `mesh` at coordinates `points` (mesh.points, or a deformed copy).
 /// Throws std::invalid_argument if an array has the wrong length.

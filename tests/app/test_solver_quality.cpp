@@ -1,0 +1,179 @@
+// Tests of the flow solver's measures (mesh/solver_quality.hpp) against OpenFOAM's own
+// checkMesh -allGeometry on the same polyMesh folders (skipped without OpenFOAM): a wedge case
+// (Debian's movingCone tutorial, by blockMesh), a skewed and graded 3D block by blockMesh, the
+// hybrid box (tet, pyramid, prism, hex) by gmsh and gmshToFoam, and a mesh moved by hotmesh
+// (the ramp channel, written back by `deform --foam-time`). hotmesh info and report.json give
+// the maximum and average non-orthogonality, the maximum skewness, aspect ratio and volume
+// ratio (checkMesh: its reciprocal, the minimum) that checkMesh prints, to 1 %.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "deform_cases.hpp"
+#include "foam_fixtures.hpp"
+#include "hybrid_meshes.hpp"
+#include "run_command.hpp"
+#include "test_support.hpp"
+
+namespace hotmesh::app {
+namespace {
+
+using test::hotmesh;
+using test::shell_quote;
+namespace fs = std::filesystem;
+namespace tf = test::foam;
+
+#define SKIP_WITHOUT_OPENFOAM()            \
+  if (tf::block_mesh_command().empty())    \
+  GTEST_SKIP() << "OpenFOAM is not installed: " \
+                  "run scripts/install-deps.sh (Debian's openfoam)"
+
+/// The figures checkMesh -allGeometry prints.
+struct CheckMeshFigures {
+  double max_non_orthogonality = 0, mean_non_orthogonality = 0, max_skewness = 0, max_aspect_ratio = 0,
+         min_volume_ratio = 0;
+};
+
+double figure(const std::string& output, const std::string& pattern) {
+  std::smatch m;
+  if (!std::regex_search(output, m, std::regex(pattern))) {
+    ADD_FAILURE() << "checkMesh did not print /" << pattern << "/:\n" << output;
+    return 0.0;
+  }
+  return std::stod(m[1].str());
+}
+
+/// checkMesh -allGeometry on the case `folder` (at `time` if given).
+CheckMeshFigures check_mesh(const fs::path& folder, const std::string& time = "") {
+  const auto r = test::run_command(tf::check_mesh_command() + " -allGeometry -case " + shell_quote(folder.string()) +
+                                   (time.empty() ? "" : " -time " + time));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const std::string number = "([-+0-9.eE]+)";
+  CheckMeshFigures k;
+  k.max_non_orthogonality = figure(r.output, "Mesh non-orthogonality Max: " + number);
+  k.mean_non_orthogonality = figure(r.output, "Mesh non-orthogonality Max: [-+0-9.eE]+ average: " + number);
+  k.max_skewness = figure(r.output, "[Mm]ax skewness = " + number);
+  k.max_aspect_ratio = figure(r.output, "[Mm]ax aspect ratio[ =:]+" + number);
+  k.min_volume_ratio = figure(r.output, "Face volume ratio : minimum: " + number);
+  return k;
+}
+
+/// report.json's or info's quality against checkMesh's figures, each to 1 %.
+void expect_as_check_mesh(const nlohmann::json& quality, const CheckMeshFigures& k) {
+  const auto near = [](double hotmesh, double openfoam, const char* what) {
+    EXPECT_NEAR(hotmesh, openfoam, 0.01 * std::abs(openfoam) + 1e-6) << what;
+  };
+  near(quality["non_orthogonality"]["max"].get<double>(), k.max_non_orthogonality, "max non-orthogonality");
+  near(quality["non_orthogonality"]["mean"].get<double>(), k.mean_non_orthogonality, "average non-orthogonality");
+  near(quality["skewness"]["max"].get<double>(), k.max_skewness, "max skewness");
+  near(quality["aspect_ratio"]["max"].get<double>(), k.max_aspect_ratio, "max aspect ratio");
+  near(1.0 / quality["volume_ratio"]["max"].get<double>(), k.min_volume_ratio, "volume ratio");
+}
+
+nlohmann::json info_quality(const fs::path& mesh) {
+  const auto r = hotmesh("info --json " + shell_quote(mesh.string()));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return nlohmann::json::parse(r.output)["quality"];
+}
+
+TEST(SolverQuality, MovingConeWedgeAsCheckMeshSeesIt) {
+  SKIP_WITHOUT_OPENFOAM();
+  const fs::path tutorial = "/usr/share/doc/openfoam-examples/examples/incompressible/pimpleFoam/laminar/movingCone";
+  if (!fs::exists(tutorial)) GTEST_SKIP() << "openfoam-examples is not installed: run scripts/install-deps.sh";
+  test::TempDir dir;
+  const fs::path cone = dir / "movingCone";
+  fs::copy(tutorial, cone, fs::copy_options::recursive);
+  ASSERT_EQ(tf::run_block_mesh(cone).exit_code, 0);
+  const nlohmann::json q = info_quality(cone);
+  expect_as_check_mesh(q, check_mesh(cone));
+  // The wedge's cells are measured as the wedge's prisms: its planes as slab would put the
+  // cells' centres at their areas' centroids, not their volumes', and change the figures.
+  EXPECT_GT(q["non_orthogonality"]["max"].get<double>(), 15.0);
+  EXPECT_EQ(q["non_orthogonality"]["severe_faces"].get<int>(), 0);
+  // The wedge's sides on its axis have no area and no angle.
+  EXPECT_LT(q["non_orthogonality"]["max_boundary"].get<double>(), 30.0);
+}
+
+/// A hexahedral block by blockMesh whose vertices are moved off a box and whose cells are
+/// graded in all three directions: non-orthogonal, skewed and stretched cells.
+constexpr const char* kSkewedBlock = R"(
+vertices ((0 0 0) (4 0.6 0) (4.5 3 0.4) (0.3 2.2 0) (0.2 0.1 1.4) (3.9 0.2 1.1) (4.8 3.4 2) (-0.4 2.5 1.2));
+blocks (hex (0 1 2 3 4 5 6 7) (9 7 5) simpleGrading (6 0.2 3));
+boundary (walls {type wall; faces ((0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2) (0 3 2 1) (4 5 6 7));});
+)";
+
+TEST(SolverQuality, SkewedGradedHexBlockAsCheckMeshSeesIt) {
+  SKIP_WITHOUT_OPENFOAM();
+  test::TempDir dir;
+  tf::write_block_mesh_case(dir / "block", kSkewedBlock);
+  ASSERT_EQ(tf::run_block_mesh(dir / "block").exit_code, 0);
+  const nlohmann::json q = info_quality(dir / "block");
+  expect_as_check_mesh(q, check_mesh(dir / "block"));
+  EXPECT_GT(q["non_orthogonality"]["max"].get<double>(), 20.0);
+  EXPECT_GT(q["aspect_ratio"]["max"].get<double>(), 5.0);
+  EXPECT_GT(q["volume_ratio"]["max"].get<double>(), 1.2);
+}
+
+TEST(SolverQuality, GmshHybridBoxAsCheckMeshSeesItPerCellType) {
+  SKIP_WITHOUT_OPENFOAM();
+  if (tf::gmsh_to_foam_command().empty()) GTEST_SKIP() << "gmshToFoam is not installed";
+  test::TempDir dir;
+  const auto msh = test::hybrid_msh("hybrid_box", 3, dir.path(), "msh22");
+  tf::write_block_mesh_case(dir / "case", "");
+  const auto r = test::run_command(tf::gmsh_to_foam_command() + " " + shell_quote(msh.string()) + " -case " +
+                                   shell_quote((dir / "case").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json q = info_quality(dir / "case");
+  expect_as_check_mesh(q, check_mesh(dir / "case"));
+  // Every cell type has its own figures, and the worst of them is the mesh's.
+  ASSERT_EQ(q["by_type"].size(), 4u);
+  double worst_skewness = 0.0;
+  for (const auto& [type, t] : q["by_type"].items()) {
+    EXPECT_GT(t["skewness"]["max"].get<double>(), 0.0) << type;
+    worst_skewness = std::max(worst_skewness, t["skewness"]["max"].get<double>());
+  }
+  EXPECT_DOUBLE_EQ(worst_skewness, q["skewness"]["max"].get<double>());
+}
+
+/// The ramp channel 2h x h, 21 x 12 cells graded towards the lower wall, 0.05 thick.
+constexpr const char* kRampChannel = R"(
+vertices ((0 0 0) (2 0 0) (2 1 0) (0 1 0) (0 0 0.05) (2 0 0.05) (2 1 0.05) (0 1 0.05));
+blocks (hex (0 1 2 3 4 5 6 7) (21 12 1) simpleGrading (1 20 1));
+boundary (
+  left {type patch; faces ((0 4 7 3));}
+  right {type patch; faces ((1 2 6 5));}
+  bottom {type wall; faces ((0 1 5 4));}
+  top {type wall; faces ((3 7 6 2));}
+  frontAndBack {type empty; faces ((0 3 2 1) (4 5 6 7));}
+);
+)";
+
+TEST(SolverQuality, MeshMovedByHotmeshAsCheckMeshSeesIt) {
+  SKIP_WITHOUT_OPENFOAM();
+  test::TempDir dir;
+  const fs::path cfd = dir / "cfd";
+  tf::write_block_mesh_case(cfd, kRampChannel);
+  ASSERT_EQ(tf::run_block_mesh(cfd).exit_code, 0);
+  fs::copy_file(test::kSample / "ramp.csv", dir / "ramp.csv");
+  test::write_text(dir / "foam.yaml",
+                   "mesh: cfd\nsolver: {increments: 8}\npatches:\n  left: {role: fixed}\n  right: {role: slip}\n"
+                   "  top: {role: sliding}\n  bottom: {role: sliding, deflection: {file: ramp.csv, degree: 1}}\n");
+  const auto out = dir / "out";
+  const auto r = hotmesh("deform " + shell_quote((dir / "foam.yaml").string()) + " -o " + shell_quote(out.string()) +
+                         " --threads 1 --foam-time 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("max non-orthogonality"), std::string::npos) << r.output;
+  const nlohmann::json report = nlohmann::json::parse(test::read_text(out / "report.json"));
+  const nlohmann::json& moved = report["quality"];
+  expect_as_check_mesh(moved, check_mesh(cfd, "1"));
+  // The motion made the cells less orthogonal than blockMesh's rectangles (0 degrees).
+  EXPECT_GT(moved["non_orthogonality"]["max"].get<double>(), 1.0);
+  EXPECT_NEAR(report["mesh"]["quality"]["non_orthogonality"]["max"].get<double>(), 0.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace hotmesh::app
