@@ -240,6 +240,7 @@ deform::MotionResult move_the_mesh(const Options& options, RunState& state, cons
   const deform::LinearSolverChoice linear = linear_solver_of(c, mesh, setup);
   deform::SolverOptions solver = c.solver;
   solver.linear = linear.kind;
+  solver.quality.layer = in.loaded.layer;
   if (in.resumed) {
     const io::CheckpointInfo& info = in.resumed->info;
     spdlog::info("resuming from {} (written {}): {} of {} increments done, stage {:.4f}; on {}",

@@ -89,6 +89,7 @@ std::string failure_text(const deform::MotionFailure& failure) {
     case deform::MotionFailure::Kind::newton_stalled: return "Newton did not converge; no cell inverted";
     case deform::MotionFailure::Kind::newton_diverged: return "Newton diverged; no cell inverted";
     case deform::MotionFailure::Kind::linear_breakdown: return "the linear solver broke down; no cell inverted";
+    case deform::MotionFailure::Kind::quality_limits: return "cells beyond the case's quality limits; no cell inverted";
     case deform::MotionFailure::Kind::none: break;
   }
   return "it did not fail";
@@ -375,8 +376,8 @@ json patches_json(const mesh::Mesh& mesh, const io::CaseSetup& setup, const defo
 
 /// What a failed run ran into, and the nodes where its last Newton residual is largest.
 json failure_json(const mesh::Mesh& mesh, const deform::MotionResult& result) {
-  static constexpr std::array<const char*, 5> kinds{"none", "inverted_cells", "newton_stalled", "newton_diverged",
-                                                    "linear_breakdown"};
+  static constexpr std::array<const char*, 6> kinds{"none", "inverted_cells", "newton_stalled", "newton_diverged",
+                                                    "linear_breakdown", "quality_limits"};
   json nodes = json::array();
   for (const auto& r : result.failure.largest_residuals) {
     const geometry::Vec3& x = result.failed_points[static_cast<std::size_t>(r.node)];

@@ -23,6 +23,7 @@
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
+#include "hotmesh/mesh/solver_quality.hpp"
 #include "linear_solver.hpp"
 #include "newton.hpp"
 #include "quality_repair.hpp"
@@ -210,7 +211,7 @@ class Motion {
     result_.message = fmt::format("increment {} of {} failed (stage {:.6g} to {:.6g}{}): {}", increment,
                                   increments(), a, b,
                                   depth > 0 ? fmt::format(", after splitting it {} times", depth) : "", record.failure);
-    if (record.inverted_cells == 0) {  // the cell that suffered most in the failed attempt
+    if (record.inverted_cells == 0 && failure_.kind != MotionFailure::Kind::quality_limits) {  // the cell that suffered most
       result_.message += fmt::format("; no cell inverted, the worst at the failed stage is cell {} (scaled Jacobian {:.3g})",
                                      mesh_.cell_id(worst.worst_cell), worst.min_scaled_jacobian);
     }
@@ -251,6 +252,10 @@ class Motion {
     if (f.kind == MotionFailure::Kind::inverted_cells) {
       return ". Try more increments (solver.increments) or splits (solver.max_increment_splits); a deflection as "
              "large as the cells beside the wall needs finer cells there";
+    }
+    if (f.kind == MotionFailure::Kind::quality_limits) {
+      return ". The motion cannot keep the case's quality limits: try finer cells where the walls move most, more "
+             "increments, or looser limits";
     }
     if (f.largest_residuals.empty()) return "";
     std::string text = "; the residual is largest at";
@@ -421,10 +426,44 @@ class Motion {
       record.failure = fmt::format("{} cells inverted, the worst cell {} (scaled Jacobian {:.3g})",
                                    summary.inverted_cells, mesh_.cell_id(summary.worst_cell),
                                    summary.min_scaled_jacobian);
+    } else if (std::string broken = broken_limits(trial, quality, summary); !broken.empty()) {
+      record.failure = std::move(broken);
     } else {
       record.accepted = true;
       sliding_.end_increment(u);
     }
+  }
+
+  /// The case's quality limits (SolverOptions::quality) that the mesh `trial` breaks, each with
+  /// its cells: how many, the worst and its value; empty if it keeps them all.
+  std::string broken_limits(const std::vector<Vec3>& trial, std::span<const double> jacobians,
+                            const QualitySummary& summary) {
+    const QualityLimits& limits = solver_.quality;
+    std::vector<std::string> broken;
+    const auto count_beyond = [](std::span<const double> values, auto beyond) {
+      return static_cast<std::size_t>(std::count_if(values.begin(), values.end(), beyond));
+    };
+    if (limits.min_scaled_jacobian > 0.0 && summary.min_scaled_jacobian < limits.min_scaled_jacobian) {
+      const double limit = limits.min_scaled_jacobian;
+      broken.push_back(fmt::format("{} cells below quality.min_scaled_jacobian {:.3g}, the worst cell {} ({:.3g})",
+                                   count_beyond(jacobians, [limit](double q) { return q < limit; }), limit,
+                                   mesh_.cell_id(summary.worst_cell), summary.min_scaled_jacobian));
+    }
+    if (!limits.solver_measures()) return fmt::format("{}", fmt::join(broken, "; "));
+    const auto t = Clock::now();
+    const mesh::SolverQuality measured = mesh::solver_quality(mesh_, trial, limits.layer);
+    result_.timings.quality += seconds_since(t);
+    const auto above = [&](const char* name, double limit, const mesh::WorstCell& worst, std::span<const double> per_cell,
+                           const char* unit) {
+      if (limit <= 0.0 || worst.value <= limit) return;
+      broken.push_back(fmt::format("{} cells above quality.{} {:.3g}{}, the worst cell {} ({:.3g}{})",
+                                   count_beyond(per_cell, [limit](double v) { return v > limit; }), name, limit, unit,
+                                   mesh_.cell_id(worst.cell), worst.value, unit));
+    };
+    above("max_non_orthogonality", limits.max_non_orthogonality, measured.summary.max_non_orthogonality,
+          measured.non_orthogonality, " deg");
+    above("max_skewness", limits.max_skewness, measured.summary.max_skewness, measured.skewness, "");
+    return fmt::format("{}", fmt::join(broken, "; "));
   }
 
   /// One increment: Newton-Raphson from the current mesh to stage b. Returns the new points.
@@ -518,7 +557,9 @@ class Motion {
     }
     if (record.converged) {
       accept_if_valid(trial, u, record);
-      if (!record.accepted) note_failure(MotionFailure::Kind::inverted_cells);
+      if (!record.accepted) {
+        note_failure(record.inverted_cells > 0 ? MotionFailure::Kind::inverted_cells : MotionFailure::Kind::quality_limits);
+      }
     }
     record.seconds = seconds_since(start);
     return trial;

@@ -37,8 +37,10 @@ using namespace detail;  // NOLINT: the checking vocabulary of this file
 namespace fs = std::filesystem;
 using geometry::SampleFrame;
 
-constexpr std::array<std::string_view, 10> kTopKeys{"mesh",     "cad",     "length_unit", "output",  "axis",
-                                                   "solver",   "material", "patches",    "pictures", "restart"};
+constexpr std::array<std::string_view, 11> kTopKeys{"mesh",     "cad",      "length_unit", "output",
+                                                   "axis",     "solver",   "material",    "quality",
+                                                   "patches",  "pictures", "restart"};
+constexpr std::array<std::string_view, 3> kQualityKeys{"min_scaled_jacobian", "max_non_orthogonality", "max_skewness"};
 constexpr std::array<std::string_view, 2> kAxisKeys{"origin", "direction"};
 constexpr std::array<std::string_view, 12> kSolverKeys{
     "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
@@ -106,6 +108,7 @@ class CaseParser {
     if (has_axis_) read_axis(*top.find("axis"));
     if (const Entry* e = top.find("solver")) read_solver(*e);
     if (const Entry* e = top.find("material")) read_material(*e);
+    if (const Entry* e = top.find("quality")) read_quality(*e);
     if (const Entry* e = top.find("pictures")) read_pictures(*e);
     if (const Entry* e = top.find("restart")) {
       if (auto path = input_file(*e, "the restart file of a previous run (restart.hmr)")) c_.restart = *path;
@@ -270,6 +273,26 @@ class CaseParser {
     }
     if (const Entry* x = m.find("alpha_v")) {
       mat.alpha_v = reader_.number_where(*x, [](double v) { return v >= 0.0; }, ">= 0").value_or(mat.alpha_v);
+    }
+  }
+
+  /// The limits every increment's cells keep (deform::QualityLimits).
+  void read_quality(const Entry& e) {
+    if (!reader_.map_or_empty(e, cat("a map of quality limits (", join(kQualityKeys), ")"))) return;
+    const MapEntries m = reader_.keys(e, kQualityKeys);
+    deform::QualityLimits& q = c_.solver.quality;
+    if (const Entry* x = m.find("min_scaled_jacobian")) {
+      q.min_scaled_jacobian =
+          reader_.number_where(*x, [](double v) { return v > 0.0 && v < 1.0; }, "above 0 and below 1 (the ideal cell's)")
+              .value_or(q.min_scaled_jacobian);
+    }
+    if (const Entry* x = m.find("max_non_orthogonality")) {
+      q.max_non_orthogonality =
+          reader_.number_where(*x, [](double v) { return v > 0.0 && v < 90.0; }, "degrees above 0 and below 90")
+              .value_or(q.max_non_orthogonality);
+    }
+    if (const Entry* x = m.find("max_skewness")) {
+      q.max_skewness = reader_.number_where(*x, [](double v) { return v > 0.0; }, "> 0").value_or(q.max_skewness);
     }
   }
 

@@ -274,9 +274,9 @@ TEST_F(CaseFile, RequiresMeshAndPatches) {
 
 TEST_F(CaseFile, RejectsUnknownTopLevelKey) {
   EXPECT_EQ(error_with("mehs: x\n"), at(4) + "mehs: unknown key (did you mean 'mesh'?); allowed at the top level: "
-                                             "mesh, cad, length_unit, output, axis, solver, material, patches, pictures, restart");
+                                             "mesh, cad, length_unit, output, axis, solver, material, quality, patches, pictures, restart");
   EXPECT_EQ(error_with("colour: red\n"), at(4) + "colour: unknown key; allowed at the top level: mesh, cad, "
-                                                 "length_unit, output, axis, solver, material, patches, pictures, restart");
+                                                 "length_unit, output, axis, solver, material, quality, patches, pictures, restart");
 }
 
 TEST_F(CaseFile, RejectsUnknownSolverKey) {

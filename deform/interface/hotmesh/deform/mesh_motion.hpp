@@ -168,7 +168,7 @@ struct WallGap {
 
 /// What a failed run's last attempt ran into, and where.
 struct MotionFailure {
-  enum class Kind { none, inverted_cells, newton_stalled, newton_diverged, linear_breakdown };
+  enum class Kind { none, inverted_cells, newton_stalled, newton_diverged, linear_breakdown, quality_limits };
   Kind kind = Kind::none;
   /// The nodes where the attempt's last Newton residual ||D^-1 R|| (a length: each node's force
   /// divided by its stiffness) is largest, largest first: where Newton did not converge.

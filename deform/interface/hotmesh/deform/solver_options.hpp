@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "hotmesh/geometry/enum_names.hpp"
+#include "hotmesh/mesh/solver_quality.hpp"
 
 namespace hotmesh::deform {
 
@@ -104,6 +105,19 @@ constexpr LinearSolverChoice choose_linear_solver(int dimension, std::size_t cel
                                  : LinearSolverChoice{LinearSolverKind::jacobi_pcg, "a 3D mesh of at most 500 000 cells"};
 }
 
+/// Limits on the cells that every accepted increment keeps (the case file's `quality:`; 0: a
+/// limit not set). An increment whose mesh breaks one is retried in halves, as one that
+/// inverts a cell; a cell whose scaled Jacobian is at most 0 is always refused.
+struct QualityLimits {
+  double min_scaled_jacobian = 0.0;
+  double max_non_orthogonality = 0.0;  ///< degrees, as mesh::solver_quality measures it
+  double max_skewness = 0.0;
+  /// What a 2D mesh's cells stand for in the flow solver (io::LoadedMesh::layer), for the
+  /// non-orthogonality and skewness.
+  mesh::Extrusion layer;
+  bool solver_measures() const { return max_non_orthogonality > 0.0 || max_skewness > 0.0; }
+};
+
 /// Increments, Newton-Raphson (eqs. 7-8) and the inner PCG solves (section 3).
 struct SolverOptions {
   int increments = 16;              ///< N: the prescribed motion is applied in N steps
@@ -124,6 +138,7 @@ struct SolverOptions {
   /// on to its stage, instead of from the boundary's move alone (move_mesh.cpp, docs/method.md "Predictor"). Off for
   /// callers of the library, as the paper starts; a case file's default is on (io::Case).
   bool predictor = false;
+  QualityLimits quality;
 };
 
 /// How the pseudo-material's Lamé parameters vary from element to element.
