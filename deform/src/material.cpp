@@ -6,10 +6,13 @@
 
 #include "hotmesh/geometry/input_error.hpp"
 #include "linear_elements.hpp"
+#include "nearest_point.hpp"
 #include "q1_element.hpp"
 
 namespace hotmesh::deform {
 namespace {
+
+constexpr double kNearestWallShare = 1e-6;  // of the bounding diagonal: the least distance a cell is stiffened for
 
 template <std::size_t D>
 ElementShape q1_shape(const ElementPoints& e) {
@@ -77,11 +80,34 @@ ElementShape element_shape(ElementType type, const ElementPoints& element) {
   }
 }
 
-std::vector<Lame> element_lame(const Mesh& mesh, const MaterialOptions& options) {
-  return element_lame(mesh, mesh.points, options);
+std::vector<Lame> element_lame(const Mesh& mesh, const MaterialOptions& options,
+                               std::span<const NodeId> moving_wall_nodes) {
+  return element_lame(mesh, mesh.points, options, moving_wall_nodes);
 }
 
-std::vector<Lame> element_lame(const Mesh& mesh, std::span<const Vec3> points, const MaterialOptions& options) {
+namespace {
+
+/// (D / d)^p per cell: d the distance from the cell's centre (the mean of its nodes) to the
+/// nearest of `walls`, D the bounding diagonal of `points`, d at least 1e-6 D.
+std::vector<double> wall_distance_factors(const Mesh& mesh, std::span<const Vec3> points, double exponent,
+                                          std::span<const NodeId> walls) {
+  std::vector<Vec3> wall_points, centres(mesh.cell_count());
+  for (NodeId n : walls) wall_points.push_back(points[static_cast<std::size_t>(n)]);
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    const auto nodes = mesh.cells.nodes(c);
+    for (NodeId n : nodes) centres[c] += points[static_cast<std::size_t>(n)];
+    centres[c] = centres[c] / static_cast<double>(nodes.size());
+  }
+  const double diagonal = mesh::bounding_diagonal(points);
+  std::vector<double> factors = detail::nearest_distances(centres, wall_points);
+  for (double& f : factors) f = std::pow(diagonal / std::max(f, kNearestWallShare * diagonal), exponent);
+  return factors;
+}
+
+}  // namespace
+
+std::vector<Lame> element_lame(const Mesh& mesh, std::span<const Vec3> points, const MaterialOptions& options,
+                               std::span<const NodeId> moving_wall_nodes) {
   const std::size_t n = mesh.cell_count();
   std::vector<ElementShape> shapes(n);
   for (std::size_t c = 0; c < n; ++c) shapes[c] = element_shape(mesh.cells.type(c), gather(mesh.cells.nodes(c), points));
@@ -109,6 +135,14 @@ std::vector<Lame> element_lame(const Mesh& mesh, std::span<const Vec3> points, c
         break;
     }
     lame[c] = {bulk - two_g / 3.0, 0.5 * two_g};
+  }
+  if (options.wall_distance_exponent > 0.0 && !moving_wall_nodes.empty()) {
+    const std::vector<double> factors =
+        wall_distance_factors(mesh, points, options.wall_distance_exponent, moving_wall_nodes);
+    for (std::size_t c = 0; c < n; ++c) {
+      lame[c].lambda *= factors[c];
+      lame[c].mu *= factors[c];
+    }
   }
   return lame;
 }

@@ -676,6 +676,17 @@ void restore_worst_cell(const Mesh& mesh, const QualitySummary& motion, MotionRe
   pass.summary = summarize_quality(pass.quality);
 }
 
+/// The nodes of the walls that move: the prescribed and sliding patches (for the stiffening by
+/// distance to them, MaterialOptions::wall_distance_exponent).
+std::vector<NodeId> moving_wall_nodes(const Mesh& mesh, std::span<const PatchMotion> patches) {
+  std::vector<NodeId> nodes;
+  for (const PatchMotion& m : patches) {
+    if (m.role != BoundaryRole::prescribed && m.role != BoundaryRole::sliding) continue;
+    if (const mesh::Patch* patch = mesh.find_patch(m.patch)) nodes.insert(nodes.end(), patch->nodes.begin(), patch->nodes.end());
+  }
+  return nodes;
+}
+
 /// The corner pass after a successful motion `moved` (issue 20, beyond the paper): each corner
 /// of a sliding wall is given the node nearest it, which moves onto it; the other sliding
 /// nodes keep to their segments between corners. Run after the motion, not through it, so
@@ -720,7 +731,8 @@ MotionResult hold_corners(const Mesh& mesh, std::span<const PatchMotion> patches
   }
   const MotionStart from{moved.points, moved.sliding_origins};
   const auto begin = Clock::now();
-  auto kernel = std::make_shared<const StiffnessKernel>(motion_kernel.with_lame(element_lame(mesh, moved.points, material)));
+  auto kernel = std::make_shared<const StiffnessKernel>(
+      motion_kernel.with_lame(element_lame(mesh, moved.points, material, moving_wall_nodes(mesh, patches))));
   std::optional<Motion> motion;
   try {  // the motion's mesh as the pass's input: a node it left off its walls is no user error now
     motion.emplace(mesh, final_walls, std::move(kernel), pass_options, pass_observers, &from, ranks);
@@ -805,7 +817,8 @@ MotionResult move_mesh(const Mesh& mesh, std::span<const PatchMotion> patches, c
   const bool corners = has_corners(patches);
   std::vector<PatchMotion> sliding_freely(patches.begin(), patches.end());
   for (PatchMotion& m : sliding_freely) m.features.enabled = false;  // corners and creases on nodes stay held
-  auto kernel = std::make_shared<const StiffnessKernel>(mesh, element_lame(mesh, material), material.drop_jacobian);
+  auto kernel = std::make_shared<const StiffnessKernel>(mesh, element_lame(mesh, material, moving_wall_nodes(mesh, patches)),
+                                                        material.drop_jacobian);
   Motion motion(mesh, sliding_freely, kernel, solver, observers, start, ranks);
   motion.set_setup_time(seconds_since(begin));
   MotionResult result = motion.run(resume);

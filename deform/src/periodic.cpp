@@ -1,13 +1,6 @@
 // hotmesh deform: rotational periodicity (node pairing and the T^T K T reduction).
 #include "periodic.hpp"
 
-#include <CGAL/Orthogonal_k_neighbor_search.h>
-#include <CGAL/Search_traits_3.h>
-#include <CGAL/Search_traits_adapter.h>
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/property_map.h>
-#include <boost/iterator/counting_iterator.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -17,6 +10,8 @@
 #include <vector>
 
 #include <fmt/format.h>
+
+#include "nearest_point.hpp"
 
 #include "hotmesh/geometry/input_error.hpp"
 
@@ -43,53 +38,6 @@ Vec3 Rotation::inverse_vector(const Vec3& v) const {
   return {r_[0][0] * v.x + r_[1][0] * v.y + r_[2][0] * v.z, r_[0][1] * v.x + r_[1][1] * v.y + r_[2][1] * v.z,
           r_[0][2] * v.x + r_[1][2] * v.y + r_[2][2] * v.z};
 }
-
-namespace {
-
-/// The nearest of a set of points to a query: CGAL's k-d tree, searched for one neighbour.
-class NearestPoint {
- public:
-  struct Found {
-    std::int32_t index = -1;  ///< into the points given at construction; -1 for none
-    double distance = std::numeric_limits<double>::infinity();
-  };
-
-  explicit NearestPoint(std::span<const Vec3> points)
-      : points_(to_cgal(points)),
-        map_(CGAL::make_property_map(points_.data())),
-        tree_(boost::counting_iterator<std::size_t>(0), boost::counting_iterator<std::size_t>(points_.size()),
-              Tree::Splitter(), Traits(map_)) {}
-
-  NearestPoint(const NearestPoint&) = delete;  // the tree points into points_
-  NearestPoint& operator=(const NearestPoint&) = delete;
-
-  Found nearest(const Vec3& p) const {
-    const Search::Distance distance(map_);
-    const Search search(tree_, Kernel::Point_3(p.x, p.y, p.z), 1, 0.0, true, distance);
-    if (search.begin() == search.end()) return {};
-    return {static_cast<std::int32_t>(search.begin()->first), distance.inverse_of_transformed_distance(search.begin()->second)};
-  }
-
- private:
-  using Kernel = CGAL::Simple_cartesian<double>;
-  using PointMap = CGAL::Pointer_property_map<Kernel::Point_3>::type;
-  using Traits = CGAL::Search_traits_adapter<std::size_t, PointMap, CGAL::Search_traits_3<Kernel>>;
-  using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
-  using Tree = Search::Tree;
-
-  static std::vector<Kernel::Point_3> to_cgal(std::span<const Vec3> points) {
-    std::vector<Kernel::Point_3> out;
-    out.reserve(points.size());
-    for (const Vec3& p : points) out.emplace_back(p.x, p.y, p.z);
-    return out;
-  }
-
-  std::vector<Kernel::Point_3> points_;
-  PointMap map_;
-  Tree tree_;
-};
-
-}  // namespace
 
 void PeriodicCoupling::add(const Mesh& mesh, const Patch& master, const Patch& slave, const geometry::Axis& axis,
                            double angle, double tolerance) {

@@ -45,7 +45,8 @@ constexpr std::array<std::string_view, 2> kAxisKeys{"origin", "direction"};
 constexpr std::array<std::string_view, 12> kSolverKeys{
     "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
     "max_increment_splits", "linear", "amg", "amg_reuse", "forcing", "predictor"};
-constexpr std::array<std::string_view, 4> kMaterialKeys{"law", "alpha_s", "alpha_v", "drop_jacobian"};
+constexpr std::array<std::string_view, 5> kMaterialKeys{"law", "alpha_s", "alpha_v", "drop_jacobian",
+                                                        "wall_distance_exponent"};
 constexpr std::array<std::string_view, 5> kPatchKeys{"role", "deflection", "partner", "angle_deg", "features"};
 constexpr std::array<std::string_view, 1> kFeatureKeys{"angle"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"folder", "series"};
@@ -273,6 +274,11 @@ class CaseParser {
     }
     if (const Entry* x = m.find("alpha_v")) {
       mat.alpha_v = reader_.number_where(*x, [](double v) { return v >= 0.0; }, ">= 0").value_or(mat.alpha_v);
+    }
+    if (const Entry* x = m.find("wall_distance_exponent")) {
+      mat.wall_distance_exponent =
+          reader_.number_where(*x, [](double v) { return v >= 0.0 && v <= 4.0; }, "from 0 to 4")
+              .value_or(mat.wall_distance_exponent);
     }
   }
 

@@ -130,5 +130,31 @@ TEST(Material, UniformAndInverseVolumeLaws) {
   EXPECT_NEAR(inverse[1].mu / inverse[0].mu, 4.0, 1e-12);
 }
 
+TEST(Material, WallDistanceStiffensCellsByTheirDistanceToTheMovingWallsToThePowerP) {
+  // The unit square as a row of 10 cells 0.1 x 1; the moving wall is its left edge x = 0.
+  const Mesh mesh = test::unit_square(10, 1);
+  std::vector<NodeId> wall;
+  for (NodeId n = 0; n < static_cast<NodeId>(mesh.node_count()); ++n) {
+    if (mesh.points[static_cast<std::size_t>(n)].x == 0.0) wall.push_back(n);
+  }
+  ASSERT_EQ(wall.size(), 2u);
+  MaterialOptions options{StiffnessLaw::uniform, 1.0, 0.1, false};
+  const auto paper = element_lame(mesh, options, wall);  // exponent 0: the wall plays no part
+  EXPECT_EQ(paper[0].mu, paper[9].mu);
+  for (const double p : {1.0, 1.5, 2.0}) {
+    options.wall_distance_exponent = p;
+    const auto stiffened = element_lame(mesh, options, wall);
+    // Cell c's centre (0.1 c + 0.05, 0.5) lies as far from both wall nodes (0, 0) and (0, 1).
+    const auto distance = [](double c) { return std::hypot(0.1 * c + 0.05, 0.5); };
+    for (const int c : {1, 4, 9}) {
+      const double expected = std::pow(distance(0) / distance(c), p);
+      EXPECT_NEAR(stiffened[static_cast<std::size_t>(c)].mu / stiffened[0].mu, expected, 1e-12) << p << " " << c;
+      EXPECT_NEAR(stiffened[static_cast<std::size_t>(c)].lambda / stiffened[0].lambda, expected, 1e-12) << p << " " << c;
+    }
+    const auto without_walls = element_lame(mesh, options);  // not stiffened
+    for (std::size_t c = 0; c < paper.size(); ++c) EXPECT_EQ(without_walls[c].mu, paper[c].mu);
+  }
+}
+
 }  // namespace
 }  // namespace hotmesh::deform

@@ -38,9 +38,12 @@ ElementShape element_shape(ElementType type, const ElementPoints& element);
 
 /// Lamé parameters of every cell of `mesh` for the law, measured at `points` (eq. 35's
 /// "original mesh": the mesh's own coordinates for a motion, the motion's result for the
-/// corner pass that follows it).
-std::vector<Lame> element_lame(const Mesh& mesh, std::span<const Vec3> points, const MaterialOptions& options);
+/// corner pass that follows it); with options.wall_distance_exponent > 0, stiffened by the
+/// distance to the nearest of `moving_wall_nodes` (none given: not stiffened).
+std::vector<Lame> element_lame(const Mesh& mesh, std::span<const Vec3> points, const MaterialOptions& options,
+                               std::span<const NodeId> moving_wall_nodes = {});
 /// The same at the mesh's own coordinates.
-std::vector<Lame> element_lame(const Mesh& mesh, const MaterialOptions& options);
+std::vector<Lame> element_lame(const Mesh& mesh, const MaterialOptions& options,
+                               std::span<const NodeId> moving_wall_nodes = {});
 
 }  // namespace hotmesh::deform

@@ -160,6 +160,12 @@ struct MaterialOptions {
   /// Integrate K_e without the Jacobian determinant (Stein et al.), which makes small
   /// elements stiffer. The paper does; standard finite elements (and the patch test) don't.
   bool drop_jacobian = true;
+  /// p > 0: both moduli of a cell also times (D / d)^p, d the distance from its centre to the
+  /// nearest node of a prescribed or sliding wall and D the mesh's bounding diagonal (d at
+  /// least 1e-6 D), so that the cells near the walls that move follow them nearly rigidly and
+  /// the far ones take the deformation (beyond the paper: OpenFOAM's inverseDistance
+  /// diffusivity; docs/method.md). 0: the paper's eq. (35) alone.
+  double wall_distance_exponent = 0.0;
 };
 
 }  // namespace hotmesh::deform
