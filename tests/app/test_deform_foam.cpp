@@ -32,18 +32,6 @@ using ::testing::Not;
 namespace fs = std::filesystem;
 namespace tf = test::foam;
 
-/// The ramp channel 2h x h (h = 1), 21 x 12 cells graded towards the lower wall, 0.05 thick.
-constexpr const char* kRampChannel = R"(
-vertices ((0 0 0) (2 0 0) (2 1 0) (0 1 0) (0 0 0.05) (2 0 0.05) (2 1 0.05) (0 1 0.05));
-blocks (hex (0 1 2 3 4 5 6 7) (21 12 1) simpleGrading (1 20 1));
-boundary (
-  left {type patch; faces ((0 4 7 3));}
-  right {type patch; faces ((1 2 6 5));}
-  bottom {type wall; faces ((0 1 5 4));}
-  top {type wall; faces ((3 7 6 2));}
-  frontAndBack {type empty; faces ((0 3 2 1) (4 5 6 7));}
-);
-)";
 
 std::string ramp_case(const std::string& mesh) {
   return fmt::format(
@@ -68,7 +56,7 @@ struct RampFoamCase {
   test::TempDir dir;
   fs::path cfd = dir / "cfd";
   explicit RampFoamCase(bool binary_gz = false) {
-    tf::write_block_mesh_case(cfd, kRampChannel, binary_gz);
+    tf::write_block_mesh_case(cfd, tf::kRampChannel, binary_gz);
     const auto r = tf::run_block_mesh(cfd);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     if (binary_gz) {

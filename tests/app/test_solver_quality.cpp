@@ -190,24 +190,12 @@ TEST(SolverQuality, GmshHybridBoxAsCheckMeshSeesItPerCellType) {
   EXPECT_DOUBLE_EQ(worst_skewness, q["skewness"]["max"].get<double>());
 }
 
-/// The ramp channel 2h x h, 21 x 12 cells graded towards the lower wall, 0.05 thick.
-constexpr const char* kRampChannel = R"(
-vertices ((0 0 0) (2 0 0) (2 1 0) (0 1 0) (0 0 0.05) (2 0 0.05) (2 1 0.05) (0 1 0.05));
-blocks (hex (0 1 2 3 4 5 6 7) (21 12 1) simpleGrading (1 20 1));
-boundary (
-  left {type patch; faces ((0 4 7 3));}
-  right {type patch; faces ((1 2 6 5));}
-  bottom {type wall; faces ((0 1 5 4));}
-  top {type wall; faces ((3 7 6 2));}
-  frontAndBack {type empty; faces ((0 3 2 1) (4 5 6 7));}
-);
-)";
 
 TEST(SolverQuality, MeshMovedByHotmeshAsCheckMeshSeesIt) {
   SKIP_WITHOUT_OPENFOAM();
   test::TempDir dir;
   const fs::path cfd = dir / "cfd";
-  tf::write_block_mesh_case(cfd, kRampChannel);
+  tf::write_block_mesh_case(cfd, tf::kRampChannel);
   ASSERT_EQ(tf::run_block_mesh(cfd).exit_code, 0);
   fs::copy_file(test::kSample / "ramp.csv", dir / "ramp.csv");
   test::write_text(dir / "foam.yaml",

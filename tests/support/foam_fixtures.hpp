@@ -251,6 +251,19 @@ inline std::string gmsh_to_foam_command() {
   const char* dir = std::getenv("WM_PROJECT_DIR");
   return dir ? "gmshToFoam" : "WM_PROJECT_DIR=/usr/share/openfoam gmshToFoam";
 }
+/// The ramp channel 2h x h (h = 1), 21 x 12 cells graded towards the lower wall, 0.05 thick.
+inline constexpr const char* kRampChannel = R"(
+vertices ((0 0 0) (2 0 0) (2 1 0) (0 1 0) (0 0 0.05) (2 0 0.05) (2 1 0.05) (0 1 0.05));
+blocks (hex (0 1 2 3 4 5 6 7) (21 12 1) simpleGrading (1 20 1));
+boundary (
+  left {type patch; faces ((0 4 7 3));}
+  right {type patch; faces ((1 2 6 5));}
+  bottom {type wall; faces ((0 1 5 4));}
+  top {type wall; faces ((3 7 6 2));}
+  frontAndBack {type empty; faces ((0 3 2 1) (4 5 6 7));}
+);
+)";
+
 inline std::string check_mesh_command() {
   const char* dir = std::getenv("WM_PROJECT_DIR");
   return dir ? "checkMesh" : "WM_PROJECT_DIR=/usr/share/openfoam checkMesh";
