@@ -4,6 +4,7 @@
 #include <cgns_io.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -170,24 +171,56 @@ void File::check(int status, std::string_view what) const {
 }
 
 void check_in_child(const std::string& file, const std::function<void()>& read) {
+  // The child's refusal, its InputError's text, comes back through a pipe: the parent then
+  // refuses the file without running the library on it (the library's faults on damaged files
+  // are not all crashes: some only overwrite its heap, fuzz_cgns).
+  int pipe_fds[2];
+  if (::pipe2(pipe_fds, O_CLOEXEC) != 0) throw std::system_error(errno, std::generic_category(), "pipe");
   // Held across the fork: no other thread is inside the library when the child copies it.
   const std::unique_lock<std::recursive_mutex> lock = library_lock();
   const pid_t child = ::fork();
-  if (child < 0) throw std::system_error(errno, std::generic_category(), "fork, to read " + file + " in a child process");
+  if (child < 0) {
+    const int error = errno;
+    ::close(pipe_fds[0]);
+    ::close(pipe_fds[1]);
+    throw std::system_error(error, std::generic_category(), "fork, to read " + file + " in a child process");
+  }
   if (child == 0) {
+    ::close(pipe_fds[0]);
     in_checking_child = true;
     spdlog::default_logger_raw()->set_level(spdlog::level::off);  // the parent warns, when it reads the file again
+    int code = 0;
     try {
       read();
-    } catch (...) {  // refused: the parent reads it again and refuses it itself
+    } catch (const InputError& e) {
+      const std::string_view message = e.what();
+      for (std::size_t at = 0; at < message.size();) {
+        const ssize_t n = ::write(pipe_fds[1], message.data() + at, message.size() - at);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        at += static_cast<std::size_t>(n);
+      }
+      code = 1;
+    } catch (...) {  // anything else: the parent reads the file again and meets it itself
     }
-    ::_exit(0);
+    ::_exit(code);
   }
+  ::close(pipe_fds[1]);
+  std::string message;
+  for (;;) {
+    char buffer[4096];
+    const ssize_t n = ::read(pipe_fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    if (message.size() < 256 * 1024) message.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(pipe_fds[0]);
   int status = 0;
   while (::waitpid(child, &status, 0) < 0) {
     if (errno != EINTR) throw std::system_error(errno, std::generic_category(), "waitpid");
   }
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 1 && !message.empty()) throw InputError(message);
   const std::string how = WIFSIGNALED(status)
                               ? fmt::format("signal {}, {}", WTERMSIG(status), ::strsignal(WTERMSIG(status)))
                               : fmt::format("exit code {}", WEXITSTATUS(status));

@@ -54,11 +54,11 @@ class File {
 using Label = char[33];
 
 /// Runs `read` (which reads `file` with the library) in a child process first, with the
-/// library to itself, and returns when it ends normally (having read the file or refused it:
-/// the caller then reads it again, and refuses it with the same InputError). If the child
-/// dies instead (a fault inside the CGNS or HDF5 library on a damaged file: SIGSEGV, SIGABRT,
-/// or under a sanitizer its report), throws InputError naming `file`: the caller's process
-/// never runs the library on a file that makes it fault.
+/// library to itself. Returns when the child read the file (the caller then reads it again);
+/// throws the child's InputError when it refused the file, and InputError naming `file` when
+/// it died instead (a fault inside the CGNS or HDF5 library on a damaged file: SIGSEGV,
+/// SIGABRT, or under a sanitizer its report). So the caller's process runs the library only
+/// on files the child read.
 void check_in_child(const std::string& file, const std::function<void()>& read);
 
 /// An array a node of the file stores, as the file declares it: what a library read of the

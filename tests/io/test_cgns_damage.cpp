@@ -341,5 +341,16 @@ TEST(CgnsDeclaredSizes, AdfFileOnWhichTheLibraryAsksFor13GbIsRefused) {
   EXPECT_THAT(read_error(file), HasSubstr(file.string() + ": "));
 }
 
+// Found by fuzz_cgns (seven inputs, one bug): ADF files whose sub-node tables make the CGNS
+// library's ADF reader write past a buffer it allocated itself (ADFI_read_sub_node_table,
+// from cg_is_cgns and cgio_get_node_id). Under AddressSanitizer the child process that
+// reads the file first dies; without it the library may overwrite its heap unseen, or refuse
+// the file: the child's refusal is the answer, and hotmesh's own process never runs the
+// library on a file the child refused.
+TEST(CgnsDeclaredSizes, AdfFileWhoseSubNodeTableOverflowsTheLibrarysBufferIsRefused) {
+  const auto file = test::data_path("fuzz/cgns-adf-sub-node-table-overflow.cgns");
+  EXPECT_THAT(read_error(file), HasSubstr(file.string() + ": "));
+}
+
 }  // namespace
 }  // namespace hotmesh::io
