@@ -6,7 +6,9 @@
 #      ramp2d sample, the coupled_disc sample's deck solved by ccx (ASCII and binary .frd),
 #      and the small decks and results of Debian's CalculiX tests (calculix-ccx-test), the
 #      stator well's sector as a binary gzipped polyMesh and the polyMesh folders of Debian's
-#      OpenFOAM tutorials (openfoam-examples: some as shipped, two made by blockMesh),
+#      OpenFOAM tutorials (openfoam-examples: some as shipped, two made by blockMesh), the
+#      tests' small CGNS files and two of its gmsh meshes as hotmesh writes them as CGNS, in
+#      HDF5 and ADF,
 #   3. runs each target for SECONDS (default 60), one after the other (-j N: N at a time),
 #      growing its corpus in build-fuzz/fuzz/corpus/<target>/ (kept between runs), and prints
 #      the executions each reached.
@@ -27,7 +29,7 @@ set -euo pipefail
 main() {
   cd "$(dirname "$0")/.."
 
-  all_targets=(gmsh deflection_csv case_yaml restart checkpoint frd inp foam serve_json serve_upload step iges)
+  all_targets=(gmsh deflection_csv case_yaml restart checkpoint frd inp foam cgns serve_json serve_upload step iges)
   seconds=60
   parallel=1
   seed_hotmesh=""
@@ -213,6 +215,23 @@ main() {
       foam_input "$mesh" "$seeds/foam/tutorial-$(echo "${mesh#"$foam_tutorials"/}" | tr / -)"
     done
   fi
+  # CGNS: the tests' small files (fuzz/cgns_seeds, built with fuzz_cgns: unstructured 2D and
+  # 3D with MIXED sections, structured 2D and 3D in two zones with 1-to-1, periodic and
+  # abutting connections), two meshes as `hotmesh convert` writes them (the hybrid plate and
+  # box of tests/data/gmsh, made above: MIXED cell sections, a MIXED face section; the
+  # samples' meshes, 150 KB and more as CGNS, made each execution ten times slower), and each
+  # again in ADF (hdf2adf, cgns-convert), the CGNS library's other file format.
+  if [[ -x $build/fuzz/cgns_seeds ]]; then
+    ASAN_OPTIONS=detect_leaks=0 "$build/fuzz/cgns_seeds" "$seeds/cgns"
+    for name in hybrid_plate hybrid_box; do
+      ASAN_OPTIONS=detect_leaks=0 "$hotmesh" -q convert "$seeds/gmsh/$name-msh41.msh" "$seeds/cgns/$name.cgns"
+    done
+    if command -v hdf2adf >/dev/null; then
+      for file in "$seeds"/cgns/*.cgns; do
+        hdf2adf "$file" "${file%.cgns}-adf.cgns" >/dev/null
+      done
+    fi
+  fi
   cp "$state_runs/restart/restart.hmr" "$seeds/restart/"
   cp "$state_runs/checkpoint/checkpoint.hmc" "$seeds/checkpoint/"
   cp $(cad_files "step|stp") "$seeds/step/"
@@ -236,11 +255,15 @@ main() {
     local options=(-max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 -malloc_limit_mb=512
                    -print_final_stats=1 -artifact_prefix="$out/findings/$t/")
     [[ -f fuzz/dict/$t.dict ]] && options+=(-dict="fuzz/dict/$t.dict")
-    local occt=0
+    local occt=0 library=0
     [[ " step iges serve_upload " == *" $t "* ]] && occt=1
+    [[ $t == cgns ]] && library=1
     ((occt)) && options+=(-fork=1 -ignore_timeouts=1)
-    local hangs_before
+    ((library)) && options+=(-fork=1 -ignore_crashes=1)
+    local hangs_before findings_before
     hangs_before=$(find "$out/findings/$t" -name 'timeout-*' | wc -l)
+    findings_before=$(find "$out/findings/$t" -type f | sort)
+    rm -f "$log.alone"
     echo "== hotmesh: fuzz_$t for $seconds s (log: $log)"
     local status=0
     "$out/fuzz_$t" "${options[@]}" "$out/corpus/$t" "$seeds/$t" >"$log" 2>&1 || status=$?
@@ -251,6 +274,48 @@ main() {
       ((status == 70)) && status=0
       found=$(($(find "$out/findings/$t" -name 'timeout-*' | wc -l) - hangs_before))
       ((found > 0)) && hangs="  ($found hang(s) inside OpenCASCADE kept in $out/findings/$t/)"
+    elif ((library)); then
+      # The CGNS library (3.4, and HDF5 beneath it) faults on some damaged files: a wild read
+      # in its ADF reader, an assertion of its table of open ADF files after an earlier damaged
+      # file. hotmesh reads every CGNS file in a child process first, where such a fault is an
+      # error naming the file (io/src/cgns_library.hpp); the target reads in its own process,
+      # to see hotmesh's code. So the run goes on past a crash (-fork), and each input kept is
+      # run again alone: one that fails alone with a report whose stack reaches libcgns or
+      # libhdf5 before hotmesh's code (a signal, an assertion, memory asked for inside the
+      # library, an overflow of a buffer the library allocated itself) is the library's and is
+      # counted; any other failing alone (an overflow of hotmesh's buffer, undefined behaviour
+      # in hotmesh) is a finding and fails the run.
+      runs=$(grep -oE '^#[0-9]+:' "$log" | tail -1 | tr -d '#:' || true)
+      status=0
+      local new_findings=() ours=() file report library_faults=0 earlier_state=0
+      mapfile -t new_findings < <(comm -13 <(echo "$findings_before") <(find "$out/findings/$t" -type f | sort))
+      for file in "${new_findings[@]}"; do
+        [[ -n $file ]] || continue
+        report=$("$out/fuzz_$t" -timeout=60 -rss_limit_mb=4096 -malloc_limit_mb=512 "$file" 2>&1) && {
+          earlier_state=$((earlier_state + 1)); continue; }
+        printf '== %s\n%s\n' "$file" "$report" >>"$log.alone"
+        if ! grep -q 'runtime error' <<<"$report" && awk '
+             /allocated by thread/ { in_allocation = 1; next }
+             /^ +#[0-9]+ / {
+               if (!in_allocation) {
+                 if (!top_seen && $0 ~ /libcgns\.so|libhdf5/) { library = 1; top_seen = 1 }
+                 else if (!top_seen && $0 ~ /hotmesh::|LLVMFuzzerTestOneInput/) top_seen = 1
+               } else if (!allocation_seen && $0 !~ / in (malloc|calloc|realloc|operator new|__interceptor_)/) {
+                 allocation_seen = 1; allocated_by_library = ($0 ~ /libcgns\.so|libhdf5/)
+               }
+             }
+             END { exit !(library && (!in_allocation || allocated_by_library)) }' <<<"$report"; then
+          library_faults=$((library_faults + 1))
+        else
+          ours+=("$file")
+        fi
+      done
+      if ((${#ours[@]})); then
+        status=1
+        echo "Test unit written to ${ours[*]} (fails alone: $log.alone)" >>"$log"
+      elif ((library_faults + earlier_state)); then
+        hangs="  ($library_faults fault(s) inside the CGNS library, $earlier_state only after other inputs; kept in $out/findings/$t/)"
+      fi
     else
       runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
     fi

@@ -9,7 +9,9 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <limits>
 
 #include "cgns_reader.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -42,22 +44,19 @@ void add_periodic_side(RawMesh& raw, std::size_t z, const std::string& name, con
   raw.bcs.push_back(std::move(bc));
 }
 
-void read_one_to_one(const File& file, RawMesh& raw, std::size_t z, int c) {
+void join_one_to_one(const File& file, RawMesh& raw, std::size_t z, int c) {
   ZoneRecord& zone = raw.zones[z];
-  Label name{}, donor_name{};
-  std::array<cgsize_t, 6> range{}, donor_range{};
-  std::array<int, 3> transform{};
-  file.check(cg_1to1_read(file.fn(), raw.base, zone.index, c, name, donor_name, range.data(), donor_range.data(),
-                          transform.data()),
-             fmt::format("zone '{}': reading 1-to-1 connection {}", zone.name, c));
+  const int d = index_dimension(raw, zone);
+  const OneToOne connection = read_one_to_one(file, raw.base, zone.index, c, d, zone.name);
+  const auto& [name, donor_name, range, donor_range, transform] = connection;
   const std::string where = fmt::format("zone '{}' connection '{}'", zone.name, name);
   const ZoneRecord& donor = raw.zones[raw.zone_named(donor_name, where)];
-  const int d = raw.dimension;
   for (int a = 0; a < d; ++a) {
     const int t = std::abs(transform[static_cast<std::size_t>(a)]);
     if (t < 1 || t > d) throw InputError::in(raw.file, fmt::format("{} has transform entry {}", where, transform[static_cast<std::size_t>(a)]));
   }
-  const std::vector<cgsize_t> points = expand_point_set(CGNS_ENUMV(PointRange), {range.begin(), range.begin() + 2 * d}, d);
+  const std::vector<cgsize_t> points = expand_point_set(raw, CGNS_ENUMV(PointRange), {range.begin(), range.begin() + 2 * d},
+                                                        d, node_limits(zone), where);
   std::array<float, 3> center{}, angle{}, translation{};
   if (cg_1to1_periodic_read(file.fn(), raw.base, zone.index, c, center.data(), angle.data(), translation.data()) == CG_OK) {
     add_periodic_side(raw, z, name, points, d);
@@ -69,7 +68,9 @@ void read_one_to_one(const File& file, RawMesh& raw, std::size_t z, int c) {
     for (int a = 0; a < d; ++a) {
       const int t = transform[static_cast<std::size_t>(a)];
       const auto b = static_cast<std::size_t>(std::abs(t) - 1);
-      q[b] = donor_range[b] + (t > 0 ? 1 : -1) * (points[p + static_cast<std::size_t>(a)] - range[static_cast<std::size_t>(a)]);
+      const std::int64_t index = std::int64_t{donor_range[b]} + (t > 0 ? 1 : -1) * (std::int64_t{points[p + static_cast<std::size_t>(a)]} -
+                                                                               range[static_cast<std::size_t>(a)]);
+      q[b] = static_cast<cgsize_t>(std::clamp<std::int64_t>(index, 0, std::numeric_limits<cgsize_t>::max()));
     }
     check_inside(raw, zone, points.data() + p, d, where);
     check_inside(raw, donor, q.data(), d, where);
@@ -97,12 +98,16 @@ void read_general(const File& file, RawMesh& raw, std::size_t z, int c) {
   }
   const ZoneRecord& donor = raw.zones[raw.zone_named(donor_name, where)];
   const int d = index_dimension(raw, zone), dd = index_dimension(raw, donor);
-  std::vector<cgsize_t> data(static_cast<std::size_t>(count * d)), donor_data(static_cast<std::size_t>(donor_count * dd));
+  double id = 0;
+  file.check(cg_conn_id(file.fn(), raw.base, zone.index, c, &id), fmt::format("{}: finding its node", where));
+  check_point_set(file, id, cg_PointSetTypeName(set), d, count, where);
+  check_point_set(file, id, cg_PointSetTypeName(donor_set), dd, donor_count, where);
+  std::vector<cgsize_t> data(static_cast<std::size_t>(count) * static_cast<std::size_t>(d));
+  std::vector<cgsize_t> donor_data(static_cast<std::size_t>(donor_count) * static_cast<std::size_t>(dd));
   file.check(cg_conn_read(file.fn(), raw.base, zone.index, c, data.data(), CGNS_ENUMV(Integer), donor_data.data()),
              fmt::format("{}: reading its points", where));
-  const auto points = expand_point_set(set, data, d);
-  const auto donors = expand_point_set(donor_set == CGNS_ENUMV(PointRangeDonor) ? CGNS_ENUMV(PointRange) : donor_set,
-                                       donor_data, dd);
+  const auto points = expand_point_set(raw, set, data, d, node_limits(zone), where);
+  const auto donors = expand_point_set(raw, donor_set, donor_data, dd, node_limits(donor), where + " (donor side)");
   std::array<float, 3> center{}, angle{}, translation{};
   if (cg_conn_periodic_read(file.fn(), raw.base, zone.index, c, center.data(), angle.data(), translation.data()) == CG_OK) {
     add_periodic_side(raw, z, name, points, d);
@@ -129,7 +134,7 @@ void read_connectivity(const File& file, RawMesh& raw, std::size_t z) {
   int one_to_one = 0, general = 0;
   file.check(cg_n1to1(file.fn(), raw.base, zone.index, &one_to_one), fmt::format("zone '{}': reading its 1-to-1 connections", zone.name));
   file.check(cg_nconns(file.fn(), raw.base, zone.index, &general), fmt::format("zone '{}': reading its connections", zone.name));
-  for (int c = 1; c <= one_to_one; ++c) read_one_to_one(file, raw, z, c);
+  for (int c = 1; c <= one_to_one; ++c) join_one_to_one(file, raw, z, c);
   for (int c = 1; c <= general; ++c) read_general(file, raw, z, c);
 }
 

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <limits>
+
 #include "cgns_reader.hpp"
 #include "cgns_write_back.hpp"
 #include "hotmesh/geometry/input_error.hpp"
@@ -97,20 +99,38 @@ NodeId raw_node(const ZoneRecord& zone, const cgsize_t* ijk, int index_dimension
   return zone.first_node + static_cast<NodeId>(local);
 }
 
-std::vector<cgsize_t> expand_point_set(CGNS_ENUMT(PointSetType_t) type, const std::vector<cgsize_t>& data,
-                                       int index_dimension) {
-  if (type != CGNS_ENUMV(PointRange) && type != CGNS_ENUMV(ElementRange)) return data;
+std::array<cgsize_t, 3> node_limits(const ZoneRecord& zone) {
+  if (zone.structured) return zone.vertices;
+  return {static_cast<cgsize_t>(zone.node_count), 1, 1};
+}
+
+std::vector<cgsize_t> expand_point_set(const RawMesh& raw, CGNS_ENUMT(PointSetType_t) type,
+                                       const std::vector<cgsize_t>& data, int index_dimension,
+                                       const std::array<cgsize_t, 3>& limits, std::string_view where) {
+  if (type != CGNS_ENUMV(PointRange) && type != CGNS_ENUMV(PointRangeDonor) && type != CGNS_ENUMV(ElementRange)) {
+    return data;
+  }
   const auto d = static_cast<std::size_t>(index_dimension);
   std::array<cgsize_t, 3> lo{1, 1, 1}, hi{1, 1, 1};
   for (std::size_t a = 0; a < d; ++a) {
     lo[a] = std::min(data[a], data[d + a]);
     hi[a] = std::max(data[a], data[d + a]);
+    if (lo[a] >= 1 && hi[a] <= limits[a]) continue;
+    if (d == 1) {
+      throw InputError::in(raw.file, fmt::format("{}: its {} {}..{} names {} nodes, but the zone has {} nodes", where,
+                                                 cg_PointSetTypeName(type), data[0], data[1],
+                                                 std::int64_t{hi[0]} - lo[0] + 1, limits[0]));
+    }
+    throw InputError::in(raw.file, fmt::format("{}: its {} reaches index {} along {}, but the zone has {} nodes along {} "
+                                               "(indices 1 to {})",
+                                               where, cg_PointSetTypeName(type), lo[a] < 1 ? lo[a] : hi[a], "ijk"[a],
+                                               limits[a], "ijk"[a], limits[a]));
   }
   std::vector<cgsize_t> points;
-  for (cgsize_t k = lo[2]; k <= hi[2]; ++k) {
-    for (cgsize_t j = lo[1]; j <= hi[1]; ++j) {
-      for (cgsize_t i = lo[0]; i <= hi[0]; ++i) {
-        const std::array<cgsize_t, 3> p{i, j, k};
+  for (std::int64_t k = lo[2]; k <= hi[2]; ++k) {  // 64 bits: a limit may be INT_MAX
+    for (std::int64_t j = lo[1]; j <= hi[1]; ++j) {
+      for (std::int64_t i = lo[0]; i <= hi[0]; ++i) {
+        const std::array<cgsize_t, 3> p{static_cast<cgsize_t>(i), static_cast<cgsize_t>(j), static_cast<cgsize_t>(k)};
         points.insert(points.end(), p.begin(), p.begin() + index_dimension);
       }
     }
@@ -132,9 +152,13 @@ BcPoints read_bc_points(const File& file, const RawMesh& raw, const ZoneRecord& 
   bc.where = fmt::format("zone '{}' BC '{}'", zone.name, name);
   file.check(cg_boco_gridlocation_read(file.fn(), raw.base, zone.index, b, &bc.location),
              fmt::format("{}: reading its GridLocation", bc.where));
+  if (count > 0) {  // else the BC has no point set, and the library reads none
+    double id = 0;
+    file.check(cg_boco_id(file.fn(), raw.base, zone.index, b, &id), fmt::format("{}: finding its node", bc.where));
+    check_point_set(file, id, cg_PointSetTypeName(bc.set), index_dimension(raw, zone), count, bc.where);
+  }
   bc.data.resize(static_cast<std::size_t>(count) * static_cast<std::size_t>(index_dimension(raw, zone)));
-  std::vector<double> normals(static_cast<std::size_t>(normal_size) * 3 + 1);
-  file.check(cg_boco_read(file.fn(), raw.base, zone.index, b, bc.data.data(), normals.data()),
+  file.check(cg_boco_read(file.fn(), raw.base, zone.index, b, bc.data.data(), nullptr),
              fmt::format("{}: reading its points", bc.where));
   bc.patch = bc_family(file, raw.base, zone.index, b);
   if (bc.patch.empty()) bc.patch = name;
@@ -146,14 +170,20 @@ void read_coordinates(const File& file, RawMesh& raw, ZoneRecord& zone) {
   std::array<cgsize_t, 9> size{};
   file.check(cg_zone_read(file.fn(), raw.base, zone.index, name, size.data()), fmt::format("reading zone {}", zone.index));
   zone.name = name;
+  // The library checked the coordinate arrays against these sizes when it opened the file.
+  StoredArray declared;
   if (zone.structured) {
-    zone.node_count = 1;
-    for (int d = 0; d < raw.dimension; ++d) {
-      zone.vertices[static_cast<std::size_t>(d)] = size[static_cast<std::size_t>(d)];
-      zone.node_count *= static_cast<std::size_t>(size[static_cast<std::size_t>(d)]);
-    }
+    for (int d = 0; d < raw.dimension; ++d) zone.vertices[static_cast<std::size_t>(d)] = size[static_cast<std::size_t>(d)];
+    declared.dimensions.assign(zone.vertices.begin(), zone.vertices.begin() + raw.dimension);
   } else {
-    zone.node_count = static_cast<std::size_t>(size[0]);
+    declared.dimensions = {size[0]};
+  }
+  zone.node_count = static_cast<std::size_t>(declared.values());
+  const std::size_t nodes_before = raw.points.size();
+  if (declared.values() > std::numeric_limits<NodeId>::max() - static_cast<std::int64_t>(nodes_before)) {
+    throw InputError::in(file.name(), fmt::format("zone '{}' has {} nodes: with the zones before it, more than the {} "
+                                                  "nodes hotmesh can number",
+                                                  zone.name, declared.shape(), std::numeric_limits<NodeId>::max()));
   }
   int count = 0;
   file.check(cg_ncoords(file.fn(), raw.base, zone.index, &count), fmt::format("zone '{}': reading its coordinates", zone.name));
@@ -189,12 +219,17 @@ void read_coordinates(const File& file, RawMesh& raw, ZoneRecord& zone) {
 
 namespace hotmesh::io {
 
-CgnsMesh read_cgns(const std::filesystem::path& path) {
-  const cgns::File file(path, CG_MODE_READ);
-  cgns::RawMesh raw;
-  raw.file = file.name();
-  cgns::read_base(file, raw);
-  cgns::read_zones(file, raw);
+CgnsMesh read_cgns(const std::filesystem::path& path, const CgnsReadOptions& options) {
+  const auto read_raw = [&path] {
+    const cgns::File file(path, CG_MODE_READ);
+    cgns::RawMesh raw;
+    raw.file = file.name();
+    cgns::read_base(file, raw);
+    cgns::read_zones(file, raw);
+    return raw;
+  };
+  if (options.check_in_child) cgns::check_in_child(path.string(), read_raw);
+  const cgns::RawMesh raw = read_raw();
   std::vector<mesh::NodeId> global_of_raw;
   CgnsMesh result{cgns::assemble(raw, global_of_raw), nullptr};
   result.write_back = cgns::make_write_back(path, raw, std::move(global_of_raw));

@@ -70,10 +70,16 @@ NodeId raw_node(const ZoneRecord& zone, const cgsize_t* ijk, int index_dimension
 /// The zone's index dimension: 1 for unstructured zones, the base's cell dimension for
 /// structured ones.
 int index_dimension(const RawMesh& raw, const ZoneRecord& zone);
-/// The points of a point set (PointRange expanded; PointList as it is), index_dimension
-/// entries each.
-std::vector<cgsize_t> expand_point_set(CGNS_ENUMT(PointSetType_t) type, const std::vector<cgsize_t>& data,
-                                       int index_dimension);
+/// The points of a point set, index_dimension entries each: a PointRange expanded, a
+/// PointList as it is. A range must lie within the zone, `limits` being the largest index along
+/// each direction (its nodes); that is checked before it is expanded, so that it makes no more
+/// points than the zone has. InputError "file: <where>: its PointRange ..." otherwise.
+std::vector<cgsize_t> expand_point_set(const RawMesh& raw, CGNS_ENUMT(PointSetType_t) type,
+                                       const std::vector<cgsize_t>& data, int index_dimension,
+                                       const std::array<cgsize_t, 3>& limits, std::string_view where);
+/// The largest index along each direction of the zone: its nodes along i, j, k (structured),
+/// or its node count (unstructured).
+std::array<cgsize_t, 3> node_limits(const ZoneRecord& zone);
 
 /// A BC_t of a zone as the file gives it: where it is, its point set, the patch it names.
 struct BcPoints {
@@ -83,6 +89,7 @@ struct BcPoints {
   CGNS_ENUMT(GridLocation_t) location = CGNS_ENUMV(Vertex);
   std::vector<cgsize_t> data;  ///< the point set's entries, index_dimension per point
 };
+/// The BC's point set, checked to be stored as the zone's index dimension x its points.
 BcPoints read_bc_points(const File& file, const RawMesh& raw, const ZoneRecord& zone, int bc);
 
 /// The mesh the zones make together (nodes joined, patches named); global_of_raw gets the

@@ -47,18 +47,15 @@ std::vector<Summary::Bc> bcs(const File& file, int b, int z) {
   return out;
 }
 
-std::vector<Summary::Connection> connections(const File& file, int b, int z) {
+std::vector<Summary::Connection> connections(const File& file, int b, int z, std::string_view zone) {
   std::vector<Summary::Connection> out;
-  int one_to_one = 0, general = 0;
+  int one_to_one = 0, general = 0, index_dimension = 0;
   file.check(cg_n1to1(file.fn(), b, z, &one_to_one), "reading 1-to-1 connections");
   file.check(cg_nconns(file.fn(), b, z, &general), "reading connections");
+  file.check(cg_index_dim(file.fn(), b, z, &index_dimension), "reading a zone's index dimension");
   for (int c = 1; c <= one_to_one; ++c) {
-    Label name{}, donor{};
-    std::array<cgsize_t, 6> range{}, donor_range{};
-    std::array<int, 3> transform{};
-    file.check(cg_1to1_read(file.fn(), b, z, c, name, donor, range.data(), donor_range.data(), transform.data()),
-               "reading a 1-to-1 connection");
-    out.push_back({name, "1to1", donor});
+    const OneToOne connection = read_one_to_one(file, b, z, c, index_dimension, zone);
+    out.push_back({connection.name, "1to1", connection.donor});
   }
   for (int c = 1; c <= general; ++c) {
     Label name{}, donor{};
@@ -89,7 +86,7 @@ Summary::Zone zone_summary(const File& file, int b, int z, int cell_dimension) {
   zone.size.assign(size.begin(), size.begin() + entries);
   zone.sections = sections(file, b, z);
   zone.bcs = bcs(file, b, z);
-  zone.connections = connections(file, b, z);
+  zone.connections = connections(file, b, z, zone.name);
   file.check(cg_nsols(file.fn(), b, z, &zone.solutions), "reading flow solutions");
   return zone;
 }
@@ -99,7 +96,8 @@ Summary::Zone zone_summary(const File& file, int b, int z, int cell_dimension) {
 
 namespace hotmesh::io {
 
-CgnsSummary describe_cgns(const std::filesystem::path& path) {
+CgnsSummary describe_cgns(const std::filesystem::path& path, const CgnsReadOptions& options) {
+  if (options.check_in_child) cgns::check_in_child(path.string(), [&path] { describe_cgns(path, {false}); });
   const cgns::File file(path, CG_MODE_READ);
   CgnsSummary summary;
   int file_type = CG_FILE_NONE;

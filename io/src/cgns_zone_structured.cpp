@@ -113,7 +113,7 @@ void read_bc(const File& file, RawMesh& raw, std::size_t z, int b) {
   bc.zone = z;
   bc.by_points = true;
   const auto dims = static_cast<std::size_t>(raw.dimension);
-  std::vector<cgsize_t> points = expand_point_set(given.set, given.data, raw.dimension);
+  std::vector<cgsize_t> points = expand_point_set(raw, given.set, given.data, raw.dimension, node_limits(zone), bc.where);
   if (given.location != CGNS_ENUMV(Vertex)) {
     const int fixed = fixed_direction(raw, zone, given.location, points);
     if (fixed < 0) {

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <optional>
 #include <unordered_map>
 
@@ -48,6 +49,9 @@ struct SectionReader {
   ZoneRecord& zone;
   ZoneFaces& faces;
   std::string section;
+  int index = 0;                        ///< the section's number in the zone
+  std::array<cgsize_t, 2> range{};      ///< its ElementRange
+  std::vector<cgsize_t> offsets;        ///< MIXED: its ElementStartOffset
   std::unordered_map<std::string, std::size_t> others;  ///< unsupported element types, counted
   std::size_t skipped = 0;                               ///< lower-dimensional elements
 
@@ -109,30 +113,28 @@ struct SectionReader {
     file.check(cg_section_read(file.fn(), raw.base, zone.index, s, name, &type, &start, &end, &boundary, &parent_flag),
                fmt::format("zone '{}': reading section {}", zone.name, s));
     section = name;
+    index = s;
+    range = {start, end};
     faces.sections.push_back({section, false});
-    cgsize_t size = 0;
-    file.check(cg_ElementDataSize(file.fn(), raw.base, zone.index, s, &size),
-               fmt::format("zone '{}' section '{}': reading its size", zone.name, section));
-    std::vector<cgsize_t> data(static_cast<std::size_t>(size));
-    const bool variable = type == CGNS_ENUMV(MIXED) || type == CGNS_ENUMV(NGON_n) || type == CGNS_ENUMV(NFACE_n);
-    std::vector<cgsize_t> offsets(variable ? static_cast<std::size_t>(end - start + 2) : 0);
-    const std::string what = fmt::format("zone '{}' section '{}': reading its elements", zone.name, section);
-    if (variable) {
-      file.check(cg_poly_elements_read(file.fn(), raw.base, zone.index, s, data.data(), offsets.data(), nullptr), what);
-    } else {
-      file.check(cg_elements_read(file.fn(), raw.base, zone.index, s, data.data(), nullptr), what);
-    }
     others.clear();
     skipped = 0;
+    if (start < 1 || end < start) {
+      throw InputError::in(file.name(), fmt::format("zone '{}' section '{}': its ElementRange {}..{} is {}", zone.name,
+                                                    section, start, end,
+                                                    end < start ? "reversed (the last element before the first)"
+                                                                : "not of element numbers (they start at 1)"));
+    }
+    const std::int64_t count = std::int64_t{end} - start + 1;
+    int npe = 0;
+    if (type != CGNS_ENUMV(MIXED) && (cg_npe(type, &npe) != CG_OK || npe <= 0 || npe > 8)) {
+      others[cg_ElementTypeName(type)] += static_cast<std::size_t>(count);  // refused unread: NGON_n, TETRA_10, ...
+      unsupported();
+    }
+    const std::vector<cgsize_t> data = connectivity(count, npe);
     if (type == CGNS_ENUMV(MIXED)) {
-      read_mixed(data, start, end);
+      read_mixed(data, start);
     } else {
-      int npe = 0;
-      if (variable || cg_npe(type, &npe) != CG_OK || npe <= 0 || npe > 8) {
-        others[cg_ElementTypeName(type)] += static_cast<std::size_t>(end - start + 1);
-      } else {
-        for (cgsize_t e = start; e <= end; ++e) add(type, e, data.data() + (e - start) * npe, npe);
-      }
+      for (std::int64_t k = 0; k < count; ++k) add(type, static_cast<cgsize_t>(start + k), data.data() + k * npe, npe);
     }
     if (!others.empty()) unsupported();
     if (skipped > 0) {
@@ -141,21 +143,95 @@ struct SectionReader {
     }
   }
 
-  void read_mixed(const std::vector<cgsize_t>& data, cgsize_t start, cgsize_t end) {
+  /// "zone 'Z' section 'S': its ElementRange a..b (n elements)"
+  std::string range_text(std::int64_t count) const {
+    return fmt::format("zone '{}' section '{}': its ElementRange {}..{} ({} elements)", zone.name, section, range[0],
+                       range[1], count);
+  }
+
+  /// The section's ElementConnectivity (and for a MIXED section its ElementStartOffset,
+  /// checked against it), after checking that the file stores what `count` elements of
+  /// `npe` nodes (0: MIXED) take, before any buffer is sized.
+  std::vector<cgsize_t> connectivity(std::int64_t count, int npe) {
+    double zone_id = 0;
+    file.check(cg_zone_id(file.fn(), raw.base, zone.index, &zone_id), fmt::format("zone '{}': finding its node", zone.name));
+    cgsize_t size = 0;
+    file.check(cg_ElementDataSize(file.fn(), raw.base, zone.index, index, &size),
+               fmt::format("zone '{}' section '{}': reading its size", zone.name, section));
+    const std::optional<StoredArray> stored = stored_array(file, zone_id, section + "/ElementConnectivity");
+    if (!stored || stored->values() != size || size < 0) {
+      throw InputError::in(file.name(), fmt::format("zone '{}' section '{}': its ElementConnectivity stores {} values, "
+                                                    "not a list of {}",
+                                                    zone.name, section, stored ? stored->shape() : "no", size));
+    }
+    if (npe > 0 && count * npe != size) {
+      throw InputError::in(file.name(), fmt::format("{} of {} nodes each need {} values, but its ElementConnectivity "
+                                                    "stores {} values",
+                                                    range_text(count), npe, count * npe, size));
+    }
+    std::vector<cgsize_t> data;
+    if (npe > 0) {
+      data.resize(static_cast<std::size_t>(size));
+      file.check(cg_elements_read(file.fn(), raw.base, zone.index, index, data.data(), nullptr),
+                 fmt::format("zone '{}' section '{}': reading its elements", zone.name, section));
+      return data;
+    }
+    // MIXED: the library writes the whole stored ElementStartOffset into the offsets' buffer
+    // (a file of CGNS before 3.4 has none: the library makes it from ElementRange).
+    if (const auto stored_offsets = stored_array(file, zone_id, section + "/ElementStartOffset")) {
+      if (stored_offsets->values() != count + 1 || stored_offsets->dimensions.size() != 1) {
+        throw InputError::in(file.name(), fmt::format("{} does not match the {} offsets its ElementStartOffset stores "
+                                                      "(one per element, and one for the end)",
+                                                      range_text(count), stored_offsets->shape()));
+      }
+    } else if (count > size / 2) {
+      throw InputError::in(file.name(), fmt::format("{} need at least {} values (a type and a node each), but its "
+                                                    "ElementConnectivity stores {}",
+                                                    range_text(count), 2 * count, size));
+    }
+    data.resize(static_cast<std::size_t>(size));
+    offsets.resize(static_cast<std::size_t>(count) + 1);
+    file.check(cg_poly_elements_read(file.fn(), raw.base, zone.index, index, data.data(), offsets.data(), nullptr),
+               fmt::format("zone '{}' section '{}': reading its elements", zone.name, section));
+    if (offsets.front() != 0 || offsets.back() != size) {
+      throw InputError::in(file.name(), fmt::format("zone '{}' section '{}': its ElementStartOffset starts at {} and "
+                                                    "ends at {}, but its ElementConnectivity stores {} values (from 0 "
+                                                    "to {})",
+                                                    zone.name, section, offsets.front(), offsets.back(), size, size));
+    }
+    return data;
+  }
+
+  /// The elements of a MIXED section, each a type code and its nodes, where its
+  /// ElementStartOffset says (connectivity() checked that the offsets run from 0 to the end).
+  void read_mixed(const std::vector<cgsize_t>& data, cgsize_t start) {
     std::size_t at = 0;
-    for (cgsize_t e = start; e <= end; ++e) {
-      const auto type = static_cast<CGNS_ENUMT(ElementType_t)>(data.at(at));
+    for (std::size_t k = 0; k + 1 < offsets.size(); ++k) {
+      const auto e = static_cast<cgsize_t>(start + static_cast<cgsize_t>(k));
+      // The code as stored, made an ElementType_t only once it is one (an enum holds no other).
+      const cgsize_t code = at < data.size() ? data[at] : 0;
+      const auto type = code > 0 && code < NofValidElementTypes ? static_cast<CGNS_ENUMT(ElementType_t)>(code)
+                                                                 : CGNS_ENUMV(ElementTypeNull);
       int npe = 0;
-      if (cg_npe(type, &npe) != CG_OK || npe <= 0 || npe > 8 || at + 1 + static_cast<std::size_t>(npe) > data.size()) {
+      if (type == CGNS_ENUMV(ElementTypeNull) || cg_npe(type, &npe) != CG_OK || npe <= 0 || npe > 8) {
+        const std::string name = type == CGNS_ENUMV(ElementTypeNull) ? fmt::format("code {}", code)
+                                                                      : std::string(cg_ElementTypeName(type));
         throw InputError::in(file.name(), fmt::format("zone '{}' MIXED section '{}': element {} has type {}, which "
                                                       "hotmesh does not read (it reads {} cells and {} boundary faces "
                                                       "in a {}D base)",
-                                                      zone.name, section, e, cg_ElementTypeName(type),
+                                                      zone.name, section, e, name,
                                                       cell_names(raw.dimension), face_names(raw.dimension),
                                                       raw.dimension));
       }
+      const std::size_t next = at + 1 + static_cast<std::size_t>(npe);
+      if (static_cast<std::int64_t>(next) != offsets[k + 1]) {
+        throw InputError::in(file.name(), fmt::format("zone '{}' MIXED section '{}': element {} ({}, {} nodes) ends at "
+                                                      "value {}, but its ElementStartOffset says {}",
+                                                      zone.name, section, e, cg_ElementTypeName(type), npe, next,
+                                                      offsets[k + 1]));
+      }
       add(type, e, data.data() + at + 1, npe);
-      at += 1 + static_cast<std::size_t>(npe);
+      at = next;
     }
   }
 
@@ -185,6 +261,23 @@ void faces_of_elements(const File& file, int file_dimension, ZoneFaces& faces, c
   }
 }
 
+/// The element numbers a BC by elements names: its list, or its range expanded, once checked
+/// to hold no more elements than the zone's boundary sections (each must be one of them).
+std::vector<cgsize_t> element_numbers(const File& file, const ZoneFaces& faces, const BcPoints& bc) {
+  if (bc.set != CGNS_ENUMV(PointRange) && bc.set != CGNS_ENUMV(ElementRange)) return bc.data;
+  const cgsize_t lo = std::min(bc.data[0], bc.data[1]), hi = std::max(bc.data[0], bc.data[1]);
+  const std::int64_t count = std::int64_t{hi} - lo + 1;
+  if (count > static_cast<std::int64_t>(faces.faces.size())) {
+    throw InputError::in(file.name(), fmt::format("{}: its {} {}..{} names {} elements, but the zone's boundary face "
+                                                  "sections hold {}",
+                                                  bc.where, cg_PointSetTypeName(bc.set), bc.data[0], bc.data[1], count,
+                                                  faces.faces.size()));
+  }
+  std::vector<cgsize_t> elements;
+  for (std::int64_t e = lo; e <= hi; ++e) elements.push_back(static_cast<cgsize_t>(e));  // hi may be INT_MAX
+  return elements;
+}
+
 bool by_elements(CGNS_ENUMT(PointSetType_t) set, CGNS_ENUMT(GridLocation_t) location) {
   if (set == CGNS_ENUMV(ElementRange) || set == CGNS_ENUMV(ElementList)) return true;
   return location != CGNS_ENUMV(Vertex);
@@ -197,10 +290,10 @@ void read_bc(const File& file, RawMesh& raw, std::size_t z, ZoneFaces& faces, in
   bc.where = points.where;
   bc.patch = points.patch;
   bc.zone = z;
-  const std::vector<cgsize_t> entries = expand_point_set(points.set, points.data, 1);
   if (by_elements(points.set, points.location)) {
-    faces_of_elements(file, raw.dimension, faces, entries, bc);
+    faces_of_elements(file, raw.dimension, faces, element_numbers(file, faces, points), bc);
   } else {
+    const std::vector<cgsize_t> entries = expand_point_set(raw, points.set, points.data, 1, node_limits(zone), bc.where);
     bc.by_points = true;
     for (const cgsize_t p : entries) {
       if (p < 1 || static_cast<std::size_t>(p) > zone.node_count) {

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "cgns_files.hpp"
+#include "faults.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -148,6 +149,43 @@ TEST(CgnsCommands, FilesThatAreNotCgnsMeshesExitWithCodeTwo) {
                                shell_quote((dir / "out").string()));
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_THAT(missing.output, HasSubstr("missing.cgns"));
+}
+
+// Issue 46: libhdf5 aborted inside cg_open on a CGNS file with one byte of a link name
+// changed, and hotmesh died with it (SIGABRT). hotmesh reads a CGNS file in a child process
+// first: a fault of the library there is an error naming the file, exit 2, for every command
+// that reads it. The fault is the test library's (HOTMESH_TEST_ABORT_IN_HDF5_OPEN), the file
+// a valid one: the damaged files this libhdf5 (1.10) aborts on are its own bugs, which a later
+// version may not have (test_cgns_damage.cpp has the damaged files hotmesh itself refuses).
+TEST(CgnsCommands, AFaultOfTheCgnsLibraryExitsWithCodeTwoNamingTheFile) {
+  test::TempDir dir;
+  const auto file = dir / "u2.cgns";
+  test::write_unstructured_2d(file);
+  test::Faults faults;
+  faults.abort_in_hdf5_open = true;
+  const std::string aborting = test::fault_variables(faults);
+  for (const std::string& command : {"info " + shell_quote(file.string()),
+                                     "convert " + shell_quote(file.string()) + " " + shell_quote((dir / "u2.msh").string())}) {
+    const auto result = run_command(aborting + HOTMESH_EXE + " " + command);
+    EXPECT_EQ(result.exit_code, 2) << command << "\n" << result.output;
+    EXPECT_THAT(result.output, HasSubstr(file.string() + ": the CGNS library (or HDF5 beneath it) crashed reading it "
+                                                         "(signal 6, Aborted)"))
+        << command;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "u2.msh"));
+  EXPECT_EQ(hotmesh("info " + shell_quote(file.string())).exit_code, 0);  // the same file, without the fault
+}
+
+// Found by fuzz_cgns: an ADF file (the tests' structured 2D file of two zones, converted by
+// hdf2adf) with bytes of its grid coordinates' node changed, on which the CGNS
+// library's ADF reader copies from a wild address inside cg_open (AddressSanitizer: SEGV in
+// ADFI_read_data_chunk; without it the library refuses the file, having read who knows what).
+// In the child the fault is an error naming the file; either way, exit 2.
+TEST(CgnsCommands, AnAdfFileOnWhichTheCgnsLibraryReadsAWildAddressExitsWithCodeTwo) {
+  const auto file = test::data_path("fuzz/cgns-adf-wild-read.cgns");
+  const auto result = hotmesh("info " + shell_quote(file.string()));
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("error " + file.string() + ": "));
 }
 
 }  // namespace

@@ -17,11 +17,14 @@
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "cgns_files.hpp"
 #include "cone_nodes.hpp"
+#include "faults.hpp"
 #include "run_command.hpp"
 #include "serve_client.hpp"
 #include "serve_process.hpp"
@@ -260,6 +263,32 @@ TEST(ServeHostile, AStepFileThatCrashesOpenCascadeIsAnErrorAndTheServerLivesOn) 
   // A corrupt CAD file, like every other one: 422 naming the file as the client knows it.
   expect_error(r, 422, "bad.step: the STEP file is damaged");
   EXPECT_THAT(r.body["message"].get<std::string>(), ::testing::Not(HasSubstr("hotmesh-serve-")));
+  EXPECT_TRUE(uploads_left(tmp.path()).empty());
+  EXPECT_EQ(api.get("/api/health").status, 200);
+  EXPECT_EQ(api.upload("cone.igs", cone_file()).status, 201);
+  EXPECT_EQ(server.stop(SIGTERM), 0) << server.log();
+}
+
+// Issue 46 item 4: a CGNS file on which the CGNS library (libhdf5 beneath it) aborts. The
+// service reads no meshes: a .cgns upload is refused by its name, and one named .step is read
+// by the child `hotmesh cad` (OpenCASCADE, which refuses it), so no CGNS or HDF5 code runs in
+// the service. The service runs with the test library's fault that aborts any process of it
+// opening an HDF5 file (HOTMESH_TEST_ABORT_IN_HDF5_OPEN), so that a read would show.
+TEST(ServeHostile, ACgnsFileThatCrashesTheCgnsLibraryIsRefusedAndTheServerLivesOn) {
+  test::TempDir tmp;
+  test::write_unstructured_2d(tmp / "mesh.cgns");
+  const std::string cgns = test::read_text(tmp / "mesh.cgns");
+  std::filesystem::remove(tmp / "mesh.cgns");
+  test::Faults faults;
+  faults.abort_in_hdf5_open = true;
+  std::map<std::string, std::string> environment = test::fault_environment(faults);
+  environment["TMPDIR"] = tmp.path().string();
+  test::ServeProcess server({}, environment);
+  Api api(server.port());
+  expect_error(api.upload("mesh.cgns", cgns, "m"), 415, "'mesh.cgns' is not a CAD file");
+  const Reply as_step = api.upload("mesh.step", cgns, "m");
+  EXPECT_EQ(as_step.status, 422) << as_step.body.dump();
+  EXPECT_THAT(server.log(), ::testing::Not(HasSubstr("aborting in H5Fopen")));
   EXPECT_TRUE(uploads_left(tmp.path()).empty());
   EXPECT_EQ(api.get("/api/health").status, 200);
   EXPECT_EQ(api.upload("cone.igs", cone_file()).status, 201);

@@ -1,6 +1,7 @@
 // hotmesh tests: the CGNS files of cgns_files.hpp, written with the CGNS library.
 #include "cgns_files.hpp"
 
+#include <cgns_io.h>
 #include <cgnslib.h>
 
 #include <array>
@@ -290,6 +291,26 @@ void write_bc_without_faces(const std::filesystem::path& path) {
   out.coordinates(z, grid(4, 3, 1, 0.0, 1.0), 2, false);
   out.section(z, "Cells", CGNS_ENUMV(QUAD_4), 1, 6, quads_2d(4, 3, false));
   out.bc(z, "lonely", CGNS_ENUMV(PointList), {6}, 1);
+}
+
+void overwrite_integers(const std::filesystem::path& path, const std::string& node, const std::vector<int>& values,
+                        std::vector<long long> dimensions) {
+  if (dimensions.empty()) dimensions.push_back(static_cast<long long>(values.size()));
+  const auto cgio_ok = [](int status) {
+    if (status == CGIO_ERR_NONE) return;
+    char message[CGIO_MAX_ERROR_LENGTH + 1] = {};
+    cgio_error_message(message);
+    throw std::runtime_error(std::string("CGNS I/O: ") + message);
+  };
+  int cgio = 0;
+  cgio_ok(cgio_open_file(path.c_str(), CGIO_MODE_MODIFY, CGIO_FILE_NONE, &cgio));
+  double root = 0, id = 0;
+  cgio_ok(cgio_get_root_id(cgio, &root));
+  cgio_ok(cgio_get_node_id(cgio, root, node.c_str(), &id));
+  const std::vector<cgsize_t> dims(dimensions.begin(), dimensions.end());
+  cgio_ok(cgio_set_dimensions(cgio, id, "I4", static_cast<int>(dims.size()), dims.data()));
+  cgio_ok(cgio_write_all_data(cgio, id, values.data()));
+  cgio_ok(cgio_close_file(cgio));
 }
 
 std::vector<ZoneCoordinates> read_zone_coordinates(const std::filesystem::path& path) {

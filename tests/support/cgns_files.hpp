@@ -56,6 +56,13 @@ void write_structured_periodic_2d(const std::filesystem::path& path);
 void write_with_quadratic_triangles(const std::filesystem::path& path);  ///< 2D, section "Tris" of 2 TRI_6
 void write_bc_without_faces(const std::filesystem::path& path); ///< 2D, BC "lonely" of 1 node
 
+/// Replaces the data of node `node` of a CGNS file (a path from its root,
+/// "/Base/Fluid/Cells/ElementRange") with `values`, stored as I4 integers of `dimensions`
+/// (by default one, of values.size() entries): a file's arrays edited in place, as someone
+/// crafting a damaged file would, past the checks the library makes when writing.
+void overwrite_integers(const std::filesystem::path& path, const std::string& node, const std::vector<int>& values,
+                        std::vector<long long> dimensions = {});
+
 /// The coordinates of every zone of base 1, zone after zone, as doubles (CoordinateX, Y[, Z]
 /// interleaved per node, 0 for a missing Z), and the data type names of each coordinate.
 struct ZoneCoordinates {

@@ -19,11 +19,16 @@
 //     exists (at most two minutes): the request that loads the file holds its heavy slot
 //     until the test creates FILE, whatever the machine's speed.
 //
+//   HOTMESH_TEST_ABORT_IN_HDF5_OPEN=1: the process aborts (SIGABRT) when the CGNS library
+//     opens an HDF5 file (H5Fopen), as libhdf5 aborted in cg_open on a CGNS file with a
+//     damaged link name (issue 46): hotmesh reads CGNS files in a child process first, so that
+//     such a fault is an error naming the file (io/src/cgns_library.hpp, check_in_child).
+//
 // Only the process that writes the checkpoints is hit: the only one, or rank 0 under mpirun.
 // The other ranks run on into the next increment while rank 0 writes, so from outside none
 // of them can tell where in its own run a checkpoint put in place falls.
 //
-// The library replaces rename(3) and the plain operator new and new[] (the aligned ones stay
+// The library replaces rename(3), H5Fopen and the plain operator new and new[] (the aligned ones stay
 // libstdc++'s), each passing on to the next definition (libc's, libstdc++'s, or the
 // AddressSanitizer runtime's). It is built without sanitizers: it stands in front of the
 // sanitizer runtime, and tells it so (__asan_default_options below).
@@ -38,6 +43,7 @@
 #include <bit>
 #include <climits>
 #include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -149,6 +155,18 @@ extern "C" int rename(const char* from, const char* to) noexcept {
   const int result = next(from, to);
   if (result == 0 && to != nullptr && names_checkpoint(to)) checkpoint_in_place();
   return result;
+}
+
+// libhdf5's H5Fopen (HDF5 1.10: hid_t is a 64-bit integer), which the CGNS library calls.
+extern "C" std::int64_t H5Fopen(const char* name, unsigned flags, std::int64_t access) {
+  using OpenFunction = std::int64_t (*)(const char*, unsigned, std::int64_t);
+  const char* abort_here = std::getenv("HOTMESH_TEST_ABORT_IN_HDF5_OPEN");
+  if (abort_here != nullptr && std::string_view(abort_here) == "1") {
+    say("hotmesh_faults: aborting in H5Fopen(%s) (HOTMESH_TEST_ABORT_IN_HDF5_OPEN)\n", name);
+    std::abort();
+  }
+  static const auto next = next_definition<OpenFunction>("H5Fopen");
+  return next(name, flags, access);
 }
 
 // The Itanium C++ ABI's names of operator new(std::size_t) and operator new[](std::size_t) on

@@ -12,7 +12,7 @@ namespace {
 std::vector<std::pair<std::string, std::string>> variables(const Faults& faults) {
   std::vector<std::pair<std::string, std::string>> result;
   if (faults.kill_after_checkpoint <= 0 && faults.fail_allocation_after_checkpoint <= 0 &&
-      faults.hold_cad_check.empty()) {
+      faults.hold_cad_check.empty() && !faults.abort_in_hdf5_open) {
     return result;
   }
   result.emplace_back("LD_PRELOAD", HOTMESH_FAULTS_LIBRARY);
@@ -24,6 +24,7 @@ std::vector<std::pair<std::string, std::string>> variables(const Faults& faults)
                         std::to_string(faults.fail_allocation_after_checkpoint));
   }
   if (!faults.hold_cad_check.empty()) result.emplace_back("HOTMESH_TEST_HOLD_CAD_CHECK", faults.hold_cad_check);
+  if (faults.abort_in_hdf5_open) result.emplace_back("HOTMESH_TEST_ABORT_IN_HDF5_OPEN", "1");
   return result;
 }
 

@@ -16,6 +16,7 @@ struct Faults {
   int kill_after_checkpoint = 0;             ///< K > 0: SIGKILL right after the K-th checkpoint
   int fail_allocation_after_checkpoint = 0;  ///< K > 0: std::bad_alloc at the next large allocation after it
   std::string hold_cad_check;                ///< a file: `hotmesh cad` processes wait until it exists
+  bool abort_in_hdf5_open = false;           ///< SIGABRT when the CGNS library opens an HDF5 file
 };
 
 /// "NAME=value ... " to put before a command that /bin/sh runs (empty for no faults).

@@ -24,9 +24,18 @@ struct CgnsMesh {
   std::shared_ptr<const MeshWriteBack> write_back;
 };
 
+/// How a CGNS file is read.
+struct CgnsReadOptions {
+  /// Read the file in a child process first, so that a fault of the CGNS or HDF5 library on
+  /// a damaged file (a segmentation fault, an abort inside HDF5) is an InputError naming the
+  /// file rather than the end of this process. Off only where a fault must surface: the
+  /// fuzz target, which looks for them.
+  bool check_in_child = true;
+};
+
 /// Reads the first base of a CGNS file. Throws hotmesh::InputError naming the file, and the
 /// zone, section or BC, for anything hotmesh cannot move.
-CgnsMesh read_cgns(const std::filesystem::path& path);
+CgnsMesh read_cgns(const std::filesystem::path& path, const CgnsReadOptions& options = {});
 
 /// Writes `mesh` with its nodes at `points` as a new CGNS (HDF5) file, atomically: one
 /// base, one unstructured zone, a cell section, and per patch a face section and a BC
@@ -64,6 +73,6 @@ struct CgnsSummary {
   std::string file_type;  ///< "HDF5" or "ADF"
   std::vector<Base> bases;
 };
-CgnsSummary describe_cgns(const std::filesystem::path& path);
+CgnsSummary describe_cgns(const std::filesystem::path& path, const CgnsReadOptions& options = {});
 
 }  // namespace hotmesh::io
