@@ -20,6 +20,7 @@
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/parallel/threads.hpp"
 #include "deform_cases.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -161,6 +162,52 @@ TEST(DeformCommand, LinearAutoPicksTheSolverAndSaysWhy) {
     const auto report = read_json(dir / (name + "-out") / "report.json");
     EXPECT_EQ(report["solver"]["linear"], linear);
     EXPECT_EQ(report["solver"]["linear_chosen_by"], why);
+  }
+}
+
+/// The threads a run takes and why, in one log line and in report.json: hotmesh's own choice
+/// (one thread below the size where threads pay), the user's count from each place it comes
+/// from, as given, and how waiting threads wait: passively unless the user says otherwise,
+/// which libgomp itself reports (GOMP_SPINCOUNT 0) (issue 52). Nothing timed.
+TEST(DeformCommand, SaysOnHowManyThreadsItRunsAndWhy) {
+  test::TempDir dir;
+  test::write_coarse_ramp(dir.path());
+  std::string yaml = test::ramp_case("full.csv", 2);
+  test::write_text(dir / "case.yaml", yaml);
+  yaml.replace(yaml.find("solver: {"), 9, "solver: {threads: 1, ");
+  test::write_text(dir / "threads.yaml", yaml);
+  const std::string small = fmt::format("a mesh of 286 nodes: threads pay from {}", parallel::kThreadsPayNodes2d);
+  struct Run {
+    std::string environment, case_name, options, line, chosen_by;
+    int threads;
+  };
+  const std::vector<Run> runs{
+      {"", "case", "", "on 1 thread (" + small + ")", "hotmesh", 1},
+      {"-u OMP_WAIT_POLICY OMP_DISPLAY_ENV=VERBOSE", "case", "--threads 2",
+       "on 2 threads (--threads 2); waiting threads: passive (hotmesh's default)", "the user", 2},
+      {"OMP_WAIT_POLICY=active", "case", "--threads 2",
+       "on 2 threads (--threads 2); waiting threads: OMP_WAIT_POLICY=active (set by the user)", "the user", 2},
+      {"OMP_NUM_THREADS=2", "case", "", "on 2 threads (OMP_NUM_THREADS=2)", "the user", 2},
+      {"", "threads", "", "on 1 thread (solver.threads: 1)", "the user", 1},
+      {"", "threads", "--threads 0", "on 1 thread (" + small + ")", "hotmesh", 1}};
+  for (const Run& run : runs) {
+    SCOPED_TRACE(run.environment + " " + run.case_name + " " + run.options);
+    const auto out = dir / "out";
+    const auto r = test::run_command(fmt::format("env -u OMP_NUM_THREADS {} {} deform {} -o {} --force {}", run.environment,
+                                                 HOTMESH_EXE, shell_quote((dir / (run.case_name + ".yaml")).string()),
+                                                 shell_quote(out.string()), run.options));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_THAT(r.output, HasSubstr(run.line));
+    const auto report = read_json(out / "report.json");
+    const auto& threads = report["threads"];
+    EXPECT_EQ(threads["count"], run.threads);
+    EXPECT_EQ(threads["chosen_by"], run.chosen_by);
+    EXPECT_TRUE(threads["other_load"].is_null());  // the size or the user decided: the load was not looked at
+    EXPECT_GE(threads["cores"].get<int>(), 1);
+    if (run.environment.find("OMP_DISPLAY_ENV") != std::string::npos) {
+      EXPECT_THAT(r.output, HasSubstr("GOMP_SPINCOUNT = '0'"));  // libgomp read the passive policy
+      EXPECT_EQ(threads["wait_policy"], "passive (hotmesh's default)");
+    }
   }
 }
 
