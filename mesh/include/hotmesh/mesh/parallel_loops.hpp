@@ -23,6 +23,15 @@ inline constexpr std::ptrdiff_t kParallelProjections = 256;  ///< nodes projecte
 /// Multiply-adds of a product y = K x (the entries of K's node blocks).
 inline constexpr std::ptrdiff_t kParallelProduct = 1 << 18;
 
+/// The loops run every Newton step and every CG iteration hand out their work in chunks of
+/// these sizes as threads ask for it (schedule(dynamic)), not in one fixed share per thread: a
+/// thread whose core another process holds then delays the loop by one chunk, not by its
+/// share. Each iteration's arithmetic does not depend on the thread that does it, and
+/// reductions sum fixed chunks in order, so results stay the same for any thread count.
+inline constexpr int kChunkVector = 4096;  ///< entries of a vector kernel
+inline constexpr int kChunkNodes = 1024;   ///< nodes of a nodal loop
+inline constexpr int kChunkCells = 64;     ///< cells of an element loop
+
 /// Carries an exception out of an OpenMP loop. One that escapes a parallel region (even one
 /// that runs on a single thread) calls std::terminate: a std::bad_alloc would end hotmesh with
 /// SIGABRT instead of its out-of-memory exit code. A loop whose body may throw (it calls code
