@@ -15,11 +15,13 @@
 
 namespace hotmesh::parallel {
 
-/// Nodes of a mesh from which a second thread pays for a whole run on an idle machine (2D
-/// meshes run icc or amg, threaded only in the element pass; 3D meshes jacobi-pcg, threaded
-/// throughout). Below them a run takes one thread unless told otherwise.
-inline constexpr std::size_t kThreadsPayNodes2d = 60000;
-inline constexpr std::size_t kThreadsPayNodes3d = 20000;
+/// Nodes of a mesh from which a second thread gains at least a tenth of a whole run on an idle
+/// machine (bench_busy --sweep, 2 cores, docs/performance.md): 3D ducts sliding over CAD faces
+/// (jacobi-pcg) broke even at 3 190 nodes and gained 14 % at 6 048 and 29 % at 21 777; 2D ramps
+/// (icc, threaded in the element pass and the vector work around PETSc's solves) broke even at
+/// 2 378 nodes and gained 12 % at 9 315. Below them a run takes one thread unless told.
+inline constexpr std::size_t kThreadsPayNodes2d = 8000;
+inline constexpr std::size_t kThreadsPayNodes3d = 5000;
 /// A core counts as free while other processes keep less than this share of it busy.
 inline constexpr double kBusyCore = 0.25;
 
