@@ -2,7 +2,9 @@
 // Below the sizes here a loop runs on one thread, because starting and joining a thread team
 // costs more than the work. It costs far more on a loaded machine, where OpenMP threads that
 // spin while they wait steal the time slices of the others: a small case on a busy machine
-// then runs tens of times slower in parallel than serially.
+// then runs tens of times slower in parallel than serially. So `hotmesh deform` lets waiting
+// threads sleep, and takes threads only for the cores other processes leave free
+// (hotmesh/parallel/threads.hpp); the loops below hand out dynamic chunks.
 // And: how an exception leaves an OpenMP loop, and starting the threads up front. libgomp
 // creates a loop's threads when the first loop runs on them and ends the process when it
 // cannot (exit code 1, "libgomp: Thread creation failed"), as under a memory limit without
