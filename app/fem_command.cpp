@@ -3,7 +3,8 @@
 // it. Without --set: the output steps (the DISP blocks, with the largest displacement and the
 // temperature range of each) and, with --inp, the deck's node sets and surfaces with their
 // node counts and largest displacement at the chosen step. With --set: the deflection table
-// hotmesh would use, as CSV (io/deflection_csv.hpp), on stdout or into -o.
+// hotmesh would use, as CSV (io/deflection_csv.hpp), on stdout or into -o (never one of the
+// files it read).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -18,6 +19,7 @@
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/calculix.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
+#include "hotmesh/io/output_folder.hpp"
 
 namespace hotmesh::app {
 
@@ -48,16 +50,25 @@ io::FrdStepChoice step_choice(const FemOptions& o) {
   throw InputError("--step: expected `last` or the number of an analysis step (from 1), got '" + o.step + "'");
 }
 
-/// The largest displacement of a block, over `nodes` (all of the block's when empty).
+/// Node number -> its place in a block.
+using NodeIndex = std::unordered_map<std::int64_t, std::size_t>;
+
+NodeIndex index_of(const io::FrdBlock& block) {
+  NodeIndex index;
+  index.reserve(block.nodes.size());
+  for (std::size_t i = 0; i < block.nodes.size(); ++i) index[block.nodes[i]] = i;
+  return index;
+}
+
+/// The largest displacement of a block, over `nodes` (all of the block's when empty), which
+/// `index` (of the block, made once for all sets) finds in it.
 struct Largest {
   double value = 0.0;
   std::int64_t node = 0;
 };
 
-Largest largest_displacement(const io::FrdBlock& block, const std::vector<std::int64_t>& nodes) {
+Largest largest_displacement(const io::FrdBlock& block, const NodeIndex& index, const std::vector<std::int64_t>& nodes) {
   Largest out;
-  std::unordered_map<std::int64_t, std::size_t> index;
-  for (std::size_t i = 0; i < block.nodes.size(); ++i) index[block.nodes[i]] = i;
   const auto consider = [&](std::size_t i) {
     const double u = norm(block.values[i]);
     if (u > out.value || out.node == 0) out = {u, block.nodes[i]};
@@ -86,7 +97,7 @@ std::string steps_text(const io::FrdResults& results) {
   if (blocks.empty()) return text + "  no DISP (displacement) block\n";
   text += "output steps (DISP blocks):\n";
   for (const io::FrdBlock* b : blocks) {
-    const Largest u = largest_displacement(*b, {});
+    const Largest u = largest_displacement(*b, {}, {});
     text += fmt::format("  step {:>3}  increment {:>3}  time {:<12.6g} largest |u| {:.6g} at node {}{}\n", b->step,
                         b->increment, b->time, u.value, u.node, temperature_range(results, *b));
   }
@@ -98,10 +109,11 @@ std::string sets_text(const io::InpDeck& deck, const io::FrdBlock& disp) {
                                  io::to_string(deck.kind()), deck.nodes.size(), deck.elements.size(),
                                  deck.files.size());
   text += fmt::format("node sets and surfaces, largest |u| at step {} (time {:.6g}):\n", disp.step, disp.time);
+  const NodeIndex index = index_of(disp);
   const auto list = [&](std::string_view what, const std::map<std::string, io::DeckSet>& sets) {
     for (const auto& [name, set] : sets) {
       const std::vector<std::int64_t> nodes = deck.set_nodes(name);
-      const Largest u = largest_displacement(disp, nodes);
+      const Largest u = largest_displacement(disp, index, nodes);
       text += fmt::format("  {:<8} {:<24} {:>7} nodes  largest |u| {:.6g} at node {}   ({})\n", what, name,
                           nodes.size(), u.value, u.node, set.place.text());
     }
@@ -127,6 +139,7 @@ int run_fem(const FemOptions& o) {
     std::cout << csv;
     return 0;
   }
+  io::refuse_overwriting_input(o.output, table.files);  // the .frd, the deck and its *INCLUDEs
   io::write_file_atomically(o.output, csv);
   std::cout << fmt::format("{}: {} table of set {} ({} nodes), step {} (time {:.6g})\n", o.output,
                            geometry::to_string(table.samples.frame), o.set, table.samples.size(), table.step,
@@ -146,7 +159,7 @@ Command add_fem_command(CLI::App& parent) {
   cmd->add_option("--inp", options->inp, "The input deck ccx solved (.inp): its node sets and surfaces")
       ->check(CLI::ExistingFile);
   cmd->add_option("--set", options->set, "Node set or surface of the deck whose table to write (needs --inp)");
-  cmd->add_option("-o,--output", options->output, "Write the table to this CSV file (default: stdout)");
+  cmd->add_option("-o,--output", options->output, "Write the table to this CSV file (default: stdout); never the .frd, the deck or a file it includes");
   cmd->add_option("--step", options->step, "Analysis step: `last` (default) or its number");
   cmd->add_option("--time", options->time, "Step time of the output to read");
   return [options] { return run_fem(*options); };

@@ -12,11 +12,11 @@ namespace hotmesh::fuzz {
 
 namespace {
 
-/// Owns the work folder: made empty on first use, removed when the process ends normally
-/// (after a crash it stays, under the build folder).
+/// Owns a folder of this process, <parent>/<pid>: made empty on first use, removed when the
+/// process ends normally (after a crash it stays, until fuzz.sh removes it).
 class WorkFolder {
  public:
-  WorkFolder() : path_(std::filesystem::path(HOTMESH_FUZZ_WORK) / std::to_string(::getpid())) {
+  explicit WorkFolder(const std::filesystem::path& parent) : path_(parent / std::to_string(::getpid())) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
@@ -35,7 +35,16 @@ class WorkFolder {
 }  // namespace
 
 const std::filesystem::path& work_folder() {
-  static const WorkFolder folder;
+  static const WorkFolder folder(HOTMESH_FUZZ_WORK);
+  return folder.path();
+}
+
+const std::filesystem::path& memory_folder() {
+  static const WorkFolder folder = [] {
+    std::error_code ec;
+    const bool shm = std::filesystem::is_directory("/dev/shm", ec);
+    return WorkFolder(shm ? std::filesystem::path("/dev/shm/hotmesh-fuzz") : work_folder() / "memory");
+  }();
   return folder.path();
 }
 

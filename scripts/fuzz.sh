@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # hotmesh: fuzz every reader of user input (docs/fuzzing.md).
-#   1. builds the libFuzzer targets (fuzz/: clang, ASan + UBSan) and hotmesh in build-fuzz/,
+#   1. builds the libFuzzer targets it runs (fuzz/: clang, ASan + UBSan) and hotmesh in build-fuzz/,
 #   2. gathers each target's seeds in build-fuzz/fuzz/seeds/<target>/: the samples, the test
-#      data, fuzz/corpus/<target>/, and a restart and a checkpoint file of a short run of the
-#      ramp2d sample,
+#      data, fuzz/corpus/<target>/, a restart and a checkpoint file of a short run of the
+#      ramp2d sample, the coupled_disc sample's deck solved by ccx (ASCII and binary .frd),
+#      and the small decks and results of Debian's CalculiX tests (calculix-ccx-test), the
+#      stator well's sector as a binary gzipped polyMesh and the polyMesh folders of Debian's
+#      OpenFOAM tutorials (openfoam-examples: some as shipped, two made by blockMesh),
 #   3. runs each target for SECONDS (default 60), one after the other (-j N: N at a time),
 #      growing its corpus in build-fuzz/fuzz/corpus/<target>/ (kept between runs), and prints
 #      the executions each reached.
@@ -24,7 +27,7 @@ set -euo pipefail
 main() {
   cd "$(dirname "$0")/.."
 
-  all_targets=(gmsh deflection_csv case_yaml restart checkpoint serve_json serve_upload step iges)
+  all_targets=(gmsh deflection_csv case_yaml restart checkpoint frd inp foam serve_json serve_upload step iges)
   seconds=60
   parallel=1
   seed_hotmesh=""
@@ -55,8 +58,12 @@ main() {
 
   out=$build/fuzz
   jobs=$(nproc)
-  if ! command -v clang++ >/dev/null || ! command -v gmsh >/dev/null; then
-    echo "hotmesh: the fuzz targets need clang++ and gmsh: run scripts/install-deps.sh" >&2
+  ccx_tests=/usr/share/doc/calculix-ccx-test/examples/test
+  foam_tutorials=/usr/share/doc/openfoam-examples/examples
+  if ! command -v clang++ >/dev/null || ! command -v gmsh >/dev/null || ! command -v ccx >/dev/null ||
+     [[ ! -d $ccx_tests ]]; then
+    echo "hotmesh: the fuzz targets need clang++, gmsh, ccx and CalculiX's tests (calculix-ccx-test):" \
+         "run scripts/install-deps.sh" >&2
     exit 1
   fi
 
@@ -66,11 +73,13 @@ main() {
           -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O2" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=ON -DHOTMESH_WERROR=ON \
           -DHOTMESH_FUZZ=ON -DHOTMESH_TESTS=OFF -DHOTMESH_BENCH=OFF >/dev/null
   fi
+  # Only the targets that run (fuzz.sh 600 inp builds fuzz_inp alone).
+  fuzzers=("${targets[@]/#/fuzz_}")
   if [[ -n $seed_hotmesh ]]; then
-    cmake --build "$build" -j "$jobs" --target fuzzers
+    cmake --build "$build" -j "$jobs" --target "${fuzzers[@]}"
     hotmesh=$seed_hotmesh
   else
-    cmake --build "$build" -j "$jobs" --target fuzzers hotmesh
+    cmake --build "$build" -j "$jobs" --target "${fuzzers[@]}" hotmesh
     hotmesh=$(pwd)/$build/app/hotmesh
   fi
 
@@ -128,6 +137,82 @@ main() {
   done
   cp $(small samples/* | grep '\.csv$') "$seeds/deflection_csv/"
   cp $(small samples/* | grep '\.yaml$') "$seeds/case_yaml/"
+  # CalculiX: the coupled_disc deck as one input of fuzz_inp (its *INCLUDE is the target's
+  # 1.inp, after a `**>` line), solved by ccx into an ASCII and a binary .frd (its surfaces are
+  # the ones fuzz_frd reads); the test files of hotmesh and of Debian's calculix-ccx-test below
+  # 8 KB (decks) and 16 KB (results).
+  disc=samples/coupled_disc
+  { sed 's/INPUT=disc_mesh.inp/INPUT=1.inp/' "$disc/disc_1.inp"; echo '**> 1.inp: disc_mesh.inp'
+    cat "$disc/disc_mesh.inp"; } > "$seeds/inp/coupled_disc.inp"
+  ccx_runs=$out/ccx-runs
+  rm -rf "$ccx_runs"
+  mkdir -p "$ccx_runs"
+  cp "$disc/disc_1.inp" "$disc/disc_mesh.inp" "$ccx_runs/"
+  sed 's/^\*NODE FILE/*NODE OUTPUT/' "$disc/disc_1.inp" > "$ccx_runs/disc_1_binary.inp"
+  for job in disc_1 disc_1_binary; do
+    (cd "$ccx_runs" && ccx -i "$job" > "$job.log" 2>&1) || { echo "hotmesh: ccx failed on $ccx_runs/$job.inp" >&2; exit 1; }
+    cp "$ccx_runs/$job.frd" "$seeds/frd/"
+  done
+  cp tests/data/calculix/*.inp "$seeds/inp/"
+  cp tests/data/calculix/*.frd "$seeds/frd/"
+  unpacked() {  # unpacked <pattern> <folder> <bytes>: the files of calculix-ccx-test smaller than <bytes>, unzipped
+    local file
+    for file in "$ccx_tests"/$1; do
+      zcat -f "$file" > "$2.tmp"
+      if (($(stat -c %s "$2.tmp") < $3)); then mv "$2.tmp" "$2/ccx-$(basename "${file%.gz}")"; fi
+    done
+    rm -f "$2.tmp"
+  }
+  unpacked '*.inp*' "$seeds/inp" 8192
+  unpacked '*.frd.ref*' "$seeds/frd" 16384
+  # OpenFOAM: one input per polyMesh folder, each file after a line `//> NAME` (fuzz_foam.cpp).
+  # fuzz/corpus/foam/ (the block of two cubes in every file form, a cell of each type, a 2D
+  # case, uniform lists); the stator well's sector (samples/stator_well, case_small_foam.yaml's
+  # mesh) as make_stator_well --engine-formats writes it (hotmesh convert of its .msh: the same
+  # polyMesh writer), binary and gzipped (720 KB); the polyMesh folders of Debian's OpenFOAM
+  # tutorials (openfoam-examples) below 1 MB uncompressed, as shipped (gzipped, in OpenFOAM
+  # 1.4's format), and blockMesh's meshes of two tutorials: the cavity (2D, empty) and the
+  # moving cone (2D, wedge).
+  foam_input() {  # foam_input <polyMesh folder> <input file>
+    local name file
+    for name in points faces owner neighbour boundary; do
+      for file in "$1/$name" "$1/$name.gz"; do
+        [[ -f $file ]] || continue
+        printf '//> %s\n' "$(basename "$file")"
+        cat "$file"
+        echo
+      done
+    done > "$2"
+  }
+  foam_runs=$out/foam-runs
+  if [[ ! -f $foam_runs/done || $hotmesh -nt $foam_runs/done ]]; then
+    echo "== hotmesh: the stator well's polyMesh and blockMesh's meshes of two tutorials for the foam seeds"
+    rm -rf "$foam_runs"
+    mkdir -p "$foam_runs"
+    ASAN_OPTIONS=detect_leaks=0 "$hotmesh" -q convert samples/stator_well/stator_well.msh \
+      "$foam_runs/stator_well/polyMesh" --binary
+    gzip -9 "$foam_runs"/stator_well/polyMesh/*
+    if [[ -d $foam_tutorials ]] && command -v blockMesh >/dev/null; then
+      for tutorial in incompressible/icoFoam/cavity/cavity incompressible/pimpleFoam/laminar/movingCone; do
+        cp -r "$foam_tutorials/$tutorial" "$foam_runs/$(basename "$tutorial")"
+        WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} blockMesh -case "$foam_runs/$(basename "$tutorial")" \
+          > "$foam_runs/$(basename "$tutorial").log" 2>&1 ||
+          { echo "hotmesh: blockMesh failed on $tutorial (see $foam_runs/)" >&2; exit 1; }
+      done
+    fi
+    touch "$foam_runs/done"
+  fi
+  foam_input "$foam_runs/stator_well/polyMesh" "$seeds/foam/stator_well"
+  for mesh in "$foam_runs"/*/constant/polyMesh; do
+    [[ -d $mesh ]] && foam_input "$mesh" "$seeds/foam/blockMesh-$(basename "$(dirname "$(dirname "$mesh")")")"
+  done
+  if [[ -d $foam_tutorials ]]; then
+    for mesh in $(find "$foam_tutorials" -type d -name polyMesh | sort); do
+      [[ -f $mesh/points || -f $mesh/points.gz ]] || continue
+      (($(zcat -f "$mesh"/* | wc -c) < 1048576)) || continue  # below 1 MB uncompressed
+      foam_input "$mesh" "$seeds/foam/tutorial-$(echo "${mesh#"$foam_tutorials"/}" | tr / -)"
+    done
+  fi
   cp "$state_runs/restart/restart.hmr" "$seeds/restart/"
   cp "$state_runs/checkpoint/checkpoint.hmc" "$seeds/checkpoint/"
   cp $(cad_files "step|stp") "$seeds/step/"
@@ -180,10 +265,10 @@ main() {
   }
 
   mkdir -p "$out/logs"
-  # The targets' files, a folder per process: a process that crashed or was stopped leaves its
-  # own. Only those of processes that ended go, so a second fuzz.sh on the same build (other
+  # The targets' files, a folder per process (and one in /dev/shm, fuzz_support's
+  # memory_folder): a process that crashed or was stopped leaves its own. Only those of processes that ended go, so a second fuzz.sh on the same build (other
   # targets) does not pull the files from under the first one's targets.
-  for folder in "$out"/work/*/; do
+  for folder in "$out"/work/*/ /dev/shm/hotmesh-fuzz/*/; do
     [[ -d $folder ]] || continue
     kill -0 "$(basename "$folder")" 2>/dev/null || rm -rf "$folder"
   done

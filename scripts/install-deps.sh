@@ -30,9 +30,12 @@ packages=(
   # (cgnscheck checks the CGNS files hotmesh writes; OpenFOAM's blockMesh makes polyMesh
   # folders and its checkMesh checks the ones hotmesh moves)
   cgns-convert openfoam
+  # (the polyMesh folders of OpenFOAM's tutorials are seeds of the foam fuzz target)
+  openfoam-examples
   # (the CalculiX tests run the real ccx: it writes the .frd/.dat files hotmesh reads, and
-  # the coupled_disc sample solves its disc with it)
-  calculix-ccx
+  # the coupled_disc sample solves its disc with it; CalculiX's own test decks and results
+  # are seeds of the fuzz targets)
+  calculix-ccx calculix-ccx-test
   # the browser test of hotmesh serve's page: Debian's Chromium, driven by playwright-core
   chromium
   # the fuzz targets (scripts/fuzz.sh): clang 14 with libFuzzer and the sanitizers'

@@ -10,8 +10,11 @@ namespace hotmesh::app::serve {
 
 class ApiError : public std::runtime_error {
  public:
-  ApiError(int status, const std::string& message) : std::runtime_error(message), status_(status) {}
+  ApiError(int status, const std::string& message, int retry_after = 0)
+      : std::runtime_error(message), status_(status), retry_after_(retry_after) {}
   int status() const { return status_; }
+  /// Seconds after which the client may try again (the Retry-After header); 0 for none.
+  int retry_after() const { return retry_after_; }
 
   static ApiError bad_request(const std::string& message) { return {400, message}; }
   static ApiError forbidden(const std::string& message) { return {403, message}; }
@@ -21,9 +24,12 @@ class ApiError : public std::runtime_error {
   /// Well-formed, but the geometry cannot be made of it (faces not rotational, nodes off the
   /// curve, ...): hotmesh::InputError from the kernel.
   static ApiError unprocessable(const std::string& message) { return {422, message}; }
+  /// The request is fine but the service has no room for it now (heavy_work.hpp).
+  static ApiError busy(const std::string& message, int retry_after) { return {503, message, retry_after}; }
 
  private:
   int status_;
+  int retry_after_;
 };
 
 /// The reason phrase of an HTTP status ("Bad Request", ...).

@@ -22,6 +22,7 @@
 
 #include "hotmesh/geometry/input_error.hpp"
 #include "serve/api_error.hpp"
+#include "serve/heavy_work.hpp"
 #include "serve/host_policy.hpp"
 #include "serve/http_connection.hpp"
 #include "serve/web_assets.hpp"
@@ -88,15 +89,20 @@ class WorkerSlot {
   Workers& workers_;
 };
 
-/// Runs a handler on one of the `workers`, turning what it throws into a JSON error: ApiError
-/// as it says, hotmesh::InputError (a user problem the kernel found) as 422, anything else as 500.
+/// Runs a handler on one of the `workers`, after taking a heavy slot for heavy work (`heavy`
+/// not null: it may wait in the queue, holding no worker, or be refused with 503), turning
+/// what it throws into a JSON error: ApiError as it says, hotmesh::InputError (a user problem
+/// the kernel found) as 422, anything else as 500.
 template <class Handler>
-httplib::Server::Handler guarded(Workers& workers, Handler handler) {
-  return [&workers, handler](const Request& req, Response& res) {
+httplib::Server::Handler guarded(Workers& workers, HeavyWork* heavy, Handler handler) {
+  return [&workers, heavy, handler](const Request& req, Response& res) {
     try {
+      std::optional<HeavyWork::Slot> heavy_slot;
+      if (heavy != nullptr) heavy_slot.emplace(*heavy);
       const WorkerSlot slot(workers);
       handler(req, res);
     } catch (const ApiError& e) {
+      if (e.retry_after() > 0) res.set_header("Retry-After", std::to_string(e.retry_after()));
       send_error(res, e.status(), e.what());
     } catch (const InputError& e) {
       send_error(res, 422, e.what());
@@ -123,18 +129,20 @@ std::string media_type(const Request& req) {
   return type;
 }
 
+/// Why a body of media type `type` is not taken by a JSON route.
+std::string not_json_message(const std::string& type, std::string_view also = {}) {
+  return fmt::format("{}: send JSON (Content-Type: application/json){}",
+                     type.empty() ? "the body has no Content-Type" : fmt::format("the body is {}", type.substr(0, 100)),
+                     also);
+}
+
 /// The body of a JSON route: only with Content-Type application/json. A page elsewhere can
 /// post text/plain or a form to the service without the browser asking it first; JSON it can
 /// post only after a CORS check, which the service never grants. `also` names another type the
 /// route takes.
 Json json_body(const Request& req, std::string_view also = {}) {
   const std::string type = media_type(req);
-  if (type != "application/json") {
-    throw ApiError::unsupported_type(fmt::format("{}: send JSON (Content-Type: application/json){}",
-                                                 type.empty() ? "the body has no Content-Type"
-                                                              : fmt::format("the body is {}", type.substr(0, 100)),
-                                                 also));
-  }
+  if (type != "application/json") throw ApiError::unsupported_type(not_json_message(type, also));
   return parse_object(req.body);
 }
 
@@ -182,30 +190,40 @@ class BoundedServer : public httplib::Server {
 
 struct HttpServer::Impl {
   Impl(GeometryService& s, HttpOptions o)
-      : service(s), options(std::move(o)), workers(static_cast<std::ptrdiff_t>(std::max<std::size_t>(options.threads, 1))) {}
+      : service(s),
+        options(std::move(o)),
+        workers(static_cast<std::ptrdiff_t>(std::max<std::size_t>(options.threads, 1))),
+        heavy(options.heavy_requests, options.heavy_queue) {}
 
-  void add(const std::string& method, const std::string& pattern, httplib::Server::Handler handler) {
+  /// Heavy work (heavy_work.hpp) or light.
+  enum class Work { light, heavy };
+
+  void add(const std::string& method, const std::string& pattern, httplib::Server::Handler handler,
+           Work work = Work::light) {
     auto known = std::find_if(routes.begin(), routes.end(), [&](const auto& r) { return r.first == pattern; });
     if (known == routes.end()) {
       routes.emplace_back(pattern, std::vector<std::string>{});
       known = std::prev(routes.end());
     }
     known->second.push_back(method);
-    if (method == "GET") server.Get(pattern, guarded(workers, std::move(handler)));
-    if (method == "POST") server.Post(pattern, guarded(workers, std::move(handler)));
-    if (method == "DELETE") server.Delete(pattern, guarded(workers, std::move(handler)));
+    HeavyWork* gate = work == Work::heavy ? &heavy : nullptr;
+    if (method == "GET") server.Get(pattern, guarded(workers, gate, std::move(handler)));
+    if (method == "POST") server.Post(pattern, guarded(workers, gate, std::move(handler)));
+    if (method == "DELETE") server.Delete(pattern, guarded(workers, gate, std::move(handler)));
   }
 
   void add_routes();
   void add_page();
   /// Completes responses that the library or no route produced (404, 405, 413, ...).
   httplib::Server::HandlerResponse complete_error(const Request& req, Response& res) const;
-  /// Refuses, before its body is read, a request from a page that is not the service's.
+  /// Refuses, before its body is read, a request from a page that is not the service's, and a
+  /// multipart body posted to a JSON route.
   httplib::Server::HandlerResponse refuse_foreign(const Request& req, Response& res) const;
 
   GeometryService& service;
   HttpOptions options;
   Workers workers;
+  HeavyWork heavy;
   std::optional<HostPolicy> hosts;  ///< made once the port is known
   BoundedServer server;
   std::vector<std::pair<std::string, std::vector<std::string>>> routes;  ///< pattern, methods
@@ -213,7 +231,12 @@ struct HttpServer::Impl {
 
 void HttpServer::Impl::add_routes() {
   GeometryService& s = service;
-  add("GET", "/api/health", [&s](const Request&, Response& res) { send_json(res, 200, s.health()); });
+  const Work heavy_work = Work::heavy;
+  add("GET", "/api/health", [&s, this](const Request&, Response& res) {
+    Json health = s.health();
+    health["heavy_work"] = heavy.status();
+    send_json(res, 200, health);
+  });
   add("GET", "/api/files", [&s](const Request&, Response& res) { send_json(res, 200, s.files()); });
   add("GET", "/api/models", [&s](const Request&, Response& res) { send_json(res, 200, s.models()); });
   add("POST", "/api/models", [&s](const Request& req, Response& res) {
@@ -225,7 +248,7 @@ void HttpServer::Impl::add_routes() {
     } else {
       send_json(res, 201, s.load_path(json_body(req, ", or a CAD file as multipart/form-data")));
     }
-  });
+  }, heavy_work);
   add("GET", R"(/api/models/([A-Za-z0-9]+))", [&s](const Request& req, Response& res) {
     send_json(res, 200, s.model(id_of(req)));
   });
@@ -238,11 +261,13 @@ void HttpServer::Impl::add_routes() {
   });
   add("POST", R"(/api/models/([A-Za-z0-9]+)/mode)", [&s](const Request& req, Response& res) {
     send_json(res, 200, s.faces_mode(id_of(req), json_body(req)));
-  });
+  }, heavy_work);
   add("POST", R"(/api/models/([A-Za-z0-9]+)/meridional)", [&s](const Request& req, Response& res) {
     send_json(res, 201, s.meridional(id_of(req), json_body(req)));
-  });
-  add("POST", "/api/curves", [&s](const Request& req, Response& res) { send_json(res, 201, s.create_curve(json_body(req))); });
+  }, heavy_work);
+  add(
+      "POST", "/api/curves",
+      [&s](const Request& req, Response& res) { send_json(res, 201, s.create_curve(json_body(req))); }, heavy_work);
   add("GET", R"(/api/curves/([A-Za-z0-9]+))", [&s](const Request& req, Response& res) {
     res.status = 200;
     res.set_content(s.curve(id_of(req)), "application/json");
@@ -253,14 +278,14 @@ void HttpServer::Impl::add_routes() {
   });
   add("POST", R"(/api/curves/([A-Za-z0-9]+)/project)", [&s](const Request& req, Response& res) {
     send_json(res, 200, s.project(id_of(req), json_body(req)));
-  });
+  }, heavy_work);
   add("GET", R"(/api/curves/([A-Za-z0-9]+)/download)", [&s](const Request& req, Response& res) {
     if (!req.has_param("format")) throw ApiError::bad_request("format: required: ?format=step, iges or csv");
     send_download(res, s.download(id_of(req), req.get_param_value("format")));
-  });
+  }, heavy_work);
   add("POST", "/api/surfaces", [&s](const Request& req, Response& res) {
     send_json(res, 201, s.create_surface(json_body(req)));
-  });
+  }, heavy_work);
   add("GET", R"(/api/surfaces/([A-Za-z0-9]+))", [&s](const Request& req, Response& res) {
     res.status = 200;
     res.set_content(s.surface(id_of(req)), "application/json");
@@ -272,7 +297,7 @@ void HttpServer::Impl::add_routes() {
   add("GET", R"(/api/surfaces/([A-Za-z0-9]+)/download)", [&s](const Request& req, Response& res) {
     if (!req.has_param("format")) throw ApiError::bad_request("format: required: ?format=step or iges");
     send_download(res, s.surface_download(id_of(req), req.get_param_value("format")));
-  });
+  }, heavy_work);
 }
 
 void HttpServer::Impl::add_page() {
@@ -308,6 +333,10 @@ httplib::Server::HandlerResponse HttpServer::Impl::complete_error(const Request&
                              ? "form-encoded bodies are limited to 8 KiB: send JSON (Content-Type: application/json)"
                              : fmt::format("the body is larger than the limit of {} bytes (hotmesh serve --max-body)",
                                            service.limits().max_body_bytes));
+  } else if (res.status == 400 && media_type(req) == "multipart/form-data") {
+    send_error(res, 400, fmt::format("{} {}: the multipart/form-data body cannot be read (its boundary or parts are "
+                                     "malformed): send the file as curl -F file=@NAME does",
+                                     req.method, req.path));
   } else {
     send_error(res, res.status, fmt::format("{} {}: {}", req.method, req.path, status_reason(res.status)));
   }
@@ -320,6 +349,16 @@ httplib::Server::HandlerResponse HttpServer::Impl::refuse_foreign(const Request&
   };
   try {
     hosts->check(header("Host"), header("Origin"));
+    // A multipart body on a JSON route: 415 before cpp-httplib parses it (a malformed one was
+    // its bare 400). Only POST /api/models takes multipart (uploads).
+    const std::string type = media_type(req);
+    const bool json_route = req.path != "/api/models" && std::any_of(routes.begin(), routes.end(), [&](const auto& r) {
+      return route_matches(r.first, req.path) &&
+             std::find(r.second.begin(), r.second.end(), "POST") != r.second.end();
+    });
+    if (req.method == "POST" && type == "multipart/form-data" && json_route) {
+      throw ApiError::unsupported_type(not_json_message(type));
+    }
     return httplib::Server::HandlerResponse::Unhandled;
   } catch (const ApiError& e) {
     spdlog::warn("{} {}: refused: {}", req.method, req.path, e.what());

@@ -2,8 +2,8 @@
 // /api/ (docs/service.md) and the inspection page at /. Every error is a JSON body {"status",
 // "error", "message"}; bodies above the limit get 413. Each connection has a thread of its own
 // that waits on the client under whole-head bounds (http_connection.hpp); the work of at most
-// `threads` requests runs at once. Requests whose Host or Origin is not the service's are
-// refused (host_policy.hpp). cpp-httplib stays inside http_server.cpp and http_connection.cpp.
+// `threads` requests runs at once, of them at most `heavy_requests` heavy ones (heavy_work.hpp).
+// Requests whose Host or Origin is not the service's are refused (host_policy.hpp). cpp-httplib stays inside http_server.cpp and http_connection.cpp.
 #pragma once
 
 #include <chrono>
@@ -23,6 +23,8 @@ struct HttpOptions {
   std::size_t connections = 64;  ///< connections served at once (one thread each, mostly waiting)
   std::chrono::milliseconds head_timeout{10'000};  ///< for a request line and its headers
   std::vector<std::string> allowed_hosts;          ///< names besides the machine's (--allow-host)
+  std::size_t heavy_requests = 2;  ///< heavy requests computed at once (heavy_work.hpp)
+  std::size_t heavy_queue = 8;     ///< heavy requests waiting for them; more get 503
 };
 
 class HttpServer {

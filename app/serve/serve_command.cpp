@@ -35,6 +35,8 @@ struct Options {
   std::string root;
   std::size_t threads = 8;
   std::size_t max_connections = 64;
+  std::size_t heavy_requests = 2;
+  std::size_t heavy_queue = 8;
   double header_timeout = 10;
   std::vector<std::string> allowed_hosts;
   std::size_t max_body_mib = 64;
@@ -93,11 +95,17 @@ int run_serve(const Options& o) {
   SignalStop signals;  // before any thread starts, so that all of them inherit the mask
   serve::GeometryService service(o.root.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.root), limits);
   const auto header_timeout = std::chrono::milliseconds(std::lround(o.header_timeout * 1000));
-  serve::HttpServer server(service, {o.bind, o.port, o.threads, o.max_connections, header_timeout, o.allowed_hosts});
+  serve::HttpServer server(service, {o.bind, o.port, o.threads, o.max_connections, header_timeout, o.allowed_hosts,
+                                     o.heavy_requests, o.heavy_queue});
   const int port = server.bind();
   const std::string host = o.bind.find(':') != std::string::npos ? "[" + o.bind + "]" : o.bind;
   std::cout << "hotmesh serve: listening on http://" << host << ":" << port << "/" << std::endl;
   spdlog::info("answering requests for Host {}", fmt::join(server.hosts(), ", "));
+  if (o.heavy_requests >= o.threads) {
+    spdlog::warn("--heavy-requests {} is not below --threads {}: heavy requests can take every worker and delay light "
+                 "ones",
+                 o.heavy_requests, o.threads);
+  }
   if (o.root.empty()) {
     spdlog::info("no --root: CAD files can be uploaded, none is read from disk");
   } else {
@@ -135,6 +143,15 @@ Command add_serve_command(CLI::App& parent) {
                   "Host names are refused");
   cmd->add_option("--threads", options->threads, "Requests worked on at once")
       ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  cmd->add_option("--heavy-requests", options->heavy_requests,
+                  "Heavy requests (every POST and download: CAD loads, curves, surfaces, projections) computed at "
+                  "once, within --threads; light ones (health, lists, what is kept) are served meanwhile")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  cmd->add_option("--heavy-queue", options->heavy_queue,
+                  "Heavy requests that wait for one of --heavy-requests; more are answered 503 with Retry-After")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   cmd->add_option("--max-connections", options->max_connections,
                   "Connections served at once (a slow client holds one, never a worker)")

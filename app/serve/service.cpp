@@ -96,7 +96,15 @@ Json GeometryService::health() const {
             {"max_curves", l.max_curves},
             {"max_surfaces", l.max_surfaces},
             {"max_grid", l.max_grid},
-            {"max_grid_points", l.max_grid_points}}}};
+            {"max_grid_points", l.max_grid_points}}},
+          {"kept",
+           {{"models", state_->models.size()},
+            {"curves", state_->curves.size()},
+            {"curve_bytes", state_->curves.bytes()},
+            {"max_curve_bytes", l.max_curve_bytes},
+            {"surfaces", state_->surfaces.size()},
+            {"surface_bytes", state_->surfaces.bytes()},
+            {"max_surface_bytes", l.max_surface_bytes}}}};
 }
 
 Json GeometryService::files() const {

@@ -111,6 +111,16 @@ class Store {
     items_.erase(it);
   }
 
+  /// How many items are kept, and their bytes as the inserters reckoned them.
+  std::size_t size() const {
+    std::lock_guard lock(mutex_);
+    return items_.size();
+  }
+  std::size_t bytes() const {
+    std::lock_guard lock(mutex_);
+    return bytes_;
+  }
+
   std::vector<std::shared_ptr<T>> all() const {
     std::lock_guard lock(mutex_);
     std::vector<std::shared_ptr<T>> list;

@@ -72,7 +72,7 @@ void require_same_model(const FrdResults& results, const InpDeck& deck, const st
     const auto in_deck = deck.nodes.find(n);
     if (in_frd == results.nodes.end() || in_deck == deck.nodes.end()) continue;  // reported by the caller
     const Vec3 a = in_deck->second, b = in_frd->second;
-    if (std::hypot(a.x - b.x, a.y - b.y, a.z - b.z) > tolerance) {
+    if (!(std::hypot(a.x - b.x, a.y - b.y, a.z - b.z) <= tolerance)) {  // a NaN is no match either
       throw InputError::in(results.source, "node " + std::to_string(n) + " is at (" + std::to_string(b.x) + ", " +
                                                std::to_string(b.y) + ", " + std::to_string(b.z) + ") here but at (" +
                                                std::to_string(a.x) + ", " + std::to_string(a.y) + ", " +

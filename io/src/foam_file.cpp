@@ -256,20 +256,33 @@ geometry::Vec3 vector_value(FoamCursor& in, std::string_view what) {
   return {x, y, z};
 }
 
-/// The shape shared by every list form: count, then `(` elements `)` or `{` one value `}`.
-/// The largest count a list may have (OpenFOAM's 32-bit labels; a uniform list is allocated
-/// from its count alone).
-constexpr std::size_t kMaxListSize = std::numeric_limits<std::int32_t>::max();
+}  // namespace
+
+std::size_t list_count(FoamCursor& in, std::string_view what, const ListBound& bound) {
+  skip_list_type(in);
+  const std::size_t at = (in.skip_space(), in.position());
+  const std::size_t n = in.count(fmt::format("the number of {}", what), kMaxListSize);
+  if (n > bound.max_count) {
+    in.fail_at(at, fmt::format("the list of {} has {} entries, but {}", what, n, bound.why_count));
+  }
+  return n;
+}
+
+namespace {
 
 /// The shape shared by every list form: count, then `(` elements `)` or `{` one value `}`.
 /// `min_size` is the fewest bytes an element takes, to check the count before allocating.
 template <class T, class ReadOne>
-std::vector<T> read_list(FoamCursor& in, std::string_view what, std::size_t min_size, ReadOne read_one) {
-  skip_list_type(in);
+std::vector<T> read_list(FoamCursor& in, std::string_view what, const ListBound& bound, std::size_t min_size,
+                         ReadOne read_one) {
   const std::size_t at = (in.skip_space(), in.position());
-  const std::size_t n = in.count(fmt::format("the number of {}", what), kMaxListSize);
+  const std::size_t n = list_count(in, what, bound);
   std::vector<T> values;
   if (in.accept('{')) {  // uniform: N{value}
+    if (n > bound.max_uniform) {
+      in.fail_at(at, fmt::format("the list of {} is {} copies of one value (N{{value}}), but {}", what, n,
+                                 bound.why_uniform.empty() ? bound.why_count : bound.why_uniform));
+    }
     const T value = read_one(in);
     in.expect('}', fmt::format("the end of the uniform list of {}", what));
     values.assign(n, value);
@@ -289,24 +302,28 @@ std::vector<T> read_list(FoamCursor& in, std::string_view what, std::size_t min_
 
 }  // namespace
 
-std::vector<std::int64_t> read_label_list(FoamCursor& in, std::string_view what) {
+std::vector<std::int64_t> read_label_list(FoamCursor& in, std::string_view what, const ListBound& bound) {
   const std::size_t size = in.header().binary ? static_cast<std::size_t>(in.header().label_bytes) : 2;  // "0 "
-  return read_list<std::int64_t>(in, what, size, [&](FoamCursor& c) { return label_value(c, what); });
+  return read_list<std::int64_t>(in, what, bound, size, [&](FoamCursor& c) { return label_value(c, what); });
 }
 
-std::vector<geometry::Vec3> read_vector_list(FoamCursor& in, std::string_view what) {
+std::vector<geometry::Vec3> read_vector_list(FoamCursor& in, std::string_view what, const ListBound& bound) {
   const std::size_t size =
       in.header().binary ? 3 * static_cast<std::size_t>(in.header().scalar_bytes) : 8;  // "(0 0 0) "
-  return read_list<geometry::Vec3>(in, what, size, [&](FoamCursor& c) { return vector_value(c, what); });
+  return read_list<geometry::Vec3>(in, what, bound, size, [&](FoamCursor& c) { return vector_value(c, what); });
 }
 
 namespace {
 
+/// A face's points are different points: a uniform list of them holds at most one.
+constexpr std::string_view kFacePointsDiffer = "a face's points are different points";
+
 FaceTable read_compact_faces(FoamCursor& in) {
   const std::size_t at = (in.skip_space(), in.position());
   FaceTable faces;
-  faces.offsets = read_label_list(in, "face offsets");
-  faces.nodes = read_label_list(in, "face points");
+  faces.offsets = read_label_list(
+      in, "face offsets",
+      {.max_uniform = 1, .why_uniform = "a face has points, so the offsets of successive faces differ"});
   if (faces.offsets.empty() || faces.offsets.front() != 0) in.fail_at(at, "the face offsets must start with 0");
   for (std::size_t f = 0; f + 1 < faces.offsets.size(); ++f) {
     if (faces.offsets[f + 1] < faces.offsets[f]) {
@@ -314,9 +331,14 @@ FaceTable read_compact_faces(FoamCursor& in) {
                                  faces.offsets[f]));
     }
   }
-  if (faces.offsets.back() != static_cast<std::int64_t>(faces.nodes.size())) {
-    in.fail_at(at, fmt::format("the last face offset is {} but there are {} face points", faces.offsets.back(),
-                               faces.nodes.size()));
+  const auto last = static_cast<std::size_t>(faces.offsets.back());
+  faces.nodes = read_label_list(in, "face points",
+                                {.max_count = last,
+                                 .why_count = fmt::format("the last face offset is {}", last),
+                                 .max_uniform = 1,
+                                 .why_uniform = std::string(kFacePointsDiffer)});
+  if (faces.nodes.size() != last) {
+    in.fail_at(at, fmt::format("the last face offset is {} but there are {} face points", last, faces.nodes.size()));
   }
   return faces;
 }
@@ -328,8 +350,9 @@ FaceTable read_face_list(FoamCursor& in) {
   in.expect('(', "the start of the list of faces");
   faces.offsets.reserve(n + 1);
   faces.nodes.reserve(4 * n);
+  const ListBound bound{.max_uniform = 1, .why_uniform = std::string(kFacePointsDiffer)};
   for (std::size_t f = 0; f < n; ++f) {
-    const std::vector<std::int64_t> face = read_label_list(in, fmt::format("points of face {}", f));
+    const std::vector<std::int64_t> face = read_label_list(in, fmt::format("points of face {}", f), bound);
     faces.nodes.insert(faces.nodes.end(), face.begin(), face.end());
     faces.offsets.push_back(static_cast<std::int64_t>(faces.nodes.size()));
   }
@@ -345,10 +368,11 @@ FaceTable read_faces(FoamCursor& in) {
 
 std::vector<BoundaryPatch> read_boundary(FoamCursor& in) {
   skip_list_type(in);
-  const std::size_t n = in.count("the number of patches", in.remaining());
+  const std::size_t n = in.count("the number of patches", in.remaining() / 8);  // "a{}" and blanks at least
   in.expect('(', "the start of the list of patches");
-  std::vector<BoundaryPatch> patches(n);
-  for (BoundaryPatch& p : patches) {
+  std::vector<BoundaryPatch> patches;
+  for (std::size_t k = 0; k < n; ++k) {
+    BoundaryPatch& p = patches.emplace_back();
     p.position = (in.skip_space(), in.position());
     p.name = in.word("a patch name");
     in.expect('{', fmt::format("the dictionary of patch '{}'", p.name));

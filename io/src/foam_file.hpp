@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -68,10 +69,29 @@ class FoamCursor {
   FoamHeader header_;
 };
 
+/// The largest count a list may have (OpenFOAM's 32-bit labels).
+constexpr std::size_t kMaxListSize = std::numeric_limits<std::int32_t>::max();
+
+/// What a list's count may be, checked before anything is allocated for it. A list `N ( ... )`
+/// is also bounded by the bytes left in the file; a uniform list `N { value }` (N copies of one
+/// value, a few bytes whatever N says) only by this. The bounds come from the files read
+/// before (the points the faces can refer to, one owner per face, ...); each `why` says so in
+/// messages ("there are 11 faces, one owner each").
+struct ListBound {
+  std::size_t max_count = kMaxListSize;
+  std::string why_count = "OpenFOAM's labels are 32-bit";
+  std::size_t max_uniform = kMaxListSize;  ///< also at most max_count
+  std::string why_uniform;                 ///< empty: why_count
+};
+
+/// An optional `List<...>` type word and a list's count, checked against `bound.max_count`.
+std::size_t list_count(FoamCursor& in, std::string_view what, const ListBound& bound);
+
 /// Lists in OpenFOAM's forms: `N ( ... )`, the uniform `N { value }`, and binary
-/// `N ( raw bytes )`; an optional `List<...>` type word before the count is skipped.
-std::vector<std::int64_t> read_label_list(FoamCursor& in, std::string_view what);
-std::vector<geometry::Vec3> read_vector_list(FoamCursor& in, std::string_view what);
+/// `N ( raw bytes )`; an optional `List<...>` type word before the count is skipped. `what`
+/// names the entries ("owner cells").
+std::vector<std::int64_t> read_label_list(FoamCursor& in, std::string_view what, const ListBound& bound);
+std::vector<geometry::Vec3> read_vector_list(FoamCursor& in, std::string_view what, const ListBound& bound);
 
 /// Faces as a flat list: face f has nodes[offsets[f] .. offsets[f+1]).
 struct FaceTable {
@@ -80,7 +100,9 @@ struct FaceTable {
   std::size_t size() const { return offsets.size() - 1; }
 };
 /// A faceList (`N ( n(a b c ...) ... )`) or faceCompactList (offsets list, then node list),
-/// as the header's class says.
+/// as the header's class says. A face's points are all different, so a face (or the node list
+/// of a faceCompactList) is never a uniform list of more than one point, nor the offsets one
+/// of more than one offset.
 FaceTable read_faces(FoamCursor& in);
 
 struct BoundaryPatch {

@@ -3,7 +3,9 @@
 // the cells built as hexahedra, prisms, pyramids and tetrahedra (3D) or flattened to quads
 // and triangles (2D cases).
 #include <algorithm>
+#include <functional>
 #include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -53,7 +55,47 @@ struct FoamText {
   std::string content;
 };
 
-FoamText read_foam_text(const fs::path& folder, const std::string& name) {
+/// What a file's content can need, from its (first) list's count: at most `count.max_count`
+/// entries (what the files read before allow) of at most `entry_bytes(header)` bytes each.
+struct ContentBound {
+  std::string what;  ///< the list's entries, as its messages name them ("points")
+  ListBound count;
+  std::function<std::size_t(const FoamHeader&)> entry_bytes;
+};
+
+// The most text an entry takes as OpenFOAM writes it (with room to spare): a label (up to 20
+// digits and a sign), a point of three scalars (17 significant digits and an exponent each),
+// a face of 8 points on average (hotmesh's cells have faces of 3 and 4), a patch entry.
+constexpr std::size_t kAsciiLabelBytes = 24;
+constexpr std::size_t kAsciiPointBytes = 128;
+constexpr std::size_t kFacePointsOnAverage = 8;
+constexpr std::size_t kPatchBytes = 4096;
+constexpr std::size_t kEmptyPatches = 1000;  ///< patches without faces a boundary may list
+/// A gzipped file's header and list count are read from the first kHeadBytes of its content;
+/// after its list, kTailBytes of closing text (comments) may follow.
+constexpr std::size_t kHeadBytes = 64 << 10;
+constexpr std::size_t kTailBytes = 64 << 10;
+
+std::size_t label_bytes(const FoamHeader& h) {
+  return h.binary ? static_cast<std::size_t>(h.label_bytes) : kAsciiLabelBytes;
+}
+
+/// The content of a gzipped file, decompressed no further than its header's count can need
+/// (a few MB of gzip data can expand to GBs): the header and count are read from its first
+/// part, the count checked against `bound.count`, then the whole inflated up to that bound.
+std::string gunzip_bounded(std::string_view compressed, const std::string& source, const ContentBound& bound) {
+  detail::GunzipHead head = detail::gunzip_head(compressed, source, kHeadBytes);
+  if (head.whole) return std::move(head.content);
+  FoamCursor in(head.content, source);
+  in.read_header();
+  const std::size_t n = list_count(in, bound.what, bound.count);
+  const std::size_t entry = bound.entry_bytes(in.header());
+  return detail::gunzip(compressed, source, in.position() + n * entry + kTailBytes,
+                        fmt::format("what {} {} can need (at most {} bytes each, after a header of {} bytes)", n,
+                                    bound.what, entry, in.position()));
+}
+
+FoamText read_foam_text(const fs::path& folder, const std::string& name, const ContentBound& bound) {
   FoamText text;
   text.path = folder / name;
   if (!is_file(text.path)) {
@@ -65,22 +107,45 @@ FoamText read_foam_text(const fs::path& folder, const std::string& name) {
     }
   }
   text.content = read_file(text.path);
-  if (text.gzipped) text.content = detail::gunzip(text.content, text.path.string());
+  if (text.gzipped) text.content = gunzip_bounded(text.content, text.path.string(), bound);
   return text;
 }
 
-PointsFile read_points(const fs::path& folder, std::vector<geometry::Vec3>& points) {
-  FoamText text = read_foam_text(folder, "points");
+/// The faces, read first: nothing bounds their count but their own file. Returns its path.
+std::string read_faces_file(const fs::path& folder, PolyMesh& mesh) {
+  const FoamText text = read_foam_text(folder, "faces", {"faces", {}, [](const FoamHeader& h) {
+                                                           return (1 + kFacePointsOnAverage) * label_bytes(h) + 16;
+                                                         }});
+  FoamCursor in(text.content, text.path.string());
+  in.read_header();
+  mesh.faces = read_faces(in);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto begin = mesh.faces.offsets[f], end = mesh.faces.offsets[f + 1];
+    if (end - begin < 3) {
+      throw InputError::in(in.source(), fmt::format("face {} has {} points (a face needs at least 3)", f, end - begin));
+    }
+  }
+  return in.source();
+}
+
+/// The points, no more than the faces can refer to (every point of a mesh is a point of a
+/// face: OpenFOAM's checkMesh fails on unused points).
+PointsFile read_points(const fs::path& folder, PolyMesh& mesh) {
+  const std::size_t labels = mesh.faces.nodes.size();
+  const ContentBound bound{
+      "points",
+      {.max_count = labels, .why_count = fmt::format("the faces refer to at most {} points (their lists hold {} point "
+                                                     "labels in all)",
+                                                     labels, labels)},
+      [](const FoamHeader& h) { return h.binary ? 3 * static_cast<std::size_t>(h.scalar_bytes) : kAsciiPointBytes; }};
+  FoamText text = read_foam_text(folder, "points", bound);
   PointsFile file;
   FoamCursor in(text.content, text.path.string());
   in.read_header();
   in.skip_space();
   file.list_begin = in.position();
-  points = read_vector_list(in, "points");
+  mesh.points = read_vector_list(in, bound.what, bound.count);
   file.list_end = in.position();
-  if (points.size() > static_cast<std::size_t>(std::numeric_limits<mesh::NodeId>::max())) {
-    in.fail_at(file.list_begin, fmt::format("{} points are more than hotmesh can number", points.size()));
-  }
   file.name = text.path.filename().string();
   file.gzipped = text.gzipped;
   file.header = in.header();
@@ -88,55 +153,94 @@ PointsFile read_points(const fs::path& folder, std::vector<geometry::Vec3>& poin
   return file;
 }
 
-void read_faces_file(const fs::path& folder, PolyMesh& mesh) {
-  const FoamText text = read_foam_text(folder, "faces");
-  FoamCursor in(text.content, text.path.string());
-  in.read_header();
-  mesh.faces = read_faces(in);
+/// Every face's points are points of the points file.
+void check_face_points(const PolyMesh& mesh, const std::string& faces_source) {
   const auto points = static_cast<std::int64_t>(mesh.points.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const auto begin = mesh.faces.offsets[f], end = mesh.faces.offsets[f + 1];
-    if (end - begin < 3) {
-      throw InputError::in(in.source(), fmt::format("face {} has {} points (a face needs at least 3)", f, end - begin));
-    }
-    for (auto i = begin; i < end; ++i) {
+    for (auto i = mesh.faces.offsets[f]; i < mesh.faces.offsets[f + 1]; ++i) {
       const std::int64_t p = mesh.faces.nodes[static_cast<std::size_t>(i)];
       if (p < 0 || p >= points) {
-        throw InputError::in(
-            in.source(), fmt::format("face {} refers to point {}, but the points file has {} points (0 to {})", f, p,
-                                     points, points - 1));
+        throw InputError::in(faces_source, fmt::format("face {} refers to point {}, but the points file has {} points "
+                                                       "(0 to {})",
+                                                       f, p, points, points - 1));
       }
     }
   }
 }
 
-/// Owner (one per face) or neighbour (one per internal face): cell labels >= 0.
-std::vector<std::int64_t> read_cells_of_faces(const fs::path& folder, const std::string& name, std::size_t faces) {
-  const FoamText text = read_foam_text(folder, name);
+/// Owner (one per face) or neighbour (one per internal face): cell labels >= 0, and where they
+/// come from.
+struct CellLabels {
+  std::vector<std::int64_t> cells;
+  std::string source;
+};
+
+CellLabels read_cells_of_faces(const fs::path& folder, const std::string& name, std::size_t faces) {
+  const bool owner = name == "owner";
+  const ContentBound bound{fmt::format("{} cells", name),
+                           {.max_count = faces,
+                            .why_count = fmt::format("there are {} faces (the faces file), {} each", faces,
+                                                     owner ? "one owner" : "at most one neighbour")},
+                           label_bytes};
+  const FoamText text = read_foam_text(folder, name, bound);
   FoamCursor in(text.content, text.path.string());
   in.read_header();
-  std::vector<std::int64_t> cells = read_label_list(in, fmt::format("{} cells", name));
-  if (name == "owner" ? cells.size() != faces : cells.size() > faces) {
-    throw InputError::in(
-        in.source(),
-        fmt::format("{} cells are listed for {} faces (the faces file): {}", cells.size(), faces,
-                    name == "owner" ? "there must be one owner per face" : "at most one neighbour per face"));
+  CellLabels labels{read_label_list(in, bound.what, bound.count), in.source()};
+  if (owner && labels.cells.size() != faces) {
+    throw InputError::in(in.source(), fmt::format("{} cells are listed for {} faces (the faces file): there must be "
+                                                  "one owner per face",
+                                                  labels.cells.size(), faces));
   }
-  const auto bad = std::find_if(cells.begin(), cells.end(),
-                                [](std::int64_t c) { return c < 0 || c >= std::numeric_limits<mesh::CellId>::max(); });
-  if (bad != cells.end()) {
-    throw InputError::in(in.source(),
-                         fmt::format("face {} has {} cell {}, not a cell number", bad - cells.begin(), name, *bad));
+  if (!owner && labels.cells.size() == faces) {
+    // OpenFOAM 1.x padded the neighbours to one per face with -1 for the boundary faces;
+    // OpenFOAM reads such a list (polyMesh::initMesh) as the neighbours before the first -1.
+    const auto padding = std::find(labels.cells.begin(), labels.cells.end(), -1);
+    const auto other = std::find_if(padding, labels.cells.end(), [](std::int64_t c) { return c != -1; });
+    if (other != labels.cells.end()) {
+      throw InputError::in(in.source(), fmt::format("face {} has neighbour cell {} after the padding of -1 that "
+                                                    "starts at face {} (one neighbour per face, -1 for the boundary "
+                                                    "faces, which follow the internal ones)",
+                                                    other - labels.cells.begin(), *other,
+                                                    padding - labels.cells.begin()));
+    }
+    labels.cells.erase(padding, labels.cells.end());
   }
-  return cells;
+  const auto bad = std::find_if(labels.cells.begin(), labels.cells.end(), [](std::int64_t c) { return c < 0; });
+  if (bad != labels.cells.end()) {
+    throw InputError::in(in.source(), fmt::format("face {} has {} cell {}, not a cell number",
+                                                  bad - labels.cells.begin(), name, *bad));
+  }
+  return labels;
+}
+
+/// Every cell label below the number of cells the faces can make, before a label sizes
+/// anything: a cell has at least 4 faces, and each face one owner and at most one neighbour.
+void check_cell_labels(const CellLabels& owner, const CellLabels& neighbour) {
+  const std::size_t max_cells = (owner.cells.size() + neighbour.cells.size()) / 4;
+  for (const auto& [labels, name] : {std::pair{&owner, "owner"}, std::pair{&neighbour, "neighbour"}}) {
+    const auto bad = std::find_if(labels->cells.begin(), labels->cells.end(),
+                                  [&](std::int64_t c) { return static_cast<std::size_t>(c) >= max_cells; });
+    if (bad == labels->cells.end()) continue;
+    throw InputError::in(labels->source,
+                         fmt::format("face {} has {} cell {}, but {} faces ({} of them internal) make at most {} "
+                                     "cells (a cell has at least 4 faces)",
+                                     bad - labels->cells.begin(), name, *bad, owner.cells.size(),
+                                     neighbour.cells.size(), max_cells));
+  }
 }
 
 void read_boundary_file(const fs::path& folder, PolyMesh& mesh) {
-  const FoamText text = read_foam_text(folder, "boundary");
+  const std::size_t internal = mesh.neighbour.size(), faces = mesh.faces.size();
+  const ContentBound bound{
+      "patches",
+      {.max_count = faces + kEmptyPatches,
+       .why_count = fmt::format("there are {} faces, and a boundary lists at most {} patches without faces",
+                                faces, kEmptyPatches)},
+      [](const FoamHeader&) { return kPatchBytes; }};
+  const FoamText text = read_foam_text(folder, "boundary", bound);
   FoamCursor in(text.content, text.path.string());
   in.read_header();
   mesh.patches = read_boundary(in);
-  const std::size_t internal = mesh.neighbour.size(), faces = mesh.faces.size();
   for (const BoundaryPatch& p : mesh.patches) {
     const auto start = static_cast<std::size_t>(p.start_face), end = start + static_cast<std::size_t>(p.face_count);
     if (p.face_count > 0 && (start < internal || end > faces)) {
@@ -148,13 +252,17 @@ void read_boundary_file(const fs::path& folder, PolyMesh& mesh) {
 
 PolyMesh read_poly_mesh(const fs::path& folder, PointsFile& points_file) {
   PolyMesh mesh;
-  points_file = read_points(folder, mesh.points);
-  read_faces_file(folder, mesh);
-  mesh.owner = read_cells_of_faces(folder, "owner", mesh.faces.size());
-  mesh.neighbour = read_cells_of_faces(folder, "neighbour", mesh.faces.size());
+  const std::string faces_source = read_faces_file(folder, mesh);
+  points_file = read_points(folder, mesh);
+  check_face_points(mesh, faces_source);
+  const CellLabels owner = read_cells_of_faces(folder, "owner", mesh.faces.size());
+  const CellLabels neighbour = read_cells_of_faces(folder, "neighbour", mesh.faces.size());
+  check_cell_labels(owner, neighbour);
+  mesh.owner = owner.cells;
+  mesh.neighbour = neighbour.cells;
   for (std::size_t f = 0; f < mesh.neighbour.size(); ++f) {
     if (mesh.neighbour[f] == mesh.owner[f]) {
-      throw InputError::in((folder / "neighbour").string(),
+      throw InputError::in(neighbour.source,
                            fmt::format("face {} has cell {} as both owner and neighbour", f, mesh.owner[f]));
     }
   }

@@ -14,6 +14,8 @@
 // is binary with 4-byte floats, 3 binary with 8-byte doubles: numnod records of a 4-byte
 // node number and the stored components, little-endian, and no " -3" line. ccx writes ASCII
 // for *NODE FILE and binary for *NODE OUTPUT; its binary node block is format 3.
+// The numbers hotmesh uses, node coordinates, step times, DISP and NDTEMP values, must be
+// finite ("nan" and "inf" read as numbers, and would pass every comparison made with them).
 #include "hotmesh/io/calculix.hpp"
 
 #include <algorithm>
@@ -135,6 +137,17 @@ AsciiRecord ascii_record(const FrdScanner& in, std::string_view line, int format
 
 bool is_end_of_block(std::string_view line) { return line.starts_with(" -3"); }
 
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string text_of(const Vec3& v) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", v.x, v.y, v.z);
+  return text;
+}
+
+/// The result blocks whose values hotmesh uses: they must hold finite numbers.
+bool is_used(std::string_view name) { return name == "DISP" || name == "NDTEMP"; }
+
 class FrdParser {
  public:
   FrdParser(std::string_view content, std::string_view source) : in_(content, source) {
@@ -199,7 +212,12 @@ class FrdParser {
           x[k] = format == 2 ? static_cast<double>(load<float>(record, 4 + 4 * static_cast<std::size_t>(k)))
                              : load<double>(record, 4 + 8 * static_cast<std::size_t>(k));
         }
-        results_.nodes[load<std::int32_t>(record, 0)] = x;
+        const std::int32_t node = load<std::int32_t>(record, 0);
+        if (!finite(x)) {
+          in_.fail("node " + std::to_string(node) + " (record " + std::to_string(i + 1) + " of the binary node block "
+                   "after this line) is at " + text_of(x) + ": coordinates must be finite numbers");
+        }
+        results_.nodes[node] = x;
       }
       return;
     }
@@ -207,7 +225,9 @@ class FrdParser {
          line = next_record_line("node block")) {
       const AsciiRecord record = ascii_record(in_, line, format);
       if (record.values.size() < 3) in_.fail("a node record needs three coordinates");
-      results_.nodes[record.node] = {record.values[0], record.values[1], record.values[2]};
+      const Vec3 x{record.values[0], record.values[1], record.values[2]};
+      if (!finite(x)) in_.fail("node " + std::to_string(record.node) + " is at " + text_of(x) + ": coordinates must be finite numbers");
+      results_.nodes[record.node] = x;
     }
   }
 
@@ -238,6 +258,7 @@ class FrdParser {
     block.increment = increment_;
     const auto time = field_double(columns(header, 12, 12));
     if (!time) in_.fail("the result header has no step time in columns 13-24");
+    if (!std::isfinite(*time)) in_.fail("the step time in columns 13-24 is not a finite number");
     block.time = *time;
     const std::int64_t count = header_count(in_, header, "result block");
     const int format = block_format(in_, columns(header, 73, 2));
@@ -274,6 +295,11 @@ class FrdParser {
         const std::size_t at = 4 + width * static_cast<std::size_t>(k);
         v[k] = format == 2 ? static_cast<double>(load<float>(record, at)) : load<double>(record, at);
       }
+      if (is_used(block.name) && !finite(v)) {
+        in_.fail("node " + std::to_string(load<std::int32_t>(record, 0)) + " (record " + std::to_string(i + 1) +
+                 " of the binary " + block.name + " block after this line) has " + text_of(v) + ": " + block.name +
+                 " values must be finite numbers");
+      }
       block.nodes.push_back(load<std::int32_t>(record, 0));
       block.values.push_back(v);
     }
@@ -285,9 +311,11 @@ class FrdParser {
     while (!is_end_of_block(line)) {
       if (!line.starts_with(" -1")) in_.fail("expected a ' -1' node record of the " + what);
       AsciiRecord record = ascii_record(in_, line, format);
+      require_finite(block.name, record);
       line = next_record_line(what);
       while (line.starts_with(" -2")) {  // more than six components
         const AsciiRecord more = ascii_record(in_, line, format);
+        require_finite(block.name, more);
         record.values.insert(record.values.end(), more.values.begin(), more.values.end());
         line = next_record_line(what);
       }
@@ -299,6 +327,17 @@ class FrdParser {
       for (std::size_t k = 0; k < std::min<std::size_t>(record.values.size(), 3); ++k) v[static_cast<int>(k)] = record.values[k];
       block.nodes.push_back(record.node);
       block.values.push_back(v);
+    }
+  }
+
+  /// The values of a record just read, of a block hotmesh uses, are finite numbers.
+  void require_finite(const std::string& block, const AsciiRecord& record) const {
+    if (!is_used(block)) return;
+    for (const double value : record.values) {
+      if (!std::isfinite(value)) {
+        in_.fail("node " + std::to_string(record.node) + " has the value " + std::to_string(value) + " in the " + block +
+                 " block: its values must be finite numbers");
+      }
     }
   }
 

@@ -95,6 +95,14 @@ std::optional<ElementShape> shape_of(std::string_view type) {
   return shape;
 }
 
+/// The nodes face `face` (1-based) of an element of this shape has (face_nodes below): its
+/// corners, and the midside node of each of its edges when the element is quadratic.
+std::size_t face_node_count(const ElementShape& shape, int face) {
+  const std::size_t corners = shape.family->faces[static_cast<std::size_t>(face - 1)].size();
+  if (shape.nodes == shape.family->corners) return corners;
+  return corners + (corners == 2 ? 1 : corners);  // a 2D face is one edge
+}
+
 // ---------------------------------------------------------------------------------------------
 // the deck as lines, *INCLUDEs spliced in
 
@@ -142,28 +150,29 @@ Keyword parse_keyword(std::string_view text) {
 bool is_keyword(std::string_view text) { return text.starts_with('*') && !text.starts_with("**"); }
 bool is_comment(std::string_view text) { return text.starts_with("**") || trim_blanks(text).empty(); }
 
+/// The deck's lines in reading order, each *INCLUDE's lines spliced in where it stands. A file
+/// is read once however often it is included; InpLimits bounds the reads and lines.
 class DeckLines {
  public:
-  explicit DeckLines(InpDeck& deck) : deck_(deck) {}
+  DeckLines(InpDeck& deck, const InpLimits& limits) : deck_(deck), limits_(limits) {}
 
   std::vector<DeckLine> read(const fs::path& file) {
-    add(file, {});
-    return lines_;
+    std::vector<fs::path> chain;
+    add(file, chain);
+    return std::move(lines_);
   }
 
  private:
-  static constexpr std::size_t kMaxDepth = 32;
-
-  void add(const fs::path& file, std::vector<fs::path> chain) {
+  /// Splices in `file`, included through `chain` (the files that include it, the main deck first).
+  void add(const fs::path& file, std::vector<fs::path>& chain) {
     if (std::find(chain.begin(), chain.end(), file) != chain.end()) {
       throw InputError::in(chain.back().string(), "*INCLUDE of " + file.string() + " includes itself (through " +
                                                       std::to_string(chain.size()) + " files)");
     }
-    if (chain.size() > kMaxDepth) throw InputError::in(file.string(), "*INCLUDEs nested deeper than 32 files");
-    chain.push_back(file);
-    const std::size_t index = deck_.files.size();
-    deck_.files.push_back(file);
-    const std::string_view text = contents_.emplace_back(read_file(file));
+    if (chain.size() > limits_.include_depth) {
+      throw InputError::in(file.string(), "*INCLUDEs nested deeper than " + std::to_string(limits_.include_depth) + " files");
+    }
+    const auto [index, text] = load(file);
     std::size_t number = 0;
     for (std::size_t at = 0; at <= text.size();) {
       const std::size_t eol = std::min(text.find('\n', at), text.size());
@@ -173,17 +182,39 @@ class DeckLines {
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
       if (is_comment(line)) continue;
       if (is_keyword(line) && parse_keyword(line).name == "INCLUDE") {
+        chain.push_back(file);
         include(parse_keyword(line), file, number, chain);
+        chain.pop_back();
         continue;
+      }
+      if (lines_.size() == limits_.lines) {
+        throw InputError::at(file.string(), number, "the deck has more than " + std::to_string(limits_.lines) +
+                                                        " lines, its *INCLUDEs spliced in (a file included again "
+                                                        "counts again)");
       }
       lines_.push_back({line, index, number});
     }
   }
 
-  void include(const Keyword& keyword, const fs::path& file, std::size_t line, const std::vector<fs::path>& chain) {
+  /// The file's index in InpDeck::files and its text, read the first time it is named.
+  std::pair<std::size_t, std::string_view> load(const fs::path& file) {
+    const auto [known, added] = indices_.try_emplace(file, deck_.files.size());
+    if (added) {
+      deck_.files.push_back(file);
+      contents_.push_back(read_file(file));
+    }
+    return {known->second, contents_[known->second]};
+  }
+
+  void include(const Keyword& keyword, const fs::path& file, std::size_t line, std::vector<fs::path>& chain) {
     const auto input = keyword.parameter("INPUT");
     const std::string place = file.string();
     if (!input || input->empty()) throw InputError::at(place, line, "*INCLUDE needs INPUT=<file>");
+    if (++includes_ > limits_.includes) {
+      throw InputError::at(place, line, "more than " + std::to_string(limits_.includes) +
+                                            " *INCLUDE reads for one deck (a file included again counts again): "
+                                            "do files include the next one more than once?");
+    }
     std::string name = *input;
     if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
     const fs::path path = (fs::path(name).is_absolute() ? fs::path(name) : file.parent_path() / name).lexically_normal();
@@ -195,7 +226,10 @@ class DeckLines {
   }
 
   InpDeck& deck_;
-  std::deque<std::string> contents_;  ///< the files' text; lines_ points into it
+  const InpLimits& limits_;
+  std::map<fs::path, std::size_t> indices_;  ///< file -> index into InpDeck::files and contents_
+  std::deque<std::string> contents_;         ///< the files' text; lines_ points into it
+  std::size_t includes_ = 0;
   std::vector<DeckLine> lines_;
 };
 
@@ -204,7 +238,7 @@ class DeckLines {
 
 class DeckParser {
  public:
-  explicit DeckParser(InpDeck& deck) : deck_(deck) {}
+  DeckParser(InpDeck& deck, const InpLimits& limits) : deck_(deck), limits_(limits) {}
 
   void parse(const std::vector<DeckLine>& lines) {
     for (std::size_t i = 0; i < lines.size();) {
@@ -244,6 +278,22 @@ class DeckParser {
     return set;
   }
 
+  std::string beyond_set_limit() const {
+    return "more than the " + std::to_string(limits_.set_members) + " numbers hotmesh holds in all sets of a deck";
+  }
+
+  /// Counts `count` more numbers into the deck's sets (InpLimits::set_members), before they
+  /// are added: the line that would go beyond the limit is refused, nothing is allocated for it.
+  void add_members(const DeckLine& at, std::uint64_t count) {
+    const std::uint64_t room = limits_.set_members - set_members_;
+    if (count > room) {
+      fail(at, "this line adds " + std::to_string(count) + " numbers to the deck's sets, which hold " +
+                   std::to_string(set_members_) + " already: " + beyond_set_limit() +
+                   " (sets defined as earlier sets over and over?)");
+    }
+    set_members_ += static_cast<std::size_t>(count);
+  }
+
   std::int64_t number(const DeckLine& at, std::string_view field, std::string_view what) const {
     const auto n = field_integer(field);
     if (!n) fail(at, "expected " + std::string(what) + " number, got '" + std::string(field) + "'");
@@ -268,7 +318,10 @@ class DeckParser {
         x[static_cast<int>(k - 1)] = *value;
       }
       deck_.nodes[id] = x;
-      if (set != nullptr) set->members.push_back(id);
+      if (set != nullptr) {
+        add_members(line, 1);
+        set->members.push_back(id);
+      }
     }
   }
 
@@ -300,8 +353,15 @@ class DeckParser {
         fail(first, "element " + std::to_string(id) + " of type " + type_name + " has " +
                         std::to_string(element.nodes.size()) + " nodes, the type " + std::to_string(shape->nodes));
       }
-      deck_.elements[id] = std::move(element);
-      if (set != nullptr) set->members.push_back(id);
+      if (const auto defined = deck_.elements.find(id); defined != deck_.elements.end()) {
+        fail(first, "element " + std::to_string(id) + " is defined already, at " + defined->second.place.text() +
+                        "; CalculiX refuses a deck that defines an element twice");
+      }
+      deck_.elements.emplace(id, std::move(element));
+      if (set != nullptr) {
+        add_members(first, 1);
+        set->members.push_back(id);
+      }
     }
   }
 
@@ -319,6 +379,7 @@ class DeckParser {
       for (const std::string_view field : fields) {
         if (field.empty()) continue;
         if (const auto n = field_integer(field)) {
+          add_members(line, 1);
           set.members.push_back(*n);
           continue;
         }
@@ -327,21 +388,31 @@ class DeckParser {
           fail(line, "'" + std::string(field) + "' is neither a " + std::string(what) + " number nor a *" +
                          std::string(key) + " defined before this line");
         }
+        add_members(line, other->second.members.size());
         const std::vector<std::int64_t> copy = other->second.members;  // set may be other->second
         set.members.insert(set.members.end(), copy.begin(), copy.end());
       }
     }
   }
 
-  void generate_range(const DeckLine& line, const std::vector<std::string_view>& fields,
-                      std::vector<std::int64_t>& out) const {
+  /// `first, last[, increment]`: first, first + increment, ... up to last. The count is taken
+  /// in unsigned arithmetic, where last - first of any two 64-bit numbers fits.
+  void generate_range(const DeckLine& line, const std::vector<std::string_view>& fields, std::vector<std::int64_t>& out) {
     if (fields.size() < 2 || fields.size() > 3) fail(line, "a GENERATE line is `first, last[, increment]`");
     const std::int64_t first = number(line, fields[0], "a first");
     const std::int64_t last = number(line, fields[1], "a last");
     const std::int64_t step = fields.size() == 3 ? number(line, fields[2], "an increment") : 1;
     if (step < 1 || last < first) fail(line, "a GENERATE range needs first <= last and an increment >= 1");
-    if ((last - first) / step > 100'000'000) fail(line, "a GENERATE range of more than 1e8 numbers");
-    for (std::int64_t n = first; n <= last; n += step) out.push_back(n);
+    const std::uint64_t span = static_cast<std::uint64_t>(last) - static_cast<std::uint64_t>(first);
+    const std::uint64_t steps = span / static_cast<std::uint64_t>(step);  // the count is steps + 1
+    if (steps >= limits_.set_members) {
+      fail(line, "a GENERATE range of " + (steps == UINT64_MAX ? "2^64" : std::to_string(steps + 1)) + " numbers: " +
+                     beyond_set_limit());
+    }
+    add_members(line, steps + 1);
+    for (std::uint64_t k = 0; k <= steps; ++k) {
+      out.push_back(static_cast<std::int64_t>(static_cast<std::uint64_t>(first) + k * static_cast<std::uint64_t>(step)));
+    }
   }
 
   void surface(const Keyword& keyword, const DeckLine& head, std::span<const DeckLine> data) {
@@ -358,17 +429,19 @@ class DeckParser {
     }
   }
 
-  void node_surface_line(const DeckLine& line, std::string_view field, DeckSet& set) const {
+  void node_surface_line(const DeckLine& line, std::string_view field, DeckSet& set) {
     if (const auto n = field_integer(field)) {
+      add_members(line, 1);
       set.members.push_back(*n);
       return;
     }
     const auto nset = deck_.nsets.find(upper(field));
     if (nset == deck_.nsets.end()) fail(line, "'" + std::string(field) + "' is neither a node number nor a *NSET defined before this line");
+    add_members(line, nset->second.members.size());
     set.members.insert(set.members.end(), nset->second.members.begin(), nset->second.members.end());
   }
 
-  void face_surface_line(const DeckLine& line, const std::vector<std::string_view>& fields, DeckSet& set) const {
+  void face_surface_line(const DeckLine& line, const std::vector<std::string_view>& fields, DeckSet& set) {
     if (fields.size() != 2) fail(line, "an element surface line is `element or element set, S<face>`, e.g. `EDISC, S2`");
     const std::string label = upper(fields[1]);
     const auto face = label.size() == 2 && label[0] == 'S' ? field_integer(label.substr(1)) : std::nullopt;
@@ -392,11 +465,14 @@ class DeckParser {
                               : std::string("no faces hotmesh knows (continuum elements CAX*, CPS*, CPE*, C3D*)")) +
                        ", not " + label);
       }
+      add_members(line, face_node_count(*shape, static_cast<int>(*face)));
       set.faces.emplace_back(e, static_cast<int>(*face));
     }
   }
 
   InpDeck& deck_;
+  const InpLimits& limits_;
+  std::size_t set_members_ = 0;  ///< numbers held by all sets, face nodes included
 };
 
 /// The nodes of face `face` (1-based) of an element: its corners, and its edges' midside
@@ -486,13 +562,13 @@ DeckPlace InpDeck::set_place(std::string_view name) const {
   return {file, 0};
 }
 
-InpDeck read_inp(const std::filesystem::path& path) {
+InpDeck read_inp(const std::filesystem::path& path, const InpLimits& limits) {
   InpDeck deck;
   deck.file = path;
   require_input_file(path);
-  DeckLines files(deck);  // holds the text the lines point into
+  DeckLines files(deck, limits);  // holds the text the lines point into
   const std::vector<DeckLine> lines = files.read(path);
-  DeckParser(deck).parse(lines);
+  DeckParser(deck, limits).parse(lines);
   return deck;
 }
 

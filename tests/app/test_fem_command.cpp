@@ -1,9 +1,12 @@
 // Tests of `hotmesh fem` on results of the real ccx (the ring of tests/support/
 // calculix_runs.hpp): it lists the output steps and the deck's sets with their node counts,
 // writes the table of one set as CSV that reads back to the same numbers, and refuses a set,
-// a step or a file it cannot read with exit code 2 and a message naming the file.
+// a step or a file it cannot read, and an output that would replace one of its inputs, with
+// exit code 2 and a message naming the file.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <fmt/format.h>
 
 #include "calculix_runs.hpp"
 #include "deform_cases.hpp"
@@ -72,6 +75,68 @@ TEST_F(FemCommand, RefusesUnknownSetStepAndTruncatedFile) {
   const test::CommandResult cut = fem("");
   EXPECT_EQ(cut.exit_code, 2) << cut.output;
   EXPECT_THAT(cut.output, ::testing::ContainsRegex("ring\\.frd:[0-9]+: .*truncated"));
+}
+
+// -o naming the .frd replaced the results with the table and exited 0; so did -o naming the
+// deck or a file it includes.
+TEST_F(FemCommand, RefusesAnOutputThatIsOneOfItsInputs) {
+  for (const char* input : {"ring.frd", "ring.inp", "ring_sets.inp"}) {
+    const std::string before = test::read_text(dir / input);
+    const test::CommandResult r = fem("--set outer -o " + shell_quote((dir / input).string()));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_THAT(r.output, HasSubstr((dir / input).string() + ": this output would replace an input file"));
+    EXPECT_EQ(test::read_text(dir / input), before) << input;
+  }
+}
+
+// A deck that redefines an element after a *SURFACE used one of its faces: a segmentation
+// fault while the surfaces were listed.
+TEST(FemCommandDecks, DeckRedefiningAnElementASurfaceUsedIsRefusedWithExitCode2) {
+  const auto deck = test::data_path("calculix/element-redefined-as-beam.inp");
+  const test::CommandResult r = test::hotmesh("fem " + shell_quote(test::data_path("calculix/plate.frd").string()) +
+                                              " --inp " + shell_quote(deck.string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(deck.string() + ":14: element 1 is defined already"));
+}
+
+// NaN displacements were listed as "largest |u| nan" (or hidden behind the other nodes').
+TEST(FemCommandDecks, ResultsWithNanDisplacementsAreRefusedWithExitCode2) {
+  const auto frd = test::data_path("calculix/plate-nan-displacement.frd");
+  const test::CommandResult r = test::hotmesh("fem " + shell_quote(frd.string()) + " --inp " +
+                                              shell_quote(test::data_path("calculix/plate.inp").string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(frd.string() + ":31: node 3 has the value nan in the DISP block"));
+}
+
+/// An ASCII .frd of `n` nodes on a line, x = 1 + i/1000, each displaced by 1e-6 along x.
+std::string line_of_nodes_frd(int n) {
+  std::string frd = fmt::format("    1C\n    2C{:18}{:12}{:37}1\n", "", n, "");
+  for (int i = 1; i <= n; ++i) frd += fmt::format(" -1{:10}{:12.5E}{:12.5E}{:12.5E}\n", i, 1 + i * 1e-3, 0.0, 0.0);
+  frd += fmt::format(" -3\n  100CL  101 1.000000000{:12}                     0    1           1\n", n);
+  frd += " -4  DISP        4    1\n -5  D1          1    2    1    0\n -5  D2          1    2    2    0\n"
+         " -5  D3          1    2    3    0\n -5  ALL         1    2    0    0    1ALL\n";
+  for (int i = 1; i <= n; ++i) frd += fmt::format(" -1{:10}{:12.5E}{:12.5E}{:12.5E}\n", i, 1e-6, 0.0, 0.0);
+  return frd + " -3\n 9999\n";
+}
+
+// Each set's largest |u| indexed the whole DISP block again: 10 000 sets of one node with
+// results of 50 000 nodes took half a minute, a deck of 10^5 small sets many minutes. The
+// index is made once (a fraction of a second here; the bound leaves room for the sanitizers).
+TEST(FemCommandDecks, ManySetsAreListedWithOneIndexOfTheResults) {
+  test::TempDir dir;
+  constexpr int kNodes = 50'000;
+  constexpr int kSets = 10'000;
+  std::string deck = "*NODE\n";
+  for (int i = 1; i <= kNodes; ++i) deck += fmt::format("{}, {}, 0\n", i, 1 + i * 1e-3);
+  deck += "*ELEMENT, TYPE=CAX4\n1, 1, 2, 3, 4\n";
+  for (int k = 1; k <= kSets; ++k) deck += fmt::format("*NSET, NSET=S{}\n{}\n", k, k);
+  test::write_text(dir / "many.inp", deck);
+  test::write_text(dir / "many.frd", line_of_nodes_frd(kNodes));
+  const test::CommandResult r = test::run_command("timeout 20 " + std::string(HOTMESH_EXE) + " fem " +
+                                                  shell_quote((dir / "many.frd").string()) + " --inp " +
+                                                  shell_quote((dir / "many.inp").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output.substr(0, 2000);
+  EXPECT_THAT(r.output, ::testing::ContainsRegex("nset +S9999 +1 nodes  largest \\|u\\| 1e-06 at node 9999"));
 }
 
 }  // namespace

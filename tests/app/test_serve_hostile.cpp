@@ -226,6 +226,30 @@ TEST(ServeHostile, JsonRoutesTakeOnlyApplicationJson) {
   EXPECT_EQ(server.stop(SIGTERM), 0) << server.log();
 }
 
+// Issue 46: a multipart body posted to POST /api/surfaces (or any JSON route) was parsed by
+// cpp-httplib before the route saw it, and a malformed one answered a bare 400 "Bad Request".
+// It is 415 now, before the body is read, well-formed or not; a malformed upload is a 400 that
+// says what is wrong.
+TEST(ServeHostile, MultipartBodiesOnJsonRoutesAre415AndMalformedUploads400WithAReason) {
+  test::ServeProcess server;
+  Api api(server.port());
+  httplib::MultipartFormDataItems form{{"model", "m1", "", ""}, {"csv", "x,y,z,dx,dy,dz\n0,0,0,0,0,0\n", "t.csv", ""}};
+  expect_error(Api::reply(api.client().Post("/api/surfaces", form)), 415,
+               "the body is multipart/form-data: send JSON (Content-Type: application/json)");
+  const std::string malformed = "{\"model\": \"m1\", \"faces\": [1]}";
+  for (const std::string type : {"multipart/form-data; boundary=xyz", "multipart/form-data"}) {
+    for (const std::string route : {"/api/surfaces", "/api/curves", "/api/models/m1/meridional"}) {
+      Api fresh(server.port());  // a refused body is not read: the server closes the connection
+      expect_error(fresh.post_text(route, malformed, type), 415, "the body is multipart/form-data: send JSON");
+    }
+    Api fresh(server.port());
+    expect_error(fresh.post_text("/api/models", malformed, type), 400,
+                 "POST /api/models: the multipart/form-data body cannot be read (its boundary or parts are malformed)");
+  }
+  EXPECT_EQ(Api(server.port()).get("/api/health").status, 200);
+  EXPECT_EQ(server.stop(SIGTERM), 0) << server.log();
+}
+
 // Before issue 18 item 3 (geometry/src/cad_reader.cpp), the server died with SIGSEGV here.
 TEST(ServeHostile, AStepFileThatCrashesOpenCascadeIsAnErrorAndTheServerLivesOn) {
   test::TempDir tmp;

@@ -252,6 +252,23 @@ TEST_F(ServeSurfaces, TheGridOfAllFacesIsBounded) {
                "grid: 200 x 200 points on each of 6 faces is more than the limit of 200000 points in one answer");
 }
 
+// /api/health says what the stores keep: how many surfaces, and their bytes as the service
+// reckons them (the answer's text twice), within the budget.
+TEST_F(ServeSurfaces, HealthSaysWhatTheStoresKeep) {
+  Json before = api_->get("/api/health").body["kept"];
+  EXPECT_EQ(before["models"], 1);
+  EXPECT_EQ(before["surfaces"], 0);
+  EXPECT_EQ(before["surface_bytes"], 0);
+  const Reply made = api_->post("/api/surfaces", request());
+  ASSERT_EQ(made.status, 201) << made.text;
+  const Json kept = api_->get("/api/health").body["kept"];
+  EXPECT_EQ(kept["surfaces"], 1);
+  EXPECT_EQ(kept["surface_bytes"], 2 * made.body.dump().size());
+  EXPECT_EQ(kept["max_surface_bytes"], 256u << 20);
+  EXPECT_EQ(api_->del("/api/surfaces/" + made.body["surface"].get<std::string>()).status, 200);
+  EXPECT_EQ(api_->get("/api/health").body["kept"]["surface_bytes"], 0);
+}
+
 // Clients posting surfaces on one model at once, and reading them back, all get their answers;
 // the store keeps the 32 used last.
 TEST_F(ServeSurfaces, ConcurrentClientsGetTheirSurfacesAndTheStoreIsBounded) {

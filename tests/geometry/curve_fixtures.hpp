@@ -2,6 +2,7 @@
 // near-touching branches) and a brute-force closest point to check projections against.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -32,22 +33,23 @@ inline BSplineCurve2d hairpin(double gap) {
                         {{0, 0}, {10, 0}, {10 + gap, 0}, {10 + gap, gap}, {10, gap}, {0, gap}});
 }
 
-/// Closest point of c_lambda to p by dense sampling plus golden-section refinement.
+/// Where a brute-force search ends: the parameter, and the value there (for a closest point,
+/// its distance).
 struct BruteForce {
   double parameter;
   double distance;
 };
 
-inline BruteForce brute_force_closest(const DeflectedCurve& curve, Vec2 p, double lambda, int samples = 200000) {
-  const double a = curve.first_parameter();
-  const double b = curve.last_parameter();
-  const auto f = [&](double t) { return distance(curve.point(t, lambda), p); };
+/// The smallest value of f over [a, b]: the best of samples + 1 evenly spaced points, refined
+/// by golden sections between its neighbours; `distance` is f there.
+template <class F>
+BruteForce sampled_minimum(const F& f, double a, double b, int samples) {
   int best = 0;
-  double best_distance = f(a);
+  double best_value = f(a);
   for (int i = 1; i <= samples; ++i) {
-    const double d = f(a + (b - a) * i / samples);
-    if (d < best_distance) {
-      best_distance = d;
+    const double v = f(a + (b - a) * i / samples);
+    if (v < best_value) {
+      best_value = v;
       best = i;
     }
   }
@@ -65,6 +67,12 @@ inline BruteForce brute_force_closest(const DeflectedCurve& curve, Vec2 p, doubl
   }
   const double t = 0.5 * (lo + hi);
   return {t, f(t)};
+}
+
+/// Closest point of c_lambda to p by dense sampling plus golden-section refinement.
+inline BruteForce brute_force_closest(const DeflectedCurve& curve, Vec2 p, double lambda, int samples = 200000) {
+  return sampled_minimum([&](double t) { return distance(curve.point(t, lambda), p); }, curve.first_parameter(),
+                         curve.last_parameter(), samples);
 }
 
 }  // namespace hotmesh::geometry::test

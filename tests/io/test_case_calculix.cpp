@@ -90,5 +90,14 @@ TEST_F(CalculixCase, ProblemsAreReportedAtTheirKeys) {
   EXPECT_THAT(error_with("      calculix: {frd: cut.frd, inp: ring.inp, set: BORE}\n"), HasSubstr("truncated"));
 }
 
+// A deck that redefines an element after a *SURFACE used one of its faces: a segmentation
+// fault while `hotmesh deform` read the case.
+TEST_F(CalculixCase, DeckRedefiningAnElementASurfaceUsedIsReportedAtInp) {
+  const auto deck = test::data_path("calculix/element-redefined-as-cax3.inp");
+  EXPECT_THAT(error_with(fmt::format("      calculix: {{frd: ring.frd, inp: {}, set: RIM}}\n", deck.string())),
+              HasSubstr(at(7) + "patches.rim.deflection.calculix.inp: " + deck.string() +
+                        ":11: element 1 is defined already"));
+}
+
 }  // namespace
 }  // namespace hotmesh::io

@@ -15,6 +15,7 @@
 #include "calculix_runs.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "run_command.hpp"
+#include "sample_folder.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::samples {
@@ -27,11 +28,8 @@ using test::shell_quote;
 const fs::path kSample = fs::path(HOTMESH_SOURCE_DIR) / "samples" / "coupled_disc";
 
 /// The stator well (5 000 cells) and the coupled_disc sample beside it, in a temporary folder.
-struct CoupledDisc {
-  test::TempDir dir;
-  fs::path folder = dir / "coupled_disc";
-
-  CoupledDisc() {
+struct CoupledDisc : SampleFolder {
+  CoupledDisc() : SampleFolder("coupled_disc") {
     const auto well = test::run_command(std::string(HOTMESH_MAKE_STATOR_WELL) + " --cells 5000 " +
                                         shell_quote((dir / "stator_well").string()));
     EXPECT_EQ(well.exit_code, 0) << well.output;
@@ -39,29 +37,18 @@ struct CoupledDisc {
     EXPECT_EQ(disc.exit_code, 0) << disc.output;
     fs::copy_file(kSample / "run_loop.sh", folder / "run_loop.sh");
   }
-  nlohmann::json report(const std::string& run) const {
-    return nlohmann::json::parse(test::read_text(folder / (run + "-out") / "report.json"));
-  }
-  mesh::Mesh deformed(const std::string& run) const { return io::read_gmsh(folder / (run + "-out") / "deformed.msh"); }
 };
-
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
 
 TEST(CoupledDiscRun, TwoIterationsFromCcxAreValidOnTheDeflectedRotorAndTheRestartContinues) {
   if (test::under_sanitizers()) GTEST_SKIP() << "three 3D runs: a minute in the Release build, far longer here; run there";
   if (!test::have_ccx()) GTEST_SKIP() << "ccx (Debian package calculix-ccx) is not installed; scripts/install-deps.sh installs it";
   const CoupledDisc sample;
-  const auto loop = test::run_command("HOTMESH=" + shell_quote(HOTMESH_EXE) + " sh " +
-                                      shell_quote((sample.folder / "run_loop.sh").string()) + " 2>&1");
+  const auto loop = sample.run_script("run_loop.sh");
   ASSERT_EQ(loop.exit_code, 0) << loop.output;
   // hotmesh fem listed the deck's surfaces; hotmesh check found every wall, rotor ones from
   // ccx's .frd included, on its deflected CAD wall, in both iterations.
   EXPECT_THAT(loop.output, ::testing::ContainsRegex("surface +DISC_BASE +[0-9]+ nodes"));
-  EXPECT_EQ(count(loop.output, "10 of 10 patches within the tolerance"), 2u) << loop.output;
+  EXPECT_EQ(occurrences(loop.output, "10 of 10 patches within the tolerance"), 2u) << loop.output;
   for (const std::string run : {"case_1", "case_2"}) {
     const nlohmann::json report = sample.report(run);
     EXPECT_EQ(report["status"], "success") << run;

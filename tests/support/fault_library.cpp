@@ -14,6 +14,11 @@
 //     increment. Worker threads are left alone: an exception that leaves an OpenMP loop ends
 //     the process with std::terminate, not with hotmesh's report of memory running out.
 //
+//   HOTMESH_TEST_HOLD_CAD_CHECK=FILE: a `hotmesh cad` process (the child by which `hotmesh
+//     serve` reads a CAD file first, serve/cad_check.hpp) waits at its start until FILE
+//     exists (at most two minutes): the request that loads the file holds its heavy slot
+//     until the test creates FILE, whatever the machine's speed.
+//
 // Only the process that writes the checkpoints is hit: the only one, or rank 0 under mpirun.
 // The other ranks run on into the next increment while rank 0 writes, so from outside none
 // of them can tell where in its own run a checkpoint put in place falls.
@@ -23,7 +28,9 @@
 // AddressSanitizer runtime's). It is built without sanitizers: it stands in front of the
 // sanitizer runtime, and tells it so (__asan_default_options below).
 #include <dlfcn.h>
+#include <fcntl.h>
 #include <signal.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -111,6 +118,29 @@ Function next_definition(const char* symbol) {
 
 using RenameFunction = int (*)(const char*, const char*);
 using AllocationFunction = void* (*)(std::size_t);
+
+/// Whether this process's command line has the word `word` (a subcommand).
+bool command_has(std::string_view word) {
+  const int fd = ::open("/proc/self/cmdline", O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  char line[4096];
+  const ssize_t n = ::read(fd, line, sizeof line - 1);
+  ::close(fd);
+  for (ssize_t at = 0; at < n;) {
+    const std::string_view arg(line + at);
+    if (arg == word) return true;
+    at += static_cast<ssize_t>(arg.size()) + 1;
+  }
+  return false;
+}
+
+/// HOTMESH_TEST_HOLD_CAD_CHECK: a `hotmesh cad` process waits for the file to exist.
+[[gnu::constructor]] void hold_cad_check() {
+  const char* file = std::getenv("HOTMESH_TEST_HOLD_CAD_CHECK");
+  if (file == nullptr || *file == '\0' || !command_has("cad")) return;
+  const timespec tick{0, 10'000'000};
+  for (int i = 0; i < 12'000 && ::access(file, F_OK) != 0; ++i) ::nanosleep(&tick, nullptr);
+}
 
 }  // namespace
 

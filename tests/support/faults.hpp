@@ -5,6 +5,7 @@
 // process that writes them, rank 0 under mpirun, is hit.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "sanitizer_build.hpp"
@@ -14,10 +15,14 @@ namespace hotmesh::test {
 struct Faults {
   int kill_after_checkpoint = 0;             ///< K > 0: SIGKILL right after the K-th checkpoint
   int fail_allocation_after_checkpoint = 0;  ///< K > 0: std::bad_alloc at the next large allocation after it
+  std::string hold_cad_check;                ///< a file: `hotmesh cad` processes wait until it exists
 };
 
 /// "NAME=value ... " to put before a command that /bin/sh runs (empty for no faults).
 std::string fault_variables(const Faults& faults);
+
+/// The same as a process's environment entries (ServeProcess's).
+std::map<std::string, std::string> fault_environment(const Faults& faults);
 
 /// The same as options of Open MPI's mpirun ("-x NAME=value ... "), for the ranks it starts.
 std::string mpirun_fault_options(const Faults& faults);

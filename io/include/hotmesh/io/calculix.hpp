@@ -51,7 +51,8 @@ struct FrdResults {
 };
 
 /// Parses an .frd file; `source` names it in messages. Throws InputError "<source>:<line>: ..."
-/// on a truncated file, a block shorter than its header says, a value that is not a number.
+/// on a truncated file, a block shorter than its header says, a value that is not a number,
+/// a node coordinate, step time, DISP or NDTEMP value that is not finite (nan, inf).
 FrdResults parse_frd(std::string_view content, std::string_view source);
 FrdResults read_frd(const std::filesystem::path& path);
 
@@ -97,7 +98,7 @@ struct DeckSet {
 
 struct InpDeck {
   std::filesystem::path file;                     ///< the main deck
-  std::vector<std::filesystem::path> files;       ///< the main deck, then every *INCLUDE, once each
+  std::vector<std::filesystem::path> files;       ///< the main deck, then every *INCLUDEd file, once each
   std::map<std::int64_t, geometry::Vec3> nodes;   ///< number -> coordinates (z = 0 in 2D)
   std::map<std::int64_t, DeckElement> elements;
   std::map<std::string, DeckSet> nsets;
@@ -114,10 +115,24 @@ struct InpDeck {
   DeckPlace set_place(std::string_view name) const;
 };
 
+/// What a deck may make read_inp read and hold, whatever its counts say: a few kilobytes of
+/// deck can name 2^31 *INCLUDE reads (files that include the next one twice) or sets of
+/// billions of numbers (GENERATE ranges, sets defined as earlier sets twice over). A deck that
+/// would go beyond one is refused at the line that does, naming the count. The defaults are
+/// far above the decks hotmesh reads walls from (CalculiX's own examples, a 3D sector of
+/// millions of nodes); the fuzz target uses small ones to keep each input quick.
+struct InpLimits {
+  std::size_t include_depth = 32;          ///< files open at once, the main deck's included files' included files ...
+  std::size_t includes = 10'000;           ///< *INCLUDE reads in all (a file included again counts again)
+  std::size_t lines = 30'000'000;          ///< data and keyword lines, every *INCLUDE spliced in where it is read
+  std::size_t set_members = 30'000'000;    ///< numbers held by all sets together (a surface face: its nodes)
+};
+
 /// Reads a deck and the files it includes (paths relative to the including file's folder).
-/// Throws InputError "<file>:<line>: ..." on a bad number, an unknown element face, a set
-/// that uses an undefined set, an *INCLUDE that is missing or includes itself.
-InpDeck read_inp(const std::filesystem::path& path);
+/// Throws InputError "<file>:<line>: ..." on a bad number, an unknown element face, an element
+/// defined twice (as CalculiX does), a set that uses an undefined set, an *INCLUDE that is
+/// missing or includes itself, a deck beyond `limits`.
+InpDeck read_inp(const std::filesystem::path& path, const InpLimits& limits = {});
 
 // ---------------------------------------------------------------------------------------------
 // the table of one set
