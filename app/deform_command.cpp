@@ -43,6 +43,7 @@
 #include "hotmesh/parallel/processes.hpp"
 #include "hotmesh/parallel/threads.hpp"
 #include "logging.hpp"
+#include "passive_wait.hpp"
 
 namespace hotmesh::app {
 namespace {
@@ -214,7 +215,7 @@ void choose_the_threads(const mesh::Mesh& mesh, RunThreads& threads) {
   threads.inputs.pay_from = mesh.dimension == 2 ? parallel::kThreadsPayNodes2d : parallel::kThreadsPayNodes3d;
   threads.choice = parallel::choose_threads(threads.inputs, [&] { return threads.load.others(); });
   omp_set_num_threads(threads.choice.threads);
-  threads.wait = parallel::wait_policy();
+  threads.wait = wait_policy();
   spdlog::info("on {} ({}){}", counted(threads.choice.threads, "thread"), threads.choice.reason,
                threads.choice.threads > 1 ? fmt::format("; waiting threads: {}", threads.wait) : "");
 }

@@ -1,4 +1,4 @@
-// hotmesh parallel: the threads of a run, from the cores that are free, and how they wait.
+// hotmesh parallel: the threads of a run, from the cores that are free.
 #include "hotmesh/parallel/threads.hpp"
 
 #include <sched.h>
@@ -6,11 +6,9 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -21,9 +19,6 @@
 
 namespace hotmesh::parallel {
 namespace {
-
-/// Set beside OMP_WAIT_POLICY=passive for the restarted process.
-constexpr const char* kRestarted = "HOTMESH_DEFAULT_WAIT_POLICY";
 
 double steady_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -113,37 +108,6 @@ double LoadProbe::others(double at_least) const {
   const double wall = steady_seconds() - start_;
   const double other = (busy_seconds() - busy_) - (own_cpu_seconds() - own_);
   return wall > 0.0 ? std::max(0.0, other / wall) : 0.0;
-}
-
-void restart_waiting_passively(int argc, char** argv, char** envp, const char* command) {
-  static char policy[] = "OMP_WAIT_POLICY=passive";
-  static char marker[] = "HOTMESH_DEFAULT_WAIT_POLICY=passive";  // wait_policy(): hotmesh's, not the user's
-  static std::array<char*, 4096> env;
-  bool named = false;
-  for (int i = 1; i < argc && !named; ++i) named = std::strcmp(argv[i], command) == 0;
-  if (!named) return;
-  std::size_t n = 0;
-  for (; envp != nullptr && envp[n] != nullptr; ++n) {
-    if (std::strncmp(envp[n], "OMP_WAIT_POLICY=", 16) == 0 || std::strncmp(envp[n], "GOMP_SPINCOUNT=", 15) == 0 ||
-        std::strncmp(envp[n], marker, 28) == 0 || n + 3 > env.size()) {
-      return;
-    }
-    env[n] = envp[n];
-  }
-  env[n] = policy;
-  env[n + 1] = marker;
-  env[n + 2] = nullptr;
-  execve("/proc/self/exe", argv, env.data());
-}
-
-std::string wait_policy() {
-  const char* policy = std::getenv("OMP_WAIT_POLICY");
-  const char* spin = std::getenv("GOMP_SPINCOUNT");
-  if (std::getenv(kRestarted) && policy && std::string(policy) == "passive" && !spin) return "passive (hotmesh's default)";
-  if (!policy && !spin) return "libgomp's default: a waiting thread spins a while (hotmesh could not restart itself with OMP_WAIT_POLICY=passive)";
-  std::string set = policy ? fmt::format("OMP_WAIT_POLICY={}", policy) : "";
-  if (spin) set += fmt::format("{}GOMP_SPINCOUNT={}", policy ? ", " : "", spin);
-  return set + " (set by the user)";
 }
 
 }  // namespace hotmesh::parallel

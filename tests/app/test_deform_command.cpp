@@ -6,12 +6,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <elf.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <set>
 
 #include <fmt/format.h>
@@ -183,7 +185,7 @@ TEST(DeformCommand, SaysOnHowManyThreadsItRunsAndWhy) {
   };
   const std::vector<Run> runs{
       {"", "case", "", "on 1 thread (" + small + ")", "hotmesh", 1},
-      {"-u OMP_WAIT_POLICY OMP_DISPLAY_ENV=VERBOSE", "case", "--threads 2",
+      {"-u OMP_WAIT_POLICY", "case", "--threads 2",
        "on 2 threads (--threads 2); waiting threads: passive (hotmesh's default)", "the user", 2},
       {"OMP_WAIT_POLICY=active", "case", "--threads 2",
        "on 2 threads (--threads 2); waiting threads: OMP_WAIT_POLICY=active (set by the user)", "the user", 2},
@@ -204,10 +206,73 @@ TEST(DeformCommand, SaysOnHowManyThreadsItRunsAndWhy) {
     EXPECT_EQ(threads["chosen_by"], run.chosen_by);
     EXPECT_TRUE(threads["other_load"].is_null());  // the size or the user decided: the load was not looked at
     EXPECT_GE(threads["cores"].get<int>(), 1);
-    if (run.environment.find("OMP_DISPLAY_ENV") != std::string::npos) {
-      EXPECT_THAT(r.output, HasSubstr("GOMP_SPINCOUNT = '0'"));  // libgomp read the passive policy
-      EXPECT_EQ(threads["wait_policy"], "passive (hotmesh's default)");
+  }
+}
+
+/// The dynamic loader named in the program headers of the executable at `path` (PT_INTERP),
+/// empty if it names none.
+std::string interpreter_of(const std::filesystem::path& path) {
+  const std::string elf = test::read_text(path);
+  Elf64_Ehdr header{};
+  if (elf.size() < sizeof header) return {};
+  std::memcpy(&header, elf.data(), sizeof header);
+  for (std::size_t i = 0; i < header.e_phnum; ++i) {
+    Elf64_Phdr segment{};
+    const std::size_t at = header.e_phoff + i * header.e_phentsize;
+    if (at + sizeof segment > elf.size()) return {};
+    std::memcpy(&segment, elf.data() + at, sizeof segment);
+    if (segment.p_type == PT_INTERP && segment.p_offset + segment.p_filesz <= elf.size()) {
+      return std::string(elf.data() + segment.p_offset);  // NUL-terminated within the segment
     }
+  }
+  return {};
+}
+
+/// Waiting threads sleep unless the user set OMP_WAIT_POLICY or GOMP_SPINCOUNT, as libgomp
+/// itself says it read them (OMP_DISPLAY_ENV), and as the log and report.json say: the program
+/// starts itself again once with OMP_WAIT_POLICY=passive before libgomp starts, so libgomp
+/// starts once, with the user's arguments (names with spaces) and environment (OMP_STACKSIZE)
+/// passed through. Run by the dynamic loader it cannot start itself again, says so, and runs
+/// as libgomp would (issue 52). Nothing timed.
+TEST(DeformCommand, WaitsPassivelyUnlessTheUserSetAPolicy) {
+  test::TempDir dir;
+  test::write_coarse_ramp(dir.path());
+  test::write_text(dir / "a case.yaml", test::ramp_case("full.csv", 2));
+  const std::string hotmesh_exe = shell_quote(HOTMESH_EXE);
+  const std::string loader = interpreter_of(HOTMESH_EXE);
+  struct Run {
+    std::string environment, program, policy, spin_count, wait_policy;
+  };
+  std::vector<Run> runs{
+      {"", hotmesh_exe, "PASSIVE", "0", "passive (hotmesh's default)"},
+      {"OMP_WAIT_POLICY=active", hotmesh_exe, "ACTIVE", "30000000000", "OMP_WAIT_POLICY=active (set by the user)"},
+      {"GOMP_SPINCOUNT=1000", hotmesh_exe, "", "1000", "GOMP_SPINCOUNT=1000 (set by the user)"}};
+  if (!loader.empty()) {
+    runs.push_back({"", shell_quote(loader) + " " + hotmesh_exe, "", "300000",
+                    "libgomp's default, a waiting thread spins a while (hotmesh did not make it passive: started by "
+                    "the dynamic loader)"});
+  }
+  for (const Run& run : runs) {
+    SCOPED_TRACE(run.environment + " " + run.program);
+    const auto out = dir / "the out";
+    const auto r = test::run_command(fmt::format(
+        "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u HOTMESH_DEFAULT_WAIT_POLICY OMP_DISPLAY_ENV=VERBOSE "
+        "OMP_STACKSIZE=3M {} {} deform {} -o {} --force --threads 2",
+        run.environment, run.program, shell_quote((dir / "a case.yaml").string()), shell_quote(out.string())));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    // libgomp started once, and read the environment as passed through.
+    std::size_t displays = 0;
+    for (std::size_t at = 0; (at = r.output.find("OPENMP DISPLAY ENVIRONMENT BEGIN", at)) != std::string::npos; ++at) {
+      ++displays;
+    }
+    EXPECT_EQ(displays, 1u);
+    EXPECT_THAT(r.output, HasSubstr("OMP_STACKSIZE = '3145728'"));
+    if (!run.policy.empty()) {
+      EXPECT_THAT(r.output, HasSubstr(fmt::format("OMP_WAIT_POLICY = '{}'", run.policy)));
+    }
+    EXPECT_THAT(r.output, HasSubstr(fmt::format("GOMP_SPINCOUNT = '{}'", run.spin_count)));
+    EXPECT_THAT(r.output, HasSubstr("on 2 threads (--threads 2); waiting threads: " + run.wait_policy));
+    EXPECT_EQ(read_json(out / "report.json")["threads"]["wait_policy"], run.wait_policy);
   }
 }
 

@@ -5,7 +5,9 @@
 // a count (`--threads`, `solver.threads`, OMP_NUM_THREADS), a run takes one thread per core
 // that is actually free, and one thread for a mesh below the size where threads pay
 // (measured, docs/performance.md "Threads on a shared machine"); waiting threads sleep at once
-// instead of spinning for their core (OMP_WAIT_POLICY=passive), unless the user said otherwise.
+// instead of spinning for their core (OMP_WAIT_POLICY=passive), unless the user said otherwise:
+// that is the hotmesh program's choice (app/passive_wait.hpp), since libgomp reads it as it is
+// loaded, and a library cannot make it for the program that links it.
 #pragma once
 
 #include <cstddef>
@@ -73,19 +75,5 @@ class LoadProbe {
   double own_;
   double start_;
 };
-
-/// Runs from the hotmesh program's .preinit_array (app/main.cpp), before the C library and
-/// libgomp start: libgomp reads OMP_WAIT_POLICY as it starts, before main() and before any
-/// constructor could set it. When an argument is `command` and `envp` sets neither
-/// OMP_WAIT_POLICY nor GOMP_SPINCOUNT, it starts the program again in its place (execve of
-/// /proc/self/exe, the same arguments) with OMP_WAIT_POLICY=passive added. That costs the
-/// dynamic loading once more (about 50 ms; no constructor has run yet), so only the command
-/// that runs long on threads asks for it. Returns in the restarted process, or if the
-/// restart failed. Uses only its arguments, a static array and execve.
-void restart_waiting_passively(int argc, char** argv, char** envp, const char* command);
-
-/// How this process's OpenMP threads wait, for the log and report.json: "passive (hotmesh's
-/// default)", "OMP_WAIT_POLICY=active (set by the user)", ...
-std::string wait_policy();
 
 }  // namespace hotmesh::parallel
