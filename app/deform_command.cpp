@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdlib>
 #include <memory>
 #include <new>
 #include <optional>
@@ -40,7 +41,9 @@
 #include "hotmesh/io/restart_file.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 #include "hotmesh/parallel/processes.hpp"
+#include "hotmesh/parallel/threads.hpp"
 #include "logging.hpp"
+#include "passive_wait.hpp"
 
 namespace hotmesh::app {
 namespace {
@@ -190,7 +193,32 @@ struct RunInputs {
   // A restarted run continues from the state a previous run saved (section 4.3).
   std::optional<io::RestartState> previous;
   std::optional<deform::MotionStart> restart;
+  RunThreads threads;
 };
+
+/// The threads the user asked for: --threads, else the case's solver.threads, else
+/// OMP_NUM_THREADS; none (0) lets hotmesh choose.
+parallel::ThreadRequest thread_request(const Options& options, const io::Case& c) {
+  if (options.threads > 0) return {options.threads, fmt::format("--threads {}", options.threads)};
+  if (options.threads < 0 && c.threads > 0) return {c.threads, fmt::format("solver.threads: {}", c.threads)};
+  const char* environment = std::getenv("OMP_NUM_THREADS");
+  if (const int count = environment ? std::atoi(environment) : 0; count > 0) {
+    return {count, fmt::format("OMP_NUM_THREADS={}", environment)};
+  }
+  return {};
+}
+
+/// The threads of the run, from the mesh's size and the cores other processes leave free
+/// (measured since the run started), logged with why.
+void choose_the_threads(const mesh::Mesh& mesh, RunThreads& threads) {
+  threads.inputs.nodes = mesh.node_count();
+  threads.inputs.pay_from = mesh.dimension == 2 ? parallel::kThreadsPayNodes2d : parallel::kThreadsPayNodes3d;
+  threads.choice = parallel::choose_threads(threads.inputs, [&] { return threads.load.others(); });
+  omp_set_num_threads(threads.choice.threads);
+  threads.wait = wait_policy();
+  spdlog::info("on {} ({}){}", counted(threads.choice.threads, "thread"), threads.choice.reason,
+               threads.choice.threads > 1 ? fmt::format("; waiting threads: {}", threads.wait) : "");
+}
 
 /// 1. Everything the run needs, read and checked before any work.
 void read_inputs(const Options& options, RunState& state, RunInputs& in) {
@@ -203,10 +231,16 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
                                                       "processes) use `linear: amg`",
                                                       deform::to_string(c.solver.linear), job.count));
   }
-  // The threads before the mesh, while memory is plentiful (hotmesh/mesh/parallel_loops.hpp).
-  const int threads = options.threads >= 0 ? options.threads : c.threads;
-  state.phase = fmt::format("starting {}", counted(threads > 0 ? threads : omp_get_max_threads(), "thread"));
-  mesh::start_threads(threads);
+  // The threads before the mesh, while memory is plentiful (hotmesh/mesh/parallel_loops.hpp):
+  // as many as the run may use; how many it does use waits for the mesh's size.
+  in.threads.inputs.request = thread_request(options, c);
+  in.threads.inputs.cores = parallel::machine_cores();
+  in.threads.inputs.processes = parallel::local_processes(job.count);
+  const int most = in.threads.inputs.request.count > 0
+                       ? in.threads.inputs.request.count
+                       : std::max(1, in.threads.inputs.cores / in.threads.inputs.processes);
+  state.phase = fmt::format("starting {}", counted(most, "thread"));
+  mesh::start_threads(most);
   // Every file the case names is checked before any work: the CAD file too, whether or not a
   // patch takes faces from it.
   state.phase = "reading the CAD file";
@@ -217,6 +251,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
   state.nodes = mesh.node_count();
   state.cells = mesh.cell_count();
   spdlog::info("mesh {}: {} nodes, {} cells", c.mesh.string(), mesh.node_count(), mesh.cell_count());
+  choose_the_threads(mesh, in.threads);
   io::check_case_against_mesh(c, mesh);
   check_foam_time(options, c);
   in.output = options.output.empty() ? c.output : std::filesystem::path(options.output);
@@ -300,7 +335,7 @@ int write_run_outputs(const RunInputs& in, const io::CaseSetup& setup, const def
   timings.checkpoint = checkpoints.seconds();
   timings.checkpoint_bytes = checkpoints.bytes();
   timings.wall = seconds_since(start);
-  write_report(output, c, in.loaded, setup, result, solver, timings, outputs, resumed_from);
+  write_report(output, c, in.loaded, setup, result, solver, timings, in.threads, outputs, resumed_from);
   checkpoints.remove();  // the run has ended: the outputs supersede it
 
   if (!result.success) {
@@ -411,7 +446,9 @@ Command add_deform_command(CLI::App& parent) {
   CLI::App* cmd = parent.add_subcommand("deform", "Deform a mesh as a case file describes (the main job)");
   cmd->add_option("CASE", options->case_file, "Case file (.yaml), see docs/case-file.md")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", options->output, "Output folder (default: the case's `output`)");
-  cmd->add_option("--threads", options->threads, "OpenMP threads (default: the case's solver.threads; 0: all cores)")
+  cmd->add_option("--threads", options->threads,
+                  "OpenMP threads (default: the case's solver.threads; 0: hotmesh chooses from the mesh's size and the "
+                  "cores other processes leave free)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--series", options->series,
                 "Write the mesh and the walls after every increment as ParaView time series (deformed.pvd, walls.pvd)");

@@ -340,6 +340,16 @@ void put_motion(json& j, const mesh::Mesh& mesh, const io::CaseSetup& setup, con
                         {"min_after", repair.min_after}};
 }
 
+json threads_json(const RunThreads& threads) {
+  const parallel::ThreadChoice& c = threads.choice;
+  return {{"count", c.threads},
+          {"reason", c.reason},
+          {"chosen_by", threads.inputs.request.count > 0 ? "the user" : "hotmesh"},
+          {"cores", threads.inputs.cores},
+          {"other_load", c.others_busy ? json(*c.others_busy) : json(nullptr)},
+          {"wait_policy", threads.wait}};
+}
+
 json seconds_json(const RunTimings& timings, const deform::MotionTimings& m) {
   return {{"read", timings.read},         {"shapes", timings.shapes},   {"setup", m.setup},
           {"assembly", m.assembly},       {"preconditioner", m.preconditioner},
@@ -392,7 +402,8 @@ json failure_json(const mesh::Mesh& mesh, const deform::MotionResult& result) {
 
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
                   const io::CaseSetup& setup, const deform::MotionResult& result, const mesh::SolverQuality& solver,
-                  const RunTimings& timings, RunOutputs& outputs, const io::CheckpointInfo* resumed) {
+                  const RunTimings& timings, const RunThreads& threads, RunOutputs& outputs,
+                  const io::CheckpointInfo* resumed) {
   json j;
   j["hotmesh_version"] = HOTMESH_VERSION;
   j["command"] = "deform";
@@ -404,6 +415,7 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
   if (!result.success) j["failure"] = failure_json(loaded.mesh, result);
   j["deflections"] = deflections_json(c, setup, result.length_scale);
   j["solver"] = solver_json(c.solver, linear_solver_of(c, loaded.mesh, setup));
+  j["threads"] = threads_json(threads);
   put_increments(j, result);
   put_motion(j, loaded.mesh, setup, result, solver);
   j["peak_memory_bytes_all_ranks"] = std::max(timings.peak_memory_all_ranks, j["peak_memory_bytes"].get<std::uint64_t>());

@@ -13,6 +13,7 @@
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "hotmesh/io/mesh_files.hpp"
+#include "hotmesh/parallel/threads.hpp"
 
 namespace hotmesh::app {
 
@@ -25,6 +26,15 @@ struct RunTimings {
   double checkpoint = 0.0;  ///< writing them
   std::uint64_t checkpoint_bytes = 0;  ///< size of the last one
   std::uint64_t peak_memory_all_ranks = 0;  ///< every process's peak resident memory, summed
+};
+
+/// The threads of a run: what they were chosen from, since when the load is measured, the
+/// choice and how waiting threads wait (hotmesh/parallel/threads.hpp).
+struct RunThreads {
+  parallel::ThreadInputs inputs;
+  parallel::LoadProbe load;  ///< from the start of the run
+  parallel::ThreadChoice choice;
+  std::string wait;
 };
 
 struct RunOutputs {
@@ -50,7 +60,8 @@ RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c,
 /// the interrupted run included.
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
                   const io::CaseSetup& setup, const deform::MotionResult& result, const mesh::SolverQuality& solver,
-                  const RunTimings& timings, RunOutputs& outputs, const io::CheckpointInfo* resumed = nullptr);
+                  const RunTimings& timings, const RunThreads& threads, RunOutputs& outputs,
+                  const io::CheckpointInfo* resumed = nullptr);
 
 /// The linear solver a run of case `c` on `mesh` with `setup` uses, and why: the case file's, or
 /// what `linear: auto` picks for the mesh, its sliding walls and the processes

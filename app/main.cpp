@@ -14,6 +14,14 @@
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/parallel/processes.hpp"
 #include "logging.hpp"
+#include "passive_wait.hpp"
+
+// In `hotmesh deform`, waiting OpenMP threads sleep (OMP_WAIT_POLICY=passive) unless the user
+// says otherwise: the program starts itself again so, before libgomp reads its environment as
+// it is loaded (passive_wait.hpp). Here, in the program's own file, and in no library: only
+// the hotmesh program does this, never a test, a benchmark or a program built on the libraries.
+[[gnu::section(".preinit_array"), gnu::used]] static void (*const preinit_wait_passively)(int, char**, char**) =
+    &hotmesh::app::restart_waiting_passively;
 
 int main(int argc, char** argv) {
   hotmesh::parallel::restore_malloc_defaults();

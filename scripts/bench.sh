@@ -3,8 +3,11 @@
 # printing the machine, the load and each benchmark's Markdown tables; docs/performance.md
 # records the results. Benchmarks are not tests: ctest never runs them.
 #
-# Usage: scripts/bench.sh [--quick | --paper-size]
+# Usage: scripts/bench.sh [--quick | --paper-size | --busy]
 #   --quick        small sizes only (a smoke run of a minute, numbers not worth recording)
+#   --busy         only hotmesh deform beside processes that keep the cores busy, default threads
+#                  against one thread, and two threads against one at 200 000 cells, idle
+#                  (bench_busy; about ten minutes)
 #   --paper-size   only the paper's stator-well sector (section 6.1): 2.7 million hexes, sliding,
 #                  16 increments, `linear: auto` (amg at this size) with the Eisenstat-Walker
 #                  forcing term, two ranks of one thread with PETSc's lean triple products
@@ -20,17 +23,20 @@ cd "$(dirname "$0")/.."
 
 quick=0
 paper=0
+busy_only=0
 for arg in "$@"; do
   case "$arg" in
     --quick) quick=1 ;;
     --paper-size) paper=1 ;;
-    *) echo "usage: scripts/bench.sh [--quick | --paper-size]" >&2; exit 2 ;;
+    --busy) busy_only=1 ;;
+    *) echo "usage: scripts/bench.sh [--quick | --paper-size | --busy]" >&2; exit 2 ;;
   esac
 done
 
 benches=()
 for source in bench/bench_*.cpp; do benches+=("$(basename "$source" .cpp)"); done
 if ((paper)); then benches=(bench_stator_solve); fi
+if ((busy_only)); then benches=(bench_busy); fi
 
 echo "== hotmesh: Release build of the benchmarks (warnings are errors)"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DHOTMESH_WERROR=ON >/dev/null
@@ -61,6 +67,7 @@ args_for() {
       bench_stator_solve) echo "5000" ;;
       bench_checkpoint) echo "--cells 100000 --runs 1" ;;
       bench_mesh_formats) echo "200000 1" ;;
+      bench_busy) echo "--quick" ;;
     esac
   fi
 }

@@ -82,12 +82,12 @@ std::span<const Vec3> NodeConstraints::normals(NodeId n) const {
 
 void NodeConstraints::project(std::span<double> v) const {
   const auto d = static_cast<std::size_t>(dim_);
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(fixed_.size()) >= mesh::kParallelNodes)
+#pragma omp parallel for schedule(dynamic, mesh::kChunkNodes) if (static_cast<std::ptrdiff_t>(fixed_.size()) >= mesh::kParallelNodes)
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(fixed_.size()); ++k) {
     const auto base = static_cast<std::size_t>(fixed_[static_cast<std::size_t>(k)]) * d;
     for (std::size_t i = 0; i < d; ++i) v[base + i] = 0.0;
   }
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(partial_.size()) >= mesh::kParallelNodes)
+#pragma omp parallel for schedule(dynamic, mesh::kChunkNodes) if (static_cast<std::ptrdiff_t>(partial_.size()) >= mesh::kParallelNodes)
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(partial_.size()); ++k) {
     const Partial& p = partial_[static_cast<std::size_t>(k)];
     const auto base = static_cast<std::size_t>(p.node) * d;

@@ -45,13 +45,13 @@ class NodalJacobi final : public LinearOperator {
     k.diagonal_blocks(blocks_);
     periodic.fold_blocks(blocks_);  // a master carries its slave's stiffness
     const auto nodes = static_cast<std::ptrdiff_t>(c.node_count());
-#pragma omp parallel for schedule(static) if (nodes >= mesh::kParallelNodes)
+#pragma omp parallel for schedule(dynamic, mesh::kChunkNodes) if (nodes >= mesh::kParallelNodes)
     for (std::ptrdiff_t i = 0; i < nodes; ++i) invert(static_cast<NodeId>(i), c);
   }
   std::size_t size() const override { return blocks_.size() / dim_; }
   void apply(std::span<const double> x, std::span<double> y) const override {
     const auto nodes = static_cast<std::ptrdiff_t>(size() / dim_);
-#pragma omp parallel for schedule(static) if (nodes >= mesh::kParallelNodes)
+#pragma omp parallel for schedule(dynamic, mesh::kChunkNodes) if (nodes >= mesh::kParallelNodes)
     for (std::ptrdiff_t i = 0; i < nodes; ++i) {
       const auto base = static_cast<std::size_t>(i) * dim_;
       const double* m = blocks_.data() + base * dim_;

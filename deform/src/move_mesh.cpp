@@ -579,7 +579,7 @@ class Motion {
   }
 
   void displace(const std::vector<Vec3>& x, std::span<const double> u, std::vector<Vec3>& out) const {
-#pragma omp parallel for schedule(static) if (static_cast<std::ptrdiff_t>(x.size()) >= mesh::kParallelNodes)
+#pragma omp parallel for schedule(dynamic, mesh::kChunkNodes) if (static_cast<std::ptrdiff_t>(x.size()) >= mesh::kParallelNodes)
     for (std::ptrdiff_t n = 0; n < static_cast<std::ptrdiff_t>(x.size()); ++n) {
       const auto i = static_cast<std::size_t>(n);
       Vec3 p = x[i];

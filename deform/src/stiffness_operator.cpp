@@ -315,7 +315,7 @@ void StiffnessOperator::update(std::span<const Vec3> points) {
   const auto d = static_cast<std::size_t>(kernel_->dofs_per_node());
   for (std::size_t k = 0; k < coloring.colors(); ++k) {  // no two cells of a colour share a block
     const auto begin = coloring.offsets[k], end = coloring.offsets[k + 1];
-#pragma omp parallel for schedule(static) if (end - begin >= mesh::kParallelCells)
+#pragma omp parallel for schedule(dynamic, mesh::kChunkCells) if (end - begin >= mesh::kParallelCells)
     for (std::int64_t i = begin; i < end; ++i) {
       const CellId c = coloring.cells[static_cast<std::size_t>(i)];
       const std::size_t corners = cells.nodes(static_cast<std::size_t>(c)).size();
@@ -336,17 +336,18 @@ void StiffnessOperator::apply(std::span<const double> x, std::span<double> y) co
   double* out = renumbered ? y_rows_.data() : y.data();
   const auto work = static_cast<std::ptrdiff_t>(nonzero_blocks() * d * d);
   // Each chunk's rows are summed by one thread in a fixed order, and what a chunk scattered
-  // into the next one is added after it: y is the same for any number of threads.
+  // into the next one is added after it: y is the same for any number of threads. Threads
+  // take chunks as they finish the last (a thread whose core is busy takes fewer).
 #pragma omp parallel if (work >= mesh::kParallelProduct)
   {
     if (renumbered) {
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, mesh::kChunkNodes)
       for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t>(rows); ++r) {
         const auto from = static_cast<std::size_t>(order_[static_cast<std::size_t>(r)]) * d;
         for (std::size_t c = 0; c < d; ++c) x_rows_[static_cast<std::size_t>(r) * d + c] = x[from + c];
       }
     }
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic)
     for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(chunks); ++c) {
       const auto chunk = static_cast<std::size_t>(c);
       const std::size_t begin = chunk * chunk_rows_, end = std::min(rows, begin + chunk_rows_);
@@ -358,7 +359,7 @@ void StiffnessOperator::apply(std::span<const double> x, std::span<double> y) co
         multiply_chunk<Row3, 3>(row_start_, columns_.data(), values_.data(), begin, end, overflow_rows, in, out, overflow);
       }
     }
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic)
     for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(chunks); ++c) {
       const auto chunk = static_cast<std::size_t>(c);
       const std::size_t begin = chunk * chunk_rows_, end = std::min(rows, begin + chunk_rows_);

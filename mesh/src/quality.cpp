@@ -39,7 +39,7 @@ double scaled_jacobian(ElementType type, const ElementPoints& element) {
 std::vector<double> scaled_jacobians(const ElementList& cells, std::span<const Vec3> points) {
   const auto n = static_cast<std::ptrdiff_t>(cells.size());
   std::vector<double> q(cells.size());
-#pragma omp parallel for schedule(static) if (n >= kParallelCells)
+#pragma omp parallel for schedule(dynamic, kChunkCells) if (n >= kParallelCells)
   for (std::ptrdiff_t c = 0; c < n; ++c) {
     const auto i = static_cast<std::size_t>(c);
     q[i] = scaled_jacobian(cells.type(i), gather(cells.nodes(i), points));

@@ -1,7 +1,6 @@
 // hotmesh parallel: the processes of a job and what they exchange (MPI through PETSc's mpi.h).
 #include "hotmesh/parallel/processes.hpp"
 
-#include <omp.h>
 #include <petscsys.h>
 #if defined(__GLIBC__)
 #include <malloc.h>  // mallopt
@@ -135,10 +134,7 @@ Processes start_processes() {
                      "Open MPI's mpirun (Debian package openmpi-bin), e.g. mpirun -n " + std::to_string(launched) +
                      " hotmesh deform case.yaml");
   }
-  g_job = {rank, count};
-  // Several processes on the cores of one machine: unless told otherwise, each rank takes
-  // its part of the cores instead of every rank starting a thread per core.
-  if (count > 1 && !std::getenv("OMP_NUM_THREADS")) omp_set_num_threads(std::max(1, omp_get_num_procs() / count));
+  g_job = {rank, count};  // each rank's threads: its share of the cores (choose_threads, threads.hpp)
   return g_job;
 }
 

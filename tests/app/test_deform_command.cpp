@@ -6,12 +6,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include <elf.h>
+#include <sched.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <set>
 
 #include <fmt/format.h>
@@ -20,6 +23,7 @@
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/mesh/quality.hpp"
+#include "hotmesh/parallel/threads.hpp"
 #include "deform_cases.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -161,6 +165,135 @@ TEST(DeformCommand, LinearAutoPicksTheSolverAndSaysWhy) {
     const auto report = read_json(dir / (name + "-out") / "report.json");
     EXPECT_EQ(report["solver"]["linear"], linear);
     EXPECT_EQ(report["solver"]["linear_chosen_by"], why);
+  }
+}
+
+/// The threads a run takes and why, in one log line and in report.json: hotmesh's own choice
+/// (one thread below the size where threads pay), the user's count from each place it comes
+/// from, as given, and how waiting threads wait: passively unless the user says otherwise,
+/// which libgomp itself reports (GOMP_SPINCOUNT 0) (issue 52). Nothing timed.
+TEST(DeformCommand, SaysOnHowManyThreadsItRunsAndWhy) {
+  test::TempDir dir;
+  test::write_coarse_ramp(dir.path());
+  std::string yaml = test::ramp_case("full.csv", 2);
+  test::write_text(dir / "case.yaml", yaml);
+  yaml.replace(yaml.find("solver: {"), 9, "solver: {threads: 1, ");
+  test::write_text(dir / "threads.yaml", yaml);
+  // hotmesh's own reason: the mesh's size, unless the process may use one core only
+  const std::string small = parallel::machine_cores() == 1
+                                ? std::string("the process may use 1 core")
+                                : fmt::format("a mesh of 286 nodes: threads pay from {}", parallel::kThreadsPayNodes2d);
+  struct Run {
+    std::string environment, case_name, options, line, chosen_by;
+    int threads;
+  };
+  const std::vector<Run> runs{
+      {"", "case", "", "on 1 thread (" + small + ")", "hotmesh", 1},
+      {"-u OMP_WAIT_POLICY", "case", "--threads 2", "on 2 threads (--threads 2); waiting threads: ", "the user", 2},
+      {"OMP_WAIT_POLICY=active", "case", "--threads 2",
+       "on 2 threads (--threads 2); waiting threads: OMP_WAIT_POLICY=active (set by the user)", "the user", 2},
+      {"OMP_NUM_THREADS=2", "case", "", "on 2 threads (OMP_NUM_THREADS=2)", "the user", 2},
+      {"", "threads", "", "on 1 thread (solver.threads: 1)", "the user", 1},
+      {"", "threads", "--threads 0", "on 1 thread (" + small + ")", "hotmesh", 1}};
+  for (const Run& run : runs) {
+    SCOPED_TRACE(run.environment + " " + run.case_name + " " + run.options);
+    const auto out = dir / "out";
+    const auto r = test::run_command(fmt::format("env -u OMP_NUM_THREADS {} {} deform {} -o {} --force {}", run.environment,
+                                                 HOTMESH_EXE, shell_quote((dir / (run.case_name + ".yaml")).string()),
+                                                 shell_quote(out.string()), run.options));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_THAT(r.output, HasSubstr(run.line));
+    const auto report = read_json(out / "report.json");
+    const auto& threads = report["threads"];
+    EXPECT_EQ(threads["count"], run.threads);
+    EXPECT_EQ(threads["chosen_by"], run.chosen_by);
+    EXPECT_TRUE(threads["other_load"].is_null());  // the size or the user decided: the load was not looked at
+    EXPECT_GE(threads["cores"].get<int>(), 1);
+  }
+}
+
+/// The dynamic loader named in the program headers of the executable at `path` (PT_INTERP),
+/// empty if it names none.
+std::string interpreter_of(const std::filesystem::path& path) {
+  const std::string elf = test::read_text(path);
+  Elf64_Ehdr header{};
+  if (elf.size() < sizeof header) return {};
+  std::memcpy(&header, elf.data(), sizeof header);
+  for (std::size_t i = 0; i < header.e_phnum; ++i) {
+    Elf64_Phdr segment{};
+    const std::size_t at = header.e_phoff + i * header.e_phentsize;
+    if (at + sizeof segment > elf.size()) return {};
+    std::memcpy(&segment, elf.data() + at, sizeof segment);
+    if (segment.p_type == PT_INTERP && segment.p_offset + segment.p_filesz <= elf.size()) {
+      return std::string(elf.data() + segment.p_offset);  // NUL-terminated within the segment
+    }
+  }
+  return {};
+}
+
+/// Whether this process may run on one core only (its affinity).
+bool on_one_core() {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  return sched_getaffinity(0, sizeof allowed, &allowed) == 0 && CPU_COUNT(&allowed) == 1;
+}
+
+/// Waiting threads sleep unless the user set OMP_WAIT_POLICY or GOMP_SPINCOUNT, as libgomp
+/// itself says it read them (OMP_DISPLAY_ENV), and as the log and report.json say: the program
+/// starts itself again once with OMP_WAIT_POLICY=passive before libgomp starts, so libgomp
+/// starts once, with the user's arguments (names with spaces) and environment (OMP_STACKSIZE)
+/// passed through. Not where it would gain nothing (one thread; one core, where libgomp hardly
+/// spins), nor run by the dynamic loader, where it cannot; each says why (issue 52). Nothing
+/// timed.
+TEST(DeformCommand, WaitsPassivelyUnlessTheUserSetAPolicy) {
+  test::TempDir dir;
+  test::write_coarse_ramp(dir.path());
+  test::write_text(dir / "a case.yaml", test::ramp_case("full.csv", 2));
+  const std::string hotmesh_exe = shell_quote(HOTMESH_EXE);
+  const std::string loader = interpreter_of(HOTMESH_EXE);
+  const std::string not_passive = "libgomp's default, a waiting thread spins a while (hotmesh did not make it passive: ";
+  const std::string one_core = not_passive + "the process may use 1 core, where libgomp spins at most 100 turns)";
+  struct Run {
+    std::string environment, program, options, policy, spin_count, wait_policy;
+  };
+  std::vector<Run> runs{
+      {"", hotmesh_exe, "--threads 2", "PASSIVE", "0", "passive (hotmesh's default)"},
+      {"OMP_WAIT_POLICY=active", hotmesh_exe, "--threads 2", "ACTIVE", "30000000000",
+       "OMP_WAIT_POLICY=active (set by the user)"},
+      {"GOMP_SPINCOUNT=1000", hotmesh_exe, "--threads 2", "", "1000", "GOMP_SPINCOUNT=1000 (set by the user)"},
+      {"", hotmesh_exe, "--threads 1", "", "300000", not_passive + "one thread (--threads 1): no thread waits)"},
+      {"OMP_NUM_THREADS=1", hotmesh_exe, "", "", "300000", not_passive + "one thread (OMP_NUM_THREADS=1): no thread waits)"},
+      {"", "taskset -c 0 " + hotmesh_exe, "--threads 2", "", "300000", one_core}};
+  if (on_one_core()) runs.front() = {"", hotmesh_exe, "--threads 2", "", "300000", one_core};
+  if (!loader.empty()) {
+    runs.push_back({"", shell_quote(loader) + " " + hotmesh_exe, "--threads 2", "", "300000",
+                    on_one_core() ? one_core : not_passive + "started by the dynamic loader)"});
+  }
+  for (const Run& run : runs) {
+    SCOPED_TRACE(run.environment + " " + run.program + " " + run.options);
+    const auto out = dir / "the out";
+    const auto r = test::run_command(fmt::format(
+        "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u HOTMESH_DEFAULT_WAIT_POLICY -u OMP_NUM_THREADS "
+        "OMP_DISPLAY_ENV=VERBOSE OMP_STACKSIZE=3M {} {} deform {} -o {} --force {}",
+        run.environment, run.program, shell_quote((dir / "a case.yaml").string()), shell_quote(out.string()),
+        run.options));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    // libgomp started once, and read the environment as passed through.
+    std::size_t displays = 0;
+    for (std::size_t at = 0; (at = r.output.find("OPENMP DISPLAY ENVIRONMENT BEGIN", at)) != std::string::npos; ++at) {
+      ++displays;
+    }
+    EXPECT_EQ(displays, 1u);
+    EXPECT_THAT(r.output, HasSubstr("OMP_STACKSIZE = '3145728'"));
+    if (!run.policy.empty()) {
+      EXPECT_THAT(r.output, HasSubstr(fmt::format("OMP_WAIT_POLICY = '{}'", run.policy)));
+    }
+    EXPECT_THAT(r.output, HasSubstr(fmt::format("GOMP_SPINCOUNT = '{}'", run.spin_count)));
+    const auto report = read_json(out / "report.json");
+    EXPECT_EQ(report["threads"]["wait_policy"], run.wait_policy);
+    if (report["threads"]["count"] == 2) {  // the log says how threads wait where some may
+      EXPECT_THAT(r.output, HasSubstr("on 2 threads (--threads 2); waiting threads: " + run.wait_policy));
+    }
   }
 }
 

@@ -16,6 +16,8 @@
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/geometry/input_error.hpp"
 #include "hotmesh/deform/node_order.hpp"
+#include "hotmesh/mesh/parallel_loops.hpp"
+#include "hotmesh/mesh/structured_mesh.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::deform {
@@ -200,25 +202,33 @@ TEST(StiffnessOperator, EachRowHoldsTheNodesThatShareACellWithItsNode) {
 }
 
 TEST(StiffnessOperator, BlocksAndProductAreBitIdenticalForAnyThreadCount) {
-  // Large enough that the element loops run in parallel, colour by colour
-  // (mesh/include/hotmesh/mesh/parallel_loops.hpp).
-  Mesh mesh = test::square_ring(16, 16, 0.3, 1.0, 4, 0.6);
-  test::jiggle_interior(mesh, 0.2);
-  StiffnessOperator k(mesh, element_lame(mesh, {}), true);
-  EXPECT_GE(k.chunk_count(), 3u);  // so that the threads share the rows of a product
-  const auto x = pseudo_random(k.size());
-  std::vector<std::vector<double>> results;
-  const int saved = omp_get_max_threads();
-  for (int threads : {1, 2, 3}) {
-    omp_set_num_threads(threads);
-    k.update(mesh.points);
-    std::vector<double> y(k.size());
-    k.apply(x, y);
-    results.push_back(y);
-  }
-  omp_set_num_threads(saved);
-  for (std::size_t r = 1; r < results.size(); ++r) {
-    EXPECT_EQ(std::memcmp(results[r].data(), results[0].data(), results[0].size() * sizeof(double)), 0);
+  // Large enough that the element loops run in parallel, colour by colour, and (the hex
+  // block) the product too (mesh/include/hotmesh/mesh/parallel_loops.hpp). Threads take
+  // cells and chunks of rows as they come (dynamic chunks): each thread count three times.
+  Mesh ring = test::square_ring(16, 16, 0.3, 1.0, 4, 0.6);
+  test::jiggle_interior(ring, 0.2);
+  const auto xs = mesh::geometric_line(0.0, 1.0, 14, 1.1);
+  const Mesh block = mesh::structured_hexes(xs, xs, xs);
+  for (const Mesh* m : std::array<const Mesh*, 2>{&ring, &block}) {
+    StiffnessOperator k(*m, element_lame(*m, {}), true);
+    EXPECT_GE(k.chunk_count(), 3u);  // so that the threads share the rows of a product
+    if (m == &block) {
+      EXPECT_GE(static_cast<std::ptrdiff_t>(k.nonzero_blocks() * 9), mesh::kParallelProduct);
+    }
+    const auto x = pseudo_random(k.size());
+    std::vector<std::vector<double>> results;
+    const int saved = omp_get_max_threads();
+    for (int threads : {1, 2, 3, 2, 3, 2}) {
+      omp_set_num_threads(threads);
+      k.update(m->points);
+      std::vector<double> y(k.size());
+      k.apply(x, y);
+      results.push_back(y);
+    }
+    omp_set_num_threads(saved);
+    for (std::size_t r = 1; r < results.size(); ++r) {
+      EXPECT_EQ(std::memcmp(results[r].data(), results[0].data(), results[0].size() * sizeof(double)), 0);
+    }
   }
 }
 

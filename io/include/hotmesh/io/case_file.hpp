@@ -106,8 +106,8 @@ struct Case {
     s.predictor = true;
     return s;
   }();
-  /// OpenMP threads of the run, 0: all cores. The case file sets it among the solver's options
-  /// (solver.threads); it is the process's, which starts its threads before reading the mesh.
+  /// OpenMP threads of the run, 0: hotmesh chooses (parallel::choose_threads). The case file
+  /// sets it among the solver's options (solver.threads); it is the process's.
   int threads = 0;
   deform::MaterialOptions material;
   std::vector<PatchSpec> patches;            ///< in the order of the case file

@@ -2,7 +2,9 @@
 // Below the sizes here a loop runs on one thread, because starting and joining a thread team
 // costs more than the work. It costs far more on a loaded machine, where OpenMP threads that
 // spin while they wait steal the time slices of the others: a small case on a busy machine
-// then runs tens of times slower in parallel than serially.
+// then runs tens of times slower in parallel than serially. So `hotmesh deform` lets waiting
+// threads sleep, and takes threads only for the cores other processes leave free
+// (hotmesh/parallel/threads.hpp); the loops below hand out dynamic chunks.
 // And: how an exception leaves an OpenMP loop, and starting the threads up front. libgomp
 // creates a loop's threads when the first loop runs on them and ends the process when it
 // cannot (exit code 1, "libgomp: Thread creation failed"), as under a memory limit without
@@ -22,6 +24,15 @@ inline constexpr std::ptrdiff_t kParallelCells = 256;        ///< cells of an el
 inline constexpr std::ptrdiff_t kParallelProjections = 256;  ///< nodes projected on boundaries
 /// Multiply-adds of a product y = K x (the entries of K's node blocks).
 inline constexpr std::ptrdiff_t kParallelProduct = 1 << 18;
+
+/// The loops run every Newton step and every CG iteration hand out their work in chunks of
+/// these sizes as threads ask for it (schedule(dynamic)), not in one fixed share per thread: a
+/// thread whose core another process holds then delays the loop by one chunk, not by its
+/// share. Each iteration's arithmetic does not depend on the thread that does it, and
+/// reductions sum fixed chunks in order, so results stay the same for any thread count.
+inline constexpr int kChunkVector = 4096;  ///< entries of a vector kernel
+inline constexpr int kChunkNodes = 1024;   ///< nodes of a nodal loop
+inline constexpr int kChunkCells = 64;     ///< cells of an element loop
 
 /// Carries an exception out of an OpenMP loop. One that escapes a parallel region (even one
 /// that runs on a single thread) calls std::terminate: a std::bad_alloc would end hotmesh with
