@@ -5,7 +5,7 @@
 #   3. builds with clang, AddressSanitizer + UndefinedBehaviorSanitizer, in build-sanitizers/:
 #      the tests, hotmesh and the fuzz targets in one build, runs the tests again (but those
 #      of tests/sanitizer_exclusions.txt, whose larger cases the Release build has run) and
-#      each fuzz target for 15 s, as many at a time as there are cores (scripts/fuzz.sh,
+#      each fuzz target for 10 s, as many at a time as there are cores (scripts/fuzz.sh,
 #      docs/fuzzing.md).
 # Exits non-zero on any failure. Usage: scripts/test.sh [--no-sanitizers] [--no-fuzz]
 set -euo pipefail
@@ -61,6 +61,6 @@ fi
 if ((fuzz)); then
   # Two targets at a time on two cores; the seeds' short runs with the Release hotmesh.
   phase "fuzz targets"
-  scripts/fuzz.sh -j "$jobs" --build build-sanitizers --hotmesh build/app/hotmesh 15
+  scripts/fuzz.sh -j "$jobs" --build build-sanitizers --hotmesh build/app/hotmesh 10
 fi
 phase "all tests passed"
