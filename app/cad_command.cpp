@@ -15,7 +15,7 @@
 #include "cad_json.hpp"
 #include "commands.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::app {
 

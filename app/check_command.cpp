@@ -32,7 +32,7 @@
 #include "check_report.hpp"
 #include "mesh_summary.hpp"
 #include "commands.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/mesh_files.hpp"

@@ -12,7 +12,7 @@
 #include "curve_fit.hpp"
 #include "faces_mode.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/surface_distance.hpp"
 #include "hotmesh/geometry/surface_shape.hpp"
 #include "hotmesh/io/case_setup.hpp"

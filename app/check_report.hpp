@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 #include "wall_deviation_report.hpp"
 
 namespace hotmesh::app {

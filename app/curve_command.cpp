@@ -11,7 +11,7 @@
 #include "commands.hpp"
 #include "curve_fit.hpp"
 #include "curve_outputs.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "node_fit.hpp"
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <utility>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::app {
 

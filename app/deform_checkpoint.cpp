@@ -5,7 +5,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::app {
 

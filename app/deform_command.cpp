@@ -30,7 +30,7 @@
 #include "deform_outputs.hpp"
 #include "series_outputs.hpp"
 #include "hotmesh/deform/move_mesh.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/case_setup.hpp"

@@ -3,7 +3,7 @@
 
 #include <utility>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::app {
 

@@ -15,7 +15,7 @@
 #include <unordered_map>
 
 #include "commands.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/calculix.hpp"
 #include "hotmesh/io/deflection_csv.hpp"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/parallel/processes.hpp"
 #include "logging.hpp"
 #include "passive_wait.hpp"

@@ -3,7 +3,7 @@
 // axis). Built twice: fuzz_step writes the input to a .step file, fuzz_iges to an .igs file.
 #include "fuzz_support.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::filesystem::path file = hotmesh::fuzz::work_folder() / ("fuzz" HOTMESH_FUZZ_CAD_EXTENSION);

@@ -1,7 +1,7 @@
 // hotmesh fuzz: case files (YAML), as `hotmesh deform` reads them. The case lies in an empty
 // folder, so every file it names relative to itself is missing and reported as such.
 #include "fuzz_support.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/case_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -7,7 +7,7 @@
 // library is a finding here; the program turns a fault of the library into an InputError
 // (tests/io/test_cgns_damage.cpp).
 #include "fuzz_support.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
 #include "hotmesh/mesh/validate.hpp"
 

@@ -2,7 +2,7 @@
 // first the header alone (read_checkpoint_info), then the whole file checked against the
 // run's mesh and input files (read_checkpoint).
 #include "fuzz_support.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "ramp2d_run.hpp"
 

@@ -1,7 +1,7 @@
 // hotmesh fuzz: FEM deflection tables (CSV), as case files, `hotmesh curve`, `check` and the
 // service read them.
 #include "fuzz_support.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

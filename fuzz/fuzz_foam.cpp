@@ -15,7 +15,7 @@
 #include <spdlog/spdlog.h>
 
 #include "fuzz_support.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 
 namespace {

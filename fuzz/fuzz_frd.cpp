@@ -3,7 +3,7 @@
 // surface DISC_BASE from the last DISP block (the check that the results belong to the deck,
 // the displacements of the set's nodes, their temperatures).
 #include "fuzz_support.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/calculix.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -2,7 +2,7 @@
 // `info` and `convert` read them: parse_gmsh, then the validation read_mesh does.
 #include "fuzz_support.hpp"
 #include "hotmesh/mesh/validate.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/gmsh.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

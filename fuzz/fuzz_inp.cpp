@@ -8,7 +8,7 @@
 // (InpLimits) are small ones, so that each input is read in milliseconds; the program's own
 // are tested in tests/io/test_calculix_damage.cpp.
 #include "fuzz_support.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/calculix.hpp"
 
 namespace {

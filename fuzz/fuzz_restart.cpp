@@ -2,7 +2,7 @@
 // read them: read_restart against the mesh of the run, then the set-up of the next run from
 // the state read (the deflection tables the file holds become curves).
 #include "fuzz_support.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/case_setup.hpp"
 #include "hotmesh/io/restart_file.hpp"
 #include "ramp2d_run.hpp"

@@ -11,7 +11,7 @@
 // would be the server's 500, and leaves no file behind in the service's upload folder. What a
 // request makes is deleted again, so every input meets the same service.
 #include "fuzz_support.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "serve/api_error.hpp"
 #include "serve/service.hpp"

@@ -5,7 +5,7 @@
 // A request may fail only with ApiError (4xx) or hotmesh::InputError (422), and leaves no
 // file behind in the service's upload folder. The model an upload makes is deleted again.
 #include "fuzz_support.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "serve/api_error.hpp"
 #include "serve/service.hpp"
 

@@ -15,7 +15,7 @@
 #include <system_error>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 extern char** environ;
 

@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "serve/api_error.hpp"
 #include "serve/heavy_work.hpp"
 #include "serve/host_policy.hpp"

@@ -13,7 +13,7 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "serve/api_error.hpp"
 
 namespace hotmesh::app::serve {

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "serve/http_server.hpp"
 #include "serve/service.hpp"
 

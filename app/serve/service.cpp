@@ -12,7 +12,7 @@
 
 #include "cad_json.hpp"
 #include "faces_mode.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "serve/service_state.hpp"
 
 namespace hotmesh::app::serve {

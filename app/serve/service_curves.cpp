@@ -13,7 +13,7 @@
 #include "curve_outputs.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/cad_export.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "serve/curve_json.hpp"

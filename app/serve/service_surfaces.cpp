@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "hotmesh/geometry/cad_export.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "serve/service.hpp"
 #include "serve/service_state.hpp"
 #include "serve/surface_json.hpp"

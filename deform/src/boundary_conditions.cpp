@@ -12,7 +12,7 @@
 #include <optional>
 #include <unordered_map>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 #include "passive.hpp"
 #include "rigid_modes.hpp"

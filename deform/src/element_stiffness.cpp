@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "linear_elements.hpp"
 #include "q1_element.hpp"
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "linear_elements.hpp"
 #include "nearest_point.hpp"
 #include "q1_element.hpp"

@@ -21,7 +21,7 @@
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 #include "hotmesh/mesh/solver_quality.hpp"
 #include "linear_solver.hpp"

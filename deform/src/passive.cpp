@@ -11,7 +11,7 @@
 #include <map>
 #include <unordered_map>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::deform::detail {
 

@@ -13,7 +13,7 @@
 
 #include "nearest_point.hpp"
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::deform::detail {
 

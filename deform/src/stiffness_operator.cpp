@@ -11,7 +11,7 @@
 
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/node_order.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 
 namespace hotmesh::deform {

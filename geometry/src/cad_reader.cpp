@@ -44,7 +44,7 @@
 #include "cad_model_impl.hpp"
 #include "edge_analysis.hpp"
 #include "face_analysis.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "occt_convert.hpp"
 #include "occt_session.hpp"
 #include "step_entity_numbers.hpp"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 
 namespace hotmesh::geometry {

@@ -11,7 +11,7 @@
 
 #include "cad_face_set.hpp"
 #include "field_joins.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/surface_shape.hpp"
 #include "node_list.hpp"
 

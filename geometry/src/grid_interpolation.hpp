@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::geometry::detail {
 

@@ -26,7 +26,7 @@
 #include "cad_model_impl.hpp"
 #include "face_analysis.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "occt_convert.hpp"
 #include "profile_chain.hpp"
 

@@ -15,7 +15,7 @@
 
 #include "hotmesh/geometry/bspline_curve.hpp"
 #include "hotmesh/geometry/bspline_surface.hpp"
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::geometry::detail {
 

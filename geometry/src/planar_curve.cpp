@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "cad_model_impl.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "occt_convert.hpp"
 #include "profile_chain.hpp"
 

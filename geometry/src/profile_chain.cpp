@@ -9,7 +9,7 @@
 #include <tuple>
 
 #include "hotmesh/geometry/curve_projector.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "occt_convert.hpp"
 
 namespace hotmesh::geometry::detail {

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "hotmesh/geometry/curve_projector.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/interpolation.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "node_list.hpp"

@@ -36,7 +36,7 @@
 #include <utility>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::geometry {
 

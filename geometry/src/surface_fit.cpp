@@ -16,7 +16,7 @@
 
 #include "bspline_basis.hpp"
 #include "grid_interpolation.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/interpolation.hpp"
 
 namespace hotmesh::geometry {

@@ -11,7 +11,7 @@
 #include <string>
 #include <system_error>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::io {
 namespace {

@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::io::detail {
 

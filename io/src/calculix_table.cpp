@@ -8,7 +8,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/calculix.hpp"
 
 namespace hotmesh::io {

@@ -22,7 +22,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/deflection_csv.hpp"

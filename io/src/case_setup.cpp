@@ -12,7 +12,7 @@
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/deflected_walls.hpp"
 
 namespace hotmesh::io {

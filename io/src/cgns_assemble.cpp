@@ -15,7 +15,7 @@
 #include <unordered_map>
 
 #include "cgns_reader.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/mesh/mesh_topology.hpp"
 
 namespace hotmesh::io::cgns {

@@ -14,7 +14,7 @@
 #include <limits>
 
 #include "cgns_reader.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::io::cgns {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "cgns_reader.hpp"
 #include "cgns_write_back.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
 
 namespace hotmesh::io::cgns {

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 
 namespace hotmesh::io::cgns {

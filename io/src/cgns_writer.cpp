@@ -14,7 +14,7 @@
 #include <functional>
 
 #include "cgns_library.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/cgns.hpp"
 

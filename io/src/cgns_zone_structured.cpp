@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "cgns_reader.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::io::cgns {
 namespace {

@@ -20,7 +20,7 @@
 #include <unordered_map>
 
 #include "cgns_reader.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::io::cgns {
 namespace {

@@ -15,7 +15,7 @@
 
 #include "binary_file.hpp"
 #include "header_integers.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/restart_file.hpp"
 

@@ -16,7 +16,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 
 namespace hotmesh::io {

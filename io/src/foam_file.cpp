@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::io::foam {
 namespace {

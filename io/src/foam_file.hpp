@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::io::foam {
 

@@ -9,7 +9,7 @@
 
 #include "foam_write_back.hpp"
 #include "gzip.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/foam.hpp"
 

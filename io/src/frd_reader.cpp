@@ -26,7 +26,7 @@
 #include <string>
 
 #include "calculix_text.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 
 namespace hotmesh::io {

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::io::gmsh {
 namespace {

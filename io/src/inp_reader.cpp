@@ -19,7 +19,7 @@
 #include <utility>
 
 #include "calculix_text.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 
 namespace hotmesh::io {

@@ -6,7 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/gmsh.hpp"

@@ -7,7 +7,7 @@
 
 #include "binary_file.hpp"
 #include "header_integers.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 

@@ -20,9 +20,9 @@
 #include <utility>
 #include <vector>
 
-#include "hotmesh/geometry/enum_names.hpp"
-#include "hotmesh/geometry/input_error.hpp"
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/enum_names.hpp"
+#include "hotmesh/core/input_error.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::io::detail {
 

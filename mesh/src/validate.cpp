@@ -11,7 +11,7 @@
 
 #include "hotmesh/mesh/mesh_topology.hpp"
 #include "hotmesh/mesh/quality.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 
 namespace hotmesh::mesh {

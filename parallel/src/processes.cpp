@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::parallel {
 namespace {

@@ -35,7 +35,7 @@
 #include "hotmesh/geometry/bspline_surface.hpp"
 #include "hotmesh/geometry/cad_export.hpp"
 #include "hotmesh/geometry/deflection_samples.hpp"
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 #include "hotmesh/mesh/mesh.hpp"
 
 namespace hotmesh::samples::duct3d {

@@ -5,7 +5,7 @@
 
 #include <array>
 
-#include "hotmesh/geometry/vec2.hpp"
+#include "hotmesh/core/vec2.hpp"
 
 namespace hotmesh::samples::stator_well::dims {
 

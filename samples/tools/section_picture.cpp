@@ -36,7 +36,7 @@
 
 #include "hotmesh/mesh/mesh_topology.hpp"
 #include "hotmesh/mesh/quality.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/figure.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/io/mesh_picture.hpp"

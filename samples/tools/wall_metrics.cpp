@@ -17,7 +17,7 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "hotmesh/io/gmsh.hpp"
 

@@ -20,7 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "deform_cases.hpp"
-#include "hotmesh/geometry/vec2.hpp"
+#include "hotmesh/core/vec2.hpp"
 
 namespace hotmesh::test {
 

@@ -21,7 +21,7 @@
 
 #include "deform_cases.hpp"
 #include "faults.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "test_support.hpp"
 

@@ -16,7 +16,7 @@
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/move_mesh.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "linear_elements.hpp"
 #include "test_support.hpp"
 

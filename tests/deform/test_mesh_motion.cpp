@@ -16,7 +16,7 @@
 #include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/mesh/validate.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "test_shapes.hpp"
 #include "test_support.hpp"
 

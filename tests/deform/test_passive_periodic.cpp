@@ -11,7 +11,7 @@
 
 #include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "test_shapes.hpp"
 #include "test_support.hpp"

@@ -14,7 +14,7 @@
 #include "hotmesh/deform/assembled_stiffness.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/deform/node_order.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"

@@ -9,7 +9,7 @@
 
 #include "curve_fixtures.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/interpolation.hpp"
 
 namespace hotmesh::geometry {

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "hotmesh/geometry/cad_model.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "test_support.hpp"
 
 #include <string>

@@ -18,7 +18,7 @@
 
 #include "cad_test_helpers.hpp"
 #include "hotmesh/geometry/cad_export.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "curve_fixtures.hpp"
 #include "occt_fixtures.hpp"
 

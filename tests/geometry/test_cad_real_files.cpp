@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "cad_test_helpers.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::geometry {
 namespace {

@@ -13,7 +13,7 @@
 #include "cad_test_helpers.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/deflected_curve.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "occt_fixtures.hpp"
 #include "test_support.hpp"

@@ -10,7 +10,7 @@
 #include <random>
 
 #include "curve_fixtures.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 
 namespace hotmesh::geometry {

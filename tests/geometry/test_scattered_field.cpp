@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/scattered_field.hpp"
 
 namespace hotmesh::geometry {

@@ -15,7 +15,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/surface_fit.hpp"
 
 namespace hotmesh::geometry {

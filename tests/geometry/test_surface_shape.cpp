@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "hotmesh/geometry/boundary_shapes.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/surface_shape.hpp"
 #include "occt_surfaces.hpp"
 

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/case_file.hpp"
 #include "test_support.hpp"
 

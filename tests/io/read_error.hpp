@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 
 namespace hotmesh::io::test_io {

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "calculix_runs.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/calculix.hpp"
 
 namespace hotmesh::io {

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <limits>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/calculix.hpp"
 #include "test_support.hpp"
 

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "calculix_runs.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/case_file.hpp"
 
 namespace hotmesh::io {

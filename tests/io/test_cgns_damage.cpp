@@ -14,7 +14,7 @@
 
 #include "allocation_watch.hpp"
 #include "cgns_files.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
 #include "read_error.hpp"
 #include "run_command.hpp"

@@ -5,7 +5,7 @@
 
 #include "read_error.hpp"
 #include "cgns_files.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "test_support.hpp"

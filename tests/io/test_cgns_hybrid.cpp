@@ -14,7 +14,7 @@
 #include <stdexcept>
 
 #include "read_error.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/mesh/mesh_topology.hpp"

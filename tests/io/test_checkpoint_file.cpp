@@ -8,7 +8,7 @@
 #include <cstring>
 #include <limits>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "output_folders.hpp"
 #include "test_support.hpp"

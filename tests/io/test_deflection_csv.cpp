@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "test_support.hpp"
 

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "hotmesh/mesh/quality.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/figure.hpp"
 #include "hotmesh/io/mesh_picture.hpp"
 #include "test_support.hpp"

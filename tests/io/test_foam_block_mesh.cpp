@@ -11,7 +11,7 @@
 #include <regex>
 
 #include "foam_fixtures.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/mesh/quality.hpp"

@@ -14,7 +14,7 @@
 
 #include "allocation_watch.hpp"
 #include "foam_fixtures.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "read_error.hpp"

@@ -8,7 +8,7 @@
 
 #include "read_error.hpp"
 #include "foam_fixtures.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hybrid_meshes.hpp"

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "foam_fixtures.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "test_support.hpp"

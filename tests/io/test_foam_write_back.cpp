@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "foam_fixtures.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "test_support.hpp"

@@ -17,7 +17,7 @@
 
 #include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/mesh/validate.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "test_support.hpp"
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <string_view>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "test_support.hpp"

@@ -9,7 +9,7 @@
 #include <array>
 #include <string>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/output_folder.hpp"
 #include "test_support.hpp"

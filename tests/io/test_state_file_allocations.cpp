@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "allocation_watch.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "test_support.hpp"
 

@@ -14,7 +14,7 @@
 #include <tuple>
 #include <vector>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "hotmesh/io/restart_file.hpp"
 #include "test_support.hpp"

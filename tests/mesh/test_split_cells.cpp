@@ -7,7 +7,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/validate.hpp"

@@ -7,7 +7,7 @@
 
 #include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/mesh/validate.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::mesh {

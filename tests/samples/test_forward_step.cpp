@@ -21,7 +21,7 @@
 
 #include "../geometry/curve_fixtures.hpp"
 #include "calculix_runs.hpp"
-#include "hotmesh/geometry/vec2.hpp"
+#include "hotmesh/core/vec2.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "run_command.hpp"

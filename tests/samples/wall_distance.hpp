@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "hotmesh/mesh/mesh.hpp"
 

@@ -12,7 +12,7 @@
 
 #include <fmt/format.h>
 
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
 

@@ -17,8 +17,8 @@
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/boundary_shape.hpp"
-#include "hotmesh/geometry/enum_names.hpp"
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/enum_names.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::deform {
 

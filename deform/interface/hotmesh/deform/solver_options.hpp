@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <string_view>
 
-#include "hotmesh/geometry/enum_names.hpp"
+#include "hotmesh/core/enum_names.hpp"
 #include "hotmesh/mesh/solver_quality.hpp"
 
 namespace hotmesh::deform {

@@ -2,7 +2,7 @@
 // Axisymmetric patches (the paper's §4.2, Fig. 4) are handled in the meridional plane (r, z).
 #pragma once
 
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::geometry {
 

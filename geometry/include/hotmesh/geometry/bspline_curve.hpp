@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "hotmesh/geometry/vec2.hpp"
+#include "hotmesh/core/vec2.hpp"
 
 namespace hotmesh::geometry {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "hotmesh/geometry/parametric_surface.hpp"
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::geometry {
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "hotmesh/geometry/bspline_surface.hpp"
-#include "hotmesh/geometry/vec2.hpp"
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec2.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::geometry {
 

@@ -30,7 +30,7 @@
 #include "hotmesh/geometry/bspline_curve.hpp"
 #include "hotmesh/geometry/bspline_surface.hpp"
 #include "hotmesh/geometry/cad_face.hpp"
-#include "hotmesh/geometry/enum_names.hpp"
+#include "hotmesh/core/enum_names.hpp"
 
 namespace hotmesh::geometry {
 

@@ -17,7 +17,7 @@
 
 #include "hotmesh/geometry/boundary_shape.hpp"
 #include "hotmesh/geometry/bspline_curve.hpp"
-#include "hotmesh/geometry/enum_names.hpp"
+#include "hotmesh/core/enum_names.hpp"
 
 namespace hotmesh::geometry {
 

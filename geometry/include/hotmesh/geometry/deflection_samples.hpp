@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::geometry {
 

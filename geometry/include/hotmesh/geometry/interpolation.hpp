@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "hotmesh/geometry/bspline_curve.hpp"
-#include "hotmesh/geometry/vec2.hpp"
+#include "hotmesh/core/vec2.hpp"
 
 namespace hotmesh::geometry {
 

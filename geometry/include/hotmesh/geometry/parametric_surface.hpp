@@ -4,7 +4,7 @@
 // S(u, v) + d(u, v) and any analytic surface give the same struct, so one projector serves all.
 #pragma once
 
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::geometry {
 

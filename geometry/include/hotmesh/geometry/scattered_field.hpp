@@ -35,7 +35,7 @@
 #include <memory>
 #include <vector>
 
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::geometry {
 

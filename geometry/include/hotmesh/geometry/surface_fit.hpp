@@ -17,7 +17,7 @@
 #include "hotmesh/geometry/bspline_surface.hpp"
 #include "hotmesh/geometry/parametric_surface.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::geometry {
 

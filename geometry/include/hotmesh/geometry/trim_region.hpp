@@ -23,7 +23,7 @@
 
 #include "hotmesh/geometry/cad_face.hpp"
 #include "hotmesh/geometry/parametric_surface.hpp"
-#include "hotmesh/geometry/vec2.hpp"
+#include "hotmesh/core/vec2.hpp"
 
 namespace hotmesh::geometry {
 

@@ -57,7 +57,7 @@
 
 #include "hotmesh/geometry/axis.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::geometry {
 

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "hotmesh/geometry/deflection_samples.hpp"
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::io {
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "hotmesh/mesh/element.hpp"
-#include "hotmesh/geometry/vec3.hpp"
+#include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::mesh {
 

@@ -1,4 +1,4 @@
-// hotmesh geometry: a plain 3-vector of doubles, the coordinate type of every module.
+// hotmesh core: a plain 3-vector of doubles, the coordinate type of every module.
 // Laid out as three contiguous doubles so arrays of Vec3 can be viewed as flat double arrays.
 #pragma once
 

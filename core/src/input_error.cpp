@@ -1,5 +1,5 @@
 // hotmesh: user errors shown safely, and what makes a path unreadable as an input file.
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 
 #include <algorithm>
 #include <system_error>

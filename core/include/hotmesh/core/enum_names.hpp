@@ -1,4 +1,4 @@
-// hotmesh geometry: the names of an enum's values in one table. to_string, the parsers of the
+// hotmesh core: the names of an enum's values in one table. to_string, the parsers of the
 // case file, restart files and the service's requests all read the table, so a name cannot
 // drift from its value and no value is tied to a name by its position in a list.
 #pragma once

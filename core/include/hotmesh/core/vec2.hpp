@@ -1,4 +1,4 @@
-// hotmesh geometry: a plain 2-vector of doubles, the coordinate type of curves in a plane:
+// hotmesh core: a plain 2-vector of doubles, the coordinate type of curves in a plane:
 // (x, y) for 2D cases, (r, z) in the meridional plane of an axisymmetric boundary.
 #pragma once
 

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "hotmesh/geometry/input_error.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh {
