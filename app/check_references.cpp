@@ -9,13 +9,13 @@
 #include <string_view>
 #include <utility>
 
-#include "curve_fit.hpp"
-#include "faces_mode.hpp"
+#include "hotmesh/setup/curve_fit.hpp"
+#include "hotmesh/setup/faces_mode.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/surface_distance.hpp"
 #include "hotmesh/geometry/surface_shape.hpp"
-#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 
 namespace hotmesh::app {
@@ -82,7 +82,7 @@ PatchReference single(std::unique_ptr<ReferenceShape> shape) {
   return reference;
 }
 
-std::shared_ptr<const geometry::BoundaryShape> shape_of(const CurveRun& run) {
+std::shared_ptr<const geometry::BoundaryShape> shape_of(const setup::CurveRun& run) {
   if (run.axis) return std::make_shared<geometry::RevolvedShape>(run.fit.curve, *run.axis);
   return std::make_shared<geometry::PlanarCurveShape>(run.fit.curve);
 }
@@ -122,19 +122,19 @@ std::vector<geometry::CadFace> cad_faces(const geometry::CadModel& cad, const st
 
 /// Why faces the check measures as surfaces are no surface of revolution, for reports; empty
 /// when --mode surface said so.
-std::string surface_reason(const FacesMode& chosen) {
+std::string surface_reason(const setup::FacesMode& chosen) {
   return chosen.reason.empty() ? std::string() : " (not one surface of revolution: " + chosen.reason + ")";
 }
 
 /// The faces as --mode and the table ask (faces_mode.hpp): a meridional table makes the wall
 /// meridional under auto, as in hotmesh deform. Throws hotmesh::InputError naming --mode when
 /// meridional is asked and the faces are not surfaces of revolution about one axis.
-FacesMode faces_mode(const PatchCheckSpec& spec, const geometry::CadModel& cad, const ReferenceOptions& options,
+setup::FacesMode faces_mode(const PatchCheckSpec& spec, const geometry::CadModel& cad, const ReferenceOptions& options,
                      bool meridional_table) {
   const io::WallMode asked =
       meridional_table && options.mode == io::WallMode::automatic ? io::WallMode::meridional : options.mode;
   try {
-    return choose_faces_mode(cad, spec.faces, options.axis, asked);
+    return setup::choose_faces_mode(cad, spec.faces, options.axis, asked);
   } catch (const InputError& e) {
     if (options.mode != io::WallMode::meridional) throw;
     throw InputError(fmt::format("--mode meridional: {}", e.what()));
@@ -163,8 +163,8 @@ PatchReference plane_cad_reference(const PatchCheckSpec& spec, const geometry::C
         std::make_shared<geometry::PlanarCurveShape>(geometry::DeflectedCurve(curve)), 1.0, what));
   }
   const geometry::DeflectionSamples table = io::read_deflection_csv(*spec.deflection);
-  const CurveRun run =
-      fit_on_plane_cad_curve(curve, table, options.axis, options.reconstruction, options.unit, cad.path().string());
+  const setup::CurveRun run =
+      setup::fit_on_plane_cad_curve(curve, table, options.axis, options.reconstruction, options.unit, cad.path().string());
   return single(std::make_unique<ShapeReference>(
       shape_of(run), 1.0,
       fmt::format("{}, deflected by {} (eq. 21, degree {})", what, spec.deflection->string(), run.fit.report.degree)));
@@ -175,7 +175,7 @@ PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* c
   if (mesh.dimension == 2 && !spec.faces.empty()) return plane_cad_reference(spec, *cad, options);
   const std::string faces = face_text(spec.faces);
   if (!spec.deflection) {
-    const FacesMode chosen = faces_mode(spec, *cad, options, false);
+    const setup::FacesMode chosen = faces_mode(spec, *cad, options, false);
     if (chosen.mode == io::WallMode::meridional) return revolved_faces(spec, chosen.profiles);
     return single(std::make_unique<FaceReference>(cad_faces(*cad, spec.faces),
                                                   fmt::format("CAD {}: their surfaces{}", faces, surface_reason(chosen))));
@@ -184,11 +184,11 @@ PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* c
   const geometry::DeflectionSamples table = io::read_deflection_csv(*spec.deflection);
   const std::string source = spec.deflection->string();
   if (!spec.faces.empty()) {
-    require_cad_frame(table);
+    setup::require_cad_frame(table);
     if (table.frame == geometry::SampleFrame::meridional && !options.axis) {
       throw InputError::in(source, "meridional (r, z) nodes need --axis: z is measured from the axis origin");
     }
-    FacesMode chosen = faces_mode(spec, *cad, options, table.frame == geometry::SampleFrame::meridional);
+    setup::FacesMode chosen = faces_mode(spec, *cad, options, table.frame == geometry::SampleFrame::meridional);
     if (chosen.mode == io::WallMode::surface) {  // as hotmesh deform: d(t, s) on each face, displacement form
       geometry::ReconstructionOptions fit = options.reconstruction;
       fit.form = geometry::DeflectionForm::displacement;
@@ -202,7 +202,7 @@ PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* c
     const geometry::MeridionalCurve curve = chosen.profiles.size() == 1
                                                 ? std::move(chosen.profiles.front())
                                                 : cad->meridional_curve(spec.faces, {.axis = options.axis});
-    const CurveRun run = fit_on_cad_curve(curve, table, options.reconstruction, options.unit, cad->path().string());
+    const setup::CurveRun run = setup::fit_on_cad_curve(curve, table, options.reconstruction, options.unit, cad->path().string());
     return single(std::make_unique<ShapeReference>(
         shape_of(run), 1.0,
         fmt::format("CAD {} deflected by {} (eq. 21, degree {}) about {}", faces, source, run.fit.report.degree,
@@ -214,7 +214,7 @@ PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* c
   if (mesh.dimension == 3 && table.frame == geometry::SampleFrame::meridional && !options.axis) {
     throw InputError::in(source, "meridional (r, z) nodes need --axis: the mesh is measured about it");
   }
-  const CurveRun run = fit_without_cad(table, options.axis, options.reconstruction, options.unit, "--axis");
+  const setup::CurveRun run = setup::fit_without_cad(table, options.axis, options.reconstruction, options.unit, "--axis");
   const std::string where = run.axis ? " about " + axis_text(*run.axis) : std::string(" in the x-y plane");
   return single(std::make_unique<ShapeReference>(
       shape_of(run), 1.0,
@@ -223,8 +223,8 @@ PatchReference reference(const PatchCheckSpec& spec, const geometry::CadModel* c
 }
 
 /// What hotmesh deform makes of a case patch's wall, for reports; paths relative to the case.
-/// `kind` is how io::set_up_case built it (a patch without table: a curve).
-std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, io::WallKind kind, CaseStage stage,
+/// `kind` is how setup::set_up_case built it (a patch without table: a curve).
+std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, setup::WallKind kind, CaseStage stage,
                            int dimension) {
   const auto name = [&](const std::filesystem::path& file) {
     return file.lexically_relative(c.file.parent_path()).string();
@@ -235,13 +235,13 @@ std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, io::Wal
     what = "its own undeformed nodes (a sliding wall without table keeps its shape)";
   } else {
     const io::DeflectionSpec& d = *spec.deflection;
-    if (kind == io::WallKind::faces) {  // always in displacement form (io::set_up_case)
+    if (kind == setup::WallKind::faces) {  // always in displacement form (setup::set_up_case)
       what = fmt::format("CAD {} of {}{}", face_text(d.faces), name(*c.cad),
                          deflected ? fmt::format(", deflected by {} (a field d(t, s) on each face, degree {}, "
                                                  "displacement form)",
                                                  name(d.file), d.degree)
                                    : std::string());
-    } else if (kind == io::WallKind::scattered) {
+    } else if (kind == setup::WallKind::scattered) {
       what = deflected ? fmt::format("the table {} interpolated over the wall (partition-of-unity RBF)", name(d.file))
                        : fmt::format("its own undeformed nodes (no surface: the table {} moves them, interpolated "
                                      "over the wall)",
@@ -260,7 +260,7 @@ std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, io::Wal
   // A curve lies in the x-y plane (2D; with an axis, the (z, r) plane about it) or is the
   // meridional curve about the case's axis (3D).
   std::string where;
-  if (kind == io::WallKind::curve) {
+  if (kind == setup::WallKind::curve) {
     if (dimension == 2) {
       where = c.axis ? " in the x-y plane, (z, r) about " + axis_text(*c.axis) : std::string(" in the x-y plane");
     } else if (c.axis) {
@@ -290,7 +290,7 @@ PatchReference make_patch_reference(const PatchCheckSpec& spec, const geometry::
 
 std::vector<CasePatchReference> case_references(const io::Case& c, const mesh::Mesh& case_mesh, CaseStage stage) {
   io::check_case_against_mesh(c, case_mesh);
-  const io::CaseSetup setup = io::set_up_case(c, case_mesh);
+  const setup::CaseSetup setup = setup::set_up_case(c, case_mesh);
   std::vector<CasePatchReference> references;
   for (std::size_t i = 0; i < setup.motions.size(); ++i) {
     const deform::PatchMotion& motion = setup.motions[i];
@@ -299,8 +299,8 @@ std::vector<CasePatchReference> case_references(const io::Case& c, const mesh::M
     // How io built the wall: set_up_case reports it for every patch with a table; without one
     // the wall is a curve.
     const auto built = std::find_if(setup.shapes.begin(), setup.shapes.end(),
-                                    [&](const io::ShapeReport& r) { return r.patch == motion.patch; });
-    const io::WallKind kind = built != setup.shapes.end() ? built->kind : io::WallKind::curve;
+                                    [&](const setup::ShapeReport& r) { return r.patch == motion.patch; });
+    const setup::WallKind kind = built != setup.shapes.end() ? built->kind : setup::WallKind::curve;
     references.push_back({motion.patch, single(std::make_unique<ShapeReference>(
                                             motion.shape, stage == CaseStage::deflected ? 1.0 : 0.0,
                                             case_wall_text(c, spec, kind, stage, case_mesh.dimension)))});

@@ -10,7 +10,7 @@
 // (section 4.2, eq. 21), on CAD faces that are no surface of revolution as a field d(t, s) on
 // each face, or, without faces, on the curve the nodes define; the mesh is then the deformed
 // one. With a case file the shapes are those hotmesh deform builds for the case
-// (io::set_up_case), undeformed or deflected: curves, CAD faces deflected by a field d(t, s)
+// (setup::set_up_case), undeformed or deflected: curves, CAD faces deflected by a field d(t, s)
 // each, or a table interpolated over a wall without CAD faces. Shapes that are curves (in the
 // x-y plane, or meridional curves of surfaces of revolution) and walls on CAD faces, deflected
 // or not, also measure the patch's faces, both ways (wall_deviation_report.hpp); the table

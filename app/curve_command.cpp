@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "commands.hpp"
-#include "curve_fit.hpp"
+#include "hotmesh/setup/curve_fit.hpp"
 #include "curve_outputs.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
@@ -42,10 +42,10 @@ std::optional<geometry::Axis> axis_option(const std::vector<double>& values) {
 }
 
 /// With CAD faces: their meridional curve r(t), the nodes in (r, z) about its axis.
-CurveRun with_cad(const Options& o, const geometry::DeflectionSamples& samples,
+setup::CurveRun with_cad(const Options& o, const geometry::DeflectionSamples& samples,
                   const geometry::ReconstructionOptions& reconstruction) {
   if (o.faces.empty()) throw InputError("--cad needs --faces: the ids of the boundary's faces (see 'hotmesh cad')");
-  require_cad_frame(samples);
+  setup::require_cad_frame(samples);
   const std::optional<geometry::Axis> axis = axis_option(o.axis);
   if (samples.frame == geometry::SampleFrame::meridional && !axis) {
     throw InputError::in(samples.source, "meridional (r, z) nodes need --axis: z is measured from the axis origin");
@@ -58,14 +58,14 @@ CurveRun with_cad(const Options& o, const geometry::DeflectionSamples& samples,
   const geometry::MeridionalCurve curve = model.meridional_curve(o.faces, meridional);
   spdlog::info("{}: meridional curve of faces {} (degree {}, {} poles)", o.cad, fmt::join(curve.faces, ", "),
                curve.curve.degree(), curve.curve.poles().size());
-  return fit_on_cad_curve(curve, samples, reconstruction, read.unit, o.cad);
+  return setup::fit_on_cad_curve(curve, samples, reconstruction, read.unit, o.cad);
 }
 
 /// Without CAD: the nodes define the curve, in (x, y) (2D) or (r, z).
-CurveRun without_cad(const Options& o, const geometry::DeflectionSamples& samples,
+setup::CurveRun without_cad(const Options& o, const geometry::DeflectionSamples& samples,
                      const geometry::ReconstructionOptions& reconstruction) {
   if (!o.faces.empty()) throw InputError("--faces needs --cad");
-  return fit_without_cad(samples, axis_option(o.axis), reconstruction, parse_unit_option(o.fit.unit), "--axis");
+  return setup::fit_without_cad(samples, axis_option(o.axis), reconstruction, parse_unit_option(o.fit.unit), "--axis");
 }
 
 int run_curve(const Options& o) {
@@ -73,7 +73,7 @@ int run_curve(const Options& o) {
   reconstruction.form = geometry::kDeflectionFormNames.parse(o.form).value();  // CLI::IsMember checked it
 
   const geometry::DeflectionSamples samples = io::read_deflection_csv(o.fit.fem);
-  const CurveRun run = o.cad.empty() ? without_cad(o, samples, reconstruction) : with_cad(o, samples, reconstruction);
+  const setup::CurveRun run = o.cad.empty() ? without_cad(o, samples, reconstruction) : with_cad(o, samples, reconstruction);
 
   // The folder is made only once the inputs have been read and the curve built.
   std::vector<std::filesystem::path> inputs{o.fit.fem};

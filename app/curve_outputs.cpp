@@ -30,7 +30,7 @@ double nice_below(double value) {
   return decade;
 }
 
-double amplification_for(const CurveRun& run, double size) {
+double amplification_for(const setup::CurveRun& run, double size) {
   double largest = 0.0;
   for (const Vec2& d : run.nodes.deflections) largest = std::max(largest, geometry::norm(d));
   if (!(largest > 0.0) || !(size > 0.0)) return 1.0;
@@ -54,7 +54,7 @@ io::PlotPoint plot_point(const Vec2& p, bool meridional) {
   return meridional ? io::PlotPoint{p.y, p.x} : io::PlotPoint{p.x, p.y};
 }
 
-io::Figure picture(const CurveRun& run, const std::vector<double>& t, double amplification) {
+io::Figure picture(const setup::CurveRun& run, const std::vector<double>& t, double amplification) {
   const bool meridional = run.axis.has_value();
   const DeflectedCurve& curve = run.fit.curve;
   io::FigureLayout layout;
@@ -117,7 +117,7 @@ std::string curve_csv(const DeflectedCurve& curve, const std::vector<double>& t,
   return text;
 }
 
-geometry::CadExport curve_export(const CurveRun& run) {
+geometry::CadExport curve_export(const setup::CurveRun& run) {
   const DeflectedCurve& curve = run.fit.curve;
   geometry::CadExport content;
   content.unit = run.unit;
@@ -127,12 +127,12 @@ geometry::CadExport curve_export(const CurveRun& run) {
   return content;
 }
 
-double automatic_amplification(const CurveRun& run) {
+double automatic_amplification(const setup::CurveRun& run) {
   const DeflectedCurve& curve = run.fit.curve;
   return amplification_for(run, curve_size(curve, sample_parameters(curve, 2000)));
 }
 
-nlohmann::json curve_summary(const CurveRun& run, double amplification) {
+nlohmann::json curve_summary(const setup::CurveRun& run, double amplification) {
   const geometry::ReconstructionReport& report = run.fit.report;
   nlohmann::json rejected = nlohmann::json::array();
   for (const auto& node : report.rejected_nodes) {
@@ -161,7 +161,7 @@ nlohmann::json curve_summary(const CurveRun& run, double amplification) {
           {"amplification", amplification}};
 }
 
-std::string write_curve_outputs(const std::filesystem::path& folder, const CurveRun& run,
+std::string write_curve_outputs(const std::filesystem::path& folder, const setup::CurveRun& run,
                                 const CurveOutputOptions& options) {
   // Everything is computed first, so a failure leaves no partial outputs behind.
   const DeflectedCurve& curve = run.fit.curve;

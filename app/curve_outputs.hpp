@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "curve_fit.hpp"
+#include "hotmesh/setup/curve_fit.hpp"
 #include "hotmesh/geometry/cad_export.hpp"
 
 namespace hotmesh::app {
@@ -33,19 +33,19 @@ std::string curve_csv(const geometry::DeflectedCurve& curve, const std::vector<d
 
 /// Both curves ("undeformed", "deformed") as exact B-splines in the plane of the run: the
 /// meridional plane of the axis (theta = 0), or the x-y plane for 2D curves.
-geometry::CadExport curve_export(const CurveRun& run);
+geometry::CadExport curve_export(const setup::CurveRun& run);
 
 /// A scale that draws the largest deflection at about 10 % of the curve's size (1, 2 or 5
 /// times a power of ten, at least 1).
-double automatic_amplification(const CurveRun& run);
+double automatic_amplification(const setup::CurveRun& run);
 
 /// The fit in numbers, as summary.json: nodes, degree, form, ranges, distances, residual,
 /// rejected nodes, CAD faces, axis, amplification.
-nlohmann::json curve_summary(const CurveRun& run, double amplification);
+nlohmann::json curve_summary(const setup::CurveRun& run, double amplification);
 
 /// Writes undeformed.csv, deformed.csv, curves.step, curves.igs, plot.svg and summary.json
 /// into `folder` (which exists), each atomically. Returns the summary.
-std::string write_curve_outputs(const std::filesystem::path& folder, const CurveRun& run,
+std::string write_curve_outputs(const std::filesystem::path& folder, const setup::CurveRun& run,
                                 const CurveOutputOptions& options);
 
 }  // namespace hotmesh::app

@@ -33,7 +33,7 @@
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/case_file.hpp"
-#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/mesh_files.hpp"
@@ -244,7 +244,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
   // Every file the case names is checked before any work: the CAD file too, whether or not a
   // patch takes faces from it.
   state.phase = "reading the CAD file";
-  in.cad = io::read_case_cad(c);
+  in.cad = setup::read_case_cad(c);
   state.phase = "reading the mesh";
   in.loaded = io::read_mesh(c.mesh);
   const mesh::Mesh& mesh = in.loaded.mesh;
@@ -266,7 +266,7 @@ void read_inputs(const Options& options, RunState& state, RunInputs& in) {
 }
 
 /// 3. The motion, increment by increment, with a checkpoint after each.
-deform::MotionResult move_the_mesh(const Options& options, RunState& state, const RunInputs& in, const io::CaseSetup& setup,
+deform::MotionResult move_the_mesh(const Options& options, RunState& state, const RunInputs& in, const setup::CaseSetup& setup,
                                    CheckpointWriter& checkpoints, SeriesWriter* series, Clock::time_point start) {
   const io::Case& c = in.c;
   const mesh::Mesh& mesh = in.loaded.mesh;
@@ -315,7 +315,7 @@ deform::MotionResult move_the_mesh(const Options& options, RunState& state, cons
 
 /// 4. Outputs, each written atomically; on failure the last valid mesh. Every rank holds the
 /// same result: rank 0 writes it. The exit code.
-int write_run_outputs(const RunInputs& in, const io::CaseSetup& setup, const deform::MotionResult& result,
+int write_run_outputs(const RunInputs& in, const setup::CaseSetup& setup, const deform::MotionResult& result,
                       const Options& options, CheckpointWriter& checkpoints, RunTimings& timings,
                       const io::CheckpointInfo* resumed_from, Clock::time_point start) {
   const io::Case& c = in.c;
@@ -390,7 +390,7 @@ int run_deform(const Options& options, RunState& state) {
   // 2. The deflected shapes, from the FEM tables (section 4.2).
   state.phase = "building the deflected shapes";
   t = Clock::now();
-  const io::CaseSetup setup = io::set_up_case(in.c, in.loaded.mesh, in.previous ? &*in.previous : nullptr,
+  const setup::CaseSetup setup = setup::set_up_case(in.c, in.loaded.mesh, in.previous ? &*in.previous : nullptr,
                                               in.cad ? &*in.cad : nullptr);
   for (const auto& s : setup.shapes) {
     spdlog::info("patch {}: deflected shape through {} FEM nodes (degree {})", s.patch, s.reconstruction.used_nodes,

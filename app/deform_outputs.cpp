@@ -44,7 +44,7 @@ io::VtuFields deform_fields(io::VtuFields fields, const mesh::Mesh& mesh, const 
 /// FEM tables drawn in blue over it (as in the paper's figures).
 void picture(const std::filesystem::path& path, const std::string& title, const mesh::Mesh& mesh,
              const std::vector<geometry::Vec3>& points, const std::vector<double>& quality,
-             const io::CaseSetup& setup, const io::PictureView* view) {
+             const setup::CaseSetup& setup, const io::PictureView* view) {
   io::Figure figure({.width = 1400, .height = 900, .title = title, .x_label = "x", .y_label = "y"});
   io::draw_mesh(figure, mesh, points, {.edges = {io::colors::black, view ? 0.8 : 0.4}, .quality = quality});
   for (const auto& shape : setup.shapes) {
@@ -96,7 +96,7 @@ std::string failure_text(const deform::MotionFailure& failure) {
 }
 
 RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
-                         const io::CaseSetup& setup, const deform::MotionResult& result,
+                         const setup::CaseSetup& setup, const deform::MotionResult& result,
                          const mesh::SolverQuality& solver, bool binary_msh, const io::WriteBackOptions& write_back) {
   RunOutputs out;
   const mesh::Mesh& mesh = loaded.mesh;
@@ -161,7 +161,7 @@ json calculix_json(const io::CalculixNote& note) {
   return j;
 }
 
-json deflections_json(const io::Case& c, const io::CaseSetup& setup, double scale) {
+json deflections_json(const io::Case& c, const setup::CaseSetup& setup, double scale) {
   json deflections = json::array();
   for (const auto& s : setup.shapes) {
     const auto& r = s.reconstruction;
@@ -173,7 +173,7 @@ json deflections_json(const io::Case& c, const io::CaseSetup& setup, double scal
                     {"form", geometry::to_string(r.form)}};
     put_length(deflection, "max_node_distance_to_cad", r.max_node_distance_to_cad, scale);
     put_length(deflection, "max_node_residual", r.max_node_residual, scale);
-    deflection["wall"] = io::kWallKindNames.name(s.kind);
+    deflection["wall"] = setup::kWallKindNames.name(s.kind);
     if (s.faces) {
       put_length(deflection, "max_edge_gap", s.faces->max_edge_gap, scale);
       deflection["shared_edges"] = s.faces->shared_edges;
@@ -276,7 +276,7 @@ void put_increments(json& j, const deform::MotionResult& result) {
 /// The corners of the sliding walls and the nodes that hold them (the corner pass).
 /// The CAD face numbers of a crease of a wall made of faces (WallFeature::faces holds the
 /// faces' indices in the wall's shape).
-json crease_faces(const io::CaseSetup& setup, const deform::WallFeature& f) {
+json crease_faces(const setup::CaseSetup& setup, const deform::WallFeature& f) {
   json faces = json::array();
   const auto motion = std::find_if(setup.motions.begin(), setup.motions.end(),
                                    [&](const deform::PatchMotion& m) { return m.patch == f.patch; });
@@ -289,7 +289,7 @@ json crease_faces(const io::CaseSetup& setup, const deform::WallFeature& f) {
   return faces;
 }
 
-json features_json(const mesh::Mesh& mesh, const io::CaseSetup& setup, const deform::MotionResult& result) {
+json features_json(const mesh::Mesh& mesh, const setup::CaseSetup& setup, const deform::MotionResult& result) {
   json features = json::array();
   for (const deform::WallFeature& f : result.features) {
     json nodes = json::array();
@@ -312,7 +312,7 @@ json features_json(const mesh::Mesh& mesh, const io::CaseSetup& setup, const def
 }
 
 /// The motion's results: stage, node counts, memory, the lengths and the quality.
-void put_motion(json& j, const mesh::Mesh& mesh, const io::CaseSetup& setup, const deform::MotionResult& result,
+void put_motion(json& j, const mesh::Mesh& mesh, const setup::CaseSetup& setup, const deform::MotionResult& result,
                 const mesh::SolverQuality& solver) {
   const double scale = result.length_scale;
   j["stage_reached"] = result.lambda_reached;
@@ -360,7 +360,7 @@ json seconds_json(const RunTimings& timings, const deform::MotionTimings& m) {
 
 }  // namespace
 
-deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh& mesh, const io::CaseSetup& setup) {
+deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh& mesh, const setup::CaseSetup& setup) {
   if (c.solver.linear != deform::LinearSolverKind::automatic) return {c.solver.linear, "the case file"};
   return deform::choose_linear_solver(mesh, setup.motions, parallel::processes().count);
 }
@@ -369,7 +369,7 @@ namespace {
 
 /// Each patch's role; for a prescribed or sliding patch, how far its nodes lay from its
 /// undeformed wall before the motion put them on it.
-json patches_json(const mesh::Mesh& mesh, const io::CaseSetup& setup, const deform::MotionResult& result) {
+json patches_json(const mesh::Mesh& mesh, const setup::CaseSetup& setup, const deform::MotionResult& result) {
   json patches = json::array();
   for (const auto& m : setup.motions) {
     json patch{{"name", m.patch}, {"role", deform::to_string(m.role)}};
@@ -401,7 +401,7 @@ json failure_json(const mesh::Mesh& mesh, const deform::MotionResult& result) {
 }  // namespace
 
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
-                  const io::CaseSetup& setup, const deform::MotionResult& result, const mesh::SolverQuality& solver,
+                  const setup::CaseSetup& setup, const deform::MotionResult& result, const mesh::SolverQuality& solver,
                   const RunTimings& timings, const RunThreads& threads, RunOutputs& outputs,
                   const io::CheckpointInfo* resumed) {
   json j;

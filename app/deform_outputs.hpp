@@ -10,7 +10,7 @@
 
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/io/case_file.hpp"
-#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/parallel/threads.hpp"
@@ -52,21 +52,21 @@ std::string failure_text(const deform::MotionFailure& failure);
 /// the mesh written back in it (`write_back`). `solver`: the flow solver's measures of the
 /// result's mesh.
 RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
-                         const io::CaseSetup& setup, const deform::MotionResult& result,
+                         const setup::CaseSetup& setup, const deform::MotionResult& result,
                          const mesh::SolverQuality& solver, bool binary_msh, const io::WriteBackOptions& write_back);
 
 /// report.json: status, increments with Newton and PCG iterations, quality, times per phase;
 /// for a resumed run (`resumed`: the checkpoint it continued from) every increment, those of
 /// the interrupted run included.
 void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
-                  const io::CaseSetup& setup, const deform::MotionResult& result, const mesh::SolverQuality& solver,
+                  const setup::CaseSetup& setup, const deform::MotionResult& result, const mesh::SolverQuality& solver,
                   const RunTimings& timings, const RunThreads& threads, RunOutputs& outputs,
                   const io::CheckpointInfo* resumed = nullptr);
 
 /// The linear solver a run of case `c` on `mesh` with `setup` uses, and why: the case file's, or
 /// what `linear: auto` picks for the mesh, its sliding walls and the processes
 /// (deform::choose_linear_solver).
-deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh& mesh, const io::CaseSetup& setup);
+deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh& mesh, const setup::CaseSetup& setup);
 
 /// The process's peak resident memory (VmHWM), or 0 where /proc does not tell.
 std::uint64_t peak_memory_bytes();

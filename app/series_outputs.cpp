@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "hotmesh/io/atomic_file.hpp"
-#include "hotmesh/io/deflected_walls.hpp"
+#include "hotmesh/setup/deflected_walls.hpp"
 #include "hotmesh/io/vtu.hpp"
 
 namespace hotmesh::app {
@@ -79,7 +79,7 @@ void SeriesWriter::add(double time, double lambda, std::span<const geometry::Vec
   }
   fields.point_data.push_back({"displacement", 3, std::move(displacement)});
   io::write_vtu(folder_ / step.mesh_file, mesh_, points, fields);
-  io::write_vtp(folder_ / step.walls_file, io::deflected_walls(mesh_, motions_, lambda));
+  io::write_vtp(folder_ / step.walls_file, setup::deflected_walls(mesh_, motions_, lambda));
   steps_.push_back(std::move(step));
   write_collections();
 }

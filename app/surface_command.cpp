@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "face_fit.hpp"
+#include "hotmesh/setup/face_fit.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "node_fit.hpp"
 #include "surface_outputs.hpp"
@@ -30,7 +30,7 @@ int run_surface(const Options& o) {
   read.unit = parse_unit_option(o.fit.unit);
   const geometry::DeflectionSamples samples = io::read_deflection_csv(o.fit.fem);
   const geometry::CadModel model = geometry::CadModel::read(o.cad, read);
-  const SurfaceRun run = fit_on_cad_faces(model, o.faces, samples, reconstruction_options(o.fit));
+  const setup::SurfaceRun run = setup::fit_on_cad_faces(model, o.faces, samples, reconstruction_options(o.fit));
 
   // The folder is made only once the inputs have been read and the fields fitted.
   const std::vector<std::filesystem::path> inputs{o.fit.fem, o.cad};

@@ -58,7 +58,7 @@ struct Panel {
 
 }  // namespace
 
-std::vector<double> placement_residuals(const SurfaceRun& run) {
+std::vector<double> placement_residuals(const setup::SurfaceRun& run) {
   std::vector<double> residuals;
   residuals.reserve(run.fit.placements.size());
   for (const geometry::NodePlacement& p : run.fit.placements) {
@@ -67,7 +67,7 @@ std::vector<double> placement_residuals(const SurfaceRun& run) {
   return residuals;
 }
 
-std::vector<geometry::DeformedFace> deformed_faces(const SurfaceRun& run, const geometry::DeformedFaceOptions& options) {
+std::vector<geometry::DeformedFace> deformed_faces(const setup::SurfaceRun& run, const geometry::DeformedFaceOptions& options) {
   std::vector<geometry::DeformedFace> deformed;
   for (std::size_t f = 0; f < run.faces.size(); ++f) {
     deformed.push_back(geometry::deformed_face(run.faces[f].surface, run.fit.fields[f], options));
@@ -75,7 +75,7 @@ std::vector<geometry::DeformedFace> deformed_faces(const SurfaceRun& run, const 
   return deformed;
 }
 
-geometry::CadExport surface_export(const SurfaceRun& run, std::span<const geometry::DeformedFace> deformed) {
+geometry::CadExport surface_export(const setup::SurfaceRun& run, std::span<const geometry::DeformedFace> deformed) {
   geometry::CadExport content;
   content.unit = run.unit;
   for (std::size_t f = 0; f < run.faces.size(); ++f) {
@@ -84,7 +84,7 @@ geometry::CadExport surface_export(const SurfaceRun& run, std::span<const geomet
   return content;
 }
 
-io::PolyData node_points(const SurfaceRun& run, std::span<const double> residuals) {
+io::PolyData node_points(const setup::SurfaceRun& run, std::span<const double> residuals) {
   const geometry::DeflectionSamples& samples = run.samples;
   io::PolyData data;
   std::vector<double> deflection, t, s, distance, residual;
@@ -130,7 +130,7 @@ io::PolyData node_points(const SurfaceRun& run, std::span<const double> residual
   return data;
 }
 
-io::PolyData face_grids(const SurfaceRun& run, std::size_t samples) {
+io::PolyData face_grids(const setup::SurfaceRun& run, std::size_t samples) {
   const std::size_t n = std::max<std::size_t>(samples, 1);
   io::PolyData data;
   std::vector<double> deflection, magnitude, t, s;
@@ -170,7 +170,7 @@ io::PolyData face_grids(const SurfaceRun& run, std::size_t samples) {
   return data;
 }
 
-io::Figure residual_picture(const SurfaceRun& run, std::span<const double> residuals) {
+io::Figure residual_picture(const setup::SurfaceRun& run, std::span<const double> residuals) {
   const std::size_t panels = run.faces.size();
   const auto columns = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(panels))));
   const std::size_t rows = (panels + columns - 1) / columns;
@@ -241,7 +241,7 @@ io::Figure residual_picture(const SurfaceRun& run, std::span<const double> resid
   return figure;
 }
 
-nlohmann::json surface_summary(const SurfaceRun& run, std::span<const geometry::DeformedFace> deformed) {
+nlohmann::json surface_summary(const setup::SurfaceRun& run, std::span<const geometry::DeformedFace> deformed) {
   const geometry::SurfaceReconstructionReport& report = run.fit.report;
   nlohmann::json rejected = nlohmann::json::array();
   for (const auto& node : report.rejected_nodes) rejected.push_back(dropped_node_json(node, run.samples.ids, run.samples.lines));
@@ -283,7 +283,7 @@ nlohmann::json surface_summary(const SurfaceRun& run, std::span<const geometry::
           {"max_node_residual", report.max_node_residual}};
 }
 
-nlohmann::json write_surface_outputs(const std::filesystem::path& folder, const SurfaceRun& run,
+nlohmann::json write_surface_outputs(const std::filesystem::path& folder, const setup::SurfaceRun& run,
                                      const SurfaceOutputOptions& options) {
   // Everything is computed first, so a failure leaves no partial outputs behind.
   const std::vector<geometry::DeformedFace> deformed = deformed_faces(run, options.deformed);

@@ -152,7 +152,7 @@ std::string wall_text(const WallCheck& wall) {
                      wall.mesh_to_shape.distance, wall.shape_to_mesh.distance);
 }
 
-json wall_deviations_json(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points, const io::CaseSetup& setup,
+json wall_deviations_json(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points, const setup::CaseSetup& setup,
                           double lambda, double length_scale) {
   json list = json::array();
   for (const deform::PatchMotion& motion : setup.motions) {

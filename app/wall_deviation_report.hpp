@@ -19,7 +19,7 @@
 
 #include "hotmesh/geometry/boundary_shape.hpp"
 #include "hotmesh/geometry/wall_deviation.hpp"
-#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/mesh/mesh.hpp"
 
 namespace hotmesh::app {
@@ -38,7 +38,7 @@ struct WallSide {
 
 /// The two-sided distance of a patch (or part of one) to its shape.
 struct WallCheck {
-  /// What the shape is: "curve", "faces" or "scattered" (io::WallKind's names), or "other".
+  /// What the shape is: "curve", "faces" or "scattered" (setup::WallKind's names), or "other".
   std::string shape = "curve";
   /// Why the faces were not measured (a wall without a surface); empty: measured.
   std::string not_measured;
@@ -83,6 +83,6 @@ std::string wall_text(const WallCheck& wall);
 /// `lambda` (1: the deflected shape; the stage reached for a failed run), or why it was not
 /// measured.
 nlohmann::json wall_deviations_json(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
-                                    const io::CaseSetup& setup, double lambda, double length_scale);
+                                    const setup::CaseSetup& setup, double lambda, double length_scale);
 
 }  // namespace hotmesh::app

@@ -30,7 +30,7 @@
 
 #include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/io/case_file.hpp"
-#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "machine_load.hpp"
 
@@ -62,7 +62,7 @@ struct Run {
   std::vector<std::string> notes;  ///< the motion's (icc going over to direct, ...)
 };
 
-Run run_case(const io::Case& base, const io::LoadedMesh& loaded, const io::CaseSetup& setup, const Solver& s) {
+Run run_case(const io::Case& base, const io::LoadedMesh& loaded, const setup::CaseSetup& setup, const Solver& s) {
   io::Case c = base;
   c.solver.linear = s.linear;
   c.solver.amg = s.amg;
@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
       const io::Case c = io::read_case(file);
       const io::LoadedMesh loaded = io::read_mesh(c.mesh);
       io::check_case_against_mesh(c, loaded.mesh);
-      const io::CaseSetup setup = io::set_up_case(c, loaded.mesh);
+      const setup::CaseSetup setup = setup::set_up_case(c, loaded.mesh);
       for (const Solver& s : solvers) {
         std::vector<Run> all;
         for (int k = 0; k < runs; ++k) {

@@ -33,7 +33,7 @@
 #include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/io/case_file.hpp"
-#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "machine_load.hpp"
 #include "timing.hpp"
@@ -69,7 +69,7 @@ Run run_case(const std::string& file) {
   io::check_case_against_mesh(c, loaded.mesh);
   r.read = seconds_since(start);
   auto t = Clock::now();
-  const io::CaseSetup setup = io::set_up_case(c, loaded.mesh);
+  const setup::CaseSetup setup = setup::set_up_case(c, loaded.mesh);
   r.shapes = seconds_since(t);
   const deform::MotionResult result = deform::move_mesh(loaded.mesh, setup.motions, c.material, c.solver);
   r.wall = seconds_since(start);

@@ -3,7 +3,7 @@
 // the state read (the deflection tables the file holds become curves).
 #include "fuzz_support.hpp"
 #include "hotmesh/core/input_error.hpp"
-#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/io/restart_file.hpp"
 #include "ramp2d_run.hpp"
 
@@ -19,7 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   try {
-    hotmesh::io::set_up_case(run.c, run.loaded.mesh, &state);
+    hotmesh::setup::set_up_case(run.c, run.loaded.mesh, &state);
   } catch (const hotmesh::InputError&) {
   }
   return 0;

@@ -28,7 +28,7 @@ Json curve_json(const geometry::BSplineCurve2d& exact, const geometry::Deflected
           {"samples", samples}};
 }
 
-Json node_fits_json(const CurveRun& run, const geometry::CurveProjector& undeformed) {
+Json node_fits_json(const setup::CurveRun& run, const geometry::CurveProjector& undeformed) {
   const geometry::CurveSamples& nodes = run.nodes;
   const geometry::DeflectedCurve& curve = run.fit.curve;
   std::set<std::size_t> rejected;

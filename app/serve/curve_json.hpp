@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "curve_fit.hpp"
+#include "hotmesh/setup/curve_fit.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
 #include "serve/json_fields.hpp"
 
@@ -20,6 +20,6 @@ Json curve_json(const geometry::BSplineCurve2d& exact, const geometry::Deflected
 /// "deflection", "parameter", "distance", "residual", "rejected"}. The residual is
 /// |c(t_j) - (Q_j + delta_j)| (form curve) or |D(t_j) - delta_j| (form displacement); it is null
 /// for nodes left out for their distance. `undeformed` projects onto r(t).
-Json node_fits_json(const CurveRun& run, const geometry::CurveProjector& undeformed);
+Json node_fits_json(const setup::CurveRun& run, const geometry::CurveProjector& undeformed);
 
 }  // namespace hotmesh::app::serve

@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "cad_json.hpp"
-#include "faces_mode.hpp"
+#include "hotmesh/setup/faces_mode.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "serve/service_state.hpp"
 
@@ -204,7 +204,7 @@ Json GeometryService::meridional(std::string_view model_id, const Json& request)
   } catch (const InputError& e) {
     throw ApiError::unprocessable(e.what());
   }
-  CurveRun run{{geometry::DeflectedCurve(curve->curve), {}}, {}, curve->axis, model->cad.unit(), curve->faces, model->name};
+  setup::CurveRun run{{geometry::DeflectedCurve(curve->curve), {}}, {}, curve->axis, model->cad.unit(), curve->faces, model->name};
   Json extra = {{"model", model->id}, {"face_breaks", curve->face_breaks}, {"tolerance", curve->tolerance}};
   return store_curve(*state_, std::move(run), false, samples, std::move(extra));
 }
@@ -220,10 +220,10 @@ Json GeometryService::faces_mode(std::string_view model_id, const Json& request)
     throw ApiError::bad_request(
         fmt::format("mode: expected \"auto\", \"meridional\" or \"surface\", got \"{}\"", asked_text));
   }
-  std::optional<FacesMode> chosen;
+  std::optional<setup::FacesMode> chosen;
   try {
     std::lock_guard lock(model->mutex);
-    chosen.emplace(choose_faces_mode(model->cad, faces, axis, *asked));
+    chosen.emplace(setup::choose_faces_mode(model->cad, faces, axis, *asked));
   } catch (const InputError& e) {  // meridional asked, and the faces turn about no one axis
     throw ApiError::unprocessable("mode meridional: " + replaced(e.what(), model->cad.path().string(), model->name));
   }

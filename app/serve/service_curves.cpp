@@ -22,7 +22,7 @@
 
 namespace hotmesh::app::serve {
 
-Json store_curve(GeometryService::State& state, CurveRun run, bool deflected, std::size_t samples, Json extra) {
+Json store_curve(GeometryService::State& state, setup::CurveRun run, bool deflected, std::size_t samples, Json extra) {
   const std::string id = state.curves.next_id();
   const geometry::DeflectedCurve& curve = run.fit.curve;
   auto projector = std::make_unique<geometry::CurveProjector>(curve);
@@ -121,7 +121,7 @@ Json GeometryService::create_curve(const Json& request) {
     throw ApiError::bad_request("unit: a CAD model's unit applies (load the model with another unit instead)");
   }
 
-  std::optional<CurveRun> run;
+  std::optional<setup::CurveRun> run;
   Json extra = Json::object();
   if (with_cad && request.contains("edges")) {
     const auto model = state_->models.get(string_field(request, "model"), "model");
@@ -133,7 +133,7 @@ Json GeometryService::create_curve(const Json& request) {
         std::lock_guard lock(model->mutex);
         curve.emplace(model->cad.planar_curve(edges));
       }
-      run.emplace(fit_on_plane_cad_curve(curve->curve, table, axis, options, model->cad.unit(), model->name));
+      run.emplace(setup::fit_on_plane_cad_curve(curve->curve, table, axis, options, model->cad.unit(), model->name));
       run->edges = curve->edges;
       extra = {{"model", model->id}, {"edges", curve->edges}, {"edge_breaks", curve->edge_breaks}};
     } catch (const InputError& e) {
@@ -147,13 +147,13 @@ Json GeometryService::create_curve(const Json& request) {
       throw ApiError::bad_request("axis: meridional (r, z) nodes need the axis their z is measured along");
     }
     try {
-      require_cad_frame(table);
+      setup::require_cad_frame(table);
       std::optional<geometry::MeridionalCurve> curve;
       {
         std::lock_guard lock(model->mutex);
         curve.emplace(model->cad.meridional_curve(faces, {.axis = axis}));
       }
-      run.emplace(fit_on_cad_curve(*curve, table, options, model->cad.unit(), model->name));
+      run.emplace(setup::fit_on_cad_curve(*curve, table, options, model->cad.unit(), model->name));
       extra = {{"model", model->id}, {"face_breaks", curve->face_breaks}};
     } catch (const InputError& e) {
       throw ApiError::unprocessable(e.what());
@@ -164,7 +164,7 @@ Json GeometryService::create_curve(const Json& request) {
     if (!unit) throw ApiError::bad_request(fmt::format("unit: unknown length unit '{}' (use m, mm, cm, um, in or ft)", unit_text));
     const geometry::DeflectionSamples table = table_field(request, limits);
     try {
-      run.emplace(fit_without_cad(table, axis, options, *unit, "\"axis\""));
+      run.emplace(setup::fit_without_cad(table, axis, options, *unit, "\"axis\""));
     } catch (const InputError& e) {
       throw ApiError::unprocessable(e.what());
     }
@@ -220,7 +220,7 @@ Json GeometryService::project(std::string_view curve_id, const Json& request) co
 
 Download GeometryService::download(std::string_view curve_id, std::string_view format) const {
   const auto stored = state_->curves.get(curve_id, "curve");
-  const CurveRun& run = stored->run;
+  const setup::CurveRun& run = stored->run;
   if (format == "step") return {geometry::to_step(curve_export(run)), "model/step", stored->id + "-curves.step"};
   if (format == "iges") return {geometry::to_iges(curve_export(run)), "model/iges", stored->id + "-curves.igs"};
   if (format == "csv") {

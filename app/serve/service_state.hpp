@@ -16,8 +16,8 @@
 
 #include <fmt/format.h>
 
-#include "curve_fit.hpp"
-#include "face_fit.hpp"
+#include "hotmesh/setup/curve_fit.hpp"
+#include "hotmesh/setup/face_fit.hpp"
 #include "hotmesh/geometry/boundary_shape.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
@@ -45,7 +45,7 @@ struct StoredModel {
 struct StoredCurve {
   std::string id;
   bool deflected = false;
-  CurveRun run;
+  setup::CurveRun run;
   std::unique_ptr<geometry::CurveProjector> projector;  ///< for points in the curve's plane
   std::unique_ptr<geometry::BoundaryShape> shape;       ///< for points in space
   std::string body;  ///< the answer to GET /api/curves/{id}, JSON text
@@ -56,7 +56,7 @@ struct StoredCurve {
 /// for download. Immutable once stored.
 struct StoredSurface {
   std::string id;
-  SurfaceRun run;
+  setup::SurfaceRun run;
   std::vector<geometry::DeformedFace> deformed;  ///< in the order of run.faces
   std::string body;  ///< the answer to GET /api/surfaces/{id}, JSON text
 };
@@ -178,6 +178,6 @@ geometry::ReconstructionOptions reconstruction_field(const Json& request);
 std::string replaced(std::string text, const std::string& from, const std::string& to);
 
 /// Stores a curve made of `run` and returns the answer about it (see curve_json.hpp).
-Json store_curve(GeometryService::State& state, CurveRun run, bool deflected, std::size_t samples, Json extra);
+Json store_curve(GeometryService::State& state, setup::CurveRun run, bool deflected, std::size_t samples, Json extra);
 
 }  // namespace hotmesh::app::serve

@@ -34,10 +34,10 @@ std::size_t grid_field(const Json& request, std::size_t faces, const ServiceLimi
 
 /// The faces of the model, read under its lock (a CadModel is for one thread at a time); the
 /// run names the model as the client knows it.
-SurfaceRun faces_of(StoredModel& model, const std::vector<int>& ids) {
+setup::SurfaceRun faces_of(StoredModel& model, const std::vector<int>& ids) {
   std::lock_guard lock(model.mutex);
   try {
-    SurfaceRun run = cad_faces_of(model.cad, ids);
+    setup::SurfaceRun run = setup::cad_faces_of(model.cad, ids);
     run.cad = model.name;
     return run;
   } catch (const InputError& e) {
@@ -56,9 +56,9 @@ Json GeometryService::create_surface(const Json& request) {
   const geometry::ReconstructionOptions options = reconstruction_field(request);
   geometry::DeflectionSamples table = table_field(request, limits);
 
-  SurfaceRun run = faces_of(*model, ids);
+  setup::SurfaceRun run = faces_of(*model, ids);
   try {
-    fit_deflections(run, std::move(table), options);
+    setup::fit_deflections(run, std::move(table), options);
   } catch (const InputError& e) {
     // The table's faults (not cartesian, nodes far from the faces, too few nodes on a face),
     // in the words of `hotmesh surface`.

@@ -10,7 +10,7 @@ namespace hotmesh::app::serve {
 namespace {
 
 /// The fields every node entry has: where it is in the table and what the FEM gave.
-Json node_json(const SurfaceRun& run, std::size_t node) {
+Json node_json(const setup::SurfaceRun& run, std::size_t node) {
   const geometry::DeflectionSamples& samples = run.samples;
   return {{"index", node},
           {"label", samples.label(node)},
@@ -29,7 +29,7 @@ std::vector<double> evenly(double a, double b, std::size_t n) {
 
 }  // namespace
 
-Json placements_json(const SurfaceRun& run, std::span<const double> residuals) {
+Json placements_json(const setup::SurfaceRun& run, std::span<const double> residuals) {
   Json list = Json::array();
   for (std::size_t k = 0; k < run.fit.placements.size(); ++k) {
     const geometry::NodePlacement& p = run.fit.placements[k];
@@ -44,7 +44,7 @@ Json placements_json(const SurfaceRun& run, std::span<const double> residuals) {
   return list;
 }
 
-Json left_out_json(const SurfaceRun& run) {
+Json left_out_json(const setup::SurfaceRun& run) {
   Json list = Json::array();
   for (const geometry::NodeDistance& node : run.fit.report.rejected_nodes) {
     Json entry = node_json(run, node.index);
@@ -54,7 +54,7 @@ Json left_out_json(const SurfaceRun& run) {
   return list;
 }
 
-Json face_grid_json(const SurfaceRun& run, std::size_t f, std::size_t n) {
+Json face_grid_json(const setup::SurfaceRun& run, std::size_t f, std::size_t n) {
   const geometry::BSplineSurface& surface = run.faces[f].surface;
   const geometry::BSplineSurface& field = run.fit.fields[f];
   const geometry::ParameterRectangle r = surface.domain();

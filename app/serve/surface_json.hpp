@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <span>
 
-#include "face_fit.hpp"
+#include "hotmesh/setup/face_fit.hpp"
 #include "serve/json_fields.hpp"
 
 namespace hotmesh::app::serve {
@@ -15,15 +15,15 @@ namespace hotmesh::app::serve {
 /// One entry per placement of run.fit (a node on an edge two faces share has one per face):
 /// {"index", "label", "id", "line", "face" (CAD number), "t", "s", "point", "deflection",
 /// "distance", "residual"}. `residuals` as placement_residuals gives them.
-Json placements_json(const SurfaceRun& run, std::span<const double> residuals);
+Json placements_json(const setup::SurfaceRun& run, std::span<const double> residuals);
 
 /// The nodes left out for their distance from every face: {"index", "label", "id", "line",
 /// "point", "deflection", "distance"}.
-Json left_out_json(const SurfaceRun& run);
+Json left_out_json(const setup::SurfaceRun& run);
 
 /// Face f of the run: {"id", "name", "kind", "parameter_range": {"t", "s"}, "knots": {"t", "s"}
 /// (the breakpoints of d), "grid": {"size": n, "t": [n], "s": [n], "points": [n * n],
 /// "deflections": [n * n]}}, grid entry i n + j at (t_i, s_j): S(t_i, s_j) and d(t_i, s_j).
-Json face_grid_json(const SurfaceRun& run, std::size_t f, std::size_t n);
+Json face_grid_json(const setup::SurfaceRun& run, std::size_t f, std::size_t n);
 
 }  // namespace hotmesh::app::serve

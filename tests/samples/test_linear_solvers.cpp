@@ -14,7 +14,7 @@
 
 #include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/io/case_file.hpp"
-#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -39,7 +39,7 @@ Outcome run_case(const fs::path& case_file, deform::LinearSolverKind linear, dou
   io::Case c = io::read_case(case_file);
   const io::LoadedMesh loaded = io::read_mesh(c.mesh);
   io::check_case_against_mesh(c, loaded.mesh);
-  const io::CaseSetup setup = io::set_up_case(c, loaded.mesh);
+  const setup::CaseSetup setup = setup::set_up_case(c, loaded.mesh);
   c.solver.linear = linear;
   c.solver.pcg_tolerance = pcg_tolerance;
   c.solver.newton_tolerance = newton_tolerance;

@@ -24,7 +24,7 @@
 #include "hotmesh/geometry/curve_projector.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/case_file.hpp"
-#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "stator_well.hpp"
@@ -312,7 +312,7 @@ TEST(StatorWellCases, BothCaseFilesPassTheSetUpOfHotmeshDeform) {
     EXPECT_EQ(passive, 3);
     // Every table is rebuilt on the CAD faces it names (nodes farther than the tolerance from
     // the faces would throw).
-    const io::CaseSetup setup = io::set_up_case(c, s.mesh);
+    const setup::CaseSetup setup = setup::set_up_case(c, s.mesh);
     EXPECT_EQ(setup.shapes.size(), 10u);
     for (const auto& shape : setup.shapes) EXPECT_LT(shape.reconstruction.max_node_distance_to_cad, 1e-9) << shape.patch;
   }

@@ -13,7 +13,7 @@
 
 #include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/io/case_file.hpp"
-#include "hotmesh/io/case_setup.hpp"
+#include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "test_support.hpp"
 #include "wall_distance.hpp"
@@ -37,7 +37,7 @@ WallRun run_case(const fs::path& case_file, const fs::path& table) {
   const io::Case c = io::read_case(case_file);
   const io::LoadedMesh loaded = io::read_mesh(c.mesh);
   io::check_case_against_mesh(c, loaded.mesh);
-  const io::CaseSetup setup = io::set_up_case(c, loaded.mesh);
+  const setup::CaseSetup setup = setup::set_up_case(c, loaded.mesh);
   WallRun run{deform::move_mesh(loaded.mesh, setup.motions, c.material, c.solver), 0.0};
   const auto* bottom = loaded.mesh.find_patch("bottom");
   EXPECT_NE(bottom, nullptr);

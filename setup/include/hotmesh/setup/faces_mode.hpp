@@ -1,4 +1,4 @@
-// hotmesh app: how CAD faces are taken by `hotmesh check` and `hotmesh serve`, chosen as hotmesh
+// hotmesh setup: how CAD faces are taken by `hotmesh check` and `hotmesh serve`, chosen as hotmesh
 // deform chooses for a case's wall (io::WallMode, case_setup.hpp): as a surface of revolution,
 // through their meridional curve (eq. 20), only when every face turns about one axis (the axis
 // given, else one the faces share: a plane across it counts, a plane along it does not); else
@@ -14,7 +14,7 @@
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/io/case_file.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::setup {
 
 struct FacesMode {
   io::WallMode mode = io::WallMode::surface;        ///< meridional or surface, never automatic
@@ -31,4 +31,4 @@ struct FacesMode {
 FacesMode choose_faces_mode(const geometry::CadModel& cad, std::span<const int> faces,
                             const std::optional<geometry::Axis>& axis, io::WallMode asked);
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::setup

@@ -1,5 +1,5 @@
-// hotmesh io: the walls of a case at a stage of the motion, as polylines and surfaces.
-#include "hotmesh/io/deflected_walls.hpp"
+// hotmesh setup: the walls of a case at a stage of the motion, as polylines and surfaces.
+#include "hotmesh/setup/deflected_walls.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,9 @@
 
 #include "hotmesh/geometry/boundary_shapes.hpp"
 
-namespace hotmesh::io {
+namespace hotmesh::setup {
+
+using io::PolyData;
 namespace {
 
 constexpr int kCurveSamples = 2000;  ///< along a wall's curve
@@ -97,4 +99,4 @@ PolyData deflected_walls(const mesh::Mesh& mesh, std::span<const deform::PatchMo
   return walls;
 }
 
-}  // namespace hotmesh::io
+}  // namespace hotmesh::setup

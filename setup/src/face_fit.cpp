@@ -1,12 +1,12 @@
-// hotmesh app: section 4.2 on CAD faces from what a user gives (see face_fit.hpp).
-#include "face_fit.hpp"
+// hotmesh setup: section 4.2 on CAD faces from what a user gives (see face_fit.hpp).
+#include "hotmesh/setup/face_fit.hpp"
 
 #include <algorithm>
 #include <utility>
 
 #include "hotmesh/core/input_error.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::setup {
 
 SurfaceRun cad_faces_of(const geometry::CadModel& model, std::span<const int> ids) {
   SurfaceRun run;
@@ -34,4 +34,4 @@ SurfaceRun fit_on_cad_faces(const geometry::CadModel& model, std::span<const int
   return run;
 }
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::setup

@@ -1,12 +1,12 @@
-// hotmesh app: section 4.2 from what a user gives (see curve_fit.hpp).
-#include "curve_fit.hpp"
+// hotmesh setup: section 4.2 from what a user gives (see curve_fit.hpp).
+#include "hotmesh/setup/curve_fit.hpp"
 
 #include <string>
 #include <utility>
 
 #include "hotmesh/core/input_error.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::setup {
 
 void require_cad_frame(const geometry::DeflectionSamples& samples) {
   if (samples.frame == geometry::SampleFrame::planar) {
@@ -59,4 +59,4 @@ CurveRun fit_without_cad(const geometry::DeflectionSamples& samples, std::option
   return {std::move(fit), std::move(nodes), axis, unit, {}, {}};
 }
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::setup

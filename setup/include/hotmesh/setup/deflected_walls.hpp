@@ -1,4 +1,4 @@
-// hotmesh io: the walls a case's patches follow (their shapes, section 4.2) at a stage of the
+// hotmesh setup: the walls a case's patches follow (their shapes, section 4.2) at a stage of the
 // motion, sampled for people to look at: polylines in the x-y plane for 2D cases, surfaces of
 // revolution over the angle their patch covers for 3D ones.
 #pragma once
@@ -11,7 +11,7 @@
 #include "hotmesh/io/vtu.hpp"
 #include "hotmesh/mesh/mesh.hpp"
 
-namespace hotmesh::io {
+namespace hotmesh::setup {
 
 /// The stage-lambda curve as a polyline: evenly spaced in its parameter and through every
 /// piece end, so its corners are drawn as corners.
@@ -20,6 +20,6 @@ std::vector<geometry::Vec2> curve_outline(const geometry::DeflectedCurve& curve,
 /// Every patch of `motions` with a curve shape (prescribed or sliding), at stage lambda: one
 /// polyline each in 2D, one band of quads each in 3D, with the cell array "patch" (the
 /// patch's 1-based index in mesh.patches).
-PolyData deflected_walls(const mesh::Mesh& mesh, std::span<const deform::PatchMotion> motions, double lambda);
+io::PolyData deflected_walls(const mesh::Mesh& mesh, std::span<const deform::PatchMotion> motions, double lambda);
 
-}  // namespace hotmesh::io
+}  // namespace hotmesh::setup

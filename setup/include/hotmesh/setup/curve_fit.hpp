@@ -1,4 +1,4 @@
-// hotmesh app: section 4.2 from what a user gives, shared by `hotmesh curve` and `hotmesh serve`.
+// hotmesh setup: section 4.2 from what a user gives, shared by `hotmesh curve` and `hotmesh serve`.
 // The FEM nodes are taken into the plane of the boundary's curve ((r, z) about the axis of the
 // CAD faces, or (x, y) for 2D tables) and the deflected curve is reconstructed (eq. 21) on the
 // CAD meridional curve or, without CAD, on the curve the nodes themselves define.
@@ -13,7 +13,7 @@
 #include "hotmesh/geometry/deflection_samples.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::setup {
 
 /// A reconstruction and what it was made from.
 struct CurveRun {
@@ -53,4 +53,4 @@ CurveRun fit_without_cad(const geometry::DeflectionSamples& samples, std::option
                          const geometry::ReconstructionOptions& options, geometry::LengthUnit unit,
                          std::string_view axis_name);
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::setup

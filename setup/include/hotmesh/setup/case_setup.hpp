@@ -1,4 +1,4 @@
-// hotmesh io: from a validated case and its mesh to what the solver needs. For every patch
+// hotmesh setup: from a validated case and its mesh to what the solver needs. For every patch
 // its role and, for patches that follow a boundary, the boundary's shape (the paper's section
 // 4.2): in 2D a curve in the x-y plane; in 3D a surface of revolution about the case's axis
 // (meridional), or the CAD faces themselves (surface). A curve r(t) comes from CAD: the faces'
@@ -35,7 +35,7 @@
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/restart_file.hpp"
 
-namespace hotmesh::io {
+namespace hotmesh::setup {
 
 /// What a patch's deflected wall was built as.
 enum class WallKind {
@@ -68,13 +68,13 @@ struct CaseSetup {
 
 /// The case's CAD file read and checked (every face translated, in the case's length unit),
 /// or nothing if the case names none. Throws hotmesh::InputError naming the file.
-std::optional<geometry::CadModel> read_case_cad(const Case& c);
+std::optional<geometry::CadModel> read_case_cad(const io::Case& c);
 
 /// Throws hotmesh::InputError (naming the case file's line of the patch, and the table or CAD
 /// file at fault) when a table cannot describe its patch: wrong frame for the mesh, FEM nodes
 /// off the CAD curve, too few nodes, patch roles that differ from the run being restarted, ...
 /// `cad` is the case's CAD model if already read (read_case_cad); else it is read if needed.
-CaseSetup set_up_case(const Case& c, const mesh::Mesh& mesh, const RestartState* previous = nullptr,
+CaseSetup set_up_case(const io::Case& c, const mesh::Mesh& mesh, const io::RestartState* previous = nullptr,
                       const geometry::CadModel* cad = nullptr);
 
-}  // namespace hotmesh::io
+}  // namespace hotmesh::setup

@@ -1,4 +1,4 @@
-// Tests of hotmesh::io::deflected_walls, the walls of a case at a stage of its motion for
+// Tests of hotmesh::setup::deflected_walls, the walls of a case at a stage of its motion for
 // ParaView: in 2D each wall is its curve at the stage, corners included; in 3D a surface of
 // revolution whose points lie on the meridional curve and cover the angle of the wall's patch
 // (also across theta = pi).
@@ -10,12 +10,13 @@
 
 #include "../geometry/curve_fixtures.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
-#include "hotmesh/io/deflected_walls.hpp"
+#include "hotmesh/setup/deflected_walls.hpp"
 
-namespace hotmesh::io {
+namespace hotmesh::setup {
 namespace {
 
 using geometry::Axis;
+using io::PolyData;
 using geometry::BSplineCurve2d;
 using geometry::DeflectedCurve;
 using geometry::Vec2;
@@ -93,4 +94,4 @@ TEST(DeflectedWalls, PatchesWithoutShapeAreLeftOut) {
 }
 
 }  // namespace
-}  // namespace hotmesh::io
+}  // namespace hotmesh::setup

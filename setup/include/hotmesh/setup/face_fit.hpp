@@ -1,4 +1,4 @@
-// hotmesh app: section 4.2 on CAD faces of any shape from what a user gives (issue 23): the
+// hotmesh setup: section 4.2 on CAD faces of any shape from what a user gives (issue 23): the
 // faces of a CAD file by number, a cartesian table of FEM nodes, and the deflection field d(t, s)
 // reconstructed on each face (geometry::reconstruct_on_faces). `hotmesh surface` writes what
 // comes of it (surface_outputs.hpp); `hotmesh serve` answers with it (serve/service_surfaces.cpp).
@@ -12,7 +12,7 @@
 #include "hotmesh/geometry/deflection_samples.hpp"
 #include "hotmesh/geometry/surface_shape.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::setup {
 
 /// A reconstruction on CAD faces and what it was made from.
 struct SurfaceRun {
@@ -38,4 +38,4 @@ void fit_deflections(SurfaceRun& run, geometry::DeflectionSamples samples, const
 SurfaceRun fit_on_cad_faces(const geometry::CadModel& model, std::span<const int> ids,
                             geometry::DeflectionSamples samples, const geometry::ReconstructionOptions& options);
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::setup

@@ -1,11 +1,11 @@
-// hotmesh app: meridional or surface, for CAD faces (see faces_mode.hpp).
-#include "faces_mode.hpp"
+// hotmesh setup: meridional or surface, for CAD faces (see faces_mode.hpp).
+#include "hotmesh/setup/faces_mode.hpp"
 
 #include <utility>
 
 #include "hotmesh/core/input_error.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::setup {
 
 FacesMode choose_faces_mode(const geometry::CadModel& cad, std::span<const int> faces,
                             const std::optional<geometry::Axis>& axis, io::WallMode asked) {
@@ -21,4 +21,4 @@ FacesMode choose_faces_mode(const geometry::CadModel& cad, std::span<const int> 
   }
 }
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::setup

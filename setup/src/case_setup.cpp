@@ -1,5 +1,5 @@
-// hotmesh io: case + mesh (+ restart state) -> patch motions with their boundary shapes.
-#include "hotmesh/io/case_setup.hpp"
+// hotmesh setup: case + mesh (+ restart state) -> patch motions with their boundary shapes.
+#include "hotmesh/setup/case_setup.hpp"
 
 #include <algorithm>
 #include <map>
@@ -13,10 +13,18 @@
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
 #include "hotmesh/core/input_error.hpp"
-#include "hotmesh/io/deflected_walls.hpp"
+#include "hotmesh/setup/deflected_walls.hpp"
 
-namespace hotmesh::io {
+namespace hotmesh::setup {
 namespace {
+
+using io::Case;
+using io::DeflectionSpec;
+using io::PatchRole;
+using io::PatchSpec;
+using io::RestartPatch;
+using io::RestartState;
+using io::WallMode;
 
 using geometry::DeflectedCurve;
 
@@ -309,12 +317,12 @@ const RestartPatch& previous_patch(const RestartState& previous, const PatchSpec
 
 }  // namespace
 
-std::optional<geometry::CadModel> read_case_cad(const Case& c) {
+std::optional<geometry::CadModel> read_case_cad(const io::Case& c) {
   if (!c.cad) return std::nullopt;
   return geometry::CadModel::read(*c.cad, {.unit = c.length_unit});
 }
 
-CaseSetup set_up_case(const Case& c, const mesh::Mesh& mesh, const RestartState* previous,
+CaseSetup set_up_case(const io::Case& c, const mesh::Mesh& mesh, const io::RestartState* previous,
                       const geometry::CadModel* cad) {
   CaseSetup setup;
   CadSource cad_source(c, cad);
@@ -357,4 +365,4 @@ CaseSetup set_up_case(const Case& c, const mesh::Mesh& mesh, const RestartState*
   return setup;
 }
 
-}  // namespace hotmesh::io
+}  // namespace hotmesh::setup
