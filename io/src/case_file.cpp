@@ -151,7 +151,7 @@ class CaseParser {
   void read_cad(const Entry& e) {
     const auto path = input_file(e, "the CAD file name (.step, .stp, .iges or .igs)");
     if (!path) return;
-    const std::string extension = lower(path->extension().string());
+    const std::string extension = ascii_lower(path->extension().string());
     if (extension != ".step" && extension != ".stp" && extension != ".iges" && extension != ".igs") {
       reader_.error(e, cat("'", path->filename().string(),
                            "' is not a CAD file hotmesh reads; expected .step, .stp, .iges or .igs"));

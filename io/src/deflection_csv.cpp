@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "hotmesh/core/input_error.hpp"
+#include "hotmesh/core/text.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 
 namespace hotmesh::io {
@@ -81,32 +82,6 @@ std::string cat(const Parts&... parts) {
   return text;
 }
 
-std::string_view trim(std::string_view s) {
-  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; };
-  while (!s.empty() && blank(s.front())) s.remove_prefix(1);
-  while (!s.empty() && blank(s.back())) s.remove_suffix(1);
-  return s;
-}
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) {
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  }
-  return out;
-}
-
-std::vector<std::string_view> split_fields(std::string_view line) {
-  std::vector<std::string_view> fields;
-  while (true) {
-    const std::size_t comma = line.find(',');
-    fields.push_back(trim(line.substr(0, comma)));
-    if (comma == std::string_view::npos) break;
-    line.remove_prefix(comma + 1);
-  }
-  return fields;
-}
-
 /// A number as written in a table: what std::from_chars accepts, plus a leading '+'.
 /// Values too small for a double read as 0; values too large as infinity (then rejected).
 std::optional<double> parse_double(std::string_view text) {
@@ -155,7 +130,7 @@ class TableReader {
         fail(line, "the first line that is not a comment holds values, not column names; "
                    "add a header line such as x,y,dx,dy (" + std::string(kExpectedSets) + ")");
       }
-      const std::string name = lower(field);
+      const std::string name = ascii_lower(field);
       const ColumnName* known = nullptr;
       for (const auto& entry : kColumns) {
         if (entry.name == name) known = &entry;

@@ -34,7 +34,6 @@ namespace {
 
 using detail::field_double;
 using detail::field_integer;
-using detail::trim_blanks;
 using geometry::Vec3;
 
 /// The nodes of each element type of the .frd format (1 he8 ... 12 be3).
@@ -97,7 +96,7 @@ std::string_view columns(std::string_view line, std::size_t first, std::size_t c
 
 /// The format field of a block header (0, 1 ASCII; 2, 3 binary); blank reads as 1.
 int block_format(const FrdScanner& in, std::string_view field) {
-  field = trim_blanks(field);
+  field = trim(field);
   if (field.empty()) return 1;
   const auto format = field_integer(field);
   if (!format || *format < 0 || *format > 3) {
@@ -127,9 +126,9 @@ AsciiRecord ascii_record(const FrdScanner& in, std::string_view line, int format
   record.node = *node;
   for (std::size_t at = 3 + width; at < line.size(); at += 12) {
     const std::string_view text = columns(line, at, 12);
-    if (trim_blanks(text).empty()) break;
+    if (trim(text).empty()) break;
     const auto value = field_double(text);
-    if (!value) in.fail("'" + std::string(trim_blanks(text)) + "' is not a number");
+    if (!value) in.fail("'" + std::string(trim(text)) + "' is not a number");
     record.values.push_back(*value);
   }
   return record;
@@ -158,8 +157,8 @@ class FrdParser {
     bool ended = false;
     while (!in_.at_end() && !ended) {
       const std::string_view line = in_.next_line();
-      if (trim_blanks(line).empty()) continue;
-      const std::string_view key = trim_blanks(columns(line, 0, 5));
+      if (trim(line).empty()) continue;
+      const std::string_view key = trim(columns(line, 0, 5));
       const char code = line.size() > 5 ? line[5] : ' ';
       if (key == "9999") {
         ended = true;
@@ -189,7 +188,7 @@ class FrdParser {
   void read_step(std::string_view line) {
     std::vector<std::int64_t> numbers;
     std::string_view rest = columns(line, 11, std::string_view::npos);
-    while (!(rest = trim_blanks(rest)).empty()) {
+    while (!(rest = trim(rest)).empty()) {
       const std::size_t end = std::min(rest.find(' '), rest.size());
       if (const auto n = field_integer(rest.substr(0, end))) numbers.push_back(*n);
       rest.remove_prefix(end);
@@ -265,7 +264,7 @@ class FrdParser {
 
     const std::string_view name_line = in_.next_line();
     if (!name_line.starts_with(" -4")) in_.fail("expected the ' -4' line naming the result after its header");
-    block.name = std::string(trim_blanks(columns(name_line, 5, 8)));
+    block.name = std::string(trim(columns(name_line, 5, 8)));
     const auto components = field_integer(columns(name_line, 13, 5));
     if (!components || *components < 1) in_.fail("the ' -4' line gives no component count in columns 14-18");
     int stored = 0;

@@ -28,8 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 using detail::field_double;
 using detail::field_integer;
-using detail::trim_blanks;
-using detail::upper;
 
 // ---------------------------------------------------------------------------------------------
 // element families: corner nodes of each face, midside node of each edge (1-based)
@@ -123,32 +121,27 @@ struct Keyword {
   }
 };
 
-std::vector<std::string_view> split_fields(std::string_view line) {
-  std::vector<std::string_view> fields;
-  while (true) {
-    const std::size_t comma = line.find(',');
-    fields.push_back(trim_blanks(line.substr(0, comma)));
-    if (comma == std::string_view::npos) break;
-    line.remove_prefix(comma + 1);
-  }
+/// A deck line's comma-separated fields; a trailing comma adds no empty field.
+std::vector<std::string_view> deck_fields(std::string_view line) {
+  std::vector<std::string_view> fields = split_fields(line);
   if (fields.size() > 1 && fields.back().empty()) fields.pop_back();  // a trailing comma
   return fields;
 }
 
 Keyword parse_keyword(std::string_view text) {
-  const std::vector<std::string_view> fields = split_fields(text.substr(1));
-  Keyword keyword{upper(fields.front()), {}};
+  const std::vector<std::string_view> fields = deck_fields(text.substr(1));
+  Keyword keyword{ascii_upper(fields.front()), {}};
   for (std::size_t i = 1; i < fields.size(); ++i) {
     const std::size_t eq = fields[i].find('=');
-    const std::string key = upper(trim_blanks(fields[i].substr(0, eq)));
-    const std::string value = eq == std::string_view::npos ? "" : std::string(trim_blanks(fields[i].substr(eq + 1)));
+    const std::string key = ascii_upper(trim(fields[i].substr(0, eq)));
+    const std::string value = eq == std::string_view::npos ? "" : std::string(trim(fields[i].substr(eq + 1)));
     keyword.parameters.emplace_back(key, value);
   }
   return keyword;
 }
 
 bool is_keyword(std::string_view text) { return text.starts_with('*') && !text.starts_with("**"); }
-bool is_comment(std::string_view text) { return text.starts_with("**") || trim_blanks(text).empty(); }
+bool is_comment(std::string_view text) { return text.starts_with("**") || trim(text).empty(); }
 
 /// The deck's lines in reading order, each *INCLUDE's lines spliced in where it stands. A file
 /// is read once however often it is included; InpLimits bounds the reads and lines.
@@ -269,7 +262,7 @@ class DeckParser {
   std::string set_name(const Keyword& keyword, const DeckLine& head, std::string_view key) const {
     const auto name = keyword.parameter(key);
     if (!name || name->empty()) fail(head, "*" + keyword.name + " needs " + std::string(key) + "=<name>");
-    return upper(*name);
+    return ascii_upper(*name);
   }
 
   DeckSet& set_in(std::map<std::string, DeckSet>& sets, const std::string& name, const DeckLine& head) {
@@ -303,7 +296,7 @@ class DeckParser {
   void nodes(const Keyword& keyword, const DeckLine& head, std::span<const DeckLine> data) {
     DeckSet* set = keyword.parameter("NSET") ? &set_in(deck_.nsets, set_name(keyword, head, "NSET"), head) : nullptr;
     for (const DeckLine& line : data) {
-      const std::vector<std::string_view> fields = split_fields(line.text);
+      const std::vector<std::string_view> fields = deck_fields(line.text);
       if (fields.size() < 2 || fields.size() > 4) {
         fail(line, "a *NODE line is `number, x, y[, z]`, got " + std::to_string(fields.size()) + " fields");
       }
@@ -328,12 +321,12 @@ class DeckParser {
   void elements(const Keyword& keyword, const DeckLine& head, std::span<const DeckLine> data) {
     const auto type = keyword.parameter("TYPE");
     if (!type || type->empty()) fail(head, "*ELEMENT needs TYPE=<element type>, e.g. TYPE=CAX8");
-    const std::string type_name = upper(*type);
+    const std::string type_name = ascii_upper(*type);
     const std::optional<ElementShape> shape = shape_of(type_name);
     DeckSet* set = keyword.parameter("ELSET") ? &set_in(deck_.elsets, set_name(keyword, head, "ELSET"), head) : nullptr;
     for (std::size_t i = 0; i < data.size(); ++i) {
       const DeckLine& first = data[i];
-      std::vector<std::string_view> fields = split_fields(first.text);
+      std::vector<std::string_view> fields = deck_fields(first.text);
       const std::int64_t id = number(first, fields[0], "an element");
       DeckElement element{type_name, {}, place(first)};
       const auto add_nodes = [&](const DeckLine& line, std::span<const std::string_view> nodes) {
@@ -343,11 +336,11 @@ class DeckParser {
       // Continuation lines: until the type's node count (known types) or while a line ends with ','.
       const auto wants_more = [&](std::string_view text) {
         if (shape) return element.nodes.size() < static_cast<std::size_t>(shape->nodes);
-        return trim_blanks(text).ends_with(',');
+        return trim(text).ends_with(',');
       };
       for (std::string_view last = first.text; wants_more(last) && i + 1 < data.size();) {
         last = data[++i].text;
-        add_nodes(data[i], split_fields(last));
+        add_nodes(data[i], deck_fields(last));
       }
       if (shape && element.nodes.size() != static_cast<std::size_t>(shape->nodes)) {
         fail(first, "element " + std::to_string(id) + " of type " + type_name + " has " +
@@ -371,7 +364,7 @@ class DeckParser {
     DeckSet& set = set_in(sets, set_name(keyword, head, key), head);
     const bool generate = keyword.parameter("GENERATE").has_value();
     for (const DeckLine& line : data) {
-      const std::vector<std::string_view> fields = split_fields(line.text);
+      const std::vector<std::string_view> fields = deck_fields(line.text);
       if (generate) {
         generate_range(line, fields, set.members);
         continue;
@@ -383,7 +376,7 @@ class DeckParser {
           set.members.push_back(*n);
           continue;
         }
-        const auto other = sets.find(upper(field));
+        const auto other = sets.find(ascii_upper(field));
         if (other == sets.end()) {
           fail(line, "'" + std::string(field) + "' is neither a " + std::string(what) + " number nor a *" +
                          std::string(key) + " defined before this line");
@@ -417,10 +410,10 @@ class DeckParser {
 
   void surface(const Keyword& keyword, const DeckLine& head, std::span<const DeckLine> data) {
     DeckSet& set = set_in(deck_.surfaces, set_name(keyword, head, "NAME"), head);
-    const std::string type = upper(keyword.parameter("TYPE").value_or("ELEMENT"));
+    const std::string type = ascii_upper(keyword.parameter("TYPE").value_or("ELEMENT"));
     if (type != "ELEMENT" && type != "NODE") fail(head, "*SURFACE TYPE=" + type + ": expected ELEMENT or NODE");
     for (const DeckLine& line : data) {
-      const std::vector<std::string_view> fields = split_fields(line.text);
+      const std::vector<std::string_view> fields = deck_fields(line.text);
       if (type == "NODE") {
         node_surface_line(line, fields.front(), set);
       } else {
@@ -435,7 +428,7 @@ class DeckParser {
       set.members.push_back(*n);
       return;
     }
-    const auto nset = deck_.nsets.find(upper(field));
+    const auto nset = deck_.nsets.find(ascii_upper(field));
     if (nset == deck_.nsets.end()) fail(line, "'" + std::string(field) + "' is neither a node number nor a *NSET defined before this line");
     add_members(line, nset->second.members.size());
     set.members.insert(set.members.end(), nset->second.members.begin(), nset->second.members.end());
@@ -443,13 +436,13 @@ class DeckParser {
 
   void face_surface_line(const DeckLine& line, const std::vector<std::string_view>& fields, DeckSet& set) {
     if (fields.size() != 2) fail(line, "an element surface line is `element or element set, S<face>`, e.g. `EDISC, S2`");
-    const std::string label = upper(fields[1]);
+    const std::string label = ascii_upper(fields[1]);
     const auto face = label.size() == 2 && label[0] == 'S' ? field_integer(label.substr(1)) : std::nullopt;
     if (!face || *face < 1 || *face > 6) fail(line, "'" + std::string(fields[1]) + "' is not an element face; faces are S1 to S6");
     std::vector<std::int64_t> elements;
     if (const auto n = field_integer(fields[0])) {
       elements.push_back(*n);
-    } else if (const auto elset = deck_.elsets.find(upper(fields[0])); elset != deck_.elsets.end()) {
+    } else if (const auto elset = deck_.elsets.find(ascii_upper(fields[0])); elset != deck_.elsets.end()) {
       elements = elset->second.members;
     } else {
       fail(line, "'" + std::string(fields[0]) + "' is neither an element number nor an *ELSET defined before this line");
@@ -534,7 +527,7 @@ ModelKind InpDeck::kind() const {
 }
 
 std::vector<std::int64_t> InpDeck::set_nodes(std::string_view name) const {
-  const std::string key = upper(name);
+  const std::string key = ascii_upper(name);
   std::vector<std::int64_t> members;
   if (const auto nset = nsets.find(key); nset != nsets.end()) {
     members = nset->second.members;
@@ -556,7 +549,7 @@ std::vector<std::int64_t> InpDeck::set_nodes(std::string_view name) const {
 }
 
 DeckPlace InpDeck::set_place(std::string_view name) const {
-  const std::string key = upper(name);
+  const std::string key = ascii_upper(name);
   if (const auto nset = nsets.find(key); nset != nsets.end()) return nset->second.place;
   if (const auto surface = surfaces.find(key); surface != surfaces.end()) return surface->second.place;
   return {file, 0};

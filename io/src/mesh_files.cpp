@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "hotmesh/core/input_error.hpp"
+#include "hotmesh/core/text.hpp"
 #include "hotmesh/io/cgns.hpp"
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/gmsh.hpp"
@@ -15,8 +16,7 @@ namespace hotmesh::io {
 
 MeshFormat mesh_format(const std::filesystem::path& path) {
   if (is_foam_path(path)) return MeshFormat::foam;
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = ascii_lower(path.extension().string());
   if (ext == ".msh") return MeshFormat::gmsh;
   if (ext == ".vtu") return MeshFormat::vtu;
   if (ext == ".cgns" || ext == ".hdf" || ext == ".adf") return MeshFormat::cgns;

@@ -22,6 +22,7 @@
 
 #include "hotmesh/core/enum_names.hpp"
 #include "hotmesh/core/input_error.hpp"
+#include "hotmesh/core/text.hpp"
 #include "hotmesh/core/vec3.hpp"
 
 namespace hotmesh::io::detail {
@@ -109,17 +110,12 @@ inline std::string describe(const YAML::Node& node) {
   }
 }
 
-inline std::string lower(std::string text) {
-  for (char& ch : text) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return text;
-}
-
 /// A number as YAML writes it (std::from_chars, so no locale), plus a leading '+' and
 /// .inf/.nan. Too large reads as infinite (then reported), too small as 0.
 template <class T>
 std::optional<T> parse(std::string_view text) {
   if constexpr (std::is_floating_point_v<T>) {
-    const std::string name = lower(std::string(text));
+    const std::string name = ascii_lower(text);
     if (name == ".inf" || name == "+.inf" || name == "-.inf") return name[0] == '-' ? -HUGE_VAL : HUGE_VAL;
     if (name == ".nan") return std::nan("");
   }
@@ -253,7 +249,7 @@ class Reader {
 
   std::optional<bool> boolean(const Entry& e) {
     if (e.value.IsScalar() && !quoted(e.value)) {
-      const std::string v = lower(e.value.Scalar());
+      const std::string v = ascii_lower(e.value.Scalar());
       if (v == "true" || v == "yes" || v == "on") return true;
       if (v == "false" || v == "no" || v == "off") return false;
     }
