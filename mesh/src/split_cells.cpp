@@ -45,16 +45,8 @@ bool stays_quad(CellSplit split, std::size_t f) {
   return false;
 }
 
-}  // namespace
-
-Mesh split_cells(const Mesh& mesh, std::span<const CellSplit> split) {
-  if (split.size() != mesh.cell_count()) throw std::invalid_argument("split_cells: one split per cell");
-  if (!mesh.node_ids.empty() || !mesh.cell_ids.empty()) throw std::invalid_argument("split_cells: a mesh with ids from a file");
-  Mesh out;
-  out.dimension = mesh.dimension;
-  out.points = mesh.points;
-
-  // Which hex faces stay quads: those a kept hex or a prism's side keeps so.
+/// The hex faces that stay quads: those a kept hex or a prism's side keeps so.
+std::set<Key> quad_faces_of(const Mesh& mesh, std::span<const CellSplit> split) {
   std::set<Key> quad_faces;
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
     if (mesh.cells.type(c) != ElementType::hex8) continue;
@@ -62,61 +54,51 @@ Mesh split_cells(const Mesh& mesh, std::span<const CellSplit> split) {
       if (stays_quad(split[c], f)) quad_faces.insert(key_of(hex_face(mesh.cells.nodes(c), f)));
     }
   }
+  return quad_faces;
+}
 
-  std::vector<std::size_t> first_piece(mesh.cell_count() + 1, 0);
-  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
-    first_piece[c] = out.cells.size();
-    const ElementType type = mesh.cells.type(c);
-    const auto n = mesh.cells.nodes(c);
-    const CellSplit s = split[c];
-    if (s == CellSplit::keep) {
-      out.cells.add(type, n);
-    } else if (s == CellSplit::triangles && type == ElementType::quad4) {
-      out.cells.add(ElementType::tri3, {n[0], n[1], n[2]});
-      out.cells.add(ElementType::tri3, {n[0], n[2], n[3]});
-    } else if (s == CellSplit::prisms && type == ElementType::hex8) {
-      const std::size_t a = diagonal_start(n.first(4)) % 2;  // the bottom's diagonal: corners a, a + 2
-      if (diagonal_start(n.subspan(4, 4)) % 2 != a) {
-        throw std::invalid_argument("split_cells: cell " + std::to_string(c) + " has crossed diagonals on its ends: "
-                                    "no two prisms split it as its neighbours split those faces");
-      }
-      const auto b = a + 1, d = (a + 2) % 4, e = (a + 3) % 4;
-      out.cells.add(ElementType::wedge6, {n[a], n[b], n[d], n[a + 4], n[b + 4], n[d + 4]});
-      out.cells.add(ElementType::wedge6, {n[a], n[d], n[e], n[a + 4], n[d + 4], n[e + 4]});
-    } else if ((s == CellSplit::tetrahedra || s == CellSplit::pyramids) && type == ElementType::hex8) {
-      Vec3 centre;
-      for (NodeId a : n) centre += out.points[static_cast<std::size_t>(a)];
-      const auto apex = static_cast<NodeId>(out.points.size());
-      out.points.push_back(centre / 8.0);
-      for (std::size_t f = 0; f < 6; ++f) {
-        const auto face = hex_face(n, f);  // outward: reversed, its normal points to the apex
-        if (quad_faces.count(key_of(face))) {
-          out.cells.add(ElementType::pyramid5, {face[0], face[3], face[2], face[1], apex});
-        } else {
-          const std::size_t i = diagonal_start(face);
-          const NodeId a = face[i], b = face[(i + 1) % 4], d = face[(i + 2) % 4], e = face[(i + 3) % 4];
-          out.cells.add(ElementType::tet4, {a, d, b, apex});
-          out.cells.add(ElementType::tet4, {a, e, d, apex});
-        }
-      }
-    } else {
-      throw std::invalid_argument("split_cells: cell " + std::to_string(c) + " is a " + std::string(name(type)) +
-                                  ", which this split does not apply to");
+/// Adds the pieces of cell c (nodes n, of `type`) to `out`; a hex split about its centre adds
+/// the centre to out.points.
+void add_pieces(Mesh& out, std::size_t c, ElementType type, std::span<const NodeId> n, CellSplit s,
+                const std::set<Key>& quad_faces) {
+  if (s == CellSplit::keep) {
+    out.cells.add(type, n);
+  } else if (s == CellSplit::triangles && type == ElementType::quad4) {
+    out.cells.add(ElementType::tri3, {n[0], n[1], n[2]});
+    out.cells.add(ElementType::tri3, {n[0], n[2], n[3]});
+  } else if (s == CellSplit::prisms && type == ElementType::hex8) {
+    const std::size_t a = diagonal_start(n.first(4)) % 2;  // the bottom's diagonal: corners a, a + 2
+    if (diagonal_start(n.subspan(4, 4)) % 2 != a) {
+      throw std::invalid_argument("split_cells: cell " + std::to_string(c) + " has crossed diagonals on its ends: "
+                                  "no two prisms split it as its neighbours split those faces");
     }
-  }
-  first_piece[mesh.cell_count()] = out.cells.size();
-
-  for (const CellGroup& g : mesh.cell_groups) {
-    CellGroup group{g.name, g.tag, {}};
-    for (CellId c : g.cells) {
-      for (auto p = first_piece[static_cast<std::size_t>(c)]; p < first_piece[static_cast<std::size_t>(c) + 1]; ++p) {
-        group.cells.push_back(static_cast<CellId>(p));
+    const auto b = a + 1, d = (a + 2) % 4, e = (a + 3) % 4;
+    out.cells.add(ElementType::wedge6, {n[a], n[b], n[d], n[a + 4], n[b + 4], n[d + 4]});
+    out.cells.add(ElementType::wedge6, {n[a], n[d], n[e], n[a + 4], n[d + 4], n[e + 4]});
+  } else if ((s == CellSplit::tetrahedra || s == CellSplit::pyramids) && type == ElementType::hex8) {
+    Vec3 centre;
+    for (NodeId a : n) centre += out.points[static_cast<std::size_t>(a)];
+    const auto apex = static_cast<NodeId>(out.points.size());
+    out.points.push_back(centre / 8.0);
+    for (std::size_t f = 0; f < 6; ++f) {
+      const auto face = hex_face(n, f);  // outward: reversed, its normal points to the apex
+      if (quad_faces.count(key_of(face))) {
+        out.cells.add(ElementType::pyramid5, {face[0], face[3], face[2], face[1], apex});
+      } else {
+        const std::size_t i = diagonal_start(face);
+        const NodeId a = face[i], b = face[(i + 1) % 4], d = face[(i + 2) % 4], e = face[(i + 3) % 4];
+        out.cells.add(ElementType::tet4, {a, d, b, apex});
+        out.cells.add(ElementType::tet4, {a, e, d, apex});
       }
     }
-    out.cell_groups.push_back(std::move(group));
+  } else {
+    throw std::invalid_argument("split_cells: cell " + std::to_string(c) + " is a " + std::string(name(type)) +
+                                ", which this split does not apply to");
   }
+}
 
-  // Patch faces as the new cells have them: a quad kept, or the two triangles of a cell.
+/// Patch faces as the new cells have them: a quad kept, or the two triangles of a cell.
+void split_patches(const Mesh& mesh, const std::set<Key>& quad_faces, Mesh& out) {
   std::map<Key, std::array<NodeId, 3>> triangles;  // the triangle faces of the new cells
   for (std::size_t c = 0; c < out.cells.size(); ++c) {
     const auto n = out.cells.nodes(c);
@@ -148,6 +130,35 @@ Mesh split_cells(const Mesh& mesh, std::span<const CellSplit> split) {
     }
     out.patches.push_back(std::move(patch));
   }
+}
+
+}  // namespace
+
+Mesh split_cells(const Mesh& mesh, std::span<const CellSplit> split) {
+  if (split.size() != mesh.cell_count()) throw std::invalid_argument("split_cells: one split per cell");
+  if (!mesh.node_ids.empty() || !mesh.cell_ids.empty()) throw std::invalid_argument("split_cells: a mesh with ids from a file");
+  Mesh out;
+  out.dimension = mesh.dimension;
+  out.points = mesh.points;
+  const std::set<Key> quad_faces = quad_faces_of(mesh, split);
+
+  std::vector<std::size_t> first_piece(mesh.cell_count() + 1, 0);
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    first_piece[c] = out.cells.size();
+    add_pieces(out, c, mesh.cells.type(c), mesh.cells.nodes(c), split[c], quad_faces);
+  }
+  first_piece[mesh.cell_count()] = out.cells.size();
+
+  for (const CellGroup& g : mesh.cell_groups) {
+    CellGroup group{g.name, g.tag, {}};
+    for (CellId c : g.cells) {
+      for (auto p = first_piece[static_cast<std::size_t>(c)]; p < first_piece[static_cast<std::size_t>(c) + 1]; ++p) {
+        group.cells.push_back(static_cast<CellId>(p));
+      }
+    }
+    out.cell_groups.push_back(std::move(group));
+  }
+  split_patches(mesh, quad_faces, out);
   out.derive_node_sets();
   return out;
 }

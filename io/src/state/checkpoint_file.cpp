@@ -347,49 +347,56 @@ CheckpointInfo read_checkpoint_info(const std::filesystem::path& path) {
   }
 }
 
-Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& mesh,
-                           std::span<const InputFingerprint> inputs) {
-  const std::string bytes = read_file(path);
-  detail::BinaryReader in(bytes, path, std::string(kKind));
-  const json header = parse_header(in, path);
-  Checkpoint k;
-  std::uint64_t nodes = 0, sliding = 0, previous_nodes = 0;
-  int version = 0;
-  try {
-    k.info = info_from_json(header);
-    version = detail::integer_value<int>(header.at("format_version"));
-    k.origin.case_file = k.info.case_file;
-    k.origin.mesh_fingerprint = detail::integer_value<std::uint64_t>(header.at("mesh_fingerprint"));
-    for (const json& f : header.at("inputs")) {
-      k.origin.inputs.push_back({f.at("file").get<std::string>(), detail::integer_value<std::uint64_t>(f.at("bytes")),
-                                 detail::integer_value<std::uint64_t>(f.at("hash"))});
-    }
-    nodes = detail::integer_value<std::uint64_t>(header.at("nodes"));
-    sliding = detail::integer_value<std::uint64_t>(header.at("sliding_nodes"));
-    deform::MotionCheckpoint& s = k.state;
-    s.increments = k.info.increments;
-    s.finished_increments = k.info.finished_increments;
-    s.lambda = k.info.lambda;
-    if (version >= 4) {
-      s.previous_lambda = header.at("previous_lambda").get<double>();
-      previous_nodes = detail::integer_value<std::uint64_t>(header.at("previous_nodes"));
-      if (previous_nodes != 0 && previous_nodes != nodes) throw std::runtime_error("previous_nodes is neither 0 nor nodes");
-    }
-    // Version 1 listed the whole increments left too: they follow from finished_increments.
-    // (Its run maxima, max_normal_slip and max_sliding_projection_distance, follow from the
-    // records.)
-    const bool listed_all = version == 1;
-    for (const json& step : header.at(listed_all ? "remaining" : "split_pieces")) {
-      const deform::MotionStep piece{detail::integer_value<int>(step.at(0)), step.at(1).get<double>(),
-                                     step.at(2).get<double>(), detail::integer_value<int>(step.at(3))};
-      if (!listed_all || piece.split_depth > 0) s.split_pieces.push_back(piece);
-    }
-    for (const json& r : header.at("records")) s.records.push_back(record_from_json(r));
-    s.timings = timings_from_json(header.at("timings"));
-  } catch (const std::exception& e) {
-    throw InputError::in(path.string(), std::string("the checkpoint file's header is damaged: ") + e.what());
-  }
+namespace {
 
+/// What the header says the arrays after it hold.
+struct CheckpointCounts {
+  int version = 0;
+  std::uint64_t nodes = 0, sliding = 0, previous_nodes = 0;
+};
+
+/// The header's run, origin and motion state into `k`; throws what json throws when a key is
+/// missing or of the wrong type.
+CheckpointCounts read_header_state(const json& header, Checkpoint& k) {
+  CheckpointCounts counts;
+  k.info = info_from_json(header);
+  counts.version = detail::integer_value<int>(header.at("format_version"));
+  k.origin.case_file = k.info.case_file;
+  k.origin.mesh_fingerprint = detail::integer_value<std::uint64_t>(header.at("mesh_fingerprint"));
+  for (const json& f : header.at("inputs")) {
+    k.origin.inputs.push_back({f.at("file").get<std::string>(), detail::integer_value<std::uint64_t>(f.at("bytes")),
+                               detail::integer_value<std::uint64_t>(f.at("hash"))});
+  }
+  counts.nodes = detail::integer_value<std::uint64_t>(header.at("nodes"));
+  counts.sliding = detail::integer_value<std::uint64_t>(header.at("sliding_nodes"));
+  deform::MotionCheckpoint& s = k.state;
+  s.increments = k.info.increments;
+  s.finished_increments = k.info.finished_increments;
+  s.lambda = k.info.lambda;
+  if (counts.version >= 4) {
+    s.previous_lambda = header.at("previous_lambda").get<double>();
+    counts.previous_nodes = detail::integer_value<std::uint64_t>(header.at("previous_nodes"));
+    if (counts.previous_nodes != 0 && counts.previous_nodes != counts.nodes) {
+      throw std::runtime_error("previous_nodes is neither 0 nor nodes");
+    }
+  }
+  // Version 1 listed the whole increments left too: they follow from finished_increments.
+  // (Its run maxima, max_normal_slip and max_sliding_projection_distance, follow from the
+  // records.)
+  const bool listed_all = counts.version == 1;
+  for (const json& step : header.at(listed_all ? "remaining" : "split_pieces")) {
+    const deform::MotionStep piece{detail::integer_value<int>(step.at(0)), step.at(1).get<double>(),
+                                   step.at(2).get<double>(), detail::integer_value<int>(step.at(3))};
+    if (!listed_all || piece.split_depth > 0) s.split_pieces.push_back(piece);
+  }
+  for (const json& r : header.at("records")) s.records.push_back(record_from_json(r));
+  s.timings = timings_from_json(header.at("timings"));
+  return counts;
+}
+
+/// Throws unless the checkpoint was written by a run of these inputs on this mesh.
+void require_same_run(const std::filesystem::path& path, const Checkpoint& k, std::uint64_t nodes,
+                      const mesh::Mesh& mesh, std::span<const InputFingerprint> inputs) {
   const std::string changed = input_differences(k.origin.inputs, inputs);
   if (!changed.empty()) {
     throw InputError::in(path.string(),
@@ -403,17 +410,22 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& 
     throw InputError::in(path.string(), "cannot resume: this checkpoint was written for another mesh (case " +
                                             k.info.case_file + ")");
   }
-  k.state.points = in.array<geometry::Vec3>(nodes);
-  const auto ids = in.array<mesh::NodeId>(sliding);
-  const auto targets = in.array<geometry::Vec3>(sliding);
+}
+
+/// The arrays after the header (points, sliding nodes, their hints, the previous points) into
+/// k.state; whether their checksums hold.
+bool read_state_arrays(detail::BinaryReader& in, const CheckpointCounts& counts, Checkpoint& k) {
+  k.state.points = in.array<geometry::Vec3>(counts.nodes);
+  const auto ids = in.array<mesh::NodeId>(counts.sliding);
+  const auto targets = in.array<geometry::Vec3>(counts.sliding);
   HintArrays hints;
-  hints.t = in.array<double>(sliding * kHints);
+  hints.t = in.array<double>(counts.sliding * kHints);
   std::uint64_t hash = 0;
   in.read(&hash, sizeof hash);
   bool intact = true;
-  if (version >= 3) {
-    hints.s = in.array<double>(sliding * kHints);
-    hints.face = in.array<std::int32_t>(sliding * kHints);
+  if (counts.version >= 3) {
+    hints.s = in.array<double>(counts.sliding * kHints);
+    hints.face = in.array<std::int32_t>(counts.sliding * kHints);
     std::uint64_t surface_hash = 0;
     in.read(&surface_hash, sizeof surface_hash);
     intact = surface_hash == surface_hints_hash(hints);
@@ -421,8 +433,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& 
     hints.s.assign(hints.t.size(), 0.0);
     hints.face.assign(hints.t.size(), 0);
   }
-  if (version >= 4) {
-    k.state.previous_points = in.array<geometry::Vec3>(previous_nodes);
+  if (counts.version >= 4) {
+    k.state.previous_points = in.array<geometry::Vec3>(counts.previous_nodes);
     std::uint64_t previous_hash = 0;
     in.read(&previous_hash, sizeof previous_hash);
     intact = intact && previous_hash == points_hash(k.state.previous_points);
@@ -437,7 +449,25 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& 
       node.hints[j] = {hints.t[at], hints.s[at], hints.face[at]};
     }
   }
-  if (!intact || hash != arrays_hash(k.state.points, k.state.sliding, hints) || in.at() != bytes.size()) {
+  return intact && hash == arrays_hash(k.state.points, k.state.sliding, hints);
+}
+
+}  // namespace
+
+Checkpoint read_checkpoint(const std::filesystem::path& path, const mesh::Mesh& mesh,
+                           std::span<const InputFingerprint> inputs) {
+  const std::string bytes = read_file(path);
+  detail::BinaryReader in(bytes, path, std::string(kKind));
+  const json header = parse_header(in, path);
+  Checkpoint k;
+  CheckpointCounts counts;
+  try {
+    counts = read_header_state(header, k);
+  } catch (const std::exception& e) {
+    throw InputError::in(path.string(), std::string("the checkpoint file's header is damaged: ") + e.what());
+  }
+  require_same_run(path, k, counts.nodes, mesh, inputs);
+  if (!read_state_arrays(in, counts, k) || in.at() != bytes.size()) {
     throw InputError::in(path.string(), "the checkpoint file is damaged (its content does not match its checksum)");
   }
   return k;
