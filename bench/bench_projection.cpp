@@ -20,11 +20,13 @@
 #include <string>
 #include <vector>
 
+#include "hotmesh/core/clock.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/interpolation.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 
 using namespace hotmesh::geometry;
+using hotmesh::seconds_since;
 
 namespace {
 
@@ -46,10 +48,6 @@ CurveSamples fem_nodes(const BSplineCurve2d& r) {
     s.deflections.push_back({0.01 * std::sin(9.0 * t), 0.005 * std::cos(5.0 * t)});
   }
   return s;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 /// Median rate of `repeats` runs of `run` (which projects `count` points).

@@ -2,16 +2,14 @@
 #pragma once
 
 #include <algorithm>
-#include <chrono>
 #include <vector>
+
+#include "hotmesh/core/clock.hpp"
 
 namespace hotmesh::bench {
 
-using Clock = std::chrono::steady_clock;
-
-inline double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using hotmesh::Clock;
+using hotmesh::seconds_since;
 
 /// The median of non-empty `v` (the upper one for an even count).
 inline double median(std::vector<double> v) {
