@@ -278,7 +278,7 @@ main() {
       # The CGNS library (3.4, and HDF5 beneath it) faults on some damaged files: a wild read
       # in its ADF reader, an assertion of its table of open ADF files after an earlier damaged
       # file. hotmesh reads every CGNS file in a child process first, where such a fault is an
-      # error naming the file (io/src/cgns_library.hpp); the target reads in its own process,
+      # error naming the file (io/src/cgns/cgns_library.hpp); the target reads in its own process,
       # to see hotmesh's code. So the run goes on past a crash (-fork), and each input kept is
       # run again alone: one that fails alone with a report whose stack reaches libcgns or
       # libhdf5 before hotmesh's code (a signal, an assertion, memory asked for inside the

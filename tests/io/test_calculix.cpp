@@ -1,4 +1,4 @@
-// hotmesh tests: the CalculiX readers (io/src/frd_reader.cpp, inp_reader.cpp,
+// hotmesh tests: the CalculiX readers (io/src/fem/frd_reader.cpp, inp_reader.cpp,
 // calculix_table.cpp) against files written by the real ccx: its .frd displacements equal its
 // own .dat printout of the same nodes, binary .frd equals ASCII .frd, sets come through
 // *INCLUDE and GENERATE, surfaces of element faces give their nodes.

@@ -22,7 +22,7 @@
 //   HOTMESH_TEST_ABORT_IN_HDF5_OPEN=1: the process aborts (SIGABRT) when the CGNS library
 //     opens an HDF5 file (H5Fopen), as libhdf5 aborted in cg_open on a CGNS file with a
 //     damaged link name (issue 46): hotmesh reads CGNS files in a child process first, so that
-//     such a fault is an error naming the file (io/src/cgns_library.hpp, check_in_child).
+//     such a fault is an error naming the file (io/src/cgns/cgns_library.hpp, check_in_child).
 //
 // Only the process that writes the checkpoints is hit: the only one, or rank 0 under mpirun.
 // The other ranks run on into the next increment while rank 0 writes, so from outside none
