@@ -328,24 +328,12 @@ void refuse_faces(std::span<const CadFace> faces, const FaceSet& set, const Defl
                                            "give each part its own patch");
 }
 
-}  // namespace
-
-FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const DeflectionSamples& samples,
-                                     const ReconstructionOptions& options) {
-  check_inputs(faces, samples, options);
-  FaceDeflections out;
-  SurfaceReconstructionReport& report = out.report;
-  report.nodes = samples.size();
-  report.degree = options.degree;
-
-  const FaceSet set(faces);
-  refuse_faces(faces, set, samples);
+// Every Q_j onto every face near it: a node within the tolerance of several faces (on the
+// edge they share) is a sample of each, so their fields agree there. Nodes near no face are
+// reported in the rejected nodes.
+PlacedSamples place_nodes(std::span<const CadFace> faces, const FaceSet& set, const DeflectionSamples& samples,
+                          SurfaceReconstructionReport& report, std::vector<NodePlacement>& placements) {
   const std::vector<SurfaceProjector>& projectors = set.projectors;
-  const double size = set.size;
-  report.tolerance = options.tolerance > 0.0 ? options.tolerance : options.relative_tolerance * size;
-
-  // Every Q_j onto every face near it: a node within the tolerance of several faces (on the
-  // edge they share) is a sample of each, so their fields agree there.
   PlacedSamples placed;
   placed.on_face.resize(faces.size());
   placed.index.resize(faces.size());
@@ -369,9 +357,15 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
     for (const auto& [f, p] : near) {
       placed.on_face[f].push_back({p.where.u, p.where.v, samples.deflections[j]});
       placed.index[f].push_back(j);
-      out.placements.push_back({j, f, p.where.u, p.where.v, p.distance});
+      placements.push_back({j, f, p.where.u, p.where.v, p.distance});
     }
   }
+  return placed;
+}
+
+/// Under FarNodePolicy::reject, nodes farther than the tolerance from every face are an error.
+void refuse_far_nodes(const DeflectionSamples& samples, const ReconstructionOptions& options,
+                      const SurfaceReconstructionReport& report, double size) {
   if (!report.rejected_nodes.empty() && options.far_nodes == FarNodePolicy::reject) {
     const std::string how = options.tolerance > 0.0 ? "the given tolerance"
                                                     : "the default tolerance, " + format(options.relative_tolerance) +
@@ -381,8 +375,13 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
                                              format(report.tolerance) + " (" + how + ") from the CAD faces: " +
                                              detail::list_nodes(report.rejected_nodes));
   }
+}
 
-  // d(t, s) on each face through its nodes.
+// d(t, s) on each face through its nodes.
+std::vector<BSplineSurface> fit_fields(std::span<const CadFace> faces, const PlacedSamples& placed,
+                                       const DeflectionSamples& samples, const ReconstructionOptions& options,
+                                       SurfaceReconstructionReport& report) {
+  std::vector<BSplineSurface> fields;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const int id = faces[f].id;
     if (placed.on_face[f].empty()) {
@@ -397,47 +396,80 @@ FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const Defle
       SurfaceFit fit = fit_surface_field(placed.on_face[f], faces[f].surface.domain(), fit_options);
       report.faces.push_back({id, placed.on_face[f].size(), fit.report});
       report.max_node_residual = std::max(report.max_node_residual, fit.report.max_residual);
-      out.fields.push_back(std::move(fit.field));
+      fields.push_back(std::move(fit.field));
     } catch (const InputError& e) {
       throw InputError::in(samples.source, "CAD face " + std::to_string(id) + ": " + e.what());
     }
   }
-  // The fields made to meet along the edges the faces share (field_joins.hpp), and the fit's
-  // residuals measured again on the joined fields.
+  return fields;
+}
+
+// The fields made to meet along the edges the faces share (field_joins.hpp); returns the
+// largest gap left along edges that cross a face's rectangle.
+double join_along_edges(std::span<const CadFace> faces, const FaceSet& set, std::vector<BSplineSurface>& fields,
+                        SurfaceReconstructionReport& report) {
   const EdgeJoins joins = edge_joins(faces, set);
   report.shared_edges = joins.shared;
   // Uneven edges, and edges across a face's rectangle, count as joined where their fields
   // meet to 1e-10 of the wall's size. The rows joined along sides stay as they are.
-  const double join_tolerance = 1e-10 * size;
-  report.joined_edges = detail::join_fields(out.fields, joins.sides, joins.uneven, joins.corners, join_tolerance).joined;
+  const double join_tolerance = 1e-10 * set.size;
+  report.joined_edges = detail::join_fields(fields, joins.sides, joins.uneven, joins.corners, join_tolerance).joined;
   double crossing_gap = 0.0;
-  for (const double gap : detail::join_sides_to_faces(out.fields, faces, projectors, joins.on_faces,
+  for (const double gap : detail::join_sides_to_faces(fields, faces, set.projectors, joins.on_faces,
                                                       joined_sides(joins), join_tolerance)) {
     crossing_gap = std::max(crossing_gap, gap);
     if (gap <= join_tolerance) ++report.joined_edges;
   }
   std::vector<detail::FaceSide> kept = joined_sides(joins);
   for (const detail::SideOnFace& e : joins.on_faces) kept.push_back({e.a, e.side});
-  for (const double gap : detail::join_across_faces(out.fields, faces, projectors, joins.across, kept, join_tolerance)) {
+  for (const double gap : detail::join_across_faces(fields, faces, set.projectors, joins.across, kept, join_tolerance)) {
     crossing_gap = std::max(crossing_gap, gap);
     if (gap <= join_tolerance) ++report.joined_edges;
   }
+  return crossing_gap;
+}
+
+// The fit's residuals measured again on the joined fields.
+void measure_residuals(const PlacedSamples& placed, const std::vector<BSplineSurface>& fields,
+                       SurfaceReconstructionReport& report) {
   report.max_node_residual = 0.0;
-  for (std::size_t f = 0; f < faces.size(); ++f) {
+  for (std::size_t f = 0; f < fields.size(); ++f) {
     SurfaceFitReport& fit = report.faces[f].fit;
-    fit.u_poles = out.fields[f].u_count();  // knots inserted along joined edges add poles
-    fit.v_poles = out.fields[f].v_count();
+    fit.u_poles = fields[f].u_count();  // knots inserted along joined edges add poles
+    fit.v_poles = fields[f].v_count();
     fit.max_residual = 0.0;
     double squares = 0.0;
     for (const FieldSample& sample : placed.on_face[f]) {
-      const double r = distance(out.fields[f].point(sample.u, sample.v), sample.value);
+      const double r = distance(fields[f].point(sample.u, sample.v), sample.value);
       fit.max_residual = std::max(fit.max_residual, r);
       squares += r * r;
     }
     fit.rms_residual = std::sqrt(squares / static_cast<double>(placed.on_face[f].size()));
     report.max_node_residual = std::max(report.max_node_residual, fit.max_residual);
   }
-  report.max_edge_gap = std::max(edge_gap(faces, projectors, out.fields, 1e-6 * size), crossing_gap);
+}
+
+}  // namespace
+
+FaceDeflections reconstruct_on_faces(std::span<const CadFace> faces, const DeflectionSamples& samples,
+                                     const ReconstructionOptions& options) {
+  check_inputs(faces, samples, options);
+  FaceDeflections out;
+  SurfaceReconstructionReport& report = out.report;
+  report.nodes = samples.size();
+  report.degree = options.degree;
+
+  const FaceSet set(faces);
+  refuse_faces(faces, set, samples);
+  const double size = set.size;
+  report.tolerance = options.tolerance > 0.0 ? options.tolerance : options.relative_tolerance * size;
+
+  const PlacedSamples placed = place_nodes(faces, set, samples, report, out.placements);
+  refuse_far_nodes(samples, options, report, size);
+  out.fields = fit_fields(faces, placed, samples, options, report);
+  const double crossing_gap = join_along_edges(faces, set, out.fields, report);
+  measure_residuals(placed, out.fields, report);
+  report.max_edge_gap = std::max(edge_gap(faces, set.projectors, out.fields, 1e-6 * size), crossing_gap);
   return out;
 }
 
