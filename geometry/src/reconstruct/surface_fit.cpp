@@ -246,6 +246,93 @@ std::array<std::size_t, 2> span_counts(const std::vector<double>& x, const std::
   return {spans(aspect), spans(1.0)};
 }
 
+/// B: the collocation matrix of the samples at (u_j, v_j), B_jk = N_a(u_j) N_b(v_j), k = a n_v + b.
+SparseMatrix collocation_matrix(const std::vector<double>& u, const std::vector<double>& v,
+                                const std::vector<double>& u_knots, const std::vector<double>& v_knots, int q,
+                                std::size_t nv, Eigen::Index poles) {
+  const auto p = static_cast<std::size_t>(q);
+  Triplets entries;
+  for (std::size_t j = 0; j < u.size(); ++j) {
+    const BasisAt nu_j = basis_at(u_knots, q, u[j]);
+    const BasisAt nv_j = basis_at(v_knots, q, v[j]);
+    for (std::size_t a = 0; a <= p; ++a) {
+      for (std::size_t b = 0; b <= p; ++b) {
+        entries.emplace_back(static_cast<int>(j), static_cast<int>((nu_j.first + a) * nv + nv_j.first + b),
+                             nu_j.value(a) * nv_j.value(b));
+      }
+    }
+  }
+  return from_triplets(static_cast<Eigen::Index>(u.size()), poles, entries);
+}
+
+/// J: the u jumps of every row of poles at fixed b, then the v jumps of every row at fixed a
+/// (jump_rows, spans of h_u and h_v).
+SparseMatrix jump_matrix(const std::vector<double>& u_knots, const std::vector<double>& v_knots, int q, std::size_t nu,
+                         std::size_t nv, double h_u, double h_v, Eigen::Index poles) {
+  const auto p = static_cast<std::size_t>(q);
+  const auto u_jumps = jump_rows(u_knots, q, h_u);
+  const auto v_jumps = jump_rows(v_knots, q, h_v);
+  Triplets entries;
+  int row = 0;
+  for (std::size_t r = 0; r < u_jumps.size(); ++r) {
+    for (std::size_t b = 0; b < nv; ++b, ++row) {
+      for (std::size_t l = 0; l <= p + 1; ++l) {
+        entries.emplace_back(row, static_cast<int>((r + l) * nv + b), u_jumps[r][l]);
+      }
+    }
+  }
+  for (std::size_t a = 0; a < nu; ++a) {
+    for (std::size_t r = 0; r < v_jumps.size(); ++r, ++row) {
+      for (std::size_t l = 0; l <= p + 1; ++l) {
+        entries.emplace_back(row, static_cast<int>(a * nv + r + l), v_jumps[r][l]);
+      }
+    }
+  }
+  return from_triplets(row, poles, entries);
+}
+
+/// The poles c of (B^T B + mu J^T J) c = B^T V, mu = smoothing tr(B^T B) / tr(J^T J), by a
+/// sparse LDL^T; throws InputError where a pivot shows the samples leave the field undetermined.
+std::vector<Vec3> solve_normal_equations(const SparseMatrix& b_matrix, const SparseMatrix& j_matrix,
+                                         std::span<const FieldSample> samples, const SurfaceFitOptions& options) {
+  const Eigen::Index poles = b_matrix.cols();
+  const SparseMatrix data = b_matrix.transpose() * b_matrix;
+  const SparseMatrix penalty = j_matrix.transpose() * j_matrix;
+  const double penalty_trace = penalty.diagonal().sum();
+  const double mu = penalty_trace > 0.0 ? options.smoothing * data.diagonal().sum() / penalty_trace : 0.0;
+  const SparseMatrix normal = data + mu * penalty;
+  Eigen::MatrixXd values(static_cast<Eigen::Index>(samples.size()), 3);
+  for (std::size_t j = 0; j < samples.size(); ++j) {
+    for (int c = 0; c < 3; ++c) values(static_cast<Eigen::Index>(j), c) = samples[j].value[c];
+  }
+  const Eigen::MatrixXd rhs = b_matrix.transpose() * values;
+
+  const Eigen::SimplicialLDLT<SparseMatrix> ldlt(normal);
+  bool singular = ldlt.info() != Eigen::Success;
+  if (!singular) {
+    // Pivot D_k of the permuted matrix P A P^T against its diagonal entry A_ii, k = P(i).
+    const Eigen::VectorXd diagonal = normal.diagonal();
+    const auto& permutation = ldlt.permutationP().indices();
+    for (Eigen::Index i = 0; i < poles && !singular; ++i) {
+      const double pivot = ldlt.vectorD()(permutation(i));
+      singular = !(pivot > kSingularPivot * diagonal(i));
+    }
+  }
+  if (singular) {
+    throw InputError(cannot_determine(samples.size(), options.degree,
+                                      "they lie on one line or curve of the parameter plane, or on too small "
+                                      "a part of the domain"));
+  }
+  const Eigen::MatrixXd solution = ldlt.solve(rhs);
+  std::vector<Vec3> pole_values(static_cast<std::size_t>(poles));
+  for (std::size_t k = 0; k < pole_values.size(); ++k) {
+    const auto i = static_cast<Eigen::Index>(k);
+    pole_values[k] = {solution(i, 0), solution(i, 1), solution(i, 2)};
+  }
+  return pole_values;
+}
+
+
 // Regularised least squares on a net of uniform clamped knots. With B the collocation matrix
 // of the samples (B_jk = N_a(u_j) N_b(v_j), k = a n_v + b), V the sample values and c the poles,
 //     minimise  |B c - V|^2 + mu (|J_u c|^2 + |J_v c|^2),
@@ -278,76 +365,14 @@ SurfaceFit least_squares(const std::vector<double>& u, const std::vector<double>
   const std::size_t nv = v_spans + p;
   const auto poles = static_cast<Eigen::Index>(nu * nv);
 
-  Triplets entries;
-  for (std::size_t j = 0; j < samples.size(); ++j) {
-    const BasisAt nu_j = basis_at(u_knots, q, u[j]);
-    const BasisAt nv_j = basis_at(v_knots, q, v[j]);
-    for (std::size_t a = 0; a <= p; ++a) {
-      for (std::size_t b = 0; b <= p; ++b) {
-        entries.emplace_back(static_cast<int>(j), static_cast<int>((nu_j.first + a) * nv + nv_j.first + b),
-                             nu_j.value(a) * nv_j.value(b));
-      }
-    }
-  }
-  const SparseMatrix b_matrix = from_triplets(static_cast<Eigen::Index>(samples.size()), poles, entries);
-
-  // J: the u jumps of every row of poles at fixed b, then the v jumps of every row at fixed a.
-  const auto u_jumps = jump_rows(u_knots, q, u_length / static_cast<double>(u_spans));
-  const auto v_jumps = jump_rows(v_knots, q, v_length / static_cast<double>(v_spans));
-  entries.clear();
-  int row = 0;
-  for (std::size_t r = 0; r < u_jumps.size(); ++r) {
-    for (std::size_t b = 0; b < nv; ++b, ++row) {
-      for (std::size_t l = 0; l <= p + 1; ++l) {
-        entries.emplace_back(row, static_cast<int>((r + l) * nv + b), u_jumps[r][l]);
-      }
-    }
-  }
-  for (std::size_t a = 0; a < nu; ++a) {
-    for (std::size_t r = 0; r < v_jumps.size(); ++r, ++row) {
-      for (std::size_t l = 0; l <= p + 1; ++l) {
-        entries.emplace_back(row, static_cast<int>(a * nv + r + l), v_jumps[r][l]);
-      }
-    }
-  }
-  const SparseMatrix j_matrix = from_triplets(row, poles, entries);
-
-  const SparseMatrix data = b_matrix.transpose() * b_matrix;
-  const SparseMatrix penalty = j_matrix.transpose() * j_matrix;
-  const double penalty_trace = penalty.diagonal().sum();
-  const double mu = penalty_trace > 0.0 ? options.smoothing * data.diagonal().sum() / penalty_trace : 0.0;
-  const SparseMatrix normal = data + mu * penalty;
-  Eigen::MatrixXd values(static_cast<Eigen::Index>(samples.size()), 3);
-  for (std::size_t j = 0; j < samples.size(); ++j) {
-    for (int c = 0; c < 3; ++c) values(static_cast<Eigen::Index>(j), c) = samples[j].value[c];
-  }
-  const Eigen::MatrixXd rhs = b_matrix.transpose() * values;
-
-  const Eigen::SimplicialLDLT<SparseMatrix> ldlt(normal);
-  bool singular = ldlt.info() != Eigen::Success;
-  if (!singular) {
-    // Pivot D_k of the permuted matrix P A P^T against its diagonal entry A_ii, k = P(i).
-    const Eigen::VectorXd diagonal = normal.diagonal();
-    const auto& permutation = ldlt.permutationP().indices();
-    for (Eigen::Index i = 0; i < poles && !singular; ++i) {
-      const double pivot = ldlt.vectorD()(permutation(i));
-      singular = !(pivot > kSingularPivot * diagonal(i));
-    }
-  }
-  if (singular) {
-    throw InputError(cannot_determine(samples.size(), q,
-                                      "they lie on one line or curve of the parameter plane, or on too small "
-                                      "a part of the domain"));
-  }
-  const Eigen::MatrixXd solution = ldlt.solve(rhs);
-  std::vector<Vec3> pole_values(nu * nv);
-  for (std::size_t k = 0; k < pole_values.size(); ++k) {
-    const auto i = static_cast<Eigen::Index>(k);
-    pole_values[k] = {solution(i, 0), solution(i, 1), solution(i, 2)};
-  }
+  const SparseMatrix b_matrix = collocation_matrix(u, v, u_knots, v_knots, q, nv, poles);
+  const SparseMatrix j_matrix = jump_matrix(u_knots, v_knots, q, nu, nv, u_length / static_cast<double>(u_spans),
+                                            v_length / static_cast<double>(v_spans), poles);
+  std::vector<Vec3> pole_values = solve_normal_equations(b_matrix, j_matrix, samples, options);
   SurfaceFitReport report{.method = SurfaceFitMethod::least_squares, .degree = q, .u_poles = nu, .v_poles = nv};
   return {BSplineSurface(q, q, std::move(u_knots), std::move(v_knots), std::move(pole_values)), report};
 }
+
 
 void fill_residuals(SurfaceFit& fit, std::span<const FieldSample> samples, const std::vector<double>& u,
                     const std::vector<double>& v) {
