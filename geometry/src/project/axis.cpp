@@ -1,3 +1,5 @@
+// hotmesh geometry: an axis of revolution and cylindrical coordinates (r, theta, z) about it
+// (axis.hpp): the frame of the meridional plane in which axisymmetric walls are projected (Fig. 4).
 #include "hotmesh/geometry/axis.hpp"
 
 #include <cmath>

@@ -1,7 +1,7 @@
 // hotmesh geometry (internal): the CAD faces of a wall seen together, for the reconstruction
-// of its deflection (face_reconstruction.cpp) and its shape (surface_shape.cpp): which sides of
-// the faces' parameter rectangles they share, which collapse to a point, and the groups of
-// faces joined through shared sides.
+// of its deflection (face_reconstruction.cpp) and its shape (surface_shape.cpp, its creases
+// surface_creases.cpp): which sides of the faces' parameter rectangles they share, which
+// collapse to a point, and the groups of faces joined through shared sides.
 #pragma once
 
 #include <algorithm>

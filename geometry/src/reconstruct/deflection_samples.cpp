@@ -1,3 +1,5 @@
+// hotmesh geometry: FEM deflection samples (deflection_samples.hpp): how a sample is named in
+// messages (node id, table line) and the names of the tables' coordinate frames.
 #include "hotmesh/geometry/deflection_samples.hpp"
 
 namespace hotmesh::geometry {
