@@ -18,9 +18,6 @@ namespace hotmesh::geometry {
 
 namespace {
 
-using detail::kDegenerateNormal;
-using detail::Sym2;
-
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// Second derivatives are sampled at a sub-patch's corners and centre; their maxima times this
 /// stand for the maxima over the sub-patch in its deviation bound.
@@ -77,7 +74,7 @@ const char* edge_name(PatchEdge edge) {
 }
 
 /// The smaller eigenvalue of the symmetric 2x2 matrix m.
-double smaller_eigenvalue(const Sym2& m) {
+double smaller_eigenvalue(const detail::Sym2& m) {
   const double half_trace = 0.5 * (m.uu + m.vv);
   const double half_gap = 0.5 * (m.uu - m.vv);
   return half_trace - std::sqrt(half_gap * half_gap + m.uv * m.uv);
@@ -298,7 +295,7 @@ void SurfaceProjector::report_degeneracies(const std::vector<Grid>& grids) {
   for (std::size_t k = 0; k < grids.size(); ++k) {
     const Grid& g = grids[k];
     const auto patch = static_cast<int>(k);
-    const double threshold = kDegenerateNormal * cells_[k].normal_scale;
+    const double threshold = detail::kDegenerateNormal * cells_[k].normal_scale;
     const auto degenerate = [&](const SurfaceDerivatives& d) { return norm(cross(d.du, d.dv)) <= threshold; };
     const std::size_t nu = g.us.size();
     const std::size_t nv = g.vs.size();
