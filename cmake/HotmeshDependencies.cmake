@@ -43,7 +43,7 @@ target_link_libraries(hotmesh_occt INTERFACE
   TKXSBase TKSTEP TKSTEPBase TKSTEPAttr TKSTEP209 TKIGES)
 target_link_directories(hotmesh_occt INTERFACE ${OpenCASCADE_LIBRARY_DIR})
 # As OpenCASCADE itself is built on Linux: OCC_CATCH_SIGNALS turns a signal inside its code
-# into a Standard_Failure (geometry/src/occt_session.hpp).
+# into a Standard_Failure (geometry/src/cad/occt_session.hpp).
 target_compile_definitions(hotmesh_occt INTERFACE OCC_CONVERT_SIGNALS)
 
 # HTTP for `hotmesh serve`: cpp-httplib (Debian builds it as a library; its pkg-config flags

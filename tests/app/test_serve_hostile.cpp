@@ -253,7 +253,7 @@ TEST(ServeHostile, MultipartBodiesOnJsonRoutesAre415AndMalformedUploads400WithAR
   EXPECT_EQ(server.stop(SIGTERM), 0) << server.log();
 }
 
-// Before issue 18 item 3 (geometry/src/cad_reader.cpp), the server died with SIGSEGV here.
+// Before issue 18 item 3 (geometry/src/cad/cad_reader.cpp), the server died with SIGSEGV here.
 TEST(ServeHostile, AStepFileThatCrashesOpenCascadeIsAnErrorAndTheServerLivesOn) {
   test::TempDir tmp;
   test::ServeProcess server({}, {{"TMPDIR", tmp.path().string()}});

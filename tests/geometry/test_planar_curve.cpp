@@ -1,4 +1,4 @@
-// Tests of CadModel::planar_curve (geometry/src/planar_curve.cpp): the wall of a 2D case from
+// Tests of CadModel::planar_curve (geometry/src/cad/planar_curve.cpp): the wall of a 2D case from
 // the CAD edges drawn in its plane, on the lower wall of a channel with a forward-facing step
 // (occt_fixtures.hpp, StepWall) written to STEP by OpenCASCADE and read back as a user's file
 // is. The expectations come from the drawing itself: its vertices, and its fillet's circle.
