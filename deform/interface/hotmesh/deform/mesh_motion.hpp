@@ -216,7 +216,7 @@ struct MotionResult {
   std::vector<Vec3> restart_points;
   std::vector<WallFeature> features;           ///< the corners of the sliding walls, by patch
   /// Where the corner pass left cells below the motion's worst cell: the interior nodes moved
-  /// to restore it (deform/src/quality_repair.hpp). Zero counts when it did not.
+  /// to restore it (deform/src/motion/quality_repair.hpp). Zero counts when it did not.
   struct CornerRepair {
     std::size_t cells_below = 0;  ///< cells the pass left below the motion's worst cell
     std::size_t nodes_moved = 0;

@@ -1,5 +1,5 @@
 // hotmesh deform: sliding nodes across an increment (section 4, eqs. 13-22).
-#include "sliding.hpp"
+#include "constraints/sliding.hpp"
 
 #include <algorithm>
 #include <array>

@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "constraints/passive.hpp"
+#include "constraints/periodic.hpp"
+#include "constraints/wall_features.hpp"
 #include "hotmesh/deform/constraints.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
-#include "passive.hpp"
-#include "periodic.hpp"
-#include "wall_features.hpp"
 
 namespace hotmesh::deform::detail {
 

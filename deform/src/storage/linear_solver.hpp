@@ -18,13 +18,13 @@
 #include <string_view>
 #include <vector>
 
+#include "constraints/periodic.hpp"
 #include "hotmesh/deform/constraints.hpp"
 #include "hotmesh/deform/linear_algebra.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/parallel/rank_exchange.hpp"
-#include "periodic.hpp"
 
 namespace hotmesh::deform::detail {
 

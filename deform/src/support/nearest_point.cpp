@@ -1,4 +1,5 @@
-#include "nearest_point.hpp"
+// hotmesh deform: NearestPoint (nearest_point.hpp) on CGAL's k-d tree.
+#include "support/nearest_point.hpp"
 
 #include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Search_traits_3.h>

@@ -1,5 +1,5 @@
 // hotmesh deform: rotational periodicity (node pairing and the T^T K T reduction).
-#include "periodic.hpp"
+#include "constraints/periodic.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "nearest_point.hpp"
+#include "support/nearest_point.hpp"
 
 #include "hotmesh/core/input_error.hpp"
 

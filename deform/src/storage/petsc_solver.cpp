@@ -47,7 +47,7 @@
 // residual is summed over the ranks, CG and the multigrid run on the distributed matrix, and
 // the solution is gathered on every rank. With one process the same code runs on
 // PETSC_COMM_SELF.
-#include "petsc_solver.hpp"
+#include "storage/petsc_solver.hpp"
 
 #include <petscksp.h>
 
@@ -63,9 +63,9 @@
 
 #include <fmt/format.h>
 
-#include "frame_matrix.hpp"
-#include "free_memory.hpp"
 #include "hotmesh/deform/pcg.hpp"
+#include "storage/frame_matrix.hpp"
+#include "support/free_memory.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {

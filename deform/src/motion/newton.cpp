@@ -1,5 +1,5 @@
 // hotmesh deform: the Newton loop's residual, and the forcing term of inexact Newton.
-#include "newton.hpp"
+#include "motion/newton.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "element/linear_elements.hpp"
+#include "element/q1_element.hpp"
 #include "hotmesh/core/input_error.hpp"
-#include "linear_elements.hpp"
-#include "nearest_point.hpp"
-#include "q1_element.hpp"
+#include "support/nearest_point.hpp"
 
 namespace hotmesh::deform {
 namespace {

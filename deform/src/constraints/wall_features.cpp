@@ -1,5 +1,5 @@
 // hotmesh deform: the corners of a sliding wall held by mesh nodes (wall_features.hpp).
-#include "wall_features.hpp"
+#include "constraints/wall_features.hpp"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // hotmesh deform: the rigid-body motions boundary conditions leave free (rigid_modes.hpp).
-#include "rigid_modes.hpp"
+#include "constraints/rigid_modes.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>

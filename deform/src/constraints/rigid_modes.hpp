@@ -15,8 +15,8 @@
 
 #include <Eigen/Core>
 
+#include "constraints/periodic.hpp"
 #include "hotmesh/deform/mesh_names.hpp"
-#include "periodic.hpp"
 
 namespace hotmesh::deform::detail {
 

@@ -1,4 +1,5 @@
-#include "free_memory.hpp"
+// hotmesh deform: release_free_memory (free_memory.hpp), glibc's malloc_trim.
+#include "support/free_memory.hpp"
 
 #if defined(__GLIBC__)
 #include <malloc.h>  // malloc_trim

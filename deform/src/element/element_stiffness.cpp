@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "element/linear_elements.hpp"
+#include "element/q1_element.hpp"
 #include "hotmesh/core/input_error.hpp"
-#include "linear_elements.hpp"
-#include "q1_element.hpp"
 
 namespace hotmesh::deform {
 namespace {

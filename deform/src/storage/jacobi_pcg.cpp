@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "hotmesh/deform/pcg.hpp"
-#include "linear_solver.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
+#include "storage/linear_solver.hpp"
 
 namespace hotmesh::deform::detail {
 

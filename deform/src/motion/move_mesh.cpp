@@ -16,18 +16,18 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "boundary_conditions.hpp"
-#include "free_memory.hpp"
+#include "constraints/boundary_conditions.hpp"
+#include "constraints/sliding.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
-#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 #include "hotmesh/mesh/solver_quality.hpp"
-#include "linear_solver.hpp"
-#include "newton.hpp"
-#include "quality_repair.hpp"
-#include "sliding.hpp"
+#include "motion/newton.hpp"
+#include "motion/quality_repair.hpp"
+#include "storage/linear_solver.hpp"
+#include "support/free_memory.hpp"
 
 namespace hotmesh::deform {
 

@@ -24,9 +24,9 @@
 #include <span>
 #include <vector>
 
+#include "constraints/periodic.hpp"
 #include "hotmesh/deform/constraints.hpp"
 #include "hotmesh/deform/mesh_names.hpp"
-#include "periodic.hpp"
 
 namespace hotmesh::deform::detail {
 

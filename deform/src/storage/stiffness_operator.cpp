@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/deform/node_order.hpp"
-#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 
 namespace hotmesh::deform {

@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "constraints/nodal_frames.hpp"
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/parallel/processes.hpp"
-#include "linear_solver.hpp"
-#include "newton.hpp"
-#include "nodal_frames.hpp"
+#include "motion/newton.hpp"
+#include "storage/linear_solver.hpp"
 
 namespace hotmesh::deform::detail {
 

@@ -1,5 +1,5 @@
 // hotmesh deform: nodal frames for the assembled linear solve (see nodal_frames.hpp).
-#include "nodal_frames.hpp"
+#include "constraints/nodal_frames.hpp"
 
 #include <algorithm>
 #include <cmath>

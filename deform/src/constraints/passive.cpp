@@ -1,5 +1,5 @@
 // hotmesh deform: passive surfaces, a linear spring analogy on the surface (section 6.1).
-#include "passive.hpp"
+#include "constraints/passive.hpp"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>

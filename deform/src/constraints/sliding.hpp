@@ -15,7 +15,7 @@
 #include <span>
 #include <vector>
 
-#include "boundary_conditions.hpp"
+#include "constraints/boundary_conditions.hpp"
 #include "hotmesh/parallel/rank_exchange.hpp"
 
 namespace hotmesh::deform::detail {

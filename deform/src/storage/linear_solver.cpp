@@ -1,10 +1,10 @@
 // hotmesh deform: the choice of linear solver, and the Newton norm its solves may stop on.
-#include "linear_solver.hpp"
+#include "storage/linear_solver.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "petsc_solver.hpp"
+#include "storage/petsc_solver.hpp"
 
 namespace hotmesh::deform::detail {
 

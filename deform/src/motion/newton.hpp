@@ -9,7 +9,7 @@
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/parallel/rank_exchange.hpp"
-#include "linear_solver.hpp"
+#include "storage/linear_solver.hpp"
 
 namespace hotmesh::deform::detail {
 

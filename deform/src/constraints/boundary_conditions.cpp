@@ -1,5 +1,5 @@
 // hotmesh deform: boundary roles to node constraints, prescribed motions and sliding nodes.
-#include "boundary_conditions.hpp"
+#include "constraints/boundary_conditions.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
@@ -12,10 +12,10 @@
 #include <optional>
 #include <unordered_map>
 
+#include "constraints/passive.hpp"
+#include "constraints/rigid_modes.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
-#include "passive.hpp"
-#include "rigid_modes.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {

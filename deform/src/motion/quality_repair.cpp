@@ -1,5 +1,5 @@
 // hotmesh deform: restoring the worst cell after the corner pass (quality_repair.hpp).
-#include "quality_repair.hpp"
+#include "motion/quality_repair.hpp"
 
 #include <algorithm>
 #include <array>

@@ -11,8 +11,8 @@
 #include <span>
 #include <vector>
 
-#include "linear_solver.hpp"
-#include "nodal_frames.hpp"
+#include "constraints/nodal_frames.hpp"
+#include "storage/linear_solver.hpp"
 
 namespace hotmesh::deform::detail {
 

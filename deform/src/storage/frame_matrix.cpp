@@ -1,6 +1,6 @@
 // hotmesh deform: the matrix of the amg solver in nodal frames (frame_matrix.hpp): the cell
 // partition among ranks, the block rows and their owners, preallocation and assembly.
-#include "frame_matrix.hpp"
+#include "storage/frame_matrix.hpp"
 
 #include <algorithm>
 #include <array>

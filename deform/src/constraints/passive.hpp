@@ -18,8 +18,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "constraints/periodic.hpp"
 #include "hotmesh/deform/mesh_names.hpp"
-#include "periodic.hpp"
 
 namespace hotmesh::deform::detail {
 
