@@ -20,18 +20,6 @@
 namespace hotmesh::deform::detail {
 namespace {
 
-int priority(BoundaryRole role) {
-  switch (role) {
-    case BoundaryRole::fixed: return 6;
-    case BoundaryRole::prescribed: return 5;
-    case BoundaryRole::sliding: return 4;
-    case BoundaryRole::passive: return 3;
-    case BoundaryRole::slip: return 2;
-    case BoundaryRole::periodic: return 1;
-  }
-  return 0;
-}
-
 /// Best-fit plane (line in 2D) of a slip patch; throws if the patch is not planar.
 SlipPlane slip_plane(const Mesh& mesh, const Patch& patch) {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -262,7 +250,7 @@ class BoundaryBuilder {
   void assign_motions() {
     for (const PatchMotion& m : patches_) {
       motion_of_[patch_index(m.patch)] = &m;
-      if ((m.role == BoundaryRole::prescribed || m.role == BoundaryRole::sliding) && !m.shape) {
+      if (follows_shape(m.role) && !m.shape) {
         throw InputError(fmt::format("patch '{}' is {} but has no shape to follow", m.patch, to_string(m.role)));
       }
     }
@@ -295,16 +283,15 @@ class BoundaryBuilder {
   void assign_node_roles() {
     for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
       for (NodeId n : mesh_.patches[p].nodes) {
-        if (priority(motion_of_[p]->role) > role_priority(n)) owner_[static_cast<std::size_t>(n)] = static_cast<int>(p);
+        if (role_strength(motion_of_[p]->role) > role_priority(n)) owner_[static_cast<std::size_t>(n)] = static_cast<int>(p);
       }
     }
     for (std::size_t n = 0; n < mesh_.node_count(); ++n) {
       if (is_slave(static_cast<NodeId>(n))) {
-        setup_.roles[n] = static_cast<NodeRoleCode>(1 + static_cast<int>(BoundaryRole::periodic));
+        setup_.roles[n] = node_role_code(BoundaryRole::periodic);
         setup_.constraints.fix(static_cast<NodeId>(n));  // not an unknown: it follows its master
       } else if (owner_[n] >= 0) {
-        setup_.roles[n] =
-            static_cast<NodeRoleCode>(1 + static_cast<int>(motion_of_[static_cast<std::size_t>(owner_[n])]->role));
+        setup_.roles[n] = node_role_code(motion_of_[static_cast<std::size_t>(owner_[n])]->role);
       }
     }
   }
@@ -709,12 +696,12 @@ class BoundaryBuilder {
     };
     for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
       const PatchMotion& m = *motion_of_[p];
-      if (m.role != BoundaryRole::prescribed && m.role != BoundaryRole::sliding) continue;
+      if (!follows_shape(m.role)) continue;
       std::size_t overruled = 0;
       double largest = 0.0;
       const double tolerance = 1e-6 * bounding_diagonal(mesh_.points, mesh_.patches[p].nodes);
       for (NodeId n : mesh_.patches[p].nodes) {
-        if (is_slave(n) || role_priority(n) <= priority(m.role)) continue;
+        if (is_slave(n) || role_priority(n) <= role_strength(m.role)) continue;
         const PatchMotion& winner = *motion_of_[static_cast<std::size_t>(owner_[static_cast<std::size_t>(n)])];
         const double gap = distance(final_position(m, n), final_position(winner, n));
         if (gap > tolerance) {
@@ -746,9 +733,9 @@ class BoundaryBuilder {
   bool is_slave(NodeId n) const { return setup_.periodic.is_slave(n); }
   int role_priority(NodeId n) const {
     const int o = owner_[static_cast<std::size_t>(n)];
-    return o < 0 ? 0 : priority(motion_of_[static_cast<std::size_t>(o)]->role);
+    return o < 0 ? 0 : role_strength(motion_of_[static_cast<std::size_t>(o)]->role);
   }
-  bool has_role(NodeId n, BoundaryRole role) const { return !is_slave(n) && role_priority(n) == priority(role); }
+  bool has_role(NodeId n, BoundaryRole role) const { return !is_slave(n) && role_priority(n) == role_strength(role); }
 
   const Mesh& mesh_;
   std::span<const PatchMotion> patches_;

@@ -282,8 +282,8 @@ class Motion {
       if (std::find(p.nodes.begin(), p.nodes.end(), n) != p.nodes.end()) patches.push_back("'" + p.name + "'");
     }
     const NodeRoleCode code = setup_.roles[static_cast<std::size_t>(n)];
-    if (code == 0) return "interior";
-    const std::string role(to_string(static_cast<BoundaryRole>(code - 1)));
+    if (code == kInteriorNodeCode) return "interior";
+    const std::string role(to_string(role_of_node_code(code)));
     const auto sliding = std::find_if(setup_.sliding.begin(), setup_.sliding.end(),
                                       [n](const detail::SlidingNode& s) { return s.node == n; });
     const bool on_corner_line = sliding != setup_.sliding.end() && std::any_of(setup_.corner_paths.begin(), setup_.corner_paths.end(), [&](const auto& path) {
@@ -396,11 +396,13 @@ class Motion {
     const std::span<const Vec3> from = secant ? std::span<const Vec3>(previous_points_) : setup_.reference;
     const double scale = (b - a) / (a - (secant ? previous_stage_ : 0.0));
     const std::vector<Vec3>& x = result_.points;
-    constexpr auto role = [](BoundaryRole r) { return static_cast<NodeRoleCode>(1 + static_cast<int>(r)); };
     const auto t = Clock::now();
     for (std::size_t i = 0; i < x.size(); ++i) {
       const NodeRoleCode r = setup_.roles[i];
-      if (r != 0 && r != role(BoundaryRole::periodic) && r != role(BoundaryRole::sliding)) continue;
+      if (r != kInteriorNodeCode && r != node_role_code(BoundaryRole::periodic) &&
+          r != node_role_code(BoundaryRole::sliding)) {
+        continue;
+      }
       for (std::size_t c = 0; c < dim_; ++c) u[i * dim_ + c] = scale * (x[i][c] - from[i][c]);
     }
     sliding_.project(b, x, u);
@@ -668,7 +670,7 @@ constexpr int kRepairSweeps = 50;
 void restore_worst_cell(const Mesh& mesh, const QualitySummary& motion, MotionResult& pass) {
   std::vector<char> interior(pass.node_roles.size());
   std::transform(pass.node_roles.begin(), pass.node_roles.end(), interior.begin(),
-                 [](NodeRoleCode role) { return role == 0 ? 1 : 0; });
+                 [](NodeRoleCode role) { return role == kInteriorNodeCode ? 1 : 0; });
   const detail::QualityRepair r =
       detail::repair_cells_below(mesh, pass.points, interior, motion.min_scaled_jacobian, kRepairSweeps);
   pass.corner_repair = {r.cells_below, r.nodes_moved, r.min_before, r.min_after};
@@ -681,7 +683,7 @@ void restore_worst_cell(const Mesh& mesh, const QualitySummary& motion, MotionRe
 std::vector<NodeId> moving_wall_nodes(const Mesh& mesh, std::span<const PatchMotion> patches) {
   std::vector<NodeId> nodes;
   for (const PatchMotion& m : patches) {
-    if (m.role != BoundaryRole::prescribed && m.role != BoundaryRole::sliding) continue;
+    if (!follows_shape(m.role)) continue;
     if (const mesh::Patch* patch = mesh.find_patch(m.patch)) nodes.insert(nodes.end(), patch->nodes.begin(), patch->nodes.end());
   }
   return nodes;
