@@ -186,30 +186,6 @@ Vec3 prescribed_position(const PrescribedNode& p, const Vec3& original, double l
   return original + (moved - start);
 }
 
-Placement place_sliding_node(SlidingNode& node, const Vec3& p, double lambda, std::span<const SlipPlane> planes) {
-  Placement out;
-  out.point = p;
-  // One pass for a single wall; where walls meet, alternate projections converge on their
-  // intersection (for walls that are not tangent there).
-  const int passes = node.shape_count + node.plane_count > 1 ? 8 : 1;
-  for (int pass = 0; pass < passes; ++pass) {
-    out.normal_count = 0;
-    for (int s = 0; s < node.shape_count; ++s) {
-      const auto i = static_cast<std::size_t>(s);
-      const geometry::ShapePoint q = node.shapes[i]->project(out.point, lambda, node.hints[i], node.segments[i]);
-      node.hints[i] = q.parameter;
-      out.point = q.point;
-      out.normals[static_cast<std::size_t>(out.normal_count++)] = q.normal;
-    }
-    for (int k = 0; k < node.plane_count; ++k) {
-      const SlipPlane& plane = planes[static_cast<std::size_t>(node.planes[static_cast<std::size_t>(k)])];
-      out.point -= dot(out.point - plane.origin, plane.normal) * plane.normal;
-      out.normals[static_cast<std::size_t>(out.normal_count++)] = plane.normal;
-    }
-  }
-  return out;
-}
-
 namespace {
 
 /// set_up_boundaries, phase by phase. Each phase reads what the ones before it decided.
@@ -769,24 +745,6 @@ BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> p
   builder.solve_passive_surfaces();
   builder.note_overruled_deflections();
   return builder.finish();
-}
-
-void follow_sliding_rims(const BoundarySetup& setup, std::span<const Vec3> x, std::span<double> u) {
-  if (setup.following.empty()) return;
-  const auto d = static_cast<std::size_t>(setup.constraints.dimension());
-  const auto moved = [&](NodeId n) -> std::optional<Vec3> {
-    const auto i = static_cast<std::size_t>(n);
-    Vec3 p = x[i] - setup.reference[i];
-    for (std::size_t c = 0; c < d; ++c) p[c] += u[i * d + c];
-    return p;
-  };
-  for (const FollowingSurface& f : setup.following) {  // in order: one may be the rim of the next
-    const std::vector<Vec3> displacement = f.surface.solve(moved);
-    for (const auto& [k, n] : f.nodes) {
-      const auto i = static_cast<std::size_t>(n);
-      for (std::size_t c = 0; c < d; ++c) u[i * d + c] = setup.reference[i][c] + displacement[k][c] - x[i][c];
-    }
-  }
 }
 
 }  // namespace hotmesh::deform::detail

@@ -18,6 +18,7 @@
 
 #include "constraints/passive.hpp"
 #include "constraints/periodic.hpp"
+#include "constraints/sliding.hpp"
 #include "constraints/wall_features.hpp"
 #include "hotmesh/deform/constraints.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
@@ -32,22 +33,6 @@ struct PrescribedNode {
   geometry::ShapeParameter parameter;
   const geometry::BoundaryShape* shape = nullptr;
   bool reaches_shape = false;
-};
-
-/// A node on a sliding boundary (section 4): u = u0s + us (eq. 13), u0s the forcing
-/// displacement of the increment, us tangential to the deformed boundary.
-struct SlidingNode {
-  static constexpr int kMaxShapes = 3;
-  NodeId node = 0;
-  std::array<const geometry::BoundaryShape*, kMaxShapes> shapes{};
-  int shape_count = 0;
-  std::array<geometry::ShapeParameter, kMaxShapes> hints{};  ///< parameter of the last projection on each shape
-  std::array<int, 2> planes{};             ///< indices into BoundarySetup::slip_planes
-  int plane_count = 0;
-  Vec3 target;  ///< x_F: where the node is to end on the fully deflected boundary (section 4.3)
-  geometry::ShapeParameter origin;  ///< t0: its material parameter on shapes[0] (SlidingOrigin)
-  /// The part of each shape it slides on: between the corners on either side of it.
-  std::array<geometry::ParameterRange, kMaxShapes> segments{};
 };
 
 /// A node of a passive surface: moves by `displacement` times the stage (unless its surface
@@ -116,22 +101,7 @@ struct BoundarySetup {
 /// Throws hotmesh::InputError for set-ups the solver cannot take.
 BoundarySetup set_up_boundaries(const Mesh& mesh, std::span<const PatchMotion> patches, const MotionStart* start);
 
-/// Moves the nodes of the passive surfaces that follow sliding rims to the spring solution
-/// for their rims as they stand at x + u (u the displacements of the increment from x; the
-/// surfaces' displacements are measured from setup.reference).
-void follow_sliding_rims(const BoundarySetup& setup, std::span<const Vec3> x, std::span<double> u);
-
 /// Position of a prescribed node at stage lambda.
 Vec3 prescribed_position(const PrescribedNode& p, const Vec3& original, double lambda);
-
-/// Where a sliding node at p lands on its boundary at stage lambda (Fig. 4): projected on
-/// each of its shapes and planes in turn (repeatedly where several meet). Updates the hints
-/// and writes the normals of its shapes and planes (the directions it may not move in).
-struct Placement {
-  Vec3 point;
-  std::array<Vec3, SlidingNode::kMaxShapes + 2> normals{};
-  int normal_count = 0;
-};
-Placement place_sliding_node(SlidingNode& node, const Vec3& p, double lambda, std::span<const SlipPlane> planes);
 
 }  // namespace hotmesh::deform::detail
