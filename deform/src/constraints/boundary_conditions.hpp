@@ -1,6 +1,6 @@
 // hotmesh deform (internal): from patch roles to what each node does. Every node takes the
 // strongest role of the patches it lies on,
-//     fixed > prescribed > sliding > passive > slip > periodic > interior,
+//     fixed > prescribed > sliding > passive > slip > periodic > interior (BoundaryRoleTraits),
 // so a node is never moved twice. A sliding node keeps the shapes of all its sliding patches
 // (two or three where sliding walls meet: it then moves along their intersection, or stays
 // put where they meet in a point), the planes of its slip patches and, on the rim of a passive
