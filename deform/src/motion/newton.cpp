@@ -2,30 +2,22 @@
 #include "motion/newton.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
-#include "hotmesh/deform/element_stiffness.hpp"
+#include "support/seconds_since.hpp"
 
 namespace hotmesh::deform::detail {
-
-void ResidualPass::add(std::span<const NodeId> nodes, std::span<const double> ke) const {
-  add_element_product(nodes, ke, d, u, r);
-  if (!u_start.empty()) add_element_product(nodes, ke, d, u_start, r_start);
-  add_node_stiffness(nodes, ke, d, node_stiffness);
-}
 
 void newton_residual(const ConstrainedSystem& s, StiffnessOperator* k, ElementAssembler* assembler,
                      const parallel::RankExchange& ranks, std::span<const double> u, std::span<double> r,
                      std::span<double> node_stiffness, MotionTimings& timings, const ReferenceResidual* reference,
                      bool matrix_wanted) {
-  const auto start = std::chrono::steady_clock::now();
-  const auto seconds = [&start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  const auto start = Clock::now();
   std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
   if (k) {
     k->update(s.points);
-    timings.assembly += seconds();
+    timings.assembly += seconds_since(start);
     const auto d = static_cast<std::size_t>(s.kernel.dofs_per_node());
     std::vector<double> blocks(k->size() * d);
     k->diagonal_blocks(blocks);
@@ -56,7 +48,7 @@ void newton_residual(const ConstrainedSystem& s, StiffnessOperator* k, ElementAs
     s.periodic.fold(reference->r_start);
     s.constraints.project(reference->r_start);
   }
-  if (!k) timings.assembly += seconds();
+  if (!k) timings.assembly += seconds_since(start);
 }
 
 LinearTarget Forcing::next(int n, double residual, double initial) {

@@ -13,21 +13,6 @@
 
 namespace hotmesh::deform::detail {
 
-/// The Newton loop's part of a pass over the element matrices: R = K(n) u (before folding and
-/// projection) and each node's stiffness (add_node_stiffness), from each K_e as it comes.
-struct ResidualPass {
-  std::span<const double> u;
-  std::span<double> r;
-  std::span<double> node_stiffness;
-  std::size_t d = 3;  ///< dofs per node: 2 (quad4 cells) or 3 (hex8)
-  /// A second displacement and its product K(n) u_start with the same element matrices, when
-  /// not empty (the reference residual of a predicted increment, ReferenceResidual).
-  std::span<const double> u_start;
-  std::span<double> r_start;
-  /// Adds K_e u_e (element_product) and the corners' stiffness of the cell with `nodes`.
-  void add(std::span<const NodeId> nodes, std::span<const double> ke) const;
-};
-
 /// An increment's displacements before the predictor (move_mesh.cpp) and, filled by
 /// newton_residual, their residual K(n) u_start with the stiffness of the predicted first step,
 /// folded and projected as R is.

@@ -19,7 +19,6 @@
 #include "constraints/nodal_frames.hpp"
 #include "hotmesh/deform/element_stiffness.hpp"
 #include "hotmesh/parallel/processes.hpp"
-#include "motion/newton.hpp"
 #include "storage/linear_solver.hpp"
 
 namespace hotmesh::deform::detail {

@@ -3,7 +3,6 @@
 // (stiffness_operator.hpp).
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -11,6 +10,7 @@
 #include "hotmesh/deform/pcg.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 #include "storage/linear_solver.hpp"
+#include "support/seconds_since.hpp"
 
 namespace hotmesh::deform::detail {
 
@@ -27,9 +27,6 @@ void ConstrainedOperator::apply(std::span<const double> x, std::span<double> y) 
 }
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 /// Nodal (block) Jacobi: y_i = M_i x_i with M_i the inverse of the node's d x d diagonal block
 /// B_i of K on the directions the node may move in: M_i = P (P B_i P + I - P)^-1 P, P the

@@ -1,12 +1,20 @@
-// hotmesh deform: the choice of linear solver, and the Newton norm its solves may stop on.
+// hotmesh deform: the choice of linear solver, the Newton norm its solves may stop on, and the
+// Newton residual's part of an element pass (ResidualPass).
 #include "storage/linear_solver.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
+#include "hotmesh/deform/element_stiffness.hpp"
 #include "storage/petsc_solver.hpp"
 
 namespace hotmesh::deform::detail {
+
+void ResidualPass::add(std::span<const NodeId> nodes, std::span<const double> ke) const {
+  add_element_product(nodes, ke, d, u, r);
+  if (!u_start.empty()) add_element_product(nodes, ke, d, u_start, r_start);
+  add_node_stiffness(nodes, ke, d, node_stiffness);
+}
 
 std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(const SolverOptions& options,
                                                      const StiffnessOperator& k);  // jacobi_pcg.cpp
