@@ -53,7 +53,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <optional>
@@ -65,72 +64,12 @@
 
 #include "hotmesh/deform/pcg.hpp"
 #include "storage/frame_matrix.hpp"
+#include "storage/petsc_preconditioner.hpp"
 #include "support/free_memory.hpp"
+#include "support/seconds_since.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-/// `icc`: the levels of fill of the incomplete factors, by the mesh's dimension. The sliding
-/// ramp refined twice took 1 170, 818 and 618 CG iterations with 1, 2 and 3 levels, in 3.3, 2.8
-/// and 2.9 s. A hex's node couples to 26 others, a quad's to 8, and the fill grows with them:
-/// the 18 000-cell stator-well sector took 10, 20 and 51 s with 0, 1 and 2 levels (its
-/// factorizations 2, 14 and 43 s of them).
-constexpr PetscInt icc_levels(int dimension) { return dimension == 2 ? 2 : 0; }
-/// `icc` goes over to `direct` after a solve not converged in this many CG iterations: 3 to 6
-/// a solve on the 2D samples, 30 on average on the sliding ramp refined four times (36 480
-/// cells, where a factorization costs about 100 ICC iterations); 100 to 800 where the
-/// numbering does not follow the boundary layer (the ramp's hybrid mesh in reverse
-/// Cuthill-McKee order).
-constexpr int kIccMostIterations = 100;
-
-/// What preconditions the assembled solver's CG.
-enum class Preconditioner { multigrid, cholesky, incomplete_cholesky };
-
-Preconditioner preconditioner_of(LinearSolverKind linear) {
-  switch (linear) {
-    case LinearSolverKind::direct: return Preconditioner::cholesky;
-    case LinearSolverKind::icc: return Preconditioner::incomplete_cholesky;
-    default: return Preconditioner::multigrid;
-  }
-}
-
-bool option_given(const char* name) {
-  PetscBool set = PETSC_FALSE;
-  check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
-  return set == PETSC_TRUE;
-}
-
-/// Whether the user chose GAMG's smoother in PETSC_OPTIONS: asked once per process, before
-/// the first solver sets hotmesh's defaults into the same options database.
-bool user_chose_smoother() {
-  static const bool chosen = option_given("-hotmesh_mg_levels_ksp_type") || option_given("-hotmesh_mg_levels_pc_type");
-  return chosen;
-}
-
-/// Sets the option unless the user gave it (PETSC_OPTIONS); a null value sets a flag.
-void default_option(const char* name, const char* value) {
-  if (!option_given(name)) check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
-}
-
-/// The part of `full` (every row) that this rank owns of `to`.
-void copy_to(std::span<const double> full, Vec to) {
-  PetscInt lo = 0, hi = 0;
-  check(VecGetOwnershipRange(to, &lo, &hi), "VecGetOwnershipRange");
-  PetscScalar* x = nullptr;
-  check(VecGetArrayWrite(to, &x), "VecGetArrayWrite");
-  std::copy(full.begin() + lo, full.begin() + hi, x);
-  check(VecRestoreArrayWrite(to, &x), "VecRestoreArrayWrite");
-}
-
-void copy_from(Vec from, std::span<double> to) {
-  const PetscScalar* x = nullptr;
-  check(VecGetArrayRead(from, &x), "VecGetArrayRead");
-  std::copy(x, x + to.size(), to.begin());
-  check(VecRestoreArrayRead(from, &x), "VecRestoreArrayRead");
-}
 
 /// A PETSc operator on this rank's rows as pcg() sees its operators: the matrix (MatMult) or
 /// the multigrid's V-cycle (PCApply), the spans lent to two Vecs of the matrix's layout.
@@ -164,34 +103,9 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       reuse_ = AmgReuse::none;  // a fresh factorization at every Newton step (above)
       return;
     }
-    if (options_.amg == AmgPackage::gamg) {
-      // Gauss-Seidel smoothing on every level: in 3D one forward sweep before the coarse-grid
-      // correction and one backward sweep after it, which keeps the V-cycle symmetric for CG
-      // (2D: create()).
-      // A symmetric sweep on both sides (PETSc's SOR default) took as many CG iterations and
-      // twice the smoothing time. With several ranks each sweeps its own rows (hybrid
-      // Gauss-Seidel), and the one-sided sweeps can make the V-cycle indefinite where ranks
-      // couple strongly (a hybrid sector on two ranks): CG then breaks down, and the solver
-      // goes over to symmetric sweeps for the rest of the run (solve()). The default
-      // Chebyshev/Jacobi smoother made the preconditioner indefinite on the ramp: its
-      // eigenvalue estimates miss the top of the spectrum of these boundary-layer matrices.
-      const bool smoother_given = user_chose_smoother();
-      one_sided_sweeps_ = !smoother_given;
-      smoother_given_ = smoother_given;
-      default_option("-hotmesh_mg_levels_ksp_type", "richardson");
-      default_option("-hotmesh_mg_levels_pc_type", "sor");
-      if (!smoother_given) {
-        default_option("-hotmesh_mg_levels_pc_sor_local_forward", nullptr);
-        default_option("-hotmesh_pc_mg_distinct_smoothup", nullptr);
-        default_option("-hotmesh_mg_levels_up_ksp_type", "richardson");
-        default_option("-hotmesh_mg_levels_up_pc_type", "sor");
-        default_option("-hotmesh_mg_levels_up_pc_sor_local_backward", nullptr);
-      }
-    } else {
-      // BoomerAMG for elasticity: the d components of a node coarsened together.
-      default_option("-hotmesh_pc_hypre_boomeramg_nodal_coarsen", "6");
-      default_option("-hotmesh_pc_hypre_boomeramg_strong_threshold", "0.5");
-    }
+    const MultigridDefaults defaults = set_multigrid_defaults(options_.amg);
+    one_sided_sweeps_ = defaults.one_sided_sweeps;
+    smoother_given_ = defaults.smoother_given;
     // BoomerAMG kept across Newton steps needed 20 times the iterations on the ramp; its
     // set-up is cheap, so hypre rebuilds every step.
     reuse_ = options_.amg_reuse;  // `automatic` resolved with the mesh's size (create())
@@ -266,7 +180,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       result.breakdown = last.breakdown || !std::isfinite(last.final_residual);
       if (result.breakdown && one_sided_sweeps_) {  // the V-cycle is indefinite: symmetric sweeps from now on
         one_sided_sweeps_ = false;
-        make_sweeps_symmetric();
+        make_sweeps_symmetric(pc_);
         continue;
       }
       // A hierarchy kept from an earlier increment that no longer serves is rebuilt and the
@@ -345,7 +259,7 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
       check(PCViewFromOptions(pc_, nullptr, "-pc_view"), "PCViewFromOptions");
     }
     if (rebuild && !factors() && options_.amg == AmgPackage::gamg && !one_sided_sweeps_ && !smoother_given_) {
-      make_sweeps_symmetric();
+      make_sweeps_symmetric(pc_);
     }
     timings.preconditioner += seconds_since(t);
     return factorized;
@@ -368,39 +282,9 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     check(PCDestroy(&pc_), "PCDestroy");
   }
 
-  /// PCSetUp of the Cholesky factorization; false on every rank if it failed on any (a pivot
-  /// that is not positive: K~ is not positive definite). CHOLMOD reports that as error
-  /// PETSC_ERR_MAT_CH_ZRPVT in 3D (without printing PETSc's traceback here) and as the PC's
-  /// failed reason in 2D, MUMPS as the failed reason; other errors throw as ever.
-  bool factorize() {
-    check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
-    const PetscErrorCode code = PCSetUp(pc_);
-    check(PetscPopErrorHandler(), "PetscPopErrorHandler");
-    if (code != 0 && code != PETSC_ERR_MAT_CH_ZRPVT && code != PETSC_ERR_MAT_LU_ZRPVT) check(code, "PCSetUp");
-    PCFailedReason reason = PC_NOERROR;
-    if (code == 0) check(PCGetFailedReason(pc_, &reason), "PCGetFailedReason");
-    return sum_over_ranks(code != 0 || reason != PC_NOERROR ? 1.0 : 0.0) == 0.0;
-  }
-
-
-  /// A symmetric Gauss-Seidel sweep (forward and backward, each rank on its rows) before and
-  /// after the coarse-grid correction on every level of the built hierarchy, as PETSc's SOR
-  /// does by default.
-  void make_sweeps_symmetric() {
-    PetscInt levels = 0;
-    check(PCMGGetLevels(pc_, &levels), "PCMGGetLevels");
-    for (PetscInt level = 1; level < levels; ++level) {  // level 0 is the coarse solve
-      for (const bool up : {false, true}) {
-        KSP smoother = nullptr;
-        check(up ? PCMGGetSmootherUp(pc_, level, &smoother) : PCMGGetSmootherDown(pc_, level, &smoother), "PCMGGetSmoother");
-        PC sweep = nullptr;
-        check(KSPGetPC(smoother, &sweep), "KSPGetPC");
-        PetscBool sor = PETSC_FALSE;
-        check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(sweep), PCSOR, &sor), "PetscObjectTypeCompare");
-        if (sor) check(PCSORSetSymmetric(sweep, SOR_LOCAL_SYMMETRIC_SWEEP), "PCSORSetSymmetric");
-      }
-    }
-  }
+  /// PCSetUp of the Cholesky factorization (factorize_here); false on every rank if it failed on
+  /// any (a pivot that is not positive: K~ is not positive definite).
+  bool factorize() { return sum_over_ranks(factorize_here(pc_) ? 0.0 : 1.0) == 0.0; }
 
   /// `adaptive`: the CG iterations of an increment's first solve (at pcg_tolerance in the
   /// Newton norm, whatever the forcing) against those with a fresh hierarchy.
@@ -516,35 +400,10 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
     return result;
   }
 
-  /// The multigrid preconditioner or the Cholesky factorization, options from PETSC_OPTIONS
-  /// (prefix hotmesh_).
+  /// The multigrid preconditioner or the Cholesky factorization (create_preconditioner).
   void create_pc() {
     if (pc_) check(PCDestroy(&pc_), "PCDestroy");
-    check(PCCreate(PetscObjectComm(reinterpret_cast<PetscObject>(a_)), &pc_), "PCCreate");
-    check(PCSetOptionsPrefix(pc_, "hotmesh_"), "PCSetOptionsPrefix");
-    if (preconditioner_ == Preconditioner::cholesky) {
-      check(PCSetType(pc_, PCCHOLESKY), "PCSetType");
-      check(PCFactorSetMatSolverType(pc_, job_.count > 1 ? MATSOLVERMUMPS : MATSOLVERCHOLMOD), "PCFactorSetMatSolverType");
-    } else if (preconditioner_ == Preconditioner::incomplete_cholesky && job_.count > 1) {
-      check(PCSetType(pc_, PCBJACOBI), "PCSetType");  // one block per rank, each ICC in its rows' order
-      default_option("-hotmesh_sub_pc_type", "icc");
-      default_option("-hotmesh_sub_pc_factor_levels", std::to_string(icc_levels(dimension_)).c_str());
-      default_option("-hotmesh_sub_pc_factor_mat_ordering_type", MATORDERINGNATURAL);
-    } else if (preconditioner_ == Preconditioner::incomplete_cholesky) {
-      check(PCSetType(pc_, PCICC), "PCSetType");
-      check(PCFactorSetLevels(pc_, icc_levels(dimension_)), "PCFactorSetLevels");
-      check(PCFactorSetMatOrderingType(pc_, MATORDERINGNATURAL), "PCFactorSetMatOrderingType");
-    } else if (options_.amg == AmgPackage::gamg) {
-      check(PCSetType(pc_, PCGAMG), "PCSetType");
-      check(PCGAMGSetType(pc_, PCGAMGAGG), "PCGAMGSetType");
-      check(PCGAMGSetNSmooths(pc_, 1), "PCGAMGSetNSmooths");  // smoothed aggregation
-      PetscReal threshold[] = {0.02};
-      check(PCGAMGSetThreshold(pc_, threshold, 1), "PCGAMGSetThreshold");
-    } else {
-      check(PCSetType(pc_, PCHYPRE), "PCSetType");
-      check(PCHYPRESetType(pc_, "boomeramg"), "PCHYPRESetType");
-    }
-    check(PCSetFromOptions(pc_), "PCSetFromOptions");
+    pc_ = create_preconditioner(a_, preconditioner_, options_.amg, job_.count, dimension_);
   }
 
   /// The solution p~ of every rank's rows (each keeps the whole mesh) at the nodes: from x_
@@ -598,74 +457,6 @@ class AssembledSolver final : public LinearSolver, public ElementAssembler {
 
 std::unique_ptr<LinearSolver> make_assembled_solver(const SolverOptions& options, const parallel::RankExchange& ranks) {
   return std::make_unique<AssembledSolver>(options, ranks);
-}
-
-namespace {
-
-/// The matrix of `cells` in `frames` as one process makes it, preallocated (for the test hooks).
-struct OneProcessMatrix {
-  NodeCells around;
-  BlockRows rows;
-  Mat a = nullptr;
-  std::vector<double> compressed;  ///< d values for each block row
-
-  OneProcessMatrix(const ElementList& cells, const NodalFrames& frames)
-      : around(cells, frames.node_count()),
-        rows(frames, around, std::vector<int>(cells.size(), 0), 1),
-        a(create(cells, frames)),
-        compressed(static_cast<std::size_t>(rows.count) * static_cast<std::size_t>(frames.dimension())) {}
-  ~OneProcessMatrix() { MatDestroy(&a); }
-
-  Mat create(const ElementList& cells, const NodalFrames& frames) const {
-    parallel::start_petsc();
-    return create_frame_matrix(cells, around, frames, rows, parallel::Processes{});
-  }
-  OneProcessMatrix(const OneProcessMatrix&) = delete;
-  OneProcessMatrix& operator=(const OneProcessMatrix&) = delete;
-};
-
-}  // namespace
-
-std::vector<std::vector<double>> assembled_near_null_space(const ElementList& cells, const NodalFrames& frames) {
-  OneProcessMatrix m(cells, frames);
-  const auto d = static_cast<std::size_t>(frames.dimension());
-  set_near_null_space(m.a, frames, m.rows);
-  MatNullSpace space = nullptr;
-  check(MatGetNearNullSpace(m.a, &space), "MatGetNearNullSpace");
-  PetscBool constant = PETSC_FALSE;
-  PetscInt count = 0;
-  const Vec* vectors = nullptr;
-  check(MatNullSpaceGetVecs(space, &constant, &count, &vectors), "MatNullSpaceGetVecs");
-  std::vector<std::vector<double>> modes;
-  for (PetscInt k = 0; k < count; ++k) {
-    copy_from(vectors[k], m.compressed);
-    modes.emplace_back(frames.node_count() * d);
-    m.rows.scatter(m.compressed, modes.back(), d);
-  }
-  return modes;
-}
-
-std::vector<double> assembled_frame_product(const ConstrainedSystem& system, const NodalFrames& frames,
-                                            std::span<const double> x, bool twice) {
-  const ElementList& cells = system.kernel.cells();
-  OneProcessMatrix m(cells, frames);
-  const auto d = static_cast<std::size_t>(frames.dimension());
-  const AssemblyOrder order(system.kernel, frames);
-  std::vector<CellId> all(cells.size());
-  std::iota(all.begin(), all.end(), CellId{0});
-  assemble_frame_matrix(m.a, {system, nullptr}, frames, m.rows, order, all, true);
-  if (twice) assemble_frame_matrix(m.a, {system, nullptr}, frames, m.rows, order, all, false);
-  Vec vx = nullptr, vy = nullptr;
-  check(MatCreateVecs(m.a, &vx, &vy), "MatCreateVecs");
-  m.rows.gather(x, m.compressed, d);
-  copy_to(m.compressed, vx);
-  check(MatMult(m.a, vx, vy), "MatMult");
-  copy_from(vy, m.compressed);
-  std::vector<double> y(x.size());
-  m.rows.scatter(m.compressed, y, d);
-  VecDestroy(&vx);
-  VecDestroy(&vy);
-  return y;
 }
 
 }  // namespace hotmesh::deform::detail

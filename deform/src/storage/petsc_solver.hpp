@@ -3,7 +3,8 @@
 // block size d, preallocated once from the node graph, and solved by CG with algebraic
 // multigrid (PCGAMG with the rigid-body near-null space, or hypre's BoomerAMG), with its
 // sparse Cholesky factors (CHOLMOD, MUMPS) or with its incomplete Cholesky factors (PCICC). PETSc and MPI types stay in
-// petsc_solver.cpp and frame_matrix.hpp (the matrix); PETSc is initialised on first use, once
+// petsc_solver.cpp, petsc_preconditioner.* (the preconditioners), frame_matrix.hpp (the matrix)
+// and petsc_probes.cpp (the test hooks below); PETSc is initialised on first use, once
 // per process (hotmesh/parallel/processes.hpp), and finalised at exit.
 #pragma once
 
