@@ -6,7 +6,7 @@
 
 #include <optional>
 
-#include "motion/newton.hpp"
+#include "motion/increment_system.hpp"
 #include "storage/petsc_solver.hpp"
 #include "sector_system.hpp"
 

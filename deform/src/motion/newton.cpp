@@ -1,54 +1,110 @@
-// hotmesh deform: the Newton loop's residual, and the forcing term of inexact Newton.
+// hotmesh deform: the Newton-Raphson cycle (eqs. 7-8, newton.hpp), and the forcing term of
+// inexact Newton.
 #include "motion/newton.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
-#include "support/seconds_since.hpp"
+#include "hotmesh/deform/linear_algebra.hpp"
 
 namespace hotmesh::deform::detail {
+namespace {
 
-void newton_residual(const ConstrainedSystem& s, StiffnessOperator* k, ElementAssembler* assembler,
-                     const parallel::RankExchange& ranks, std::span<const double> u, std::span<double> r,
-                     std::span<double> node_stiffness, MotionTimings& timings, const ReferenceResidual* reference,
-                     bool matrix_wanted) {
-  const auto start = Clock::now();
-  std::fill(node_stiffness.begin(), node_stiffness.end(), 0.0);
-  if (k) {
-    k->update(s.points);
-    timings.assembly += seconds_since(start);
-    const auto d = static_cast<std::size_t>(s.kernel.dofs_per_node());
-    std::vector<double> blocks(k->size() * d);
-    k->diagonal_blocks(blocks);
-    for (std::size_t n = 0; n < node_stiffness.size(); ++n) {  // the trace of the diagonal block over d
-      for (std::size_t i = 0; i < d; ++i) node_stiffness[n] += blocks[(n * d + i) * d + i] / static_cast<double>(d);
+/// A Newton residual this many times the initial one means the cycle has blown up: better to
+/// split the increment at once than to iterate on. Large transients are normal: the stiffness
+/// of the thinnest cells scales with 1/h^2 and follows the geometry, so the ramp case passes
+/// through residuals 1e5 times the initial one on its way to converging.
+constexpr double kDivergence = 1e10;
+
+}  // namespace
+
+NewtonResult NewtonSolver::solve(NewtonOperator& op, std::span<double> u, std::vector<double> unpredicted,
+                                 const StepObserver& observe) {
+  const std::size_t dofs = op.size(), d = op.dofs_per_node();
+  std::vector<double> reference_residual(unpredicted.empty() ? 0 : dofs);
+  r_.assign(dofs, 0.0);
+  node_stiffness_.assign(dofs / d, 0.0);
+  NewtonResult result;
+  double r0 = 0.0, previous = 0.0;
+  // Whether this step's element pass assembles the solver's matrix too (amg, direct, icc): not when
+  // the residual will likely end the loop (the solve assembles it if not).
+  bool matrix_wanted = true;
+  linear_.begin_increment();
+  Forcing forcing(options_);
+  for (int it = 0;; ++it) {
+    // K(n) at the current geometry (eq. 8) and R(n) = K(n) u(n) - f (eq. 7; f is K's action on
+    // the boundary motion), with only its tangential part F_t at sliding nodes (eq. 17).
+    const bool referenced = it == 0 && !unpredicted.empty();
+    const ReferenceResidual reference{unpredicted, reference_residual};
+    const ConstrainedSystem system =
+        op.residual(u, r_, node_stiffness_, referenced ? &reference : nullptr, matrix_wanted);
+    const double residual = scaled_residual_norm(r_, node_stiffness_, d);
+    // The tolerance is relative to the residual of the increment's start without the
+    // predictor, so that a good prediction does not tighten it.
+    if (it == 0) {
+      r0 = referenced ? scaled_residual_norm(reference_residual, node_stiffness_, d) : residual;
+      // Needed no more: given back before the solves (two vectors the mesh's size).
+      std::vector<double>().swap(unpredicted);
+      std::vector<double>().swap(reference_residual);
     }
-    s.periodic.fold_nodal(node_stiffness);
-    k->apply(u, r);
-    if (reference) k->apply(reference->u_start, reference->r_start);
-  } else {
-    if (!assembler) throw std::invalid_argument("newton_residual: neither node blocks of K nor a solver that computes them");
-    std::fill(r.begin(), r.end(), 0.0);
-    ResidualPass pass{u, r, node_stiffness, static_cast<std::size_t>(s.kernel.dofs_per_node())};
-    if (reference) {
-      std::fill(reference->r_start.begin(), reference->r_start.end(), 0.0);
-      pass.u_start = reference->u_start;
-      pass.r_start = reference->r_start;
+    result.steps.push_back({residual, 0, true, 0.0});
+    result.residual_reduction = r0 > 0.0 ? residual / r0 : 0.0;
+    if (it > 0 && observe) observe(result, it);
+    if (stops(result, it, residual, r0)) break;
+    // K(n) p = -R(n) on the free degrees of freedom, from p = 0 (eq. 8, section 3); at
+    // sliding nodes the projected operator solves eq. (16) and keeps p . n = 0 (eq. 19).
+    for (double& value : r_) value = -value;  // the right-hand side, in place: R is not needed again
+    // Its tolerance, and whether it stops on this loop's ||D^-1 r|| or the cheaper ||r||: Forcing.
+    const auto target = forcing.next(it, residual, r0);
+    const std::span<double> p = r_;  // solved in place: p over -R (one vector the mesh's size less)
+    const auto solved = linear_.solve(system, r_, p, target, timings_);
+    // The next residual, expected from this solve's tolerance and the last step's reduction.
+    const double reduction = std::max(target.tolerance, it > 0 && previous > 0.0 ? residual / previous : 0.0);
+    matrix_wanted = reduction * residual > options_.newton_tolerance * r0;
+    previous = residual;
+    auto& step = result.steps.back();
+    step.pcg_iterations = solved.iterations;
+    step.pcg_converged = solved.converged;
+    step.pcg_reduction = solved.reduction;
+    step.linear_tolerance = target.tolerance;
+    step.linear_newton_norm = target.newton_norm;
+    if (solved.breakdown) {
+      result.failure = "the linear solver broke down (the stiffness is not positive definite on the free nodes)";
+      result.stop = NewtonStop::linear_breakdown;
+      break;
     }
-    assembler->assemble(s, pass, matrix_wanted);
-    ranks.sum(r);  // each rank added its cells' part
-    if (reference) ranks.sum(reference->r_start);
-    ranks.sum(node_stiffness);
-    s.periodic.fold_nodal(node_stiffness);
+    result.max_normal_slip = std::max(result.max_normal_slip, op.normal_slip(p));
+    axpy(1.0, p, u);
+    // Every sliding node back onto the partial boundary c_b, with its new normal (4.2):
+    // IncrementSystem::restore.
+    step.max_projection = op.restore(u);
   }
-  s.periodic.fold(r);
-  s.constraints.project(r);
-  if (reference) {
-    s.periodic.fold(reference->r_start);
-    s.constraints.project(reference->r_start);
+  return result;
+}
+
+/// Whether the cycle ends at the residual of step `it`: diverged, converged, or out of
+/// iterations.
+bool NewtonSolver::stops(NewtonResult& result, int it, double residual, double r0) const {
+  if (!std::isfinite(residual) || residual > kDivergence * r0) {
+    result.failure = fmt::format("the Newton-Raphson cycle diverged (residual {:.3g} times the initial one)",
+                                 residual / r0);
+    result.stop = NewtonStop::diverged;
+    return true;
   }
-  if (!k) timings.assembly += seconds_since(start);
+  if (residual <= options_.newton_tolerance * r0 || residual <= round_off_) {
+    result.stop = NewtonStop::converged;
+    return true;
+  }
+  if (it == options_.max_newton_iterations) {
+    result.failure = fmt::format("the Newton-Raphson cycle did not converge in {} iterations (residual reduced "
+                                 "to {:.3g}, tolerance {:.3g})",
+                                 options_.max_newton_iterations, result.residual_reduction, options_.newton_tolerance);
+    result.stop = NewtonStop::stalled;
+    return true;
+  }
+  return false;
 }
 
 LinearTarget Forcing::next(int n, double residual, double initial) {
