@@ -4,7 +4,7 @@ if(OpenCASCADE_VERSION VERSION_LESS 7.6 OR OpenCASCADE_VERSION VERSION_GREATER_E
   message(FATAL_ERROR "hotmesh needs OpenCASCADE 7.6.x, found ${OpenCASCADE_VERSION}")
 endif()
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
-# CGAL and Boost: header-only uses (CGAL's k-d tree in deform/src/periodic.cpp, with a Boost iterator).
+# CGAL and Boost: header-only uses (CGAL's k-d tree in deform/src/support/nearest_point.cpp, with a Boost iterator).
 find_package(CGAL 5.5 REQUIRED CONFIG)
 find_package(Boost 1.74 REQUIRED)
 find_package(OpenMP REQUIRED COMPONENTS CXX)

@@ -15,9 +15,9 @@
 #include "hotmesh/mesh/split_cells.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/mesh/validate.hpp"
-#include "linear_solver.hpp"
-#include "nodal_frames.hpp"
-#include "periodic.hpp"
+#include "storage/linear_solver.hpp"
+#include "constraints/nodal_frames.hpp"
+#include "constraints/periodic.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::deform::sector_test {

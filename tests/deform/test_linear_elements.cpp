@@ -1,5 +1,5 @@
 // Tests of the element level for tri3, tet4, wedge6 and pyramid5 (issue 24, first step;
-// deform/src/linear_elements.hpp): the patch test on distorted patches of each type (Jacobian
+// deform/src/element/linear_elements.hpp): the patch test on distorted patches of each type (Jacobian
 // kept), the rigid-body modes in the null space of K_e, symmetry, positive semi-definiteness
 // with exactly the rigid-body null space, eq. (35)'s |phi_s| = 1 for the regular cells and
 // their volumes, and the motion's refusal of these cells (the solver handles Q1 only).
@@ -17,7 +17,7 @@
 #include "hotmesh/deform/material.hpp"
 #include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/core/input_error.hpp"
-#include "linear_elements.hpp"
+#include "element/linear_elements.hpp"
 #include "test_support.hpp"
 
 namespace hotmesh::deform {
@@ -76,7 +76,7 @@ ElementPoints rotated_scaled(ElementPoints e, double scale) {
   return e;
 }
 
-// ---- the reference elements (deform/src/linear_elements.hpp) ---------------------------------
+// ---- the reference elements (deform/src/element/linear_elements.hpp) ---------------------------------
 
 /// A few points inside the reference element: the centre and points towards its corners.
 template <class E>

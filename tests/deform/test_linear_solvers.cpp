@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "newton.hpp"
-#include "petsc_solver.hpp"
+#include "motion/newton.hpp"
+#include "storage/petsc_solver.hpp"
 #include "sector_system.hpp"
 
 namespace hotmesh::deform {

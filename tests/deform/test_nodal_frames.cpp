@@ -6,8 +6,8 @@
 
 #include <optional>
 
-#include "newton.hpp"
-#include "petsc_solver.hpp"
+#include "motion/increment_system.hpp"
+#include "storage/petsc_solver.hpp"
 #include "sector_system.hpp"
 
 namespace hotmesh::deform {

@@ -14,8 +14,8 @@
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
-#include "passive.hpp"
-#include "periodic.hpp"
+#include "constraints/passive.hpp"
+#include "constraints/periodic.hpp"
 #include "test_shapes.hpp"
 #include "test_support.hpp"
 

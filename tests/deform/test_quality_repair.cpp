@@ -1,4 +1,4 @@
-// Tests of the repair after the corner pass (deform/src/quality_repair.hpp): cells below a
+// Tests of the repair after the corner pass (deform/src/motion/quality_repair.hpp): cells below a
 // floor are raised by moving their interior nodes, boundary nodes never move, and no move
 // lowers the worst cell; in 2D and 3D.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 
 #include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/mesh/structured_mesh.hpp"
-#include "quality_repair.hpp"
+#include "motion/quality_repair.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {

@@ -14,7 +14,7 @@
 #include "hotmesh/mesh/structured_mesh.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
-#include "rigid_modes.hpp"
+#include "constraints/rigid_modes.hpp"
 #include "test_shapes.hpp"
 #include "test_support.hpp"
 

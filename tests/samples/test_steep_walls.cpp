@@ -92,7 +92,7 @@ TEST(RampSample, PrescribedRampCutsItsCornersBy0025h) {
 // worse than sliding without features gives (bump 0.61690; the ramp's below). The corner pass
 // alone leaves 0.512 on the ramp (the node that takes corner A moves a whole foot cell, 0.037 h,
 // and the mesh line above it shears) and 0.610 on the bump; the repair of the cells it left
-// below the motion's worst cell restores them (deform/src/quality_repair.hpp).
+// below the motion's worst cell restores them (deform/src/motion/quality_repair.hpp).
 TEST(StepSample, SlidingBumpWithFeaturesFollowsTheExactWallWithin0002h) {
   if (test::under_sanitizers()) GTEST_SKIP() << "seconds in the Release build, far longer here; run there";
   const auto run = run_case(kStep / "step2d-sliding.yaml", kBump);

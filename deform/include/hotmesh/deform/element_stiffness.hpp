@@ -4,7 +4,7 @@
 // for the bilinear quad in plane strain (2x2 points) and the trilinear hex (2x2x2 points),
 // with B from the current coordinates. The linear triangle (plane strain), tetrahedron, prism
 // and pyramid use the same sum over their own rules, w_g the reference weights
-// (deform/src/linear_elements.hpp). At a Gauss point, with g_a = grad N_a, the isotropic
+// (deform/src/element/linear_elements.hpp). At a Gauss point, with g_a = grad N_a, the isotropic
 // E of eqs. (32)-(33) gives the 2x2 or 3x3 block coupling nodes a and b
 //     K_ab,ij = lambda g_a,i g_b,j + G (g_a,j g_b,i + delta_ij g_a . g_b).
 #pragma once

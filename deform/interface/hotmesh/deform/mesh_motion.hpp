@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hotmesh/deform/boundary_role.hpp"
 #include "hotmesh/deform/mesh_names.hpp"
 #include "hotmesh/deform/solver_options.hpp"
 #include "hotmesh/geometry/axis.hpp"
@@ -21,23 +22,6 @@
 #include "hotmesh/core/input_error.hpp"
 
 namespace hotmesh::deform {
-
-enum class BoundaryRole : std::uint8_t {
-  fixed,       ///< u = 0
-  prescribed,  ///< follows its deflected shape: a node at parameter t moves with c_lambda(t)
-  slip,        ///< u . n = 0 on the original planar boundary (eq. 11)
-  sliding,     ///< slides over its deflected shape (section 4)
-  passive,     ///< displacement from a surface-only spring solve (section 6.1)
-  periodic,    ///< u_slave = R u_master with its partner patch
-};
-/// The names the case file, report.json and restart files use.
-inline constexpr EnumNames<BoundaryRole, 6> kBoundaryRoleNames{{{{BoundaryRole::fixed, "fixed"},
-                                                                {BoundaryRole::prescribed, "prescribed"},
-                                                                {BoundaryRole::slip, "slip"},
-                                                                {BoundaryRole::sliding, "sliding"},
-                                                                {BoundaryRole::passive, "passive"},
-                                                                {BoundaryRole::periodic, "periodic"}}}};
-constexpr std::string_view to_string(BoundaryRole role) { return kBoundaryRoleNames.name(role); }
 
 /// The default of FeatureOptions::angle: 25 degrees, in radians.
 inline constexpr double kDefaultFeatureAngle = 25.0 * std::numbers::pi / 180.0;
@@ -93,9 +77,6 @@ struct WallFeature {
   /// shape; `parameter` is then 0. Empty for the corners of curves.
   std::vector<int> faces;
 };
-
-/// Node roles as stored per node for output: 0 for interior nodes, 1 + BoundaryRole.
-using NodeRoleCode = std::uint8_t;
 
 struct NewtonStep {
   double residual = 0.0;           ///< ||D^-1 R|| (the Newton norm) before this step's linear solve
@@ -216,7 +197,7 @@ struct MotionResult {
   std::vector<Vec3> restart_points;
   std::vector<WallFeature> features;           ///< the corners of the sliding walls, by patch
   /// Where the corner pass left cells below the motion's worst cell: the interior nodes moved
-  /// to restore it (deform/src/quality_repair.hpp). Zero counts when it did not.
+  /// to restore it (deform/src/motion/quality_repair.hpp). Zero counts when it did not.
   struct CornerRepair {
     std::size_t cells_below = 0;  ///< cells the pass left below the motion's worst cell
     std::size_t nodes_moved = 0;

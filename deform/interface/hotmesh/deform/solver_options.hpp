@@ -135,8 +135,9 @@ struct SolverOptions {
   AmgReuse amg_reuse = AmgReuse::automatic;
   ForcingTerm forcing = ForcingTerm::fixed;
   /// Start each increment after the first along the secant of the last accepted step, carried
-  /// on to its stage, instead of from the boundary's move alone (move_mesh.cpp, docs/method.md "Predictor"). Off for
-  /// callers of the library, as the paper starts; a case file's default is on (io::Case).
+  /// on to its stage, instead of from the boundary's move alone (deform/src/motion/predictor.cpp,
+  /// docs/method.md "Predictor"). Off for callers of the library, as the paper starts; a case
+  /// file's default is on (io::Case).
   bool predictor = false;
   QualityLimits quality;
 };
