@@ -336,7 +336,7 @@ CaseSetup set_up_case(const io::Case& c, const mesh::Mesh& mesh, const io::Resta
       motion.angle = spec.angle_deg * std::numbers::pi / 180.0;
       motion.axis = *c.axis;
     }
-    const bool follows = spec.role == PatchRole::prescribed || spec.role == PatchRole::sliding;
+    const bool follows = deform::follows_shape(spec.role);
     const RestartPatch* before = previous ? &previous_patch(*previous, spec, c) : nullptr;
     if (follows) {
       try {

@@ -16,7 +16,7 @@
 #include "hotmesh/mesh/quality.hpp"
 #include "motion/motion.hpp"
 #include "motion/quality_repair.hpp"
-#include "support/seconds_since.hpp"
+#include "hotmesh/core/clock.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {

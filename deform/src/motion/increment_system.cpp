@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "hotmesh/mesh/parallel_loops.hpp"
-#include "support/seconds_since.hpp"
+#include "hotmesh/core/clock.hpp"
 
 namespace hotmesh::deform::detail {
 

@@ -14,7 +14,7 @@
 #include "motion/motion.hpp"
 #include "motion/newton.hpp"
 #include "support/free_memory.hpp"
-#include "support/seconds_since.hpp"
+#include "hotmesh/core/clock.hpp"
 
 namespace hotmesh::deform::detail {
 

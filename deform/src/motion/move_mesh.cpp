@@ -13,7 +13,7 @@
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "motion/corner_pass.hpp"
 #include "motion/motion.hpp"
-#include "support/seconds_since.hpp"
+#include "hotmesh/core/clock.hpp"
 
 namespace hotmesh::deform {
 
@@ -30,8 +30,6 @@ std::vector<NodeId> moving_wall_nodes(const Mesh& mesh, std::span<const PatchMot
 
 }  // namespace detail
 
-using detail::Clock;
-using detail::seconds_since;
 
 LinearSolverChoice choose_linear_solver(const Mesh& mesh, std::span<const PatchMotion> patches, int processes) {
   const bool sliding = std::any_of(patches.begin(), patches.end(), [](const PatchMotion& m) { return m.role == BoundaryRole::sliding; });

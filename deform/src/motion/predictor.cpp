@@ -6,7 +6,7 @@
 #include "hotmesh/mesh/quality.hpp"
 #include "motion/increment_system.hpp"
 #include "motion/motion.hpp"
-#include "support/seconds_since.hpp"
+#include "hotmesh/core/clock.hpp"
 
 namespace hotmesh::deform::detail {
 

@@ -10,7 +10,7 @@
 #include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/mesh/solver_quality.hpp"
 #include "motion/motion.hpp"
-#include "support/seconds_since.hpp"
+#include "hotmesh/core/clock.hpp"
 
 namespace hotmesh::deform::detail {
 

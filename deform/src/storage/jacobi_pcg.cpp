@@ -10,7 +10,7 @@
 #include "hotmesh/deform/pcg.hpp"
 #include "hotmesh/mesh/parallel_loops.hpp"
 #include "storage/linear_solver.hpp"
-#include "support/seconds_since.hpp"
+#include "hotmesh/core/clock.hpp"
 
 namespace hotmesh::deform::detail {
 

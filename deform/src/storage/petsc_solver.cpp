@@ -66,7 +66,7 @@
 #include "storage/frame_matrix.hpp"
 #include "storage/petsc_preconditioner.hpp"
 #include "support/free_memory.hpp"
-#include "support/seconds_since.hpp"
+#include "hotmesh/core/clock.hpp"
 
 namespace hotmesh::deform::detail {
 namespace {

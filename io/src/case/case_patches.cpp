@@ -30,7 +30,6 @@ namespace {
 constexpr std::array<std::string_view, 5> kPatchKeys{"role", "deflection", "partner", "angle_deg", "features"};
 constexpr std::array<std::string_view, 1> kFeatureKeys{"angle"};
 constexpr std::string_view kFeaturesExample = "`features: {angle: 25}` (degrees) or `features: off`";
-constexpr std::string_view kRoleList = "fixed, prescribed, slip, sliding, passive, periodic";
 
 }  // namespace
 
@@ -55,20 +54,20 @@ void CaseParser::read_patch(const Entry& e) {
   PatchNotes& notes = notes_.emplace_back();
   const MapEntries m = reader_.map_or_empty(e, "a map {role: ...}") ? reader_.keys(e, kPatchKeys) : MapEntries{};
   if (const Entry* r = m.find("role")) {
-    if (const auto text = reader_.text(*r, cat("a role (one of ", kRoleList, ")"))) {
+    if (const auto text = reader_.text(*r, cat("a role (one of ", deform::kBoundaryRoleList, ")"))) {
       const std::optional<PatchRole> role = deform::kBoundaryRoleNames.parse(*text);
       notes.role_known = role.has_value();
       if (role) spec.role = *role;
-      if (!notes.role_known) reader_.error(*r, cat("unknown role '", *text, "'; expected one of ", kRoleList));
+      if (!notes.role_known) reader_.error(*r, cat("unknown role '", *text, "'; expected one of ", deform::kBoundaryRoleList));
     }
   } else if (e.value.IsMap() || e.value.IsNull()) {
-    reader_.error(e.line, e.sub("role"), cat("missing; expected one of ", kRoleList));
+    reader_.error(e.line, e.sub("role"), cat("missing; expected one of ", deform::kBoundaryRoleList));
   }
   const bool known = notes.role_known;
   const std::string_view role_name = to_string(spec.role);
 
   const Entry* deflection = m.find("deflection");
-  const bool takes_table = spec.role == PatchRole::prescribed || spec.role == PatchRole::sliding;
+  const bool takes_table = deform::follows_shape(spec.role);
   if (deflection != nullptr && known && !takes_table) {
     reader_.error(*deflection, cat("not allowed for role ", role_name,
                                    "; only prescribed and sliding patches take a deflection table"));
