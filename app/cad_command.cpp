@@ -12,7 +12,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cad_json.hpp"
+#include "fits/cad_json.hpp"
 #include "commands.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/core/input_error.hpp"

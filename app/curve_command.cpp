@@ -10,10 +10,10 @@
 
 #include "commands.hpp"
 #include "hotmesh/setup/curve_fit.hpp"
-#include "curve_outputs.hpp"
+#include "fits/curve_outputs.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
-#include "node_fit.hpp"
+#include "fits/node_fit.hpp"
 
 namespace hotmesh::app {
 

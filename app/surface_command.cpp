@@ -11,8 +11,8 @@
 #include "commands.hpp"
 #include "hotmesh/setup/face_fit.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
-#include "node_fit.hpp"
-#include "surface_outputs.hpp"
+#include "fits/node_fit.hpp"
+#include "fits/surface_outputs.hpp"
 
 namespace hotmesh::app {
 

@@ -23,7 +23,7 @@
 #include "commands.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "serve/http_server.hpp"
-#include "serve/service.hpp"
+#include "service/service.hpp"
 
 namespace hotmesh::app {
 

@@ -1,5 +1,5 @@
 // hotmesh serve: reading a CAD file in a child process first (cad_check.hpp).
-#include "serve/cad_check.hpp"
+#include "service/cad_check.hpp"
 
 #include <fcntl.h>
 #include <poll.h>

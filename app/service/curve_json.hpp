@@ -7,7 +7,7 @@
 
 #include "hotmesh/setup/curve_fit.hpp"
 #include "hotmesh/geometry/curve_projector.hpp"
-#include "serve/json_fields.hpp"
+#include "service/json_fields.hpp"
 
 namespace hotmesh::app::serve {
 

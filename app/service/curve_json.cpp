@@ -1,5 +1,5 @@
 // hotmesh serve: curves and node fits as JSON (see curve_json.hpp).
-#include "serve/curve_json.hpp"
+#include "service/curve_json.hpp"
 
 #include <algorithm>
 #include <set>

@@ -1,5 +1,5 @@
 // hotmesh serve: the private folder for uploads (see private_folder.hpp).
-#include "serve/private_folder.hpp"
+#include "service/private_folder.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,7 +14,7 @@
 #include <fmt/format.h>
 
 #include "hotmesh/core/input_error.hpp"
-#include "serve/api_error.hpp"
+#include "service/api_error.hpp"
 
 namespace hotmesh::app::serve {
 

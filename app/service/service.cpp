@@ -1,7 +1,7 @@
 // hotmesh serve: the geometry service's CAD side: health, files below the root, loading CAD
 // models (upload or root), listing their faces and edges, how faces are taken (as a surface of
 // revolution or as surfaces, faces_mode.hpp) and meridional curves of faces (eq. 20).
-#include "serve/service.hpp"
+#include "service/service.hpp"
 
 #include <fmt/format.h>
 
@@ -10,10 +10,10 @@
 #include <string_view>
 #include <utility>
 
-#include "cad_json.hpp"
+#include "fits/cad_json.hpp"
 #include "hotmesh/setup/faces_mode.hpp"
 #include "hotmesh/core/input_error.hpp"
-#include "serve/service_state.hpp"
+#include "service/service_state.hpp"
 
 namespace hotmesh::app::serve {
 

@@ -1,6 +1,6 @@
 // hotmesh app: the options and outputs `hotmesh curve` and `hotmesh surface` share (see
 // node_fit.hpp).
-#include "node_fit.hpp"
+#include "fits/node_fit.hpp"
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>

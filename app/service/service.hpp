@@ -18,8 +18,8 @@
 #include <string>
 #include <string_view>
 
-#include "serve/cad_check.hpp"
-#include "serve/json_fields.hpp"
+#include "service/cad_check.hpp"
+#include "service/json_fields.hpp"
 
 namespace hotmesh::app::serve {
 

@@ -1,5 +1,5 @@
 // hotmesh serve: reading files below --root only (see root_folder.hpp).
-#include "serve/root_folder.hpp"
+#include "service/root_folder.hpp"
 
 #include <fcntl.h>
 #include <linux/openat2.h>
@@ -16,7 +16,7 @@
 #include <fmt/format.h>
 
 #include "hotmesh/core/input_error.hpp"
-#include "serve/api_error.hpp"
+#include "service/api_error.hpp"
 
 namespace hotmesh::app::serve {
 

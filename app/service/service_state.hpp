@@ -23,10 +23,10 @@
 #include "hotmesh/geometry/curve_projector.hpp"
 #include "hotmesh/geometry/deformed_face.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
-#include "serve/api_error.hpp"
-#include "serve/private_folder.hpp"
-#include "serve/root_folder.hpp"
-#include "serve/service.hpp"
+#include "service/api_error.hpp"
+#include "service/private_folder.hpp"
+#include "service/root_folder.hpp"
+#include "service/service.hpp"
 
 namespace hotmesh::app::serve {
 

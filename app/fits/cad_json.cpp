@@ -1,5 +1,5 @@
 // hotmesh app: CAD faces, edges and axes as JSON (see cad_json.hpp).
-#include "cad_json.hpp"
+#include "fits/cad_json.hpp"
 
 namespace hotmesh::app {
 

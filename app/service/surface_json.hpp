@@ -8,7 +8,7 @@
 #include <span>
 
 #include "hotmesh/setup/face_fit.hpp"
-#include "serve/json_fields.hpp"
+#include "service/json_fields.hpp"
 
 namespace hotmesh::app::serve {
 

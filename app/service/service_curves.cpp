@@ -9,16 +9,16 @@
 #include <string>
 #include <utility>
 
-#include "cad_json.hpp"
-#include "curve_outputs.hpp"
+#include "fits/cad_json.hpp"
+#include "fits/curve_outputs.hpp"
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/cad_export.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
-#include "serve/curve_json.hpp"
-#include "serve/service.hpp"
-#include "serve/service_state.hpp"
+#include "service/curve_json.hpp"
+#include "service/service.hpp"
+#include "service/service_state.hpp"
 
 namespace hotmesh::app::serve {
 

@@ -1,5 +1,5 @@
 // hotmesh serve: reading the JSON bodies of API requests (see json_fields.hpp).
-#include "serve/json_fields.hpp"
+#include "service/json_fields.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "serve/api_error.hpp"
+#include "service/api_error.hpp"
 
 namespace hotmesh::app::serve {
 

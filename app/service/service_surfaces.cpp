@@ -11,10 +11,10 @@
 
 #include "hotmesh/geometry/cad_export.hpp"
 #include "hotmesh/core/input_error.hpp"
-#include "serve/service.hpp"
-#include "serve/service_state.hpp"
-#include "serve/surface_json.hpp"
-#include "surface_outputs.hpp"
+#include "service/service.hpp"
+#include "service/service_state.hpp"
+#include "service/surface_json.hpp"
+#include "fits/surface_outputs.hpp"
 
 namespace hotmesh::app::serve {
 

@@ -1,7 +1,7 @@
 // hotmesh app: outputs of a reconstructed curve: the undeformed and deformed curves sampled
 // (CSV) and as B-splines (STEP, IGES), a picture with nodes and amplified deflections (SVG) and
 // a summary of the fit (JSON). Every file is written atomically.
-#include "curve_outputs.hpp"
+#include "fits/curve_outputs.hpp"
 
 #include <fmt/format.h>
 
@@ -9,10 +9,10 @@
 #include <cmath>
 #include <utility>
 
-#include "cad_json.hpp"
+#include "fits/cad_json.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/figure.hpp"
-#include "node_fit.hpp"
+#include "fits/node_fit.hpp"
 
 namespace hotmesh::app {
 

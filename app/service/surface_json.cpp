@@ -1,9 +1,9 @@
 // hotmesh serve: deflection fields on CAD faces as JSON (see surface_json.hpp).
-#include "serve/surface_json.hpp"
+#include "service/surface_json.hpp"
 
 #include <vector>
 
-#include "cad_json.hpp"
+#include "fits/cad_json.hpp"
 
 namespace hotmesh::app::serve {
 

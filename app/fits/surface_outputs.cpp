@@ -1,7 +1,7 @@
 // hotmesh app: outputs of deflection fields on CAD faces: the deformed faces (STEP, IGES), the
 // nodes and faces for ParaView (.vtp), the residuals over (t, s) (PNG) and a summary (JSON).
 // Every file is written atomically.
-#include "surface_outputs.hpp"
+#include "fits/surface_outputs.hpp"
 
 #include <fmt/format.h>
 
@@ -12,7 +12,7 @@
 #include <utility>
 
 #include "hotmesh/io/atomic_file.hpp"
-#include "node_fit.hpp"
+#include "fits/node_fit.hpp"
 
 namespace hotmesh::app {
 
