@@ -28,9 +28,9 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "check_references.hpp"
-#include "check_report.hpp"
-#include "mesh_summary.hpp"
+#include "reports/check_references.hpp"
+#include "reports/check_report.hpp"
+#include "reports/mesh_summary.hpp"
 #include "commands.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"

@@ -26,9 +26,9 @@
 #include <span>
 
 #include "commands.hpp"
-#include "deform_checkpoint.hpp"
-#include "deform_outputs.hpp"
-#include "series_outputs.hpp"
+#include "reports/deform_checkpoint.hpp"
+#include "reports/deform_outputs.hpp"
+#include "reports/series_outputs.hpp"
 #include "hotmesh/deform/move_mesh.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"

@@ -5,9 +5,9 @@
 #include <iostream>
 #include <memory>
 
-#include "cgns_summary.hpp"
+#include "reports/cgns_summary.hpp"
 #include "commands.hpp"
-#include "mesh_summary.hpp"
+#include "reports/mesh_summary.hpp"
 
 namespace hotmesh::app {
 

@@ -1,5 +1,5 @@
 // hotmesh app: the shapes `hotmesh check` measures mesh patches against (see check_references.hpp).
-#include "check_references.hpp"
+#include "reports/check_references.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

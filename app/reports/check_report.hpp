@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hotmesh/core/vec3.hpp"
-#include "wall_deviation_report.hpp"
+#include "reports/wall_deviation_report.hpp"
 
 namespace hotmesh::app {
 

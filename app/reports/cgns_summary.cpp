@@ -1,4 +1,4 @@
-#include "cgns_summary.hpp"
+#include "reports/cgns_summary.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

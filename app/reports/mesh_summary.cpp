@@ -1,4 +1,4 @@
-#include "mesh_summary.hpp"
+#include "reports/mesh_summary.hpp"
 
 #include <algorithm>
 #include <map>

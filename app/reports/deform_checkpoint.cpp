@@ -1,4 +1,4 @@
-#include "deform_checkpoint.hpp"
+#include "reports/deform_checkpoint.hpp"
 
 #include <chrono>
 #include <system_error>

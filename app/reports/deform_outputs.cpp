@@ -1,5 +1,5 @@
-#include "deform_outputs.hpp"
-#include "series_outputs.hpp"
+#include "reports/deform_outputs.hpp"
+#include "reports/series_outputs.hpp"
 
 #include "hotmesh/parallel/processes.hpp"
 
@@ -19,8 +19,8 @@
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/io/mesh_picture.hpp"
 #include "hotmesh/io/vtu.hpp"
-#include "mesh_summary.hpp"
-#include "wall_deviation_report.hpp"
+#include "reports/mesh_summary.hpp"
+#include "reports/wall_deviation_report.hpp"
 
 namespace hotmesh::app {
 namespace {

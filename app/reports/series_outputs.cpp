@@ -1,5 +1,5 @@
 // hotmesh app: the motion as ParaView time series (deformed.pvd, walls.pvd).
-#include "series_outputs.hpp"
+#include "reports/series_outputs.hpp"
 
 #include <fstream>
 #include <optional>

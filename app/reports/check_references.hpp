@@ -27,7 +27,7 @@
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/case_file.hpp"
-#include "wall_deviation_report.hpp"
+#include "reports/wall_deviation_report.hpp"
 
 namespace hotmesh::app {
 

@@ -1,6 +1,6 @@
 // hotmesh app: the two-sided distance between mesh patches and their walls, for hotmesh check
 // and report.json (see wall_deviation_report.hpp).
-#include "wall_deviation_report.hpp"
+#include "reports/wall_deviation_report.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -1,6 +1,6 @@
 // hotmesh app: the report of `hotmesh check` as text, JSON and JUnit XML (see check_report.hpp).
-#include "check_report.hpp"
-#include "mesh_summary.hpp"
+#include "reports/check_report.hpp"
+#include "reports/mesh_summary.hpp"
 
 #include <fmt/format.h>
 
