@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "serve/http_server.hpp"
 #include "service/service.hpp"

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "hotmesh/io/foam.hpp"
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/io/mesh_files.hpp"

@@ -10,11 +10,11 @@
 #include <thread>
 #include <vector>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/parallel/processes.hpp"
-#include "logging.hpp"
-#include "passive_wait.hpp"
+#include "cli/logging.hpp"
+#include "cli/passive_wait.hpp"
 
 // In `hotmesh deform`, waiting OpenMP threads sleep (OMP_WAIT_POLICY=passive) unless the user
 // says otherwise: the program starts itself again so, before libgomp reads its environment as

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fits/cad_json.hpp"
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/core/input_error.hpp"
 

@@ -8,7 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "hotmesh/setup/curve_fit.hpp"
 #include "fits/curve_outputs.hpp"
 #include "hotmesh/core/input_error.hpp"

@@ -1,4 +1,4 @@
-#include "logging.hpp"
+#include "cli/logging.hpp"
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>

@@ -31,7 +31,7 @@
 #include "reports/check_references.hpp"
 #include "reports/check_report.hpp"
 #include "reports/mesh_summary.hpp"
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/case_file.hpp"

@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "reports/cgns_summary.hpp"
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "reports/mesh_summary.hpp"
 
 namespace hotmesh::app {

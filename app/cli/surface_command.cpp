@@ -8,7 +8,7 @@
 
 #include <memory>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "hotmesh/setup/face_fit.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 #include "fits/node_fit.hpp"

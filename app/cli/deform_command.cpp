@@ -25,7 +25,7 @@
 #include <optional>
 #include <span>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "reports/deform_checkpoint.hpp"
 #include "reports/deform_outputs.hpp"
 #include "reports/series_outputs.hpp"
@@ -42,8 +42,8 @@
 #include "hotmesh/mesh/parallel_loops.hpp"
 #include "hotmesh/parallel/processes.hpp"
 #include "hotmesh/parallel/threads.hpp"
-#include "logging.hpp"
-#include "passive_wait.hpp"
+#include "cli/logging.hpp"
+#include "cli/passive_wait.hpp"
 
 namespace hotmesh::app {
 namespace {

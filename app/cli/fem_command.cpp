@@ -14,7 +14,7 @@
 #include <memory>
 #include <unordered_map>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/calculix.hpp"

@@ -1,5 +1,5 @@
 // hotmesh app: `hotmesh deform` waits passively unless the user says otherwise (passive_wait.hpp).
-#include "passive_wait.hpp"
+#include "cli/passive_wait.hpp"
 
 #include <sched.h>
 #include <sys/auxv.h>
