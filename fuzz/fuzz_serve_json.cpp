@@ -13,8 +13,8 @@
 #include "fuzz_support.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
-#include "serve/api_error.hpp"
-#include "serve/service.hpp"
+#include "service/api_error.hpp"
+#include "service/service.hpp"
 
 namespace {
 

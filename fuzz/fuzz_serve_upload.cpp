@@ -6,8 +6,8 @@
 // file behind in the service's upload folder. The model an upload makes is deleted again.
 #include "fuzz_support.hpp"
 #include "hotmesh/core/input_error.hpp"
-#include "serve/api_error.hpp"
-#include "serve/service.hpp"
+#include "service/api_error.hpp"
+#include "service/service.hpp"
 
 namespace serve = hotmesh::app::serve;
 

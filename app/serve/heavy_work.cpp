@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "serve/api_error.hpp"
+#include "service/api_error.hpp"
 
 namespace hotmesh::app::serve {
 

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <mutex>
 
-#include "serve/json_fields.hpp"
+#include "service/json_fields.hpp"
 
 namespace hotmesh::app::serve {
 

@@ -14,7 +14,7 @@
 #include <cctype>
 
 #include "hotmesh/core/input_error.hpp"
-#include "serve/api_error.hpp"
+#include "service/api_error.hpp"
 
 namespace hotmesh::app::serve {
 

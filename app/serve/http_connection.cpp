@@ -16,8 +16,8 @@
 #include <string>
 #include <string_view>
 
-#include "serve/api_error.hpp"
-#include "serve/json_fields.hpp"
+#include "service/api_error.hpp"
+#include "service/json_fields.hpp"
 
 namespace hotmesh::app::serve {
 

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "hotmesh/core/input_error.hpp"
-#include "serve/api_error.hpp"
+#include "service/api_error.hpp"
 #include "serve/heavy_work.hpp"
 #include "serve/host_policy.hpp"
 #include "serve/http_connection.hpp"

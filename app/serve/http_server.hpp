@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "serve/service.hpp"
+#include "service/service.hpp"
 
 namespace hotmesh::app::serve {
 

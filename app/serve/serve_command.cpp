@@ -20,10 +20,10 @@
 #include <thread>
 #include <vector>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "serve/http_server.hpp"
-#include "serve/service.hpp"
+#include "service/service.hpp"
 
 namespace hotmesh::app {
 

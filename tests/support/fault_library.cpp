@@ -15,7 +15,7 @@
 //     the process with std::terminate, not with hotmesh's report of memory running out.
 //
 //   HOTMESH_TEST_HOLD_CAD_CHECK=FILE: a `hotmesh cad` process (the child by which `hotmesh
-//     serve` reads a CAD file first, serve/cad_check.hpp) waits at its start until FILE
+//     serve` reads a CAD file first, service/cad_check.hpp) waits at its start until FILE
 //     exists (at most two minutes): the request that loads the file holds its heavy slot
 //     until the test creates FILE, whatever the machine's speed.
 //

@@ -6,7 +6,7 @@
 // that is actually free, and one thread for a mesh below the size where threads pay
 // (measured, docs/performance.md "Threads on a shared machine"); waiting threads sleep at once
 // instead of spinning for their core (OMP_WAIT_POLICY=passive), unless the user said otherwise:
-// that is the hotmesh program's choice (app/passive_wait.hpp), since libgomp reads it as it is
+// that is the hotmesh program's choice (app/cli/passive_wait.hpp), since libgomp reads it as it is
 // loaded, and a library cannot make it for the program that links it.
 #pragma once
 

@@ -1,7 +1,7 @@
 // hotmesh setup: section 4.2 on CAD faces of any shape from what a user gives (issue 23): the
 // faces of a CAD file by number, a cartesian table of FEM nodes, and the deflection field d(t, s)
 // reconstructed on each face (geometry::reconstruct_on_faces). `hotmesh surface` writes what
-// comes of it (surface_outputs.hpp); `hotmesh serve` answers with it (serve/service_surfaces.cpp).
+// comes of it (surface_outputs.hpp); `hotmesh serve` answers with it (service/service_surfaces.cpp).
 #pragma once
 
 #include <span>
