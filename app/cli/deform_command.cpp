@@ -30,6 +30,7 @@
 #include "reports/deform_outputs.hpp"
 #include "reports/series_outputs.hpp"
 #include "hotmesh/deform/move_mesh.hpp"
+#include "hotmesh/core/clock.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/atomic_file.hpp"
 #include "hotmesh/io/case_file.hpp"
@@ -47,9 +48,6 @@
 
 namespace hotmesh::app {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 /// From this size on, every Newton step is logged at info level (else at debug, -v): a step
 /// then takes seconds to minutes, and a user wants to see the run is alive.

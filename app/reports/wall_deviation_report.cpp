@@ -156,7 +156,7 @@ json wall_deviations_json(const mesh::Mesh& mesh, std::span<const geometry::Vec3
                           double lambda, double length_scale) {
   json list = json::array();
   for (const deform::PatchMotion& motion : setup.motions) {
-    const bool follows = motion.role == deform::BoundaryRole::prescribed || motion.role == deform::BoundaryRole::sliding;
+    const bool follows = deform::follows_shape(motion.role);
     const mesh::Patch* patch = mesh.find_patch(motion.patch);
     if (!follows || !motion.shape || !patch) continue;
     const auto start = std::chrono::steady_clock::now();
