@@ -10,7 +10,7 @@
 // each size runs in its own process, or with `--ranks N` in N processes of one thread under
 // mpirun (peak memory: the processes' peaks summed, report.json's
 // peak_memory_bytes_all_ranks). The paper's size on two ranks (`2700000 --forcing
-// eisenstat-walker --ranks 2`, with PETSc's lean triple products, docs/performance.md) takes
+// eisenstat-walker --ranks 2`, with PETSc's lean triple products, docs/parallel-runs.md) takes
 // 15 to 18 minutes and 12.5 GiB: `scripts/bench.sh --paper-size`.
 #include <cstdio>
 #include <cstdlib>

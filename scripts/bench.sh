@@ -11,7 +11,7 @@
 #   --paper-size   only the paper's stator-well sector (section 6.1): 2.7 million hexes, sliding,
 #                  16 increments, `linear: auto` (amg at this size) with the Eisenstat-Walker
 #                  forcing term, two ranks of one thread with PETSc's lean triple products
-#                  (docs/performance.md): time per phase, CG iterations, peak memory of both
+#                  (docs/parallel-runs.md): time per phase, CG iterations, peak memory of both
 #                  ranks and quality (bench_stator_solve). 14 to 18 minutes and 11.8 GiB.
 # A full run takes about twenty-five minutes on 2 cores (most of it the stator-well sector solved
 # at 50 000 cells, and both linear solvers on the stator-well sample) and needs about 5 GB of

@@ -508,7 +508,7 @@ TEST(CheckCommand, UserErrorsNameWhatIsWrong) {
   EXPECT_EQ(hotmesh("check" + mesh + cad + " --map inner=1 --format yaml").exit_code, 2);
 }
 
-// The README's command on the stator-well sample: the casing is two cylinders r = 0.45, face 3
+// docs/cli.md's example on the stator-well sample: the casing is two cylinders r = 0.45, face 3
 // in front of the blade row (z 0 to 0.034) and face 4 behind it (z 0.066 to 0.1), whose
 // meridional curves do not meet. It once stopped with "do not form one connected profile".
 TEST(CheckCommand, StatorWellCasingOnEitherSideOfTheBladeIsCheckedPerProfile) {

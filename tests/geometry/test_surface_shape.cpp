@@ -84,7 +84,7 @@ TEST(SurfaceShape, ReproducesPolynomialDeflectionsOfDegreeQ) {
 
 // A smooth deflection of a cylinder (a rational face) from scattered FEM nodes: the deflected
 // face converges to the exact one as the nodes get denser, at about the order q + 1 of the fit
-// (measured orders printed; docs/method.md records them).
+// (measured orders printed; docs/method-reconstruction.md records them).
 TEST(SurfaceShape, ConvergesOnASmoothFieldFromScatteredNodes) {
   const BSplineSurface face = test::from_occt(test::occt_cylinder());
   const ParameterRectangle r = face.domain();

@@ -3,8 +3,8 @@
 // (d = 3) - as the paper's eq. (29)-(30) does for quad4/hex8 in q1_element.hpp: reference
 // corners in Gmsh order, dN_a/dxi, a quadrature rule {xi_g, w_g} whose weights sum to the
 // reference volume, the centre where eq. (35) measures the cell, and the regular ("ideal")
-// cell that eq. (35)'s |phi_s| compares against. docs/method.md, "Element types beyond quads
-// and hexes", states the same definitions.
+// cell that eq. (35)'s |phi_s| compares against. docs/method.md, "Hybrid meshes: triangles,
+// tetrahedra, prisms and pyramids", states the same definitions.
 //
 //   tri3   xi, eta >= 0, xi + eta <= 1      N = 1 - xi - eta, xi, eta
 //          1 point (centroid, w = 1/2): the gradients are constant.

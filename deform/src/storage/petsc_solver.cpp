@@ -34,7 +34,7 @@
 // the next (PCSetReusePreconditioner) while it serves: K changes little between them, an old
 // hierarchy stays a symmetric positive definite preconditioner, and it is rebuilt once the
 // first solve of an increment takes kAmgSlowdown times the CG iterations it took fresh, or a
-// solve with it fails (docs/performance.md measures the choice). The case file's `amg_reuse`
+// solve with it fails (docs/method.md, "Algebraic multigrid", gives the measurements). The case file's `amg_reuse`
 // changes that (SolverOptions::amg_reuse); any option of the PC can be given in PETSC_OPTIONS
 // with the prefix `hotmesh_`, e.g. PETSC_OPTIONS="-hotmesh_pc_gamg_threshold 0.05 -hotmesh_pc_view".
 //

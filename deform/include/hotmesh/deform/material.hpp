@@ -29,7 +29,7 @@ struct Lame {
 /// |phi_s| and V_e of one element from its centre Jacobian. quad4/hex8 as above; tri3, tet4,
 /// wedge6 and pyramid5 measure ||T||_F ||T^-1||_F / d with T = J W^-1, W the Jacobian of the
 /// type's regular cell (all edges equal), so that a regular cell of any type has |phi_s| = 1
-/// (docs/method.md, "Element types beyond quads and hexes").
+/// (docs/method.md, "Hybrid meshes: triangles, tetrahedra, prisms and pyramids").
 struct ElementShape {
   double shape_measure = 1.0;  ///< |phi_s|
   double volume = 0.0;         ///< det J at the centre times the reference volume (2^d, 1/2, 1/6, 1, 4/3)

@@ -18,7 +18,7 @@
 namespace hotmesh::parallel {
 
 /// Nodes of a mesh from which a second thread gains at least a tenth of a whole run on an idle
-/// machine (bench_busy --sweep, 2 cores, docs/performance.md): 3D ducts sliding over CAD faces
+/// machine (bench_busy --sweep, 2 cores, 2026-12-07): 3D ducts sliding over CAD faces
 /// (jacobi-pcg) broke even at 3 190 nodes and gained 14 % at 6 048 and 29 % at 21 777; 2D ramps
 /// (icc, threaded in the element pass and the vector work around PETSc's solves) broke even at
 /// 2 378 nodes and gained 12 % at 9 315. Below them a run takes one thread unless told.
