@@ -14,6 +14,7 @@
 #include <cctype>
 
 #include "hotmesh/core/input_error.hpp"
+#include "hotmesh/core/text.hpp"
 #include "service/api_error.hpp"
 
 namespace hotmesh::app::serve {
@@ -76,7 +77,7 @@ std::optional<std::string> normalized_host(std::string_view host, int default_po
       return std::isalnum(c) || c == '.' || c == '-' || c == '_';
     });
     if (!valid) return std::nullopt;
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+    name = ascii_lower(name);
     if (const auto address = canonical_address(name, AF_INET)) name = *address;
   }
   int port = default_port;

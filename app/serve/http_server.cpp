@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "hotmesh/core/input_error.hpp"
+#include "hotmesh/core/text.hpp"
 #include "service/api_error.hpp"
 #include "serve/heavy_work.hpp"
 #include "serve/host_policy.hpp"
@@ -125,8 +126,7 @@ std::string media_type(const Request& req) {
   type = type.substr(0, type.find(';'));
   const auto first = type.find_first_not_of(" \t"), last = type.find_last_not_of(" \t");
   type = first == std::string::npos ? std::string() : type.substr(first, last - first + 1);
-  std::transform(type.begin(), type.end(), type.begin(), [](unsigned char c) { return std::tolower(c); });
-  return type;
+  return ascii_lower(type);
 }
 
 /// Why a body of media type `type` is not taken by a JSON route.

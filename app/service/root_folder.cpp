@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "hotmesh/core/input_error.hpp"
+#include "hotmesh/core/text.hpp"
 #include "service/api_error.hpp"
 
 namespace hotmesh::app::serve {
@@ -75,9 +76,7 @@ std::string lower_extension(std::string_view name) {
   const auto dot = name.rfind('.');
   const auto slash = name.find_last_of("/\\");
   if (dot == std::string_view::npos || (slash != std::string_view::npos && dot < slash)) return {};
-  std::string ext(name.substr(dot));
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
+  return ascii_lower(name.substr(dot));
 }
 
 RootFolder::RootFolder(const fs::path& root) {

@@ -47,6 +47,7 @@
 #include "cad/occt_session.hpp"
 #include "cad/step_entity_numbers.hpp"
 #include "hotmesh/core/input_error.hpp"
+#include "hotmesh/core/text.hpp"
 #include "reconstruct/cad_face_set.hpp"
 
 namespace hotmesh::geometry {
@@ -55,20 +56,8 @@ namespace {
 
 enum class Format { step, iges };
 
-std::string lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
-std::string trimmed(std::string text) {
-  const auto space = [](unsigned char c) { return std::isspace(c) != 0; };
-  text.erase(text.begin(), std::find_if_not(text.begin(), text.end(), space));
-  text.erase(std::find_if_not(text.rbegin(), text.rend(), space).base(), text.end());
-  return text;
-}
-
 Format format_of(const std::filesystem::path& path) {
-  const std::string extension = lower(path.extension().string());
+  const std::string extension = ascii_lower(path.extension().string());
   if (extension == ".step" || extension == ".stp") return Format::step;
   if (extension == ".iges" || extension == ".igs") return Format::iges;
   throw InputError::in(path.string(), "unknown CAD format '" + path.extension().string() +
@@ -85,8 +74,8 @@ void check_file(const std::filesystem::path& path, Format format) {
   std::string head(256, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
-  if (trimmed(head).empty()) throw InputError::in(path.string(), "the CAD file is empty");
-  if (format == Format::step && trimmed(head).rfind("ISO-10303-21", 0) != 0) {
+  if (trim(head, kWhiteSpace).empty()) throw InputError::in(path.string(), "the CAD file is empty");
+  if (format == Format::step && !trim(head, kWhiteSpace).starts_with("ISO-10303-21")) {
     throw InputError::in(path.string(), "not a STEP file: it does not start with ISO-10303-21");
   }
 }
@@ -105,7 +94,7 @@ std::string face_name(const Handle(XSControl_TransferReader)& transfer, const To
       name = iges->ShortLabel()->ToCString();
     }
   }
-  name = trimmed(name);
+  name = std::string(trim(name, kWhiteSpace));
   return name == "NONE" ? std::string() : name;  // STEP writers' word for "no name"
 }
 
