@@ -29,6 +29,9 @@ int main(int argc, char** argv) {
                "Run 'hotmesh <command> --help' for the options of a command."};
   app.set_version_flag("--version", HOTMESH_VERSION);
   app.require_subcommand(1);
+  // The global options are taken after the command too (`hotmesh deform case.yaml -q`): an
+  // option a command does not know falls through to here. Every command inherits this.
+  app.fallthrough();
   int verbose = 0;
   bool quiet = false;
   app.add_flag("-v,--verbose", verbose, "More log output on stderr (-vv: trace)");

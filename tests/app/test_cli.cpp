@@ -12,6 +12,7 @@ namespace hotmesh::app {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using test::run_command;
 using test::shell_quote;
 
@@ -51,6 +52,29 @@ TEST(Cli, InfoSummarisesTheRampSample) {
   EXPECT_EQ(j["patches"][2]["name"], "bottom");
   EXPECT_EQ(j["quality"]["inverted_cells"], 0);
   EXPECT_DOUBLE_EQ(j["quality"]["min_scaled_jacobian"].get<double>(), 1.0);
+}
+
+// Global options are taken anywhere on the line, as users type them after the command: -q
+// silences the run's log, -v adds its debug lines; an option nobody knows is still refused.
+TEST(Cli, GlobalOptionsAreTakenAfterTheCommandToo) {
+  const std::string shear = shell_quote(std::string(HOTMESH_SOURCE_DIR) + "/samples/shear2d/shear2d.yaml");
+  test::TempDir dir;
+  const auto run = [&](const std::string& folder, const std::string& option) {
+    return hotmesh("deform " + shear + " -o " + shell_quote((dir / folder).string()) + " " + option);
+  };
+  const auto normal = run("normal", "");
+  ASSERT_EQ(normal.exit_code, 0) << normal.output;
+  EXPECT_THAT(normal.output, HasSubstr("info "));
+  const auto quiet = run("quiet", "-q");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.output;
+  EXPECT_EQ(quiet.output, "");
+  const auto verbose = run("verbose", "--verbose");
+  ASSERT_EQ(verbose.exit_code, 0) << verbose.output;
+  EXPECT_THAT(verbose.output, HasSubstr("debug "));
+  EXPECT_THAT(normal.output, Not(HasSubstr("debug ")));
+  const auto unknown = hotmesh("info " + shell_quote(kRamp) + " --frobnicate");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_THAT(unknown.output, HasSubstr("--frobnicate"));
 }
 
 TEST(Cli, MalformedMeshIsAUserErrorNamingFileAndLine) {
