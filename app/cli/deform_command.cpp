@@ -443,7 +443,7 @@ Command add_deform_command(CLI::App& parent) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = parent.add_subcommand("deform", "Deform a mesh as a case file describes (the main job)");
   cmd->add_option("CASE", options->case_file, "Case file (.yaml), see docs/case-file.md")->required()->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", options->output, "Output folder (default: the case's `output`)");
+  cmd->add_option("-o,--output", options->output, "Output folder (default: the case's `output`, else <case name>-out beside the case file)");
   cmd->add_option("--threads", options->threads,
                   "OpenMP threads (default: the case's solver.threads; 0: hotmesh chooses from the mesh's size and the "
                   "cores other processes leave free)")
