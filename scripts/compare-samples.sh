@@ -5,7 +5,7 @@
 # meshes, VTU, restart and checkpoint files byte for byte, report.json without its timings,
 # memory and thread counts. For changes that move code and must change nothing (issue 47).
 #
-#   scripts/compare-samples.sh OLD_HOTMESH NEW_HOTMESH [WORK_FOLDER]
+#   scripts/compare-samples.sh OLD_HOTMESH NEW_HOTMESH [WORK_FOLDER]   (default build/compare-samples)
 #
 # OLD_HOTMESH is typically a copy of build/app/hotmesh made before the change. The samples'
 # inputs that are not committed are made first: the CalculiX results (ccx) of forward_step and
@@ -19,7 +19,7 @@ fi
 repo=$(cd "$(dirname "$0")/.." && pwd)
 old=$(readlink -f "$1")
 new=$(readlink -f "$2")
-work=${3:-$(mktemp -d /tmp/hotmesh-compare.XXXXXX)}
+work=${3:-$repo/build/compare-samples}  # the build folder: git leaves it alone
 mkdir -p "$work"
 work=$(readlink -f "$work")
 generator=$repo/build/samples/stator_well/make_stator_well
