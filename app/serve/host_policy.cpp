@@ -127,9 +127,7 @@ void HostPolicy::check(const std::optional<std::string>& host, const std::option
   // Same origin only: the page the browser shows came from this very Host.
   constexpr std::string_view kScheme = "http://";
   const std::string_view text = *origin;
-  const bool http = text.size() > kScheme.size() &&
-                    std::equal(kScheme.begin(), kScheme.end(), text.begin(),
-                               [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); });
+  const bool http = text.size() > kScheme.size() && ascii_lower(text.substr(0, kScheme.size())) == kScheme;
   const auto from = http ? normalized_host(text.substr(kScheme.size()), 80) : std::nullopt;
   if (!from || *from != *ours) {
     throw ApiError::forbidden(fmt::format("Origin '{}' is not this service (http://{}): requests from pages of other "

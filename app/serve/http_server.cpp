@@ -122,11 +122,8 @@ httplib::Server::Handler guarded(Workers& workers, HeavyWork* heavy, Handler han
 
 /// The media type of the body, in lower case, without parameters ("application/json").
 std::string media_type(const Request& req) {
-  std::string type = req.get_header_value("Content-Type");
-  type = type.substr(0, type.find(';'));
-  const auto first = type.find_first_not_of(" \t"), last = type.find_last_not_of(" \t");
-  type = first == std::string::npos ? std::string() : type.substr(first, last - first + 1);
-  return ascii_lower(type);
+  const std::string type = req.get_header_value("Content-Type");
+  return ascii_lower(trim(std::string_view(type).substr(0, type.find(';')), " \t"));
 }
 
 /// Why a body of media type `type` is not taken by a JSON route.
