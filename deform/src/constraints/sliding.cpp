@@ -78,39 +78,23 @@ void SlidingNodes::begin_increment(double a, double b, std::span<const Vec3> x, 
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     forcing_[k] = share * (nodes[k].target - x[static_cast<std::size_t>(nodes[k].node)]);
   }
-  const parallel::Share mine = ranks_.my_share(nodes.size());
-  const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
-  mesh::LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
-#pragma omp parallel for schedule(dynamic, 64) if (count >= mesh::kParallelProjections)
-  for (std::ptrdiff_t i = 0; i < count; ++i) {
-    errors.run([&] {
-      const auto k = mine.begin + static_cast<std::size_t>(i);
-      SlidingNode& s = nodes[k];
-      const Vec3& start = x[static_cast<std::size_t>(s.node)];
-      const Placement p = place_sliding_node(s, start + forcing_[k], b, setup_.slip_planes);
-      set_displacement(u, s.node, p.point - start);
-      setup_.constraints.set_normals(s.node, {p.normals.data(), static_cast<std::size_t>(p.normal_count)});
-      record(k, p.point - start, p);
-    });
-  }
-  errors.rethrow();
-  share_placements(u);
-  follow_sliding_rims(setup_, x, u);
+  place_all(b, x, u, [&](std::size_t k, const Vec3& start) { return start + forcing_[k]; });
 }
 
-double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double> u) {
+template <class From>
+double SlidingNodes::place_all(double b, std::span<const Vec3> x, std::span<double> u, const From& from) {
   auto& nodes = setup_.sliding;
   double largest = 0.0;
   const parallel::Share mine = ranks_.my_share(nodes.size());
   const auto count = static_cast<std::ptrdiff_t>(mine.end - mine.begin);
-  mesh::LoopExceptions errors;
+  mesh::LoopExceptions errors;  // the projections run behind geometry's BoundaryShape interface
 #pragma omp parallel for schedule(dynamic, 64) reduction(max : largest) if (count >= mesh::kParallelProjections)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
     errors.run([&] {  // `largest` here is this thread's copy of the reduction
       const auto k = mine.begin + static_cast<std::size_t>(i);
       SlidingNode& s = nodes[k];
       const Vec3& start = x[static_cast<std::size_t>(s.node)];
-      const Vec3 moved = start + displacement(u, s.node);
+      const Vec3 moved = from(k, start);
       const Placement p = place_sliding_node(s, moved, b, setup_.slip_planes);
       largest = std::max(largest, distance(p.point, moved));
       set_displacement(u, s.node, p.point - start);
@@ -121,6 +105,13 @@ double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double
   errors.rethrow();
   share_placements(u);
   follow_sliding_rims(setup_, x, u);
+  return largest;
+}
+
+double SlidingNodes::project(double b, std::span<const Vec3> x, std::span<double> u) {
+  const auto& nodes = setup_.sliding;
+  const double largest =
+      place_all(b, x, u, [&](std::size_t k, const Vec3& start) { return start + displacement(u, nodes[k].node); });
   return ranks_.max(largest);
 }
 

@@ -102,6 +102,11 @@ class SlidingNodes {
   };
   void record(std::size_t k, const Vec3& displacement, const Placement& p);
   void share_placements(std::span<double> u);
+  /// Places this rank's share of the sliding nodes on stage b's wall, each from the point
+  /// `from(k, start)` gives (start: its undeformed position), sets their displacements and
+  /// normals, shares them and follows the rims; the farthest a node was moved onto the wall.
+  template <class From>
+  double place_all(double b, std::span<const Vec3> x, std::span<double> u, const From& from);
   void share_targets();
 
   BoundarySetup& setup_;
