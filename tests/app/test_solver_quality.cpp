@@ -4,7 +4,10 @@
 // hybrid box (tet, pyramid, prism, hex) by gmsh and gmshToFoam, and a mesh moved by hotmesh
 // (the ramp channel, written back by `deform --foam-time`). hotmesh info and report.json give
 // the maximum and average non-orthogonality, the maximum skewness, aspect ratio and volume
-// ratio (checkMesh: its reciprocal, the minimum) that checkMesh prints, to 1 %.
+// ratio (checkMesh: its reciprocal, the minimum) that checkMesh prints, to 1 %. A
+// snappyHexMesh mesh (a ball in a box, its split hexahedra OpenFOAM's polyhedra) is measured
+// on its own cells, polyhedra on their faces, before and after hotmesh moves it; the moved
+// mesh passes checkMesh.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -212,6 +215,96 @@ TEST(SolverQuality, MeshMovedByHotmeshAsCheckMeshSeesIt) {
   // The motion made the cells less orthogonal than blockMesh's rectangles (0 degrees).
   EXPECT_GT(moved["non_orthogonality"]["max"].get<double>(), 1.0);
   EXPECT_NEAR(report["mesh"]["quality"]["non_orthogonality"]["max"].get<double>(), 0.0, 1e-6);
+}
+
+/// checkMesh's count of polyhedra ("polyhedra:     248") in its output `r`, which says Mesh OK.
+std::size_t check_mesh_polyhedra(const test::CommandResult& r) {
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Mesh OK."), std::string::npos) << r.output;
+  return static_cast<std::size_t>(figure(r.output, "polyhedra: +([0-9]+)"));
+}
+
+#define SKIP_WITHOUT_SNAPPY()                         \
+  if (tf::snappy_hex_mesh_command().empty())          \
+  GTEST_SKIP() << "snappyHexMesh is not installed: " \
+                  "run scripts/install-deps.sh (Debian's openfoam)"
+
+TEST(SolverQuality, SnappyHexMeshPolyhedraAreMeasuredOnTheirOwnFacesAsCheckMeshDoes) {
+  SKIP_WITHOUT_SNAPPY();
+  test::TempDir dir;
+  const fs::path cfd = dir / "ball";
+  const auto made = tf::run_ball_in_box(cfd);
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const io::LoadedMesh loaded = io::read_mesh(cfd);
+  const mesh::Polyhedra& poly = loaded.mesh.polyhedra;
+  EXPECT_GT(poly.cells.size(), 100u);
+  // checkMesh's polyhedra, and the snapped hexahedra with a concave corner.
+  EXPECT_GE(poly.cells.size(),
+            check_mesh_polyhedra(test::run_command(tf::check_mesh_command() + " -case " + shell_quote(cfd.string()))));
+  // Every cell of the file stands first in the mesh's cells, the pieces follow.
+  EXPECT_EQ(poly.file_points, tf::ascii_points(cfd / "constant" / "polyMesh" / "points").size());
+  EXPECT_GT(loaded.mesh.node_count(), poly.file_points + poly.cells.size());
+  EXPECT_EQ(loaded.mesh.cell_count(), poly.file_cells + poly.piece_of.size());
+  EXPECT_EQ(loaded.validation.reoriented_cells, 0u);
+  const nlohmann::json q = info_quality(cfd);
+  expect_as_check_mesh(q, check_mesh(cfd));
+  // The pieces' faces inside a polyhedron would give angles well above checkMesh's.
+  EXPECT_LT(q["non_orthogonality"]["max"].get<double>(), 50.0);
+}
+
+TEST(SolverQuality, SnappyHexMeshMovedByHotmeshWritesItsOwnPointsOnlyAndPassesCheckMesh) {
+  SKIP_WITHOUT_SNAPPY();
+  test::TempDir dir;
+  const fs::path cfd = dir / "ball";
+  const auto made = tf::run_ball_in_box(cfd);
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const io::LoadedMesh loaded = io::read_mesh(cfd);
+  // The ball moves by (0.06, 0.03, -0.02) as a rigid body, the box stays.
+  const geometry::Vec3 shift{0.06, 0.03, -0.02};
+  std::string table = "x, y, z, dx, dy, dz\n";
+  const auto& ball = loaded.mesh.find_patch("ball")->nodes;
+  std::vector<bool> on_ball(loaded.mesh.polyhedra.file_points, false);
+  for (const mesh::NodeId n : ball) {
+    const auto i = static_cast<std::size_t>(n);
+    if (i >= on_ball.size()) continue;  // a face centre hotmesh added
+    on_ball[i] = true;
+    const auto& p = loaded.mesh.points[i];
+    table += fmt::format("{:.17g}, {:.17g}, {:.17g}, {}, {}, {}\n", p.x, p.y, p.z, shift.x, shift.y, shift.z);
+  }
+  test::write_text(dir / "ball.csv", table);
+  test::write_text(dir / "ball.yaml", "mesh: ball\nsolver: {increments: 2}\npatches:\n"
+                                      "  ball: {role: prescribed, deflection: {file: ball.csv, mode: surface}}\n"
+                                      "  box: {role: fixed}\n");
+  const auto out = dir / "out";
+  const auto r = hotmesh("deform " + shell_quote((dir / "ball.yaml").string()) + " -o " + shell_quote(out.string()) +
+                         " --threads 1 --foam-time 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  // Only the file's points are written: the ball's moved by the shift, the box's kept, the
+  // ones between moved by the elastic motion of the pieces.
+  const auto original = tf::ascii_points(cfd / "constant" / "polyMesh" / "points");
+  const auto moved = tf::ascii_points(cfd / "1" / "polyMesh" / "points");
+  ASSERT_EQ(moved.size(), original.size());
+  EXPECT_EQ(tf::ascii_points(out / "polyMesh" / "points"), moved);
+  std::size_t between = 0;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    const geometry::Vec3 d = moved[i] - original[i];
+    const bool on_box = std::abs(std::abs(original[i].x) - 1) < 1e-12 || std::abs(std::abs(original[i].y) - 1) < 1e-12 ||
+                        std::abs(std::abs(original[i].z) - 1) < 1e-12;
+    if (on_ball[i]) {
+      EXPECT_LT(geometry::norm(d - shift), 1e-6) << "ball point " << i;
+    } else if (on_box) {
+      EXPECT_EQ(moved[i], original[i]) << "box point " << i;
+    } else if (geometry::norm(d) > 1e-3) {
+      ++between;
+    }
+  }
+  EXPECT_GT(between, 50u);
+  // checkMesh passes on the moved case, and hotmesh's figures are checkMesh's.
+  EXPECT_GT(check_mesh_polyhedra(tf::check_mesh(cfd, out / "polyMesh", dir / "check")), 100u);
+  const nlohmann::json report = nlohmann::json::parse(test::read_text(out / "report.json"));
+  expect_as_check_mesh(report["quality"], check_mesh(cfd, "1"));
+  EXPECT_GT(report["quality"]["min_scaled_jacobian"].get<double>(), 0.0);
 }
 
 }  // namespace

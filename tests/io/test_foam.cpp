@@ -101,12 +101,16 @@ TEST(FoamReader, ReadsUniformListsCommentsAndTypedLists) {
   EXPECT_DOUBLE_EQ(mesh::scaled_jacobians(loaded.mesh.cells, loaded.mesh.points)[0], 1.0);
 }
 
-TEST(FoamReaderErrors, APolyhedronCellIsNamedWithItsShapeAndTheCount) {
+TEST(FoamReaderErrors, APolyhedronWhoseFacesDoNotCloseIsNamedWithItsShape) {
   test::TempDir dir;
-  write_poly_mesh(dir / "p", test::foam::split_top_cube());
+  auto open = test::foam::split_top_cube();
+  open.faces.erase(open.faces.begin() + 2);  // one of the top's two triangles
+  open.owner.pop_back();
+  open.patches[0].count = 6;
+  write_poly_mesh(dir / "p", open);
   const std::string error = read_error(dir / "p");
-  EXPECT_THAT(error, HasSubstr("cell 0 has 7 faces (a polyhedron, faces of 4, 3, 3, 4, 4, 4, 4 points)"));
-  EXPECT_THAT(error, HasSubstr("1 of the 1 cells are none of these"));
+  EXPECT_THAT(error, HasSubstr("cell 0 has 6 faces (a polyhedron, faces of 4, 3, 4, 4, 4, 4 points) that do not "
+                               "close a cell"));
 }
 
 TEST(FoamReaderErrors, APointIndexOutOfRangeNamesTheFaceAndTheFile) {

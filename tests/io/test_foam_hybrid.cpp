@@ -1,6 +1,6 @@
 // Tests of OpenFOAM polyMesh folders of hybrid meshes: single tetrahedra, pyramids and prisms
-// written here read with Gmsh's node order and positive orientation; other polyhedra and
-// faces that do not close refused naming the cell; gmsh's hybrid box converted by OpenFOAM's
+// written here read with Gmsh's node order and positive orientation; other polyhedra read as
+// pieces about their centres; faces that do not close refused naming the cell; gmsh's hybrid box converted by OpenFOAM's
 // gmshToFoam read with every cell type; the box written by hotmesh (ASCII and binary) passes
 // checkMesh and reads back. The OpenFOAM parts are skipped if OpenFOAM is not installed.
 #include <gmock/gmock.h>
@@ -84,11 +84,31 @@ TEST(FoamHybrid, CellsOwnedAcrossAnInternalTriangleAreReadFromTheirReversedFaces
 
 using test_io::read_error;
 
-TEST(FoamHybrid, PolyhedraAndFacesThatDoNotCloseAreRefusedNamingTheCell) {
+TEST(FoamHybrid, APolyhedronIsReadAsPiecesAboutItsCentreAndMeasuredAsOneCell) {
+  // The unit cube with its top split into two triangles: five pyramids on its quads and two
+  // tetrahedra on its triangles, about a point added at its centre.
   test::TempDir dir;
   tf::write_poly_mesh(dir / "poly", tf::split_top_cube());
-  EXPECT_THAT(read_error(dir / "poly"), ::testing::AllOf(HasSubstr("cell 0 has 7 faces (a polyhedron"),
-                                                          HasSubstr("1 of the 1 cells are none of these")));
+  const LoadedMesh loaded = read_mesh(dir / "poly");
+  const mesh::Mesh& m = loaded.mesh;
+  EXPECT_EQ(test::type_counts(m.cells),
+            (std::map<ElementType, std::size_t>{{ElementType::pyramid5, 5}, {ElementType::tet4, 2}}));
+  ASSERT_EQ(m.node_count(), 9u);
+  EXPECT_NEAR(geometry::norm(m.points[8] - geometry::Vec3{0.5, 0.5, 0.5}), 0.0, 1e-15);
+  EXPECT_EQ(m.polyhedra.cells, std::vector<mesh::CellId>{0});
+  EXPECT_EQ(m.polyhedra.file_points, 8u);
+  EXPECT_EQ(m.polyhedra.piece_of, std::vector<mesh::CellId>(6, 0));
+  EXPECT_EQ(loaded.validation.reoriented_cells, 0u);
+  test::expect_positively_oriented(m);
+  // The pieces fill the cube; the flow solver's measures are the cube's (aspect ratio 1, no
+  // skewness), given to each piece.
+  const mesh::SolverQuality q = mesh::solver_quality(m, m.points);
+  EXPECT_EQ(q.summary.cells, 1u);
+  EXPECT_EQ(q.summary.internal_faces, 0u);
+  EXPECT_TRUE(q.by_type.empty());
+  ASSERT_EQ(q.aspect_ratio.size(), 7u);
+  for (const double a : q.aspect_ratio) EXPECT_NEAR(a, 1.0, 1e-12);
+  for (const double k : q.skewness) EXPECT_NEAR(k, 0.0, 1e-12);
   tf::PolyMeshData flipped = tf::one_tetrahedron();
   std::swap(flipped.faces[3][1], flipped.faces[3][2]);  // the slanted face turned inward
   tf::write_poly_mesh(dir / "flipped", flipped);

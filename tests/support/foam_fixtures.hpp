@@ -306,6 +306,51 @@ inline CommandResult check_mesh(const std::filesystem::path& cfd, const std::fil
   return run_command(check_mesh_command() + " -case " + shell_quote(check.string()));
 }
 
+/// snappyHexMesh (Debian's OpenFOAM), or an empty string if it is not installed.
+inline std::string snappy_hex_mesh_command() {
+  if (!std::filesystem::exists("/usr/bin/snappyHexMesh")) return {};
+  const char* dir = std::getenv("WM_PROJECT_DIR");
+  return dir ? "snappyHexMesh" : "WM_PROJECT_DIR=/usr/share/openfoam snappyHexMesh";
+}
+
+/// A box [-1, 1]^3 of 8^3 cells (patch `box`) around a ball of radius 0.45 (patch `ball`),
+/// each cell cut by the ball refined once, snapped: snappyHexMesh's split hexahedra (its
+/// polyhedra, 248 of 864 cells), as the flange tutorial has them, in about 2 s.
+inline constexpr const char* kBallInBox = R"(
+vertices ((-1 -1 -1) (1 -1 -1) (1 1 -1) (-1 1 -1) (-1 -1 1) (1 -1 1) (1 1 1) (-1 1 1));
+blocks (hex (0 1 2 3 4 5 6 7) (8 8 8) simpleGrading (1 1 1));
+boundary (box {type wall; faces ((0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2) (0 3 2 1) (4 5 6 7));});
+)";
+inline constexpr const char* kBallSnappyDict = R"(
+castellatedMesh true; snap true; addLayers false;
+geometry { ball { type searchableSphere; centre (0 0 0); radius 0.45; } }
+castellatedMeshControls {
+  maxLocalCells 100000; maxGlobalCells 1000000; minRefinementCells 0; nCellsBetweenLevels 1;
+  features (); refinementSurfaces { ball { level (1 1); patchInfo { type wall; } } }
+  resolveFeatureAngle 30; refinementRegions { }
+  locationInMesh (0.71 0.73 0.77); allowFreeStandingZoneFaces true; }
+snapControls { nSmoothPatch 3; tolerance 2.0; nSolveIter 30; nRelaxIter 5; nFeatureSnapIter 10;
+  implicitFeatureSnap false; explicitFeatureSnap false; multiRegionFeatureSnap false; }
+addLayersControls { relativeSizes true; layers { } expansionRatio 1.0; finalLayerThickness 0.3; minThickness 0.1;
+  nGrow 0; featureAngle 60; nRelaxIter 3; nSmoothSurfaceNormals 1; nSmoothNormals 3; nSmoothThickness 10;
+  maxFaceThicknessRatio 0.5; maxThicknessToMedialRatio 0.3; minMedialAxisAngle 90; nBufferCellsNoExtrude 0;
+  nLayerIter 50; }
+meshQualityControls { #includeEtc "caseDicts/meshQualityDict"
+  nSmoothScale 4; errorReduction 0.75; }
+mergeTolerance 1e-6;
+)";
+
+/// The ball in the box meshed by blockMesh and snappyHexMesh -overwrite in the case `folder`.
+inline CommandResult run_ball_in_box(const std::filesystem::path& folder) {
+  write_block_mesh_case(folder, kBallInBox);
+  write_text(folder / "system" / "snappyHexMeshDict",
+             "FoamFile { version 2.0; format ascii; class dictionary; object snappyHexMeshDict; }\n" +
+                 std::string(kBallSnappyDict));
+  const CommandResult block = run_block_mesh(folder);
+  if (block.exit_code != 0) return block;
+  return run_command(snappy_hex_mesh_command() + " -overwrite -case " + shell_quote(folder.string()));
+}
+
 /// The points of an ASCII points file, parsed here independently of hotmesh's reader.
 inline std::vector<geometry::Vec3> ascii_points(const std::filesystem::path& file) {
   std::istringstream in(test::read_text(file));

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -31,6 +33,22 @@ OutwardFaces outward_faces(const PolyMesh& mesh, const CellFaces& cells, std::si
     out.faces.push_back(std::move(points));
   }
   return out;
+}
+
+/// True if every directed edge of the faces is in exactly one face and its reverse in one other.
+bool closes(const OutwardFaces& cell) {
+  std::vector<std::pair<std::int64_t, std::int64_t>> edges;
+  for (const auto& f : cell.faces) {
+    for (std::size_t i = 0; i < f.size(); ++i) edges.emplace_back(f[i], f[(i + 1) % f.size()]);
+  }
+  if (cell.faces.size() < 4) return false;
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const auto [a, b] = edges[i];
+    if (a == b || (i > 0 && edges[i - 1] == edges[i])) return false;
+    if (!std::binary_search(edges.begin(), edges.end(), std::pair{b, a})) return false;
+  }
+  return true;
 }
 
 /// "a prism", "a tetrahedron", ...: what a cell that is not a hexahedron looks like.
@@ -209,23 +227,23 @@ CellFaces cell_faces(const PolyMesh& mesh) {
 
 std::vector<FoamCell> volume_cells(const PolyMesh& mesh, const CellFaces& cells, const std::string& source) {
   std::vector<FoamCell> out(mesh.cell_count);
-  std::size_t others = 0;
-  std::string first;
   for (std::size_t c = 0; c < mesh.cell_count; ++c) {
     const std::optional<SmallCell> faces = outward_small(mesh, cells, c);
     const auto cell = faces ? element_from(*faces) : std::nullopt;
     if (cell) {
       out[c] = *cell;
-    } else if (others++ == 0) {
-      const auto type = faces ? type_of(*faces) : std::nullopt;
-      first = type ? fmt::format("cell {} has {} faces that do not close a {}", c, faces->count, mesh::name(*type))
-                   : fmt::format("cell {} has {}", c, shape_of(outward_faces(mesh, cells, c)));
+      continue;
     }
-  }
-  if (others > 0) {
-    throw InputError::in(source, fmt::format("{}; hotmesh moves cells that are hexahedra, prisms, pyramids or "
-                                             "tetrahedra, and {} of the {} cells are none of these",
-                                             first, others, mesh.cell_count));
+    const OutwardFaces polyhedron = outward_faces(mesh, cells, c);
+    if (!closes(polyhedron)) {
+      const auto type = faces ? type_of(*faces) : std::nullopt;
+      throw InputError::in(source, type ? fmt::format("cell {} has {} faces that do not close a {}", c, faces->count,
+                                                      mesh::name(*type))
+                                        : fmt::format("cell {} has {} that do not close a cell (each edge must be in "
+                                                      "exactly two of its faces, once in each direction)",
+                                                      c, shape_of(polyhedron)));
+    }
+    out[c].polyhedron = true;
   }
   return out;
 }

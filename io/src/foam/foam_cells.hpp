@@ -41,15 +41,16 @@ struct CellFaces {
 };
 CellFaces cell_faces(const PolyMesh& mesh);
 
-/// A cell of the polyMesh as a hotmesh element: its type and its first node_count(type) nodes.
+/// A cell of the polyMesh as a hotmesh element: its type and its first node_count(type) nodes;
+/// or a polyhedron (its faces in CellFaces).
 struct FoamCell {
   mesh::ElementType type = mesh::ElementType::hex8;
   std::array<std::int64_t, 8> nodes{};
+  bool polyhedron = false;
 };
 
-/// The hex8, wedge6, pyramid5 or tet4 of every cell. Throws hotmesh::InputError naming
-/// `source` if any cell is another polyhedron: the first such cell's number and shape, and
-/// how many there are.
+/// The hex8, wedge6, pyramid5 or tet4 of every cell, or that it is a polyhedron. Throws
+/// hotmesh::InputError naming `source` for the first cell whose faces do not close.
 std::vector<FoamCell> volume_cells(const PolyMesh& mesh, const CellFaces& cells, const std::string& source);
 
 }  // namespace hotmesh::io::foam

@@ -1,7 +1,7 @@
 // hotmesh io: reading an OpenFOAM polyMesh folder (see hotmesh/io/foam.hpp). Each of the five
 // files is read (gunzipped if it is `name.gz`), its lists checked against the others, then
-// the cells built as hexahedra, prisms, pyramids and tetrahedra (3D) or flattened to quads
-// and triangles (2D cases).
+// the cells built as hexahedra, prisms, pyramids and tetrahedra, polyhedra as their pieces
+// (3D), or flattened to quads and triangles (2D cases).
 #include <algorithm>
 #include <functional>
 #include <limits>
@@ -12,6 +12,7 @@
 #include "foam/foam_2d.hpp"
 #include "foam/foam_cells.hpp"
 #include "foam/foam_file.hpp"
+#include "foam/foam_polyhedra.hpp"
 #include "foam/foam_write_back.hpp"
 #include "gzip.hpp"
 #include "hotmesh/core/input_error.hpp"
@@ -277,13 +278,9 @@ PolyMesh read_poly_mesh(const fs::path& folder, PointsFile& points_file) {
 mesh::Mesh volume_mesh(PolyMesh& poly, const CellFaces& cells, const std::string& source) {
   mesh::Mesh mesh;
   mesh.dimension = 3;
-  const std::vector<FoamCell> elements = volume_cells(poly, cells, source);
-  mesh.cells.reserve(elements.size(), 8 * elements.size());
-  for (const FoamCell& e : elements) {
-    std::array<mesh::NodeId, 8> nodes{};
-    std::transform(e.nodes.begin(), e.nodes.end(), nodes.begin(), [](std::int64_t p) { return static_cast<mesh::NodeId>(p); });
-    mesh.cells.add(e.type, std::span<const mesh::NodeId>(nodes.data(), static_cast<std::size_t>(mesh::node_count(e.type))));
-  }
+  VolumeElements elements = volume_elements(poly, cells, volume_cells(poly, cells, source));
+  mesh.cells = std::move(elements.cells);
+  mesh.polyhedra = std::move(elements.polyhedra);
   int tag = 0;
   for (const BoundaryPatch& p : poly.patches) {
     ++tag;
@@ -291,16 +288,24 @@ mesh::Mesh volume_mesh(PolyMesh& poly, const CellFaces& cells, const std::string
     mesh::Patch patch{.name = p.name, .tag = tag, .faces = {}, .nodes = {}};
     for (auto f = static_cast<std::size_t>(p.start_face); f < static_cast<std::size_t>(p.start_face + p.face_count);
          ++f) {
-      // A face of a cell read above: a triangle or a quad, outward (the boundary face's owner).
+      // Outward (the boundary face's owner): a triangle or a quad as it is, a face with a
+      // centre point (foam_polyhedra.hpp) as the triangles from its edges to it.
       const auto begin = static_cast<std::size_t>(poly.faces.offsets[f]);
       const auto n = static_cast<std::size_t>(poly.faces.offsets[f + 1]) - begin;
+      const auto point = [&](std::size_t i) { return static_cast<mesh::NodeId>(poly.faces.nodes[begin + i % n]); };
+      if (elements.face_centre[f] >= 0) {
+        const auto middle = static_cast<mesh::NodeId>(elements.face_centre[f]);
+        for (std::size_t i = 0; i < n; ++i) patch.faces.add(mesh::ElementType::tri3, {point(i), point(i + 1), middle});
+        continue;
+      }
       std::array<mesh::NodeId, 4> nodes{};
-      for (std::size_t i = 0; i < n; ++i) nodes[i] = static_cast<mesh::NodeId>(poly.faces.nodes[begin + i]);
+      for (std::size_t i = 0; i < n; ++i) nodes[i] = point(i);
       patch.faces.add(n == 3 ? mesh::ElementType::tri3 : mesh::ElementType::quad4, std::span<const mesh::NodeId>(nodes.data(), n));
     }
     mesh.patches.push_back(std::move(patch));
   }
   mesh.points = std::move(poly.points);
+  mesh.points.insert(mesh.points.end(), elements.added_points.begin(), elements.added_points.end());
   mesh.derive_node_sets();
   return mesh;
 }
@@ -332,6 +337,7 @@ FoamMesh read_foam(const fs::path& path) {
     result.layer = {flat.map.frames[0], flat.map.frames[1]};
     data.map = std::move(flat.map);
   } else {
+    data.file_points = poly.points.size();
     result.mesh = foam::volume_mesh(poly, cells, folder.string());
   }
   data.copied_files = foam::other_files(folder);

@@ -41,6 +41,7 @@ struct FoamWriteBackData {
   PointsFile points;
   std::vector<std::string> copied_files;  ///< the other files of the folder, copied unchanged
   PointMap map;
+  std::size_t file_points = 0;  ///< 3D: the points the file has (the mesh's first)
 };
 
 std::shared_ptr<const MeshWriteBack> make_foam_write_back(FoamWriteBackData data);

@@ -1,7 +1,8 @@
 // hotmesh io: the OpenFOAM write-back (see hotmesh/io/foam.hpp). The points file is rewritten
 // from the one read: its header and whatever follows the list kept byte for byte, the list
 // itself in the same form (ASCII with shortest round-trip numbers, or binary with the same
-// scalar size), gzipped again if it was. The other polyMesh files are copied unchanged.
+// scalar size), gzipped again if it was; only the file's points (not the centres added for
+// polyhedra). The other polyMesh files are copied unchanged.
 #include <charconv>
 #include <cstring>
 
@@ -123,9 +124,10 @@ class FoamWriteBack final : public MeshWriteBack {
   }
 
  private:
-  /// One point per OpenFOAM point: 2D nodes mapped back to both planes.
+  /// One point per OpenFOAM point: 2D nodes mapped back to both planes; in 3D the file's
+  /// points, without the centres added for polyhedra.
   std::vector<geometry::Vec3> foam_points(std::span<const geometry::Vec3> points) const {
-    if (d_.map.empty()) return {points.begin(), points.end()};
+    if (d_.map.empty()) return {points.begin(), points.begin() + static_cast<std::ptrdiff_t>(d_.file_points)};
     std::vector<geometry::Vec3> out(d_.map.node.size());
     for (std::size_t q = 0; q < out.size(); ++q) {
       const geometry::Vec3& p = points[static_cast<std::size_t>(d_.map.node[q])];

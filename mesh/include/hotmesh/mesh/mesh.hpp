@@ -2,6 +2,10 @@
 // Points, cells (quad4 in the x-y plane for 2D, hex8 for 3D, with tet4/wedge6/pyramid5 and
 // tri3 representable), named boundary patches as lists of faces, and the node sets derived
 // from the patches. Filled by io's readers and checked by validate_mesh().
+// A 3D cell of a file that is none of these types (a polyhedron: OpenFOAM's, such as
+// snappyHexMesh's split hexahedra) is held as its faces (Polyhedra) and stands in `cells` as
+// its pieces about points added at its centre and at the centres of its faces of more than
+// four points (see Polyhedra), so that everything that works on elements works on it.
 #pragma once
 
 #include <cstddef>
@@ -73,6 +77,38 @@ struct CellGroup {
   friend bool operator==(const CellGroup&, const CellGroup&) = default;
 };
 
+/// The polyhedra of a 3D mesh: the file's cells that are none of the element types, and those
+/// of a type whose corners are not all positive (a snapped hexahedron with a concave corner,
+/// which OpenFOAM takes). Polyhedron k (file cell `cells[k]`) has the outward faces
+/// face_nodes[face_offsets[j] .. face_offsets[j+1]) for j in [faces[k], faces[k+1]), and stands
+/// in Mesh::cells as its pieces: about a point added at its centre, a tet4 on each triangle,
+/// a pyramid5 on each quad and, on a face of more points (or a quad on which the pyramid would
+/// not be positive), a tet4 on each edge about a point added at the face's centre (one point for the
+/// face, shared by the two cells on it; on a boundary face its patch's faces are the
+/// triangles about it). Every piece's faces
+/// are thus the faces of its neighbours: the pieces conform with each other and with the
+/// hexahedra, prisms, pyramids and tetrahedra beside them. The first piece of file cell c is
+/// Mesh::cells[c]; the others follow the file's cells. Points [0, file_points) are the file's,
+/// the centres added follow them: only the file's are written back.
+struct Polyhedra {
+  std::size_t file_points = 0;
+  std::size_t file_cells = 0;
+  std::vector<CellId> cells;              ///< the file cells that are polyhedra, ascending
+  std::vector<CellId> piece_of;           ///< for Mesh::cells[file_cells + i]: its file cell
+  std::vector<std::int64_t> faces{0};     ///< per polyhedron, its range of faces (offsets)
+  std::vector<std::int64_t> face_offsets{0};
+  std::vector<NodeId> face_nodes;
+
+  bool empty() const { return cells.empty(); }
+  /// The file cell a cell of Mesh::cells is (or is a piece of).
+  CellId file_cell(CellId c) const {
+    const auto i = static_cast<std::size_t>(c);
+    return i < file_cells || piece_of.empty() ? c : piece_of[i - file_cells];
+  }
+
+  friend bool operator==(const Polyhedra&, const Polyhedra&) = default;
+};
+
 struct Mesh {
   int dimension = 3;           ///< 2: quads and triangles in the x-y plane; 3: volume cells
   std::vector<Vec3> points;    ///< z = 0 (or one constant) in 2D
@@ -83,6 +119,7 @@ struct Mesh {
   /// writing the file back; empty means 1, 2, 3, ...
   std::vector<std::int64_t> node_ids;
   std::vector<std::int64_t> cell_ids;
+  Polyhedra polyhedra;  ///< empty but for files with polyhedral cells (OpenFOAM)
 
   std::size_t node_count() const { return points.size(); }
   std::size_t cell_count() const { return cells.size(); }

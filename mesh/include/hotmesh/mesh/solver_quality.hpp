@@ -15,6 +15,9 @@
 //     mesh's Cartesian axes, and in 3D at least (1/6) sum |S| / V^(2/3) (1 for a cube).
 // Beside them, the angle between a boundary face's area vector and the line from the cell
 // centre to the face centre (the non-orthogonality a solver corrects at a wall).
+// A mesh with polyhedra (Mesh::polyhedra) is measured on the file's cells, each polyhedron
+// on its own faces, not on its pieces; its values are given to each of its pieces, and the
+// per-type summaries leave polyhedra out (they have no element type).
 // A 2D mesh stands for one layer of cells between two planes (Extrusion): a slab for a planar
 // case, a wedge for an axisymmetric one; its cells are measured as those prisms.
 #pragma once
@@ -71,6 +74,20 @@ struct SolverQuality {
   /// The same over the cells of each type (a face counts for the types of both its cells).
   std::map<ElementType, SolverQualitySummary> by_type;
 };
+
+/// A face's centre and area vector (OpenFOAM's), its points in order (the area vector by the
+/// right-hand rule).
+struct FaceGeometry {
+  Vec3 centre, area;
+};
+FaceGeometry face_geometry(std::span<const Vec3> polygon);
+
+/// A cell's centre and volume (OpenFOAM's) from the geometry of its outward faces.
+struct CellCentre {
+  Vec3 centre;
+  double volume = 0.0;
+};
+CellCentre cell_centre(std::span<const FaceGeometry> faces);
 
 /// checkMesh's limit above which a face is "severely non-orthogonal".
 inline constexpr double kSevereNonOrthogonality = 70.0;
