@@ -10,6 +10,7 @@
 // mesh passes checkMesh.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -250,6 +251,32 @@ TEST(SolverQuality, SnappyHexMeshPolyhedraAreMeasuredOnTheirOwnFacesAsCheckMeshD
   expect_as_check_mesh(q, check_mesh(cfd));
   // The pieces' faces inside a polyhedron would give angles well above checkMesh's.
   EXPECT_LT(q["non_orthogonality"]["max"].get<double>(), 50.0);
+}
+
+TEST(SolverQuality, SnappyHexMeshFlangeTutorialIsReadWithItsPolyhedraAsCheckMeshSeesIt) {
+  SKIP_WITHOUT_SNAPPY();
+  const fs::path tutorial = "/usr/share/doc/openfoam-examples/examples/mesh/snappyHexMesh/flange";
+  const fs::path surface = "/usr/share/doc/openfoam-examples/examples/resources/geometry/flange.stl.gz";
+  if (!fs::exists(tutorial) || !fs::exists(surface)) GTEST_SKIP() << "openfoam-examples is not installed";
+  // The tutorial's Allrun (about 10 s): blockMesh, surfaceFeatureExtract, snappyHexMesh.
+  test::TempDir dir;
+  const fs::path flange = dir / "flange";
+  fs::copy(tutorial, flange, fs::copy_options::recursive);
+  fs::copy_file(surface, flange / "constant" / "triSurface" / "flange.stl.gz");
+  const auto gunzip = test::run_command("gunzip -f " + shell_quote((flange / "system" / "snappyHexMeshDict.gz").string()));
+  ASSERT_EQ(gunzip.exit_code, 0) << gunzip.output;
+  ASSERT_EQ(tf::run_block_mesh(flange).exit_code, 0);
+  const std::string env = std::getenv("WM_PROJECT_DIR") ? "" : "WM_PROJECT_DIR=/usr/share/openfoam ";
+  for (const std::string tool : {"surfaceFeatureExtract", "snappyHexMesh -overwrite"}) {
+    const auto r = test::run_command(env + tool + " -case " + shell_quote(flange.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  const io::LoadedMesh loaded = io::read_mesh(flange);
+  // hotmesh used to refuse it: "cell 25 has 12 faces (a polyhedron ...)".
+  EXPECT_GE(loaded.mesh.polyhedra.cells.size(),
+            check_mesh_polyhedra(test::run_command(tf::check_mesh_command() + " -case " + shell_quote(flange.string()))));
+  EXPECT_GT(loaded.mesh.polyhedra.cells.size(), 1000u);
+  expect_as_check_mesh(info_quality(flange), check_mesh(flange));
 }
 
 TEST(SolverQuality, SnappyHexMeshMovedByHotmeshWritesItsOwnPointsOnlyAndPassesCheckMesh) {
