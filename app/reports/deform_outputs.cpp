@@ -254,6 +254,7 @@ json attempt_json(const deform::IncrementRecord& r, const deform::MotionResult& 
                {"inverted_cells", r.converged ? json(r.inverted_cells) : json(nullptr)},
                {"max_projection_distance", projections},
                {"max_projection_distance_relative", relative_projections},
+               {"smoothed_nodes", r.smoothed_nodes},
                {"seconds", r.seconds},
                {"failure", r.failure}};
   put_length(attempt, "max_normal_slip", r.max_normal_slip, scale);

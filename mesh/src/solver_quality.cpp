@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include <vector>
@@ -68,14 +69,7 @@ double degrees(double cosine) { return std::acos(std::clamp(cosine, -1.0, 1.0)) 
 
 FaceGeometry face_geometry(const Polygon& f) { return mesh::face_geometry(f.points()); }
 
-struct CellGeometry {
-  Vec3 centre;
-  double volume = 0.0;
-  double aspect_ratio = 1.0;
-  double planes_skewness = 0.0;  // a 2D cell's back and front faces
-  double largest_face = 0.0;     // the area of its largest face
-  double thickness = 0.0;        // a 2D cell's largest distance from back to front
-};
+using CellGeometry = CellMeasures;
 
 // The distance from back to front at the two ends of a 2D cell's side face.
 double side_thickness(const Polygon& side) { return std::max(norm(side[3] - side[0]), norm(side[2] - side[1])); }
@@ -158,14 +152,6 @@ double boundary_skewness(const Polygon& f, const FaceGeometry& g, const Vec3& ce
   const Vec3 d = dot(normal, to_face) * normal;
   return normalised_skewness(f, g, to_face, d, 0.4 * norm(d));
 }
-
-// One face's measures.
-struct FaceMeasures {
-  double non_orthogonality = 0.0;  // degrees; internal faces: to the neighbour, boundary: to the face centre
-  double cosine = 1.0;             // internal faces
-  double skewness = 0.0;
-  double volume_ratio = 1.0;  // internal faces
-};
 
 void raise(WorstCell& worst, double value, CellId cell) {
   if (worst.cell < 0 || value > worst.value) worst = {value, cell};
@@ -300,6 +286,52 @@ SolverQuality solver_quality(const Mesh& mesh, std::span<const Vec3> points, con
   }
   spread_to_pieces(q, cells, mesh.cells.size());
   return q;
+}
+
+struct SolverFaces::Impl {
+  SolverCells cells;
+  std::vector<MeshFace> faces;
+  std::vector<std::size_t> first;
+  std::vector<std::uint32_t> cell_faces;
+};
+
+SolverFaces::SolverFaces(const Mesh& mesh, std::span<const Vec3> points, const Extrusion& layer)
+    : impl_(std::make_unique<Impl>(Impl{SolverCells(mesh, points, detail::layer_of(mesh, points, layer)), {}, {}, {}})) {
+  Impl& m = *impl_;
+  m.faces = m.cells.faces();
+  m.first.assign(m.cells.size() + 1, 0);
+  for (const MeshFace& f : m.faces) {
+    ++m.first[static_cast<std::size_t>(f.owner.cell) + 1];
+    if (f.neighbour.cell >= 0) ++m.first[static_cast<std::size_t>(f.neighbour.cell) + 1];
+  }
+  for (std::size_t c = 0; c < m.cells.size(); ++c) m.first[c + 1] += m.first[c];
+  m.cell_faces.resize(m.first.back());
+  std::vector<std::size_t> next(m.first.begin(), m.first.end() - 1);
+  for (std::size_t i = 0; i < m.faces.size(); ++i) {
+    for (const CellId c : {m.faces[i].owner.cell, m.faces[i].neighbour.cell}) {
+      if (c >= 0) m.cell_faces[next[static_cast<std::size_t>(c)]++] = static_cast<std::uint32_t>(i);
+    }
+  }
+}
+
+SolverFaces::~SolverFaces() = default;
+
+std::size_t SolverFaces::cells() const { return impl_->cells.size(); }
+std::size_t SolverFaces::size() const { return impl_->faces.size(); }
+CellId SolverFaces::owner(std::size_t face) const { return impl_->faces[face].owner.cell; }
+CellId SolverFaces::neighbour(std::size_t face) const { return impl_->faces[face].neighbour.cell; }
+std::size_t SolverFaces::of_mesh_cell(std::size_t c) const { return impl_->cells.of_mesh_cell(c); }
+
+std::span<const std::uint32_t> SolverFaces::of_cell(std::size_t c) const {
+  return {impl_->cell_faces.data() + impl_->first[c], impl_->cell_faces.data() + impl_->first[c + 1]};
+}
+
+CellMeasures SolverFaces::cell(std::size_t c) const { return cell_geometry(impl_->cells, c); }
+
+FaceMeasures SolverFaces::face(std::size_t i, const CellMeasures& owner, const CellMeasures* neighbour) const {
+  const MeshFace& f = impl_->faces[i];
+  return measure_face(impl_->cells.polygon(static_cast<std::size_t>(f.owner.cell), f.owner.local), owner,
+                      f.neighbour.cell >= 0 ? neighbour : nullptr, impl_->cells.layer());
 }
 
 }  // namespace hotmesh::mesh

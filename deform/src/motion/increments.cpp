@@ -167,6 +167,7 @@ std::vector<Vec3> Motion::attempt(const MotionStep& piece, IncrementRecord& reco
   }
   std::vector<Vec3>& trial = system.points();
   if (record.converged) {
+    if (solver_.quality.smoothing) smooth_for_solver(trial, record);
     accept_if_valid(trial, u, record);
     if (!record.accepted) {
       note_failure(record.inverted_cells > 0 ? MotionFailure::Kind::inverted_cells : MotionFailure::Kind::quality_limits);

@@ -24,6 +24,7 @@
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/deform/stiffness_operator.hpp"
 #include "hotmesh/parallel/rank_exchange.hpp"
+#include "motion/quality_step.hpp"
 #include "storage/linear_solver.hpp"
 
 namespace hotmesh::deform::detail {
@@ -58,6 +59,7 @@ class Motion {
   std::vector<double> predict(double a, double b, std::vector<double>& u);
 
   // quality_checks.cpp
+  void smooth_for_solver(std::vector<Vec3>& trial, IncrementRecord& record);
   void accept_if_valid(const std::vector<Vec3>& trial, std::span<const double> u, IncrementRecord& record);
   std::string broken_limits(const std::vector<Vec3>& trial, std::span<const double> jacobians,
                             const QualitySummary& summary);
@@ -90,6 +92,7 @@ class Motion {
   std::vector<Vec3> previous_points_;  ///< the mesh at the start of the last accepted step (predict())
   double previous_stage_ = 0.0;        ///< its stage
   MotionFailure failure_;              ///< of the last attempt that failed
+  std::vector<MovableNode> movable_;  ///< the nodes the quality step may move, found at its first use
   MotionResult result_;
 };
 

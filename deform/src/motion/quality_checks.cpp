@@ -14,6 +14,51 @@
 
 namespace hotmesh::deform::detail {
 
+namespace {
+
+/// The quality step moves no cell below min(its node's worst cell, this or the mesh's worst if
+/// higher): cells pushed down to a low worst cell invert in the next increment (the ramp).
+constexpr double kSmoothingJacobianFloor = 0.5;
+
+/// Orthonormal directions completing `normals` (orthonormal) to a basis of the first `dim` axes.
+MovableNode free_directions(NodeId n, std::span<const Vec3> normals, int dim) {
+  MovableNode node{n};
+  for (int axis = 0; axis < dim && node.count + static_cast<int>(normals.size()) < dim; ++axis) {
+    Vec3 e{};
+    e[static_cast<std::size_t>(axis)] = 1.0;
+    for (const Vec3& v : normals) e = e - dot(e, v) * v;
+    for (int k = 0; k < node.count; ++k) e = e - dot(e, node.directions[static_cast<std::size_t>(k)]) * node.directions[static_cast<std::size_t>(k)];
+    const double length = norm(e);
+    if (length > 0.5) node.directions[static_cast<std::size_t>(node.count++)] = e / length;
+  }
+  return node;
+}
+
+}  // namespace
+
+/// The quality step (quality_step.hpp) on a converged increment's mesh: the interior nodes in
+/// every direction, the nodes of slip patches along their planes.
+void Motion::smooth_for_solver(std::vector<Vec3>& trial, IncrementRecord& record) {
+  const auto t = Clock::now();
+  if (movable_.empty()) {
+    const int dim = mesh_.dimension;
+    const auto slip = node_role_code(BoundaryRole::slip);
+    for (std::size_t n = 0; n < mesh_.node_count(); ++n) {
+      const NodeRoleCode role = setup_.roles[n];
+      const auto id = static_cast<NodeId>(n);
+      if ((role != kInteriorNodeCode && role != slip) || setup_.constraints.is_fixed(id)) continue;
+      MovableNode node = free_directions(id, setup_.constraints.normals(id), dim);
+      if (node.count > 0) movable_.push_back(node);
+    }
+  }
+  const double floor =
+      std::max(summarize_quality(scaled_jacobians(mesh_.cells, trial)).min_scaled_jacobian, kSmoothingJacobianFloor);
+  const mesh::SolverFaces faces(mesh_, trial, solver_.quality.layer);
+  const QualityStepResult r = improve_for_solver(mesh_, faces, trial, movable_, floor);
+  record.smoothed_nodes = r.nodes_moved;
+  result_.timings.quality += seconds_since(t);
+}
+
 /// A converged increment is accepted if no cell of the moved mesh `trial` is inverted.
 void Motion::accept_if_valid(const std::vector<Vec3>& trial, std::span<const double> u, IncrementRecord& record) {
   const auto t = Clock::now();

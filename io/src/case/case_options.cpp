@@ -27,7 +27,8 @@ namespace hotmesh::io::detail {
 
 namespace {
 
-constexpr std::array<std::string_view, 3> kQualityKeys{"min_scaled_jacobian", "max_non_orthogonality", "max_skewness"};
+constexpr std::array<std::string_view, 4> kQualityKeys{"min_scaled_jacobian", "max_non_orthogonality", "max_skewness",
+                                                      "smoothing"};
 constexpr std::array<std::string_view, 12> kSolverKeys{
     "increments", "newton_tolerance", "max_newton_iterations", "pcg_tolerance", "max_pcg_iterations", "threads",
     "max_increment_splits", "linear", "amg", "amg_reuse", "forcing", "predictor"};
@@ -112,7 +113,7 @@ void CaseParser::read_material(const Entry& e) {
   }
 }
 
-  /// The limits every increment's cells keep (deform::QualityLimits).
+/// The limits every increment's cells keep and the quality step (deform::QualityLimits).
 void CaseParser::read_quality(const Entry& e) {
   if (!reader_.map_or_empty(e, cat("a map of quality limits (", join(kQualityKeys), ")"))) return;
   const MapEntries m = reader_.keys(e, kQualityKeys);
@@ -130,6 +131,7 @@ void CaseParser::read_quality(const Entry& e) {
   if (const Entry* x = m.find("max_skewness")) {
     q.max_skewness = reader_.number_where(*x, [](double v) { return v > 0.0; }, "> 0").value_or(q.max_skewness);
   }
+  if (const Entry* x = m.find("smoothing")) q.smoothing = reader_.boolean(*x).value_or(q.smoothing);
 }
 
 void CaseParser::read_pictures(const Entry& e) {

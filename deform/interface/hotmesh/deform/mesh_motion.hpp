@@ -103,6 +103,7 @@ struct IncrementRecord {
   double max_normal_slip = 0.0;     ///< largest |p . n| of a Newton step at a sliding node (eq. 19)
   double seconds = 0.0;
   std::string failure;        ///< why it was not accepted
+  std::size_t smoothed_nodes = 0;  ///< node moves of the quality step (SolverOptions::quality.smoothing)
   /// An increment of the corner pass: after the motion, the nodes nearest the corners of the
   /// sliding walls move onto them (its stages are those of the pass; the walls stay at 1).
   bool corner_pass = false;

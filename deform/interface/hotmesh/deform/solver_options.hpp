@@ -115,6 +115,9 @@ struct QualityLimits {
   /// What a 2D mesh's cells stand for in the flow solver (io::LoadedMesh::layer), for the
   /// non-orthogonality and skewness.
   mesh::Extrusion layer;
+  /// The quality step after each increment: the nodes around the faces a flow solver finds
+  /// worst moved to lower their non-orthogonality and skewness (deform/src/motion/quality_step.hpp).
+  bool smoothing = false;
   bool solver_measures() const { return max_non_orthogonality > 0.0 || max_skewness > 0.0; }
 };
 

@@ -23,7 +23,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -88,6 +90,51 @@ struct CellCentre {
   double volume = 0.0;
 };
 CellCentre cell_centre(std::span<const FaceGeometry> faces);
+
+/// A cell as the solver sees it.
+struct CellMeasures {
+  Vec3 centre;
+  double volume = 0.0;
+  double aspect_ratio = 1.0;
+  double planes_skewness = 0.0;  ///< a 2D cell's back and front faces
+  double largest_face = 0.0;     ///< the area of its largest face
+  double thickness = 0.0;        ///< a 2D cell's largest distance from back to front
+};
+
+/// One face's measures.
+struct FaceMeasures {
+  double non_orthogonality = 0.0;  ///< degrees; internal faces: to the neighbour, boundary: to the face centre
+  double cosine = 1.0;             ///< internal faces
+  double skewness = 0.0;
+  double volume_ratio = 1.0;  ///< internal faces
+};
+
+/// The cells and faces of a mesh as the solver sees them (the file's cells where a mesh has
+/// polyhedra), paired once, to be measured again and again while nodes move (the quality step
+/// of a motion): `points` is read at every call, so moving its nodes in place is seen.
+class SolverFaces {
+ public:
+  SolverFaces(const Mesh& mesh, std::span<const Vec3> points, const Extrusion& layer = {});
+  ~SolverFaces();
+  SolverFaces(const SolverFaces&) = delete;
+  SolverFaces& operator=(const SolverFaces&) = delete;
+
+  std::size_t cells() const;
+  std::size_t size() const;  ///< faces
+  CellId owner(std::size_t face) const;
+  CellId neighbour(std::size_t face) const;  ///< -1 for a boundary face
+  /// The solver's cell that cell c of Mesh::cells is (or is a piece of).
+  std::size_t of_mesh_cell(std::size_t c) const;
+  /// The faces of the solver's cell c (indices below size()), a 2D layer's planes not among them.
+  std::span<const std::uint32_t> of_cell(std::size_t c) const;
+  CellMeasures cell(std::size_t c) const;
+  /// Face i between its cells as measured by cell() (`neighbour` ignored on the boundary).
+  FaceMeasures face(std::size_t i, const CellMeasures& owner, const CellMeasures* neighbour) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /// checkMesh's limit above which a face is "severely non-orthogonal".
 inline constexpr double kSevereNonOrthogonality = 70.0;
