@@ -12,7 +12,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
-#include <unordered_map>
+#include <map>
 
 #include "cli/commands.hpp"
 #include "hotmesh/core/input_error.hpp"
@@ -50,34 +50,17 @@ io::FrdStepChoice step_choice(const FemOptions& o) {
   throw InputError("--step: expected `last` or the number of an analysis step (from 1), got '" + o.step + "'");
 }
 
-/// Node number -> its place in a block.
-using NodeIndex = std::unordered_map<std::int64_t, std::size_t>;
-
-NodeIndex index_of(const io::FrdBlock& block) {
-  NodeIndex index;
-  index.reserve(block.nodes.size());
-  for (std::size_t i = 0; i < block.nodes.size(); ++i) index[block.nodes[i]] = i;
-  return index;
-}
-
-/// The largest displacement of a block, over `nodes` (all of the block's when empty), which
-/// `index` (of the block, made once for all sets) finds in it.
+/// The largest displacement of a block or of a set, and the node that has it.
 struct Largest {
   double value = 0.0;
   std::int64_t node = 0;
 };
 
-Largest largest_displacement(const io::FrdBlock& block, const NodeIndex& index, const std::vector<std::int64_t>& nodes) {
+Largest largest_displacement(const io::FrdBlock& block) {
   Largest out;
-  const auto consider = [&](std::size_t i) {
+  for (std::size_t i = 0; i < block.nodes.size(); ++i) {
     const double u = norm(block.values[i]);
     if (u > out.value || out.node == 0) out = {u, block.nodes[i]};
-  };
-  if (nodes.empty()) {
-    for (std::size_t i = 0; i < block.nodes.size(); ++i) consider(i);
-  }
-  for (const std::int64_t n : nodes) {
-    if (const auto it = index.find(n); it != index.end()) consider(it->second);
   }
   return out;
 }
@@ -97,25 +80,42 @@ std::string steps_text(const io::FrdResults& results) {
   if (blocks.empty()) return text + "  no DISP (displacement) block\n";
   text += "output steps (DISP blocks):\n";
   for (const io::FrdBlock* b : blocks) {
-    const Largest u = largest_displacement(*b, {}, {});
+    const Largest u = largest_displacement(*b);
     text += fmt::format("  step {:>3}  increment {:>3}  time {:<12.6g} largest |u| {:.6g} at node {}{}\n", b->step,
                         b->increment, b->time, u.value, u.node, temperature_range(results, *b));
   }
   return text;
 }
 
-std::string sets_text(const io::InpDeck& deck, const io::FrdBlock& disp) {
+/// The largest of the set's displacements (deck_node_displacements: beams and shells as ccx
+/// expanded them too).
+Largest largest_of(const std::map<std::int64_t, geometry::Vec3>& displacements) {
+  Largest out;
+  for (const auto& [node, u] : displacements) {
+    if (norm(u) > out.value || out.node == 0) out = {norm(u), node};
+  }
+  return out;
+}
+
+std::string sets_text(const io::FrdResults& results, const io::InpDeck& deck, const io::FrdBlock& disp) {
   std::string text = fmt::format("{}: {} model, {} nodes, {} elements, {} file(s)\n", deck.file.string(),
                                  io::to_string(deck.kind()), deck.nodes.size(), deck.elements.size(),
                                  deck.files.size());
   text += fmt::format("node sets and surfaces, largest |u| at step {} (time {:.6g}):\n", disp.step, disp.time);
-  const NodeIndex index = index_of(disp);
   const auto list = [&](std::string_view what, const std::map<std::string, io::DeckSet>& sets) {
     for (const auto& [name, set] : sets) {
+      if (!set.unusable.empty()) {
+        text += fmt::format("  {:<8} {:<24} unusable: the {}\n", what, name, set.unusable);
+        continue;
+      }
       const std::vector<std::int64_t> nodes = deck.set_nodes(name);
-      const Largest u = largest_displacement(disp, index, nodes);
-      text += fmt::format("  {:<8} {:<24} {:>7} nodes  largest |u| {:.6g} at node {}   ({})\n", what, name,
-                          nodes.size(), u.value, u.node, set.place.text());
+      const auto displacements = io::deck_node_displacements(results, deck, disp, nodes);
+      const Largest u = largest_of(displacements);
+      const std::string without = displacements.size() == nodes.size()
+                                      ? std::string()
+                                      : fmt::format("  ({} without a value)", nodes.size() - displacements.size());
+      text += fmt::format("  {:<8} {:<24} {:>7} nodes  largest |u| {:.6g} at node {}   ({}){}\n", what, name,
+                          nodes.size(), u.value, u.node, set.place.text(), without);
     }
   };
   list("nset", deck.nsets);
@@ -130,7 +130,7 @@ int run_fem(const FemOptions& o) {
   if (o.set.empty()) {
     const io::FrdResults results = io::read_frd(o.frd);
     std::cout << steps_text(results);
-    if (!o.inp.empty()) std::cout << sets_text(io::read_inp(o.inp), io::choose_displacements(results, choice));
+    if (!o.inp.empty()) std::cout << sets_text(results, io::read_inp(o.inp), io::choose_displacements(results, choice));
     return 0;
   }
   const io::CalculixTable table = io::read_calculix_table({o.frd, o.inp, o.set, choice});

@@ -6,8 +6,8 @@
 // deck's y = 0.
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
+#include "fem/frd_index.hpp"
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/calculix.hpp"
 
@@ -31,13 +31,6 @@ Vec3 in_frame(const Vec3& v, SampleFrame frame) {
   return frame == SampleFrame::cartesian ? v : Vec3{v.x, v.y, 0.0};
 }
 
-std::unordered_map<std::int64_t, std::size_t> index_nodes(const FrdBlock& block) {
-  std::unordered_map<std::int64_t, std::size_t> index;
-  index.reserve(block.nodes.size());
-  for (std::size_t i = 0; i < block.nodes.size(); ++i) index[block.nodes[i]] = i;
-  return index;
-}
-
 std::string block_name(const FrdBlock& b) {
   return "the DISP block of step " + std::to_string(b.step) + " (line " + std::to_string(b.line) + ")";
 }
@@ -46,7 +39,7 @@ void add_temperatures(const FrdResults& results, const FrdBlock& disp, const std
                       CalculixTable& table) {
   const FrdBlock* temperatures = results.companion(disp, "NDTEMP");
   if (temperatures == nullptr) return;
-  const auto index = index_nodes(*temperatures);
+  const auto index = detail::block_index(*temperatures);
   for (const std::int64_t n : nodes) {
     const auto it = index.find(n);
     if (it == index.end()) continue;
@@ -56,17 +49,10 @@ void add_temperatures(const FrdResults& results, const FrdBlock& disp, const std
   }
 }
 
-/// The largest coordinate of the deck, the scale of its positions.
-double deck_size(const InpDeck& deck) {
-  double size = 0.0;
-  for (const auto& [n, x] : deck.nodes) size = std::max({size, std::abs(x.x), std::abs(x.y), std::abs(x.z)});
-  return size;
-}
-
 /// The .frd's node block must place the set's nodes where the deck does (to the six digits an
 /// ASCII .frd keeps): results of another model, or of an older deck, are refused.
 void require_same_model(const FrdResults& results, const InpDeck& deck, const std::vector<std::int64_t>& nodes) {
-  const double tolerance = 2e-5 * deck_size(deck);
+  const double tolerance = 2e-5 * detail::deck_size(deck);
   for (const std::int64_t n : nodes) {
     const auto in_frd = results.nodes.find(n);
     const auto in_deck = deck.nodes.find(n);
@@ -80,6 +66,22 @@ void require_same_model(const FrdResults& results, const InpDeck& deck, const st
                                                ": the results are not of this deck (solve it again with ccx?)");
     }
   }
+}
+
+[[noreturn]] void missing_displacement(const FrdResults& results, const InpDeck& deck, const FrdBlock& disp,
+                                       std::int64_t node, const std::string& set) {
+  const auto expanded = std::find_if(deck.elements.begin(), deck.elements.end(), [&](const auto& e) {
+    return e.second.expanded && std::find(e.second.nodes.begin(), e.second.nodes.end(), node) != e.second.nodes.end();
+  });
+  const std::string what = "node " + std::to_string(node) + " of set " + set + " has no value in " + block_name(disp);
+  if (expanded != deck.elements.end()) {
+    throw InputError::in(results.source, what + ", nor can hotmesh take it from the nodes ccx expands its " +
+                                             expanded->second.type + " element " + std::to_string(expanded->first) +
+                                             " into (not written, an offset section, a composite's layers); write *NODE FILE, OUTPUT=2D with U in the deck's step, and ccx "
+                                             "writes the displacements of the deck's own nodes");
+  }
+  throw InputError::in(results.source, what + "; write U for all nodes of the set (*NODE FILE without NSET, or with a "
+                                              "set that holds it)");
 }
 
 }  // namespace
@@ -102,20 +104,16 @@ CalculixTable calculix_table(const FrdResults& results, const InpDeck& deck, con
   geometry::DeflectionSamples& samples = table.samples;
   samples.frame = frame_of(table.kind);
   samples.source = set_place.text() + " (set " + selection.set + ", displacements from " + results.source + ")";
-  const auto index = index_nodes(disp);
+  const std::map<std::int64_t, Vec3> displacements = deck_node_displacements(results, deck, disp, nodes);
   for (const std::int64_t n : nodes) {
     const auto x = deck.nodes.find(n);
     if (x == deck.nodes.end()) {
       throw InputError::at(set_place.file.string(), set_place.line,
                            "node " + std::to_string(n) + " of set " + selection.set + " is not defined by a *NODE line");
     }
-    const auto d = index.find(n);
-    if (d == index.end()) {
-      throw InputError::in(results.source, "node " + std::to_string(n) + " of set " + selection.set + " has no value in " +
-                                               block_name(disp) + "; write U for all nodes of the set (*NODE FILE "
-                                               "without NSET, or with a set that holds it)");
-    }
-    const Vec3 u = disp.values[d->second];
+    const auto d = displacements.find(n);
+    if (d == displacements.end()) missing_displacement(results, deck, disp, n, selection.set);
+    const Vec3 u = d->second;
     if (!std::isfinite(u.x) || !std::isfinite(u.y) || !std::isfinite(u.z)) {
       throw InputError::in(results.source, "node " + std::to_string(n) + " has a displacement that is not a finite number in " +
                                                block_name(disp));

@@ -111,19 +111,27 @@ std::int64_t header_count(const FrdScanner& in, std::string_view line, std::stri
   return *count;
 }
 
-/// An ASCII record: " -1" or " -2", the node number (5 or 10 columns), then values of 12 columns.
+/// An ASCII record: " -1", the node number (5 or 10 columns), then values of 12 columns; or
+/// its continuation " -2", whose node columns are blank, with the values after them.
 struct AsciiRecord {
   std::int64_t node = 0;
   std::vector<double> values;
 };
 
-AsciiRecord ascii_record(const FrdScanner& in, std::string_view line, int format) {
+enum class RecordKind { first, continuation };
+
+AsciiRecord ascii_record(const FrdScanner& in, std::string_view line, int format, RecordKind kind = RecordKind::first) {
   const std::size_t width = format == 0 ? 5 : 10;
   AsciiRecord record;
-  const auto node = field_integer(columns(line, 3, width));
-  if (!node) in.fail("expected a node number in columns 4-" + std::to_string(3 + width) + ", got '" +
-                     std::string(columns(line, 3, width)) + "'");
-  record.node = *node;
+  if (kind == RecordKind::first) {
+    const auto node = field_integer(columns(line, 3, width));
+    if (!node) in.fail("expected a node number in columns 4-" + std::to_string(3 + width) + ", got '" +
+                       std::string(columns(line, 3, width)) + "'");
+    record.node = *node;
+  } else if (!trim(columns(line, 3, width)).empty()) {
+    in.fail("a ' -2' continuation record has blank columns 4-" + std::to_string(3 + width) + ", got '" +
+            std::string(columns(line, 3, width)) + "'");
+  }
   for (std::size_t at = 3 + width; at < line.size(); at += 12) {
     const std::string_view text = columns(line, at, 12);
     if (trim(text).empty()) break;
@@ -169,7 +177,7 @@ class FrdParser {
       } else if (key == "2" && code == 'C') {
         read_nodes(line);
       } else if (key == "3" && code == 'C') {
-        skip_elements(line);
+        read_elements(line);
       } else if (key == "100" && code == 'C') {
         read_result(line);
       } else {
@@ -230,22 +238,68 @@ class FrdParser {
     }
   }
 
-  void skip_elements(std::string_view header) {
+  /// The element block: each element's number and nodes, as the .frd writes them (for beams
+  /// and shells, the 3D elements ccx expanded them into).
+  void read_elements(std::string_view header) {
     const std::int64_t count = header_count(in_, header, "element block");
     const int format = block_format(in_, columns(header, 36, 64));
-    if (format < 2) {
-      while (!is_end_of_block(next_record_line("element block"))) {
-      }
+    if (format >= 2) {
+      read_binary_elements(count);
       return;
     }
+    const std::size_t width = format == 0 ? 5 : 10;
+    std::int64_t number = 0;
+    std::vector<std::int64_t>* nodes = nullptr;
+    std::size_t type_nodes = 0;
+    const auto require_complete = [&] {
+      if (nodes != nullptr && nodes->size() != type_nodes) {
+        in_.fail("element " + std::to_string(number) + " has " + std::to_string(nodes->size()) + " nodes, its type " +
+                 std::to_string(type_nodes));
+      }
+    };
+    for (std::string_view line = next_record_line("element block"); !is_end_of_block(line);
+         line = next_record_line("element block")) {
+      if (line.starts_with(" -1")) {
+        require_complete();
+        const auto element = field_integer(columns(line, 3, width));
+        if (!element) in_.fail("expected an element number in columns 4-" + std::to_string(3 + width));
+        number = *element;
+        type_nodes = element_nodes(field_integer(columns(line, 3 + width, 5)).value_or(0), "element " + std::to_string(number));
+        nodes = &results_.elements[number];
+        nodes->clear();
+      } else if (line.starts_with(" -2") && nodes != nullptr) {
+        for (std::size_t at = 3; at < line.size() && !trim(columns(line, at, width)).empty(); at += width) {
+          const auto node = field_integer(columns(line, at, width));
+          if (!node) in_.fail("'" + std::string(trim(columns(line, at, width))) + "' is not a node number");
+          nodes->push_back(*node);
+          if (nodes->size() > type_nodes) require_complete();
+        }
+      } else {
+        in_.fail("expected an element's ' -1' line or its ' -2' lines of nodes in the element block");
+      }
+    }
+    require_complete();
+  }
+
+  /// The node count of an element of .frd type `type`; `what` names it if the type is unknown.
+  std::size_t element_nodes(std::int64_t type, const std::string& what) const {
+    if (type < 1 || type >= static_cast<std::int64_t>(kFrdElementNodes.size())) {
+      in_.fail(what + " has the unknown element type " + std::to_string(type) + "; the .frd types are 1 to 12");
+    }
+    return static_cast<std::size_t>(kFrdElementNodes[static_cast<std::size_t>(type)]);
+  }
+
+  /// Binary elements: number, type, group, material (4-byte integers), then the nodes.
+  void read_binary_elements(std::int64_t count) {
     results_.binary = true;
     for (std::int64_t i = 0; i < count; ++i) {
       const std::string what = "element " + std::to_string(i + 1) + " of the binary element block";
-      const auto type = load<std::int32_t>(in_.bytes(16, what), 4);
-      if (type < 1 || type >= static_cast<std::int32_t>(kFrdElementNodes.size())) {
-        in_.fail(what + " has the unknown element type " + std::to_string(type));
-      }
-      in_.bytes(4 * static_cast<std::size_t>(kFrdElementNodes[static_cast<std::size_t>(type)]), what);
+      const std::string_view head = in_.bytes(16, what);
+      const std::size_t type_nodes = element_nodes(load<std::int32_t>(head, 4), what);
+      const std::string_view nodes = in_.bytes(4 * type_nodes, what);
+      std::vector<std::int64_t>& out = results_.elements[load<std::int32_t>(head, 0)];
+      out.clear();
+      for (std::size_t k = 0; k < type_nodes; ++k) out.push_back(load<std::int32_t>(nodes, 4 * k));
     }
   }
 
@@ -313,7 +367,8 @@ class FrdParser {
       require_finite(block.name, record);
       line = next_record_line(what);
       while (line.starts_with(" -2")) {  // more than six components
-        const AsciiRecord more = ascii_record(in_, line, format);
+        AsciiRecord more = ascii_record(in_, line, format, RecordKind::continuation);
+        more.node = record.node;
         require_finite(block.name, more);
         record.values.insert(record.values.end(), more.values.begin(), more.values.end());
         line = next_record_line(what);

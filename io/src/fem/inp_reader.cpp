@@ -1,8 +1,13 @@
 // hotmesh io: reader of the parts of a CalculiX (Abaqus syntax) input deck that locate FEM
 // results: *NODE, *ELEMENT, *NSET, *ELSET (with GENERATE), *SURFACE (TYPE=ELEMENT faces
-// S1..S6, or TYPE=NODE) and *INCLUDE. Other keywords are skipped. As in CalculiX, keywords
-// and names are case-insensitive (kept upper case), "**" starts a comment line, and a set
-// may use the sets defined before it. Element faces follow CalculiX's numbering:
+// S1..S6, or TYPE=NODE) and *INCLUDE. Other keywords are skipped. Lines are read by ccx's
+// rules: keywords and names are case-insensitive (kept upper case), "**" starts a comment
+// line, a set may use the sets defined before it, a *NODE coordinate left out or empty is 0
+// and fields after z are not read, an element takes its type's node count of nodes over as
+// many lines as they need and no more. Beams, trusses, shells and membranes (which ccx
+// expands into 3D elements) are kept, marked `expanded`; a surface of their faces is kept as
+// unusable, with the reason, and the rest of the deck is read. Element faces follow
+// CalculiX's numbering:
 //   quadrilaterals (CAX4, CPS8, ...)  S1 1-2, S2 2-3, S3 3-4, S4 4-1
 //   triangles (CAX3, CPE6, ...)       S1 1-2, S2 2-3, S3 3-1
 //   hexahedra (C3D8, C3D20R, ...)     S1 1-2-3-4, S2 5-8-7-6, S3 1-5-6-2, S4 2-6-7-3,
@@ -60,16 +65,40 @@ const Family kWedge{"wedge",
                     {{1, 2, 7}, {2, 3, 8}, {3, 1, 9}, {4, 5, 10}, {5, 6, 11}, {6, 4, 12}, {1, 4, 13}, {2, 5, 14},
                      {3, 6, 15}}};
 
-/// The element's family and node count from its type ("CAX8R": quadrilateral, 8), if it is a
-/// continuum element hotmesh knows.
+/// What hotmesh knows of an element type: its node count as ccx reads it, and either the
+/// family of a continuum element (faces, kind) or that ccx expands it into a 3D element (beams,
+/// trusses, shells, membranes: kind solid, no faces hotmesh knows).
 struct ElementShape {
   const Family* family = nullptr;
   int nodes = 0;
   ModelKind kind = ModelKind::solid;
+  bool expanded = false;
 };
+
+/// The number after a type's letters ("C3D20R" after "C3D": 20).
+std::optional<int> leading_number(std::string_view digits) {
+  const std::size_t end = std::min(digits.find_first_not_of("0123456789"), digits.size());
+  const auto n = field_integer(digits.substr(0, end));
+  return n ? std::optional<int>(static_cast<int>(*n)) : std::nullopt;
+}
+
+/// Beams, trusses, shells and membranes, which ccx expands into 3D elements: their node count.
+std::optional<int> expanded_nodes(std::string_view type) {
+  if (type.starts_with("B31") || type.starts_with("T3D2")) return 2;
+  if (type.starts_with("B32") || type.starts_with("T3D3")) return 3;
+  const bool shell = type.size() >= 2 && type[0] == 'S' && std::string_view("3468").find(type[1]) != std::string_view::npos;
+  if (shell) return type[1] - '0';
+  if (type.starts_with("M3D")) return leading_number(type.substr(3));
+  return std::nullopt;
+}
 
 std::optional<ElementShape> shape_of(std::string_view type) {
   ElementShape shape;
+  if (const auto n = expanded_nodes(type)) {
+    shape.nodes = *n;
+    shape.expanded = true;
+    return shape;
+  }
   std::string_view digits;
   if (type.starts_with("CAX") || type.starts_with("CPS") || type.starts_with("CPE")) {
     shape.kind = type.starts_with("CAX") ? ModelKind::axisymmetric : ModelKind::plane;
@@ -79,10 +108,9 @@ std::optional<ElementShape> shape_of(std::string_view type) {
   } else {
     return std::nullopt;
   }
-  const std::size_t end = std::min(digits.find_first_not_of("0123456789"), digits.size());
-  const auto n = field_integer(digits.substr(0, end));
+  const auto n = leading_number(digits);
   if (!n) return std::nullopt;
-  shape.nodes = static_cast<int>(*n);
+  shape.nodes = *n;
   const bool flat = shape.kind != ModelKind::solid;
   if (flat && (shape.nodes == 4 || shape.nodes == 8)) shape.family = &kQuad;
   if (flat && (shape.nodes == 3 || shape.nodes == 6)) shape.family = &kTriangle;
@@ -91,6 +119,18 @@ std::optional<ElementShape> shape_of(std::string_view type) {
   if (!flat && (shape.nodes == 6 || shape.nodes == 15)) shape.family = &kWedge;
   if (shape.family == nullptr) return std::nullopt;
   return shape;
+}
+
+/// The node count ccx reads for an element type (its `nope`): continuum and expanded elements,
+/// fluid (F3D*), springs, dashpots, gaps, masses, couplings and network elements. None for a
+/// user element (U*), whose count its *USER ELEMENT gives.
+std::optional<int> ccx_node_count(std::string_view type) {
+  if (const auto shape = shape_of(type)) return shape->nodes;
+  if (type.starts_with("F3D")) return leading_number(type.substr(3));
+  if (type.starts_with("SPRING1") || type.starts_with("DCOUP3D") || type.starts_with("MASS")) return 1;
+  if (type.starts_with("SPRING") || type.starts_with("DASHPOT") || type.starts_with("G")) return 2;
+  if (type.starts_with("D")) return 3;  // network elements
+  return std::nullopt;
 }
 
 /// The nodes face `face` (1-based) of an element of this shape has (face_nodes below): its
@@ -293,16 +333,16 @@ class DeckParser {
     return *n;
   }
 
+  /// *NODE lines as ccx reads them: `number[, x[, y[, z]]]`, a coordinate left out or empty is
+  /// 0, fields after the fourth are not read.
   void nodes(const Keyword& keyword, const DeckLine& head, std::span<const DeckLine> data) {
     DeckSet* set = keyword.parameter("NSET") ? &set_in(deck_.nsets, set_name(keyword, head, "NSET"), head) : nullptr;
     for (const DeckLine& line : data) {
       const std::vector<std::string_view> fields = deck_fields(line.text);
-      if (fields.size() < 2 || fields.size() > 4) {
-        fail(line, "a *NODE line is `number, x, y[, z]`, got " + std::to_string(fields.size()) + " fields");
-      }
       const std::int64_t id = number(line, fields[0], "a node");
       geometry::Vec3 x;
-      for (std::size_t k = 1; k < fields.size(); ++k) {
+      for (std::size_t k = 1; k < std::min<std::size_t>(fields.size(), 4); ++k) {
+        if (trim(fields[k]).empty()) continue;
         const auto value = field_double(fields[k]);
         if (!value || !std::isfinite(*value)) {
           fail(line, "coordinate " + std::to_string(k) + " of node " + std::to_string(id) + " is not a number: '" +
@@ -318,33 +358,40 @@ class DeckParser {
     }
   }
 
+  /// *ELEMENT lines as ccx reads them: the element number, then its type's node count of
+  /// nodes over as many lines as they take; nodes after that count on a line are not read. A
+  /// user element (U*), whose count hotmesh does not know, continues while a line ends with ','.
   void elements(const Keyword& keyword, const DeckLine& head, std::span<const DeckLine> data) {
     const auto type = keyword.parameter("TYPE");
     if (!type || type->empty()) fail(head, "*ELEMENT needs TYPE=<element type>, e.g. TYPE=CAX8");
     const std::string type_name = ascii_upper(*type);
+    const std::optional<int> count = ccx_node_count(type_name);
     const std::optional<ElementShape> shape = shape_of(type_name);
     DeckSet* set = keyword.parameter("ELSET") ? &set_in(deck_.elsets, set_name(keyword, head, "ELSET"), head) : nullptr;
     for (std::size_t i = 0; i < data.size(); ++i) {
       const DeckLine& first = data[i];
-      std::vector<std::string_view> fields = deck_fields(first.text);
+      const std::vector<std::string_view> fields = deck_fields(first.text);
       const std::int64_t id = number(first, fields[0], "an element");
-      DeckElement element{type_name, {}, place(first)};
+      DeckElement element{type_name, {}, place(first), shape && (shape->expanded || shape->kind != ModelKind::solid)};
       const auto add_nodes = [&](const DeckLine& line, std::span<const std::string_view> nodes) {
-        for (const std::string_view n : nodes) element.nodes.push_back(number(line, n, "a node"));
+        for (const std::string_view n : nodes) {
+          if (count && element.nodes.size() == static_cast<std::size_t>(*count)) return;
+          element.nodes.push_back(number(line, n, "a node"));
+        }
       };
       add_nodes(first, std::span(fields).subspan(1));
-      // Continuation lines: until the type's node count (known types) or while a line ends with ','.
       const auto wants_more = [&](std::string_view text) {
-        if (shape) return element.nodes.size() < static_cast<std::size_t>(shape->nodes);
+        if (count) return element.nodes.size() < static_cast<std::size_t>(*count);
         return trim(text).ends_with(',');
       };
       for (std::string_view last = first.text; wants_more(last) && i + 1 < data.size();) {
         last = data[++i].text;
         add_nodes(data[i], deck_fields(last));
       }
-      if (shape && element.nodes.size() != static_cast<std::size_t>(shape->nodes)) {
+      if (count && element.nodes.size() != static_cast<std::size_t>(*count)) {
         fail(first, "element " + std::to_string(id) + " of type " + type_name + " has " +
-                        std::to_string(element.nodes.size()) + " nodes, the type " + std::to_string(shape->nodes));
+                        std::to_string(element.nodes.size()) + " nodes before the next keyword, the type " +
+                        std::to_string(*count));
       }
       if (const auto defined = deck_.elements.find(id); defined != deck_.elements.end()) {
         fail(first, "element " + std::to_string(id) + " is defined already, at " + defined->second.place.text() +
@@ -436,9 +483,6 @@ class DeckParser {
 
   void face_surface_line(const DeckLine& line, const std::vector<std::string_view>& fields, DeckSet& set) {
     if (fields.size() != 2) fail(line, "an element surface line is `element or element set, S<face>`, e.g. `EDISC, S2`");
-    const std::string label = ascii_upper(fields[1]);
-    const auto face = label.size() == 2 && label[0] == 'S' ? field_integer(label.substr(1)) : std::nullopt;
-    if (!face || *face < 1 || *face > 6) fail(line, "'" + std::string(fields[1]) + "' is not an element face; faces are S1 to S6");
     std::vector<std::int64_t> elements;
     if (const auto n = field_integer(fields[0])) {
       elements.push_back(*n);
@@ -447,20 +491,34 @@ class DeckParser {
     } else {
       fail(line, "'" + std::string(fields[0]) + "' is neither an element number nor an *ELSET defined before this line");
     }
+    const std::string label = ascii_upper(fields[1]);
     for (const std::int64_t e : elements) {
       const auto element = deck_.elements.find(e);
       if (element == deck_.elements.end()) fail(line, "element " + std::to_string(e) + " is not defined before this line");
       const std::optional<ElementShape> shape = shape_of(element->second.type);
-      const std::size_t faces = shape ? shape->family->faces.size() : 0;
-      if (static_cast<std::size_t>(*face) > faces) {
-        fail(line, "element " + std::to_string(e) + " (" + element->second.type + ") has " +
-                       (shape ? std::to_string(faces) + " faces, S1 to S" + std::to_string(faces)
-                              : std::string("no faces hotmesh knows (continuum elements CAX*, CPS*, CPE*, C3D*)")) +
-                       ", not " + label);
+      if (!shape || shape->family == nullptr) {
+        if (set.unusable.empty()) set.unusable = unusable_face(line, e, element->second.type, label);
+        continue;
+      }
+      const auto face = label.size() == 2 && label[0] == 'S' ? field_integer(label.substr(1)) : std::nullopt;
+      const std::size_t faces = shape->family->faces.size();
+      if (!face || *face < 1 || static_cast<std::size_t>(*face) > faces) {
+        fail(line, "'" + std::string(fields[1]) + "' is not a face of element " + std::to_string(e) + " (" +
+                       element->second.type + "), whose faces are S1 to S" + std::to_string(faces));
       }
       add_members(line, face_node_count(*shape, static_cast<int>(*face)));
       set.faces.emplace_back(e, static_cast<int>(*face));
     }
+  }
+
+  /// Why a surface of a face of a beam, shell or other element is of no use to hotmesh.
+  std::string unusable_face(const DeckLine& line, std::int64_t element, const std::string& type,
+                            const std::string& label) const {
+    const std::optional<ElementShape> shape = shape_of(type);
+    return "face " + label + " of element " + std::to_string(element) + " (" + type + (shape ? ", a beam or shell" : "") +
+           ") at " + place(line).text() +
+           ": hotmesh takes the faces of continuum elements (CAX*, CPS*, CPE*, C3D*) only; give a *NSET of the "
+           "wall's nodes instead";
   }
 
   InpDeck& deck_;
@@ -490,7 +548,8 @@ void face_nodes(const DeckElement& element, int face, std::vector<std::int64_t>&
 std::string names_with_sizes(const std::map<std::string, DeckSet>& sets, const InpDeck& deck) {
   std::string text;
   for (const auto& [name, set] : sets) {
-    text += (text.empty() ? "" : ", ") + name + " (" + std::to_string(deck.set_nodes(name).size()) + " nodes)";
+    const std::string size = set.unusable.empty() ? std::to_string(deck.set_nodes(name).size()) + " nodes" : "unusable";
+    text += (text.empty() ? "" : ", ") + name + " (" + size + ")";
   }
   return text.empty() ? "(none)" : text;
 }
@@ -514,13 +573,14 @@ ModelKind InpDeck::kind() const {
   for (const auto& [id, element] : elements) {
     const std::optional<ElementShape> shape = shape_of(element.type);
     if (shape && kinds.insert(shape->kind).second) {
-      examples += (examples.empty() ? "" : ", ") + element.type + " (" + to_string(shape->kind) + ", at " +
-                  element.place.text() + ")";
+      examples += (examples.empty() ? "" : ", ") + element.type + " (" + to_string(shape->kind) +
+                  (shape->expanded ? " as ccx expands it" : "") + ", at " + element.place.text() + ")";
     }
   }
   if (kinds.empty()) {
-    throw InputError::in(file.string(), "no continuum elements (CAX*, CPS*, CPE*, C3D*): hotmesh reads the "
-                                        "displacements of axisymmetric, plane or solid models");
+    throw InputError::in(file.string(), "no continuum elements (CAX*, CPS*, CPE*, C3D*) nor beams, trusses, "
+                                        "shells or membranes that ccx expands into 3D elements (B31, B32, T3D*, S*, "
+                                        "M3D*): hotmesh reads the displacements of axisymmetric, plane or solid models");
   }
   if (kinds.size() > 1) throw InputError::in(file.string(), "elements of several kinds: " + examples + "; use one kind");
   return *kinds.begin();
@@ -532,7 +592,11 @@ std::vector<std::int64_t> InpDeck::set_nodes(std::string_view name) const {
   if (const auto nset = nsets.find(key); nset != nsets.end()) {
     members = nset->second.members;
   } else if (const auto surface = surfaces.find(key); surface != surfaces.end()) {
-    members = surface->second.members;
+    const DeckSet& set = surface->second;
+    if (!set.unusable.empty()) {
+      throw InputError::at(set.place.file.string(), set.place.line, "surface " + key + " is of no use to hotmesh: it has the " + set.unusable);
+    }
+    members = set.members;
     for (const auto& [element, face] : surface->second.faces) face_nodes(elements.at(element), face, members);
   } else {
     const bool elset = elsets.contains(key);

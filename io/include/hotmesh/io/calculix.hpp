@@ -42,6 +42,10 @@ struct FrdResults {
   std::string source;                                ///< file name, for messages
   bool binary = false;                               ///< some block was written in binary
   std::map<std::int64_t, geometry::Vec3> nodes;      ///< the node block: number -> coordinates
+  /// The element block: number -> nodes as the .frd writes them. ccx writes a beam or shell
+  /// element (B31, B32, S4, S8, T3D2, ... unless *NODE FILE, OUTPUT=2D) as the 3D element it
+  /// expanded it into, on new nodes about the element's own.
+  std::map<std::int64_t, std::vector<std::int64_t>> elements;
   std::vector<FrdBlock> blocks;                      ///< every nodal result block, in file order
 
   /// The DISP blocks, in file order.
@@ -85,6 +89,10 @@ struct DeckElement {
   std::string type;                   ///< upper case, e.g. "CAX4", "C3D20R"
   std::vector<std::int64_t> nodes;
   DeckPlace place;
+  /// ccx expands it into a 3D element on new nodes, and writes that element to the .frd: a
+  /// beam, truss, shell or membrane (B31, B32, T3D2, S4, S8, M3D4, ...) unless told *NODE FILE,
+  /// OUTPUT=2D; a plane or axisymmetric element (CPS*, CPE*, CAX*) when told OUTPUT=3D.
+  bool expanded = false;
 };
 
 /// A node set, element set or surface: its members as written (numbers) and where it is.
@@ -94,6 +102,9 @@ struct DeckSet {
   /// Element surface: the element faces (element number, face 1..6).
   std::vector<std::pair<std::int64_t, int>> faces;
   DeckPlace place;                    ///< its first definition
+  /// Why hotmesh cannot give its nodes (a surface of faces of beam or shell elements), with
+  /// where; empty when it can. The rest of the deck is read all the same.
+  std::string unusable;
 };
 
 struct InpDeck {
@@ -133,6 +144,13 @@ struct InpLimits {
 /// defined twice (as CalculiX does), a set that uses an undefined set, an *INCLUDE that is
 /// missing or includes itself, a deck beyond `limits`.
 InpDeck read_inp(const std::filesystem::path& path, const InpLimits& limits = {});
+
+/// The displacements of the deck's `nodes` in `disp`: a node's own value where the block has
+/// it; for a node of beam, truss, shell or membrane elements that ccx wrote expanded into 3D
+/// elements (the default without *NODE FILE, OUTPUT=2D), the mean of the nodes ccx made of it,
+/// which the .frd's element block gives. A node with neither is left out.
+std::map<std::int64_t, geometry::Vec3> deck_node_displacements(const FrdResults& results, const InpDeck& deck,
+                                                               const FrdBlock& disp, const std::vector<std::int64_t>& nodes);
 
 // ---------------------------------------------------------------------------------------------
 // the table of one set
