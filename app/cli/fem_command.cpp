@@ -87,7 +87,7 @@ std::string steps_text(const io::FrdResults& results) {
   return text;
 }
 
-/// The largest of the set's displacements (deck_node_displacements: beams and shells as ccx
+/// The largest of the set's displacements (DeckDisplacements: beams and shells as ccx
 /// expanded them too).
 Largest largest_of(const std::map<std::int64_t, geometry::Vec3>& displacements) {
   Largest out;
@@ -102,6 +102,7 @@ std::string sets_text(const io::FrdResults& results, const io::InpDeck& deck, co
                                  io::to_string(deck.kind()), deck.nodes.size(), deck.elements.size(),
                                  deck.files.size());
   text += fmt::format("node sets and surfaces, largest |u| at step {} (time {:.6g}):\n", disp.step, disp.time);
+  const io::DeckDisplacements deck_displacements(results, deck, disp);
   const auto list = [&](std::string_view what, const std::map<std::string, io::DeckSet>& sets) {
     for (const auto& [name, set] : sets) {
       if (!set.unusable.empty()) {
@@ -109,7 +110,7 @@ std::string sets_text(const io::FrdResults& results, const io::InpDeck& deck, co
         continue;
       }
       const std::vector<std::int64_t> nodes = deck.set_nodes(name);
-      const auto displacements = io::deck_node_displacements(results, deck, disp, nodes);
+      const auto displacements = deck_displacements.of(nodes);
       const Largest u = largest_of(displacements);
       const std::string without = displacements.size() == nodes.size()
                                       ? std::string()

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "calculix_runs.hpp"
+#include "calculix_suite.hpp"
 #include "deform_cases.hpp"
 #include "hotmesh/io/calculix.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
@@ -137,6 +138,28 @@ TEST(FemCommandDecks, ManySetsAreListedWithOneIndexOfTheResults) {
                                                   shell_quote((dir / "many.inp").string()));
   ASSERT_EQ(r.exit_code, 0) << r.output.substr(0, 2000);
   EXPECT_THAT(r.output, ::testing::ContainsRegex("nset +S9999 +1 nodes  largest \\|u\\| 1e-06 at node 9999"));
+}
+
+// contact10 of CalculiX's test suite: a C3D8 block and an S8 shell whose face S2 is the slave
+// surface. The deck is listed, the shell's surface as unusable with the reason; naming it
+// exits 2 with its line; the block's surface gives its table.
+TEST(FemCommandOnCcxSuite, ListsASurfaceOfShellFacesAsUnusableAndReadsTheRest) {
+  if (!test::have_ccx_suite()) GTEST_SKIP() << "Debian's calculix-ccx-test is not installed; scripts/install-deps.sh installs it";
+  test::TempDir dir;
+  const std::filesystem::path inp = test::ccx_suite_deck(dir.path(), "contact10");
+  test::write_text(dir / "contact10.frd", test::ccx_suite_results_text("contact10"));
+  const std::string files = shell_quote((dir / "contact10.frd").string()) + " --inp " + shell_quote(inp.string());
+  const test::CommandResult list = test::hotmesh("fem " + files);
+  ASSERT_EQ(list.exit_code, 0) << list.output;
+  EXPECT_THAT(list.output, HasSubstr("solid model, 16 nodes, 2 elements"));
+  EXPECT_THAT(list.output, ::testing::ContainsRegex("surface +SSLAV +unusable: the face S2 of element 2 \\(S8, a beam or shell\\)"));
+  EXPECT_THAT(list.output, ::testing::ContainsRegex("surface +SMAST +4 nodes"));
+  const test::CommandResult slave = test::hotmesh("fem " + files + " --set SSLAV");
+  EXPECT_EQ(slave.exit_code, 2) << slave.output;
+  EXPECT_THAT(slave.output, HasSubstr(inp.string() + ":45: surface SSLAV is of no use to hotmesh"));
+  const test::CommandResult master = test::hotmesh("fem " + files + " --set SMAST");
+  EXPECT_EQ(master.exit_code, 0) << master.output;
+  EXPECT_THAT(master.output, HasSubstr("id,x,y,z,dx,dy,dz"));
 }
 
 }  // namespace

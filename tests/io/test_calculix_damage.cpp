@@ -189,5 +189,28 @@ TEST(CalculixTable, NodesAtNanAreNotWhereTheDeckPutsThem) {
   }
 }
 
+// The records of the .frd blocks that issue 49 reads: a continuation record whose node
+// columns are not blank, an element with more nodes than its type, an unknown element type.
+TEST(CalculixFrdRecords, DamagedContinuationAndElementRecordsAreRefusedWithTheirLine) {
+  const std::string head = "    1C\n    2C                             1                                     1\n"
+                           " -1         1 0.00000E+00 0.00000E+00 0.00000E+00\n -3\n";
+  std::string components;
+  for (int k = 1; k <= 7; ++k) components += fmt::format(" -5  SDV{}        1    1    0    0\n", k);
+  const std::string values = " -1         1 1.00000E+00 2.00000E+00 3.00000E+00 4.00000E+00 5.00000E+00 6.00000E+00\n";
+  const std::string sdv = "  100CL  101 1.000000000           1                     0    1           1\n -4  SDV         7    1\n" +
+                          components + values;
+  EXPECT_EQ(frd_error(head + sdv + " -2           7.00000E+00\n -3\n9999\n", "ok.frd"), "(read)");
+  EXPECT_THAT(frd_error(head + sdv + " -2         1 7.00000E+00\n -3\n9999\n", "node.frd"),
+              StartsWith("node.frd:15: a ' -2' continuation record has blank columns 4-13, got '         1'"));
+  EXPECT_THAT(frd_error(head + sdv + " -3\n9999\n", "short.frd"),
+              StartsWith("short.frd:15: node 1 of the SDV block has 6 values, the block 7"));
+
+  const std::string elements = "    3C                             1                                     1\n";
+  EXPECT_THAT(frd_error(head + elements + " -1         1   11    0    1\n -2         1         1         1\n -3\n9999\n", "be2.frd"),
+              StartsWith("be2.frd:7: element 1 has 3 nodes, its type 2"));
+  EXPECT_THAT(frd_error(head + elements + " -1         1   13    0    1\n -2         1\n -3\n9999\n", "type.frd"),
+              StartsWith("type.frd:6: element 1 has the unknown element type 13; the .frd types are 1 to 12"));
+}
+
 }  // namespace
 }  // namespace hotmesh::io

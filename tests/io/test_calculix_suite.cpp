@@ -54,7 +54,7 @@ void check_job(const std::string& job, const TempDir& dir, SuiteOutcome& outcome
   deck.kind();  // refuses a deck of no continuum or expanded elements
   const FrdBlock& disp = *results.displacements().back();
   const std::vector<std::int64_t> nodes = model_nodes(deck);
-  const auto displacements = deck_node_displacements(results, deck, disp, nodes);
+  const auto displacements = DeckDisplacements(results, deck, disp).of(nodes);
   if (displacements.size() != nodes.size()) outcome.partly_written.insert(job);
   if (std::any_of(deck.elements.begin(), deck.elements.end(), [](const auto& e) { return e.second.expanded; })) {
     outcome.expanded.insert(job);

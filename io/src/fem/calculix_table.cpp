@@ -104,7 +104,7 @@ CalculixTable calculix_table(const FrdResults& results, const InpDeck& deck, con
   geometry::DeflectionSamples& samples = table.samples;
   samples.frame = frame_of(table.kind);
   samples.source = set_place.text() + " (set " + selection.set + ", displacements from " + results.source + ")";
-  const std::map<std::int64_t, Vec3> displacements = deck_node_displacements(results, deck, disp, nodes);
+  const std::map<std::int64_t, Vec3> displacements = DeckDisplacements(results, deck, disp).of(nodes);
   for (const std::int64_t n : nodes) {
     const auto x = deck.nodes.find(n);
     if (x == deck.nodes.end()) {

@@ -16,7 +16,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <set>
 #include <utility>
 
 #include "fem/frd_index.hpp"
@@ -96,56 +95,54 @@ std::vector<std::pair<std::int64_t, std::int64_t>> made_of(const FrdResults& res
   return out;
 }
 
-/// The .frd nodes ccx made of each of `wanted` in the expanded elements that hold it.
-std::map<std::int64_t, std::vector<std::int64_t>> expansions(const FrdResults& results, const InpDeck& deck,
-                                                            const std::set<std::int64_t>& wanted) {
-  std::map<std::int64_t, std::vector<std::int64_t>> out;
-  for (const auto& [id, element] : deck.elements) {
-    if (!element.expanded) continue;
-    if (std::none_of(element.nodes.begin(), element.nodes.end(), [&](std::int64_t n) { return wanted.contains(n); })) continue;
-    for (const auto& [from, made] : made_of(results, deck, id, element)) {
-      if (wanted.contains(from)) out[from].push_back(made);
-    }
-  }
-  for (auto& [node, made] : out) {
-    std::sort(made.begin(), made.end());
-    made.erase(std::unique(made.begin(), made.end()), made.end());
-  }
-  return out;
-}
-
 }  // namespace
 
-std::map<std::int64_t, Vec3> deck_node_displacements(const FrdResults& results, const InpDeck& deck, const FrdBlock& disp,
-                                                     const std::vector<std::int64_t>& nodes) {
-  const auto index = detail::block_index(disp);
-  std::map<std::int64_t, Vec3> out;
-  std::set<std::int64_t> missing;
-  for (const std::int64_t n : nodes) {
-    if (const auto it = index.find(n); it != index.end()) {
-      out[n] = disp.values[it->second];
-    } else {
-      missing.insert(n);
+DeckDisplacements::DeckDisplacements(const FrdResults& results, const InpDeck& deck, const FrdBlock& disp)
+    : results_(results), deck_(deck), disp_(disp), index_(detail::block_index(disp)) {
+  for (const auto& [id, element] : deck.elements) {
+    if (!element.expanded) continue;
+    for (const std::int64_t n : element.nodes) {
+      if (!index_.contains(n)) expanded_of_[n].push_back(id);
     }
   }
-  if (missing.empty()) return out;
-  const double rounding = 2e-5 * detail::deck_size(deck);  // the six digits of an ASCII .frd
-  for (const auto& [node, made] : expansions(results, deck, missing)) {
+}
+
+std::map<std::int64_t, Vec3> DeckDisplacements::of(const std::vector<std::int64_t>& nodes) const {
+  std::map<std::int64_t, Vec3> out;
+  std::map<std::int64_t, std::vector<std::int64_t>> made;  // node -> the .frd nodes made of it
+  for (const std::int64_t n : nodes) {
+    if (const auto it = index_.find(n); it != index_.end()) {
+      out[n] = disp_.values[it->second];
+      continue;
+    }
+    const auto elements = expanded_of_.find(n);
+    if (elements == expanded_of_.end()) continue;
+    std::vector<std::int64_t>& mine = made[n];
+    for (const std::int64_t id : elements->second) {
+      for (const auto& [from, m] : made_of(results_, deck_, id, deck_.elements.at(id))) {
+        if (from == n) mine.push_back(m);
+      }
+    }
+    std::sort(mine.begin(), mine.end());
+    mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+  }
+  const double rounding = 2e-5 * detail::deck_size(deck_);  // the six digits of an ASCII .frd
+  for (const auto& [node, from_node] : made) {
     Vec3 sum, centre;
     double spread = 0.0;
-    const Vec3 at = deck.nodes.at(node);
+    const Vec3 at = deck_.nodes.at(node);
     std::size_t count = 0;
-    for (const std::int64_t m : made) {
-      const auto it = index.find(m);
-      if (it == index.end()) break;
-      sum += disp.values[it->second];
-      centre += results.nodes.at(m);
-      spread = std::max(spread, distance(results.nodes.at(m), at));
+    for (const std::int64_t m : from_node) {
+      const auto it = index_.find(m);
+      if (it == index_.end()) break;
+      sum += disp_.values[it->second];
+      centre += results_.nodes.at(m);
+      spread = std::max(spread, distance(results_.nodes.at(m), at));
       ++count;
     }
     // The nodes made of it lie about it, unless some are missing (a composite's layer) or the
     // section is offset (OFFSET=): then their mean is not the node's displacement.
-    if (count == 0 || count != made.size()) continue;
+    if (count == 0 || count != from_node.size()) continue;
     if (distance(centre / static_cast<double>(count), at) > std::max(0.02 * spread, rounding)) continue;
     out[node] = sum / static_cast<double>(count);
   }

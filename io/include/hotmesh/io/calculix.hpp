@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "hotmesh/geometry/deflection_samples.hpp"
@@ -145,12 +146,24 @@ struct InpLimits {
 /// missing or includes itself, a deck beyond `limits`.
 InpDeck read_inp(const std::filesystem::path& path, const InpLimits& limits = {});
 
-/// The displacements of the deck's `nodes` in `disp`: a node's own value where the block has
-/// it; for a node of beam, truss, shell or membrane elements that ccx wrote expanded into 3D
-/// elements (the default without *NODE FILE, OUTPUT=2D), the mean of the nodes ccx made of it,
-/// which the .frd's element block gives. A node with neither is left out.
-std::map<std::int64_t, geometry::Vec3> deck_node_displacements(const FrdResults& results, const InpDeck& deck,
-                                                               const FrdBlock& disp, const std::vector<std::int64_t>& nodes);
+/// The displacements of the deck's nodes in one DISP block: a node's own value where the
+/// block has it; for a node of beam, truss, shell or membrane elements that ccx wrote expanded
+/// into 3D elements (the default without *NODE FILE, OUTPUT=2D), the mean of the nodes ccx
+/// made of it, which the .frd's element block gives. The block's node index and the deck's
+/// expanded elements per node are made once, for the sets of a deck.
+class DeckDisplacements {
+ public:
+  DeckDisplacements(const FrdResults& results, const InpDeck& deck, const FrdBlock& disp);
+  /// The displacements of `nodes`; a node with neither value is left out.
+  std::map<std::int64_t, geometry::Vec3> of(const std::vector<std::int64_t>& nodes) const;
+
+ private:
+  const FrdResults& results_;
+  const InpDeck& deck_;
+  const FrdBlock& disp_;
+  std::unordered_map<std::int64_t, std::size_t> index_;                     ///< node -> place in disp_
+  std::unordered_map<std::int64_t, std::vector<std::int64_t>> expanded_of_; ///< node -> its expanded elements
+};
 
 // ---------------------------------------------------------------------------------------------
 // the table of one set
