@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cgns_files.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "run_command.hpp"
@@ -171,6 +172,27 @@ TEST(CgnsWriteBack, LegacyFileKeepsItsSectionsAndVersion) {
       EXPECT_THAT(listed.output, ::testing::Not(::testing::HasSubstr("ElementStartOffset")));
     }
   }
+}
+
+// Coordinates stored in another file through a link: writing them would change that file.
+TEST(CgnsWriteBack, CoordinatesLinkedFromAnotherFileAreNotWrittenThere) {
+  test::TempDir dir;
+  test::write_unstructured_3d(dir / "grid.cgns");
+  test::write_unstructured_3d(dir / "u3.cgns");
+  test::link_node(dir / "u3.cgns", "/Base/Block/GridCoordinates/CoordinateY", dir / "grid.cgns");
+  const std::string grid = test::read_text(dir / "grid.cgns");
+  const LoadedMesh loaded = read_mesh(dir / "u3.cgns");
+  std::vector<Vec3> points;
+  for (const Vec3& p : loaded.mesh.points) points.push_back(moved(p, 3));
+  try {
+    loaded.write_back->write(dir.path(), points, {});
+    ADD_FAILURE() << "wrote through the link";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), ::testing::StartsWith((dir / "u3.cgns").string() +
+                                                ": /Base/Block/GridCoordinates/CoordinateY is a link into another file"));
+  }
+  EXPECT_EQ(test::read_text(dir / "grid.cgns"), grid);
+  EXPECT_FALSE(std::filesystem::exists(dir / "deformed.cgns"));
 }
 
 TEST(CgnsWriteBack, UnstructuredZonesJoinedByConnectivity) {

@@ -345,6 +345,20 @@ void make_legacy(const std::filesystem::path& path) {
   cgio_ok(cgio_close_file(cgio));
 }
 
+void link_node(const std::filesystem::path& path, const std::string& node, const std::filesystem::path& target) {
+  int cgio = 0;
+  cgio_ok(cgio_open_file(path.c_str(), CGIO_MODE_MODIFY, CGIO_FILE_NONE, &cgio));
+  double root = 0, id = 0, parent = 0, link = 0;
+  cgio_ok(cgio_get_root_id(cgio, &root));
+  cgio_ok(cgio_get_node_id(cgio, root, node.c_str(), &id));
+  const std::string parent_path = node.substr(0, node.rfind('/'));
+  const std::string name = node.substr(node.rfind('/') + 1);
+  cgio_ok(cgio_get_node_id(cgio, root, parent_path.c_str(), &parent));
+  cgio_ok(cgio_delete_node(cgio, parent, id));
+  cgio_ok(cgio_create_link(cgio, parent, name.c_str(), target.c_str(), node.c_str(), &link));
+  cgio_ok(cgio_close_file(cgio));
+}
+
 void overwrite_integers(const std::filesystem::path& path, const std::string& node, const std::vector<int>& values,
                         std::vector<long long> dimensions) {
   if (dimensions.empty()) dimensions.push_back(static_cast<long long>(values.size()));

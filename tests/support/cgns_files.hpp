@@ -61,6 +61,10 @@ void write_bc_without_faces(const std::filesystem::path& path); ///< 2D, BC "lon
 /// ElementStartOffset in any section (a MIXED section's connectivity is the same without it).
 void make_legacy(const std::filesystem::path& path);
 
+/// Replaces node `node` of the file (a path from its root) by a link to the node of the same
+/// path in file `target`, as CGNS files that share a grid do.
+void link_node(const std::filesystem::path& path, const std::string& node, const std::filesystem::path& target);
+
 /// Replaces the data of node `node` of a CGNS file (a path from its root,
 /// "/Base/Fluid/Cells/ElementRange") with `values`, stored as I4 integers of `dimensions`
 /// (by default one, of values.size() entries): a file's arrays edited in place, as someone

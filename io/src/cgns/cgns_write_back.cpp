@@ -10,6 +10,7 @@
 #include <cgns_io.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -30,10 +31,11 @@ struct ZoneCoordinates {
 };
 
 /// A CGNS file opened at the node level to overwrite arrays; holds the library's lock.
+/// Messages name `source`, the file it is a copy of.
 class NodeFile {
  public:
-  explicit NodeFile(const std::filesystem::path& path) : lock_(library_lock()), name_(path.string()) {
-    check(cgio_open_file(name_.c_str(), CGIO_MODE_MODIFY, CGIO_FILE_NONE, &cgio_), "cannot open the copy");
+  NodeFile(const std::filesystem::path& path, std::string source) : lock_(library_lock()), name_(std::move(source)) {
+    check(cgio_open_file(path.c_str(), CGIO_MODE_MODIFY, CGIO_FILE_NONE, &cgio_), "cannot open the copy");
     check(cgio_get_root_id(cgio_, &root_), "cannot read the copy's root node");
   }
   ~NodeFile() {
@@ -45,8 +47,7 @@ class NodeFile {
   /// Overwrites the data of the array at `path` (from the root), which must store `count`
   /// values of `type` ("R4", "R8"), with `data`.
   void overwrite(const std::string& path, const char* type, std::size_t count, const void* data) {
-    double id = 0;
-    check(cgio_get_node_id(cgio_, root_, path.c_str(), &id), path + " is not in the copy");
+    const double id = node_in_this_file(path);
     char stored_type[CGIO_MAX_DATATYPE_LENGTH + 1] = {};
     int rank = 0;
     std::array<cgsize_t, CGIO_MAX_DIMENSIONS> dimensions{};
@@ -59,6 +60,29 @@ class NodeFile {
                                               std::string_view(stored_type, 2), count, type));
     }
     check(cgio_write_all_data(cgio_, id, data), "writing " + path);
+  }
+
+  /// The node at `path`, reached name by name: a link on the way would lead into another
+  /// file (which is not the copy's to change), and is refused.
+  double node_in_this_file(const std::string& path) const {
+    double id = root_;
+    std::size_t start = 1;
+    while (start <= path.size()) {
+      const std::size_t end = std::min(path.find('/', start), path.size());
+      const std::string name = path.substr(start, end - start);
+      double child = 0;
+      check(cgio_get_node_id(cgio_, id, name.c_str(), &child), path + " is not in the copy");
+      int link = 0;
+      check(cgio_is_link(cgio_, child, &link), "reading " + path);
+      if (link > 0) {
+        throw InputError::in(name_, fmt::format("{} is a link into another file: hotmesh writes the moved "
+                                                "coordinates into deformed.cgns only (store them in the file)",
+                                                path.substr(0, end)));
+      }
+      id = child;
+      start = end + 1;
+    }
+    return id;
   }
 
   void close() {
@@ -99,7 +123,7 @@ class CgnsWriteBack final : public MeshWriteBack {
     std::error_code ec;
     std::filesystem::copy_file(input_, out.temporary(), std::filesystem::copy_options::overwrite_existing, ec);
     if (ec) throw InputError::in(input_.string(), "cannot copy the CGNS file to " + target.string() + ": " + ec.message());
-    NodeFile file(out.temporary());
+    NodeFile file(out.temporary(), input_.string());
     for (const ZoneCoordinates& zone : zones_) write_zone(file, zone, points);
     file.close();
     out.commit();
