@@ -27,6 +27,8 @@ packages=(
   # tests: GoogleTest, plus real external tools that check our files
   # (gmsh writes every .msh flavour we read; VTK's XML reader is the one ParaView uses)
   libgtest-dev libgmock-dev gmsh python3 python3-vtk9 python3-numpy
+  # (gmsh's own tutorials, whose meshes the gmsh reader is tested on)
+  gmsh-doc
   # (cgnscheck checks the CGNS files hotmesh writes; OpenFOAM's blockMesh makes polyMesh
   # folders and its checkMesh checks the ones hotmesh moves)
   cgns-convert openfoam

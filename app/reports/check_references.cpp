@@ -242,7 +242,8 @@ std::string case_wall_text(const io::Case& c, const io::PatchSpec& spec, setup::
                                                  name(d.file), d.degree)
                                    : std::string());
     } else if (kind == setup::WallKind::scattered) {
-      what = deflected ? fmt::format("the table {} interpolated over the wall (partition-of-unity RBF)", name(d.file))
+      what = deflected ? fmt::format("the table {} interpolated over the wall ({})", name(d.file),
+                                     d.degree == 1 ? "linear over triangles" : "partition-of-unity RBF")
                        : fmt::format("its own undeformed nodes (no surface: the table {} moves them, interpolated "
                                      "over the wall)",
                                      name(d.file));

@@ -194,6 +194,9 @@ json deflections_json(const io::Case& c, const setup::CaseSetup& setup, double s
                                      {"patches", s.scattered->patches},
                                      {"largest_patch", s.scattered->largest_patch}};
     }
+    if (s.linear) {
+      deflection["interpolation"] = {{"method", "linear over triangles"}, {"triangles", s.linear->triangles}};
+    }
     const io::PatchSpec* spec = c.find_patch(s.patch);
     if (spec != nullptr && spec->deflection && spec->deflection->calculix) {
       deflection["calculix"] = calculix_json(*spec->deflection->calculix);

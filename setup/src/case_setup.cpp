@@ -250,14 +250,32 @@ class SurfaceBuilder {
                        "its deflection (`faces: [...]`, with the top-level `cad:`), or the top-level `axis:` if it "
                        "is a surface of revolution");
     }
-    geometry::ScatteredField after = field(deflection.samples);
-    std::shared_ptr<const geometry::ScatteredField> before;
-    if (previous) before = std::make_shared<const geometry::ScatteredField>(field(previous->samples));
+    check_cartesian(deflection.samples);
     report.kind = WallKind::scattered;
-    report.reconstruction.used_nodes = after.report().points;
-    report.reconstruction.merged_duplicates = after.report().merged_duplicates;
-    report.reconstruction.max_node_residual = after.report().max_residual;
-    report.scattered = after.report();
+    std::shared_ptr<const geometry::WallField> after, before;
+    if (deflection.degree == 1) {
+      // linear between the FEM nodes, as a table of linear elements is: no overshoot at kinks
+      auto linear = std::make_shared<const geometry::LinearField>(deflection.samples.points, deflection.samples.deflections);
+      report.reconstruction.used_nodes = linear->report().points;
+      report.reconstruction.merged_duplicates = linear->report().merged_duplicates;
+      report.linear = linear->report();
+      after = std::move(linear);
+      if (previous) {
+        check_cartesian(previous->samples);
+        before = std::make_shared<const geometry::LinearField>(previous->samples.points, previous->samples.deflections);
+      }
+    } else {
+      auto smooth = std::make_shared<const geometry::ScatteredField>(deflection.samples.points, deflection.samples.deflections);
+      report.reconstruction.used_nodes = smooth->report().points;
+      report.reconstruction.merged_duplicates = smooth->report().merged_duplicates;
+      report.reconstruction.max_node_residual = smooth->report().max_residual;
+      report.scattered = smooth->report();
+      after = std::move(smooth);
+      if (previous) {
+        check_cartesian(previous->samples);
+        before = std::make_shared<const geometry::ScatteredField>(previous->samples.points, previous->samples.deflections);
+      }
+    }
     return {std::make_shared<geometry::ScatteredShape>(std::move(after), std::move(before)), std::move(report)};
   }
 
@@ -277,13 +295,12 @@ class SurfaceBuilder {
   }
 
  private:
-  static geometry::ScatteredField field(const geometry::DeflectionSamples& samples) {
+  static void check_cartesian(const geometry::DeflectionSamples& samples) {
     if (samples.frame != geometry::SampleFrame::cartesian) {
       throw InputError::in(samples.source, std::string("a wall that is not a surface of revolution needs a cartesian "
                                                        "(x, y, z) table, got a ") +
                                                geometry::to_string(samples.frame) + " one");
     }
-    return geometry::ScatteredField(samples.points, samples.deflections);
   }
 
   const Case& c_;
@@ -353,7 +370,7 @@ CaseSetup set_up_case(const io::Case& c, const mesh::Mesh& mesh, const io::Resta
         Curve curve = before && before->deflection ? builder.rebased(spec, *before->deflection, spec.deflection)
                                                    : builder.curve(spec, spec.deflection);
         if (spec.deflection) {
-          setup.shapes.push_back({spec.name, WallKind::curve, curve.report, {}, {}, curve_outline(curve.curve, 1.0)});
+          setup.shapes.push_back({spec.name, WallKind::curve, curve.report, {}, {}, {}, curve_outline(curve.curve, 1.0)});
         }
         motion.shape = builder.shape(std::move(curve.curve));
       } catch (const InputError& e) {  // the message names the file at fault, if one is

@@ -113,6 +113,35 @@ TEST(DeformSurfaces, BoxChannelFloorTakesACartesianTableWithoutCadOrAxis) {
   EXPECT_EQ(report["deflections"][0]["used_nodes"], 45);
 }
 
+/// A bump 0.35 high, piecewise linear along the channel: up from x = 1 to its ridge at 2, down to
+/// 3; every kink on a column of the table's nodes.
+geometry::Vec3 tent(const geometry::Vec3& x) { return {0.0, 0.0, 0.35 * std::clamp(1.0 - std::abs(x.x - 2.0), 0.0, 1.0)}; }
+
+// Issue 49, item 8: `degree: 1` on a wall without CAD is linear between the table's nodes, so a
+// piecewise-linear deflection with a node on every kink moves every floor node exactly by it
+// (the smooth interpolation of higher degrees overshoots next to the kinks).
+TEST(DeformSurfaces, PiecewiseLinearTableOnAFloorWithoutCadIsFollowedExactlyAtDegreeOne) {
+  test::TempDir dir;
+  write_channel(dir.path(), tent);
+  const DeformRun linear = deform(dir, channel_case("{role: prescribed, deflection: {file: floor.csv, degree: 1}}"));
+  ASSERT_EQ(linear.result.exit_code, 0) << linear.result.output;
+  for (const auto& [x0, x] : floor_nodes(dir.path(), linear)) {
+    EXPECT_LT(distance(x, x0 + tent(x0)), 1e-10) << x0.x << " " << x0.y;
+  }
+  const auto report = read_json(linear.out / "report.json");
+  EXPECT_EQ(report["deflections"][0]["wall"], "scattered");
+  EXPECT_EQ(report["deflections"][0]["interpolation"]["method"], "linear over triangles");
+  EXPECT_EQ(report["deflections"][0]["interpolation"]["triangles"], 2 * 8 * 4);
+
+  std::filesystem::remove_all(linear.out);
+  const DeformRun smooth = deform(dir, channel_case("{role: prescribed, deflection: {file: floor.csv, degree: 2}}"));
+  ASSERT_EQ(smooth.result.exit_code, 0) << smooth.result.output;
+  double largest = 0.0;
+  for (const auto& [x0, x] : floor_nodes(dir.path(), smooth)) largest = std::max(largest, distance(x, x0 + tent(x0)));
+  EXPECT_GT(largest, 1e-3);
+  EXPECT_EQ(read_json(smooth.out / "report.json")["deflections"][0]["interpolation"]["method"], "partition-of-unity RBF");
+}
+
 // The same floor as a CAD face: the deflection field d(t, s) fitted on the face through the
 // nodes. Prescribed: every floor node at S + d; sliding: every floor node on the deflected face,
 // and the mesh valid.
@@ -443,7 +472,7 @@ TEST(DeformSurfaces, AFloorWithoutCadIsSaidNotToBeMeasured) {
               HasSubstr("faces: not measured: the wall has no surface, only the table's interpolated displacement"));
   EXPECT_EQ(checked.report["patches"][0]["reference"],
             "the deflected wall of the case (prescribed): the table floor.csv interpolated over the wall "
-            "(partition-of-unity RBF)");
+            "(linear over triangles)");
   EXPECT_EQ(checked.report["patches"][0]["wall"]["measured"], false);
 }
 

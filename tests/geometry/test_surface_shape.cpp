@@ -587,8 +587,9 @@ TEST(ScatteredShape, MovesMaterialPointsFromTheirPreviousDeflection) {
     d1.push_back(first(x));
     d2.push_back(second(x));
   }
-  const ScatteredShape fresh{ScatteredField(points, d1)};
-  const ScatteredShape restarted{ScatteredField(points, d2), std::make_shared<const ScatteredField>(points, d1)};
+  const ScatteredShape fresh{std::make_shared<const ScatteredField>(points, d1)};
+  const ScatteredShape restarted{std::make_shared<const ScatteredField>(points, d2),
+                                 std::make_shared<const ScatteredField>(points, d1)};
   for (std::size_t k = 0; k < points.size(); k += 7) {
     const Vec3& x0 = points[k];
     EXPECT_LT(distance(fresh.at({}, 1.0, x0).point, x0 + first(x0)), 1e-13);

@@ -5,8 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "cgns_files.hpp"
+#include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/cgns.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 #include "run_command.hpp"
@@ -27,6 +31,30 @@ void expect_cgnscheck_accepts(const std::filesystem::path& file) {
   const auto result = test::run_command(std::string(HOTMESH_CGNSCHECK) + " " + test::shell_quote(file.string()));
   EXPECT_EQ(result.exit_code, 0) << result.output;
   EXPECT_THAT(result.output, ::testing::Not(::testing::HasSubstr("ERROR"))) << result.output;
+}
+
+/// cgnsdiff (cgns-convert) compares every node of the two files, with its data: the lines it
+/// prints for nodes that differ, each a path from the root.
+std::vector<std::string> nodes_that_differ(const std::filesystem::path& a, const std::filesystem::path& b) {
+  const auto result = test::run_command(std::string(HOTMESH_CGNSDIFF) + " -d " + test::shell_quote(a.string()) + " " +
+                                        test::shell_quote(b.string()));
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  std::vector<std::string> lines;
+  std::istringstream text(result.output);
+  for (std::string line; std::getline(text, line);) {
+    if (!line.empty()) lines.push_back(line);
+  }
+  return lines;
+}
+
+/// Nothing of `output` differs from `input` but the data of the coordinate arrays.
+void expect_only_coordinates_differ(const std::filesystem::path& input, const std::filesystem::path& output) {
+  const std::vector<std::string> differ = nodes_that_differ(input, output);
+  for (const std::string& line : differ) {
+    EXPECT_THAT(line, ::testing::MatchesRegex("/[^/ ]+/[^/ ]+/GridCoordinates/Coordinate[XYZ] <> "
+                                                  "/[^/ ]+/[^/ ]+/GridCoordinates/Coordinate[XYZ] : data values differ"))
+        << "cgnsdiff " << input << " " << output;
+  }
 }
 
 /// Everything of the summary but the coordinates is the same in both files.
@@ -85,6 +113,7 @@ void check_write_back(const std::filesystem::path& input, bool has_pressure) {
     }
   }
   expect_same_structure(describe_cgns(input), describe_cgns(output));
+  expect_only_coordinates_differ(input, output);
   expect_cgnscheck_accepts(output);
   const LoadedMesh again = read_mesh(output);
   EXPECT_EQ(again.mesh.cells, loaded.mesh.cells);
@@ -115,6 +144,55 @@ TEST(CgnsWriteBack, Unstructured3dMixed) {
   test::TempDir dir;
   test::write_unstructured_3d(dir / "u3.cgns");
   check_write_back(dir / "u3.cgns", false);
+}
+
+// A file as CGNS before 3.4 writes it (SU2's mesh_bend_coarse.cgns): its MIXED sections have
+// no ElementStartOffset. The library opened in modify mode would add one to every section and
+// rewrite CGNSLibraryVersion as its own 3.4 on closing; the write-back changes only coordinates.
+TEST(CgnsWriteBack, LegacyFileKeepsItsSectionsAndVersion) {
+  test::TempDir dir;
+  test::write_unstructured_3d(dir / "u3.cgns");
+  test::make_legacy(dir / "u3.cgns");
+  test::write_unstructured_2d(dir / "u2.cgns");
+  test::make_legacy(dir / "u2.cgns");
+  for (const char* name : {"u3.cgns", "u2.cgns"}) {
+    const auto input = dir / name;
+    ASSERT_THAT(nodes_that_differ(input, input), ::testing::IsEmpty());
+    const auto converted = test::run_command(std::string(HOTMESH_HDF2ADF) + " " + test::shell_quote(input.string()) +
+                                             " " + test::shell_quote(input.string() + ".adf"));
+    ASSERT_EQ(converted.exit_code, 0) << converted.output;
+    for (const std::filesystem::path& file : {input, std::filesystem::path(input.string() + ".adf")}) {
+      check_write_back(file, std::string(name) == "u2.cgns");
+      const auto output = file.parent_path() / "out" / "deformed.cgns";
+      // the check above ran cgnsdiff; here that it saw the coordinates change, and nothing else
+      const std::vector<std::string> differ = nodes_that_differ(file, output);
+      EXPECT_EQ(differ.size(), std::string(name) == "u3.cgns" ? 3u : 2u) << ::testing::PrintToString(differ);
+      const auto listed = test::run_command("cgnslist " + test::shell_quote(output.string()));
+      EXPECT_THAT(listed.output, ::testing::HasSubstr("GridCoordinates"));
+      EXPECT_THAT(listed.output, ::testing::Not(::testing::HasSubstr("ElementStartOffset")));
+    }
+  }
+}
+
+// Coordinates stored in another file through a link: writing them would change that file.
+TEST(CgnsWriteBack, CoordinatesLinkedFromAnotherFileAreNotWrittenThere) {
+  test::TempDir dir;
+  test::write_unstructured_3d(dir / "grid.cgns");
+  test::write_unstructured_3d(dir / "u3.cgns");
+  test::link_node(dir / "u3.cgns", "/Base/Block/GridCoordinates/CoordinateY", dir / "grid.cgns");
+  const std::string grid = test::read_text(dir / "grid.cgns");
+  const LoadedMesh loaded = read_mesh(dir / "u3.cgns");
+  std::vector<Vec3> points;
+  for (const Vec3& p : loaded.mesh.points) points.push_back(moved(p, 3));
+  try {
+    loaded.write_back->write(dir.path(), points, {});
+    ADD_FAILURE() << "wrote through the link";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), ::testing::StartsWith((dir / "u3.cgns").string() +
+                                                ": /Base/Block/GridCoordinates/CoordinateY is a link into another file"));
+  }
+  EXPECT_EQ(test::read_text(dir / "grid.cgns"), grid);
+  EXPECT_FALSE(std::filesystem::exists(dir / "deformed.cgns"));
 }
 
 TEST(CgnsWriteBack, UnstructuredZonesJoinedByConnectivity) {

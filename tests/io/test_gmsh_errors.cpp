@@ -6,12 +6,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <cstdint>
 #include <cstdlib>
 #include <random>
 #include <sstream>
 #include <string>
 #include <string_view>
+
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
 #include "hotmesh/core/input_error.hpp"
 #include "hotmesh/io/gmsh.hpp"
@@ -273,16 +277,71 @@ TEST(GmshReaderInput, ElementWithTheWrongNumberOfNodes) {
                                                        " element 3 of type 3 (quad4) has more than 4 node tags"));
 }
 
-TEST(GmshReaderInput, PhysicalGroupsNeedNames) {
+/// What spdlog's default logger writes while `read` runs.
+template <typename Read>
+std::string warnings_of(Read read) {
+  std::ostringstream captured;
+  const auto previous = spdlog::default_logger();
+  auto logger = std::make_shared<spdlog::logger>("capture", std::make_shared<spdlog::sinks::ostream_sink_st>(captured));
+  spdlog::set_default_logger(logger);
+  try {
+    read();
+  } catch (...) {
+    spdlog::set_default_logger(previous);
+    throw;
+  }
+  spdlog::set_default_logger(previous);
+  return captured.str();
+}
+
+TEST(GmshReaderInput, UnnamedGroupsAreNamedByTheirTag) {
   const std::string patch = replaced(replaced(kTiny22, "1 2 \"wall\"\n", ""), "$PhysicalNames\n3", "$PhysicalNames\n2");
-  EXPECT_THAT(error_of(patch), StartsWith(line_of(patch, "2 1 2 2 2") +
-                                          " physical group 2 (dimension 1) has no name in $PhysicalNames; hotmesh "
-                                          "assigns boundary roles by patch name"));
+  Mesh v2;
+  EXPECT_THAT(warnings_of([&] { v2 = parse_gmsh(patch, "tiny.msh"); }),
+              HasSubstr("tiny.msh: physical group 2 (dimension 1) has no name in $PhysicalNames: its patch is named "
+                        "'2'"));
+  ASSERT_EQ(v2.patches.size(), 2u);
+  EXPECT_EQ(v2.patches[1].name, "2");
+  EXPECT_EQ(v2.patches[1].tag, 2);
+  EXPECT_EQ(v2.patches[1].faces.size(), 1u);
+
   const std::string cells =
       replaced(replaced(kTiny41, "2 10 \"fluid\"\n", ""), "$PhysicalNames\n2", "$PhysicalNames\n1");
-  EXPECT_THAT(error_of(cells, "tiny41.msh"),
-              StartsWith(line_of(cells, "2 1 2 5 4", "tiny41.msh") +
-                         " physical group 10 (dimension 2) has no name in $PhysicalNames"));
+  Mesh v4;
+  EXPECT_THAT(warnings_of([&] { v4 = parse_gmsh(cells, "tiny41.msh"); }),
+              HasSubstr("physical group 10 (dimension 2) has no name in $PhysicalNames: its cell group is named '10'"));
+  ASSERT_EQ(v4.cell_groups.size(), 1u);
+  EXPECT_EQ(v4.cell_groups[0].name, "10");
+  EXPECT_EQ(v4.cell_groups[0].cells.size(), 2u);
+
+  // gmsh writes "" for a group named with an empty string: a role still needs a name
+  const std::string empty = replaced(kTiny22, "1 2 \"wall\"", "1 2 \"\"");
+  EXPECT_THAT(warnings_of([&] { v2 = parse_gmsh(empty, "tiny.msh"); }),
+              HasSubstr("physical group 2 (dimension 1) has an empty name in $PhysicalNames: its patch is named '2'"));
+  EXPECT_EQ(v2.patches[1].name, "2");
+}
+
+TEST(GmshReaderInput, AGroupNamedByItsTagMayNotTakeAnotherGroupsName) {
+  const std::string text =
+      replaced(replaced(kTiny22, "1 2 \"wall\"\n", ""), "1 1 \"inlet\"", "1 1 \"2\"");
+  const std::string fixed = replaced(text, "$PhysicalNames\n3", "$PhysicalNames\n2");
+  EXPECT_THAT(error_of(fixed), StartsWith(line_of(fixed, "1 1 \"2\"") +
+                                          " physical groups 1 and 2 (dimension 1) are both named '2'; patch "
+                                          "names must be unique"));
+}
+
+TEST(GmshReaderInput, NegativePhysicalTagsAreTheirGroups) {
+  // gmsh 4.1 writes -t for an entity in group t with the opposite orientation, and reads it as t
+  const std::string text = replaced(kTiny41, "1 0 0 0 0 1 0 1 1 0", "1 0 0 0 0 1 0 1 -1 0");
+  const Mesh mesh = parse_gmsh(text, "tiny41.msh");
+  ASSERT_EQ(mesh.patches.size(), 1u);
+  EXPECT_EQ(mesh.patches[0].name, "inlet");
+  EXPECT_EQ(mesh.patches[0].tag, 1);
+  EXPECT_EQ(mesh.patches[0].faces.size(), 1u);
+  const std::string zero = replaced(kTiny41, "1 0 0 0 0 1 0 1 1 0", "1 0 0 0 0 1 0 1 0 0");
+  EXPECT_THAT(error_of(zero, "tiny41.msh"),
+              StartsWith(line_of(zero, "1 0 0 0 0 1 0 1 0 0", "tiny41.msh") +
+                         " physical tag 0 is out of range (1 to 2147483647, or its negative)"));
 }
 
 TEST(GmshReaderInput, TwoPatchesWithOneName) {

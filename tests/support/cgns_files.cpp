@@ -293,15 +293,75 @@ void write_bc_without_faces(const std::filesystem::path& path) {
   out.bc(z, "lonely", CGNS_ENUMV(PointList), {6}, 1);
 }
 
+namespace {
+
+void cgio_ok(int status) {
+  if (status == CGIO_ERR_NONE) return;
+  char message[CGIO_MAX_ERROR_LENGTH + 1] = {};
+  cgio_error_message(message);
+  throw std::runtime_error(std::string("CGNS I/O: ") + message);
+}
+
+/// The children of node `id` of cgio file `cgio`.
+std::vector<double> children_of(int cgio, double id) {
+  int count = 0;
+  cgio_ok(cgio_number_children(cgio, id, &count));
+  std::vector<double> ids(static_cast<std::size_t>(count));
+  int got = 0;
+  if (count > 0) cgio_ok(cgio_children_ids(cgio, id, 1, count, &got, ids.data()));
+  ids.resize(static_cast<std::size_t>(got));
+  return ids;
+}
+
+std::string label_of(int cgio, double id) {
+  char label[CGIO_MAX_LABEL_LENGTH + 1] = {};
+  cgio_ok(cgio_get_label(cgio, id, label));
+  return label;
+}
+
+}  // namespace
+
+void make_legacy(const std::filesystem::path& path) {
+  int cgio = 0;
+  cgio_ok(cgio_open_file(path.c_str(), CGIO_MODE_MODIFY, CGIO_FILE_NONE, &cgio));
+  double root = 0, version = 0;
+  cgio_ok(cgio_get_root_id(cgio, &root));
+  cgio_ok(cgio_get_node_id(cgio, root, "CGNSLibraryVersion", &version));
+  const float v31 = 3.1f;
+  cgio_ok(cgio_write_all_data(cgio, version, &v31));
+  for (double base : children_of(cgio, root)) {
+    if (label_of(cgio, base) != "CGNSBase_t") continue;
+    for (double zone : children_of(cgio, base)) {
+      if (label_of(cgio, zone) != "Zone_t") continue;
+      for (double section : children_of(cgio, zone)) {
+        if (label_of(cgio, section) != "Elements_t") continue;
+        double offsets = 0;
+        if (cgio_get_node_id(cgio, section, "ElementStartOffset", &offsets) == CGIO_ERR_NONE) {
+          cgio_ok(cgio_delete_node(cgio, section, offsets));
+        }
+      }
+    }
+  }
+  cgio_ok(cgio_close_file(cgio));
+}
+
+void link_node(const std::filesystem::path& path, const std::string& node, const std::filesystem::path& target) {
+  int cgio = 0;
+  cgio_ok(cgio_open_file(path.c_str(), CGIO_MODE_MODIFY, CGIO_FILE_NONE, &cgio));
+  double root = 0, id = 0, parent = 0, link = 0;
+  cgio_ok(cgio_get_root_id(cgio, &root));
+  cgio_ok(cgio_get_node_id(cgio, root, node.c_str(), &id));
+  const std::string parent_path = node.substr(0, node.rfind('/'));
+  const std::string name = node.substr(node.rfind('/') + 1);
+  cgio_ok(cgio_get_node_id(cgio, root, parent_path.c_str(), &parent));
+  cgio_ok(cgio_delete_node(cgio, parent, id));
+  cgio_ok(cgio_create_link(cgio, parent, name.c_str(), target.c_str(), node.c_str(), &link));
+  cgio_ok(cgio_close_file(cgio));
+}
+
 void overwrite_integers(const std::filesystem::path& path, const std::string& node, const std::vector<int>& values,
                         std::vector<long long> dimensions) {
   if (dimensions.empty()) dimensions.push_back(static_cast<long long>(values.size()));
-  const auto cgio_ok = [](int status) {
-    if (status == CGIO_ERR_NONE) return;
-    char message[CGIO_MAX_ERROR_LENGTH + 1] = {};
-    cgio_error_message(message);
-    throw std::runtime_error(std::string("CGNS I/O: ") + message);
-  };
   int cgio = 0;
   cgio_ok(cgio_open_file(path.c_str(), CGIO_MODE_MODIFY, CGIO_FILE_NONE, &cgio));
   double root = 0, id = 0;

@@ -56,6 +56,15 @@ void write_structured_periodic_2d(const std::filesystem::path& path);
 void write_with_quadratic_triangles(const std::filesystem::path& path);  ///< 2D, section "Tris" of 2 TRI_6
 void write_bc_without_faces(const std::filesystem::path& path); ///< 2D, BC "lonely" of 1 node
 
+/// Rewrites the file as the CGNS library before 3.4 wrote it (CGNS 3.1 and older, SU2's
+/// mesh_bend_coarse.cgns and the files of many meshers): CGNSLibraryVersion 3.1, and no
+/// ElementStartOffset in any section (a MIXED section's connectivity is the same without it).
+void make_legacy(const std::filesystem::path& path);
+
+/// Replaces node `node` of the file (a path from its root) by a link to the node of the same
+/// path in file `target`, as CGNS files that share a grid do.
+void link_node(const std::filesystem::path& path, const std::string& node, const std::filesystem::path& target);
+
 /// Replaces the data of node `node` of a CGNS file (a path from its root,
 /// "/Base/Fluid/Cells/ElementRange") with `values`, stored as I4 integers of `dimensions`
 /// (by default one, of values.size() entries): a file's arrays edited in place, as someone

@@ -1,16 +1,16 @@
-// hotmesh geometry: a prescribed wall without CAD faces moved by a scattered-data field
+// hotmesh geometry: a prescribed wall without CAD faces moved by its table's field
 // (surface_shape.hpp, ScatteredShape): a point is its own closest point, and a stage moves the
 // material point at `reference`.
 #include "hotmesh/geometry/surface_shape.hpp"
 
 namespace hotmesh::geometry {
 
-ScatteredShape::ScatteredShape(ScatteredField after, std::shared_ptr<const ScatteredField> before)
+ScatteredShape::ScatteredShape(std::shared_ptr<const WallField> after, std::shared_ptr<const WallField> before)
     : after_(std::move(after)), before_(std::move(before)) {}
 
 ShapePoint ScatteredShape::project(const Vec3& p, double /*lambda*/, const ShapeParameter& /*hint*/,
                                    const ParameterRange& /*range*/) const {
-  return {p, {}, {}, after_.outside(p)};
+  return {p, {}, {}, after_->outside(p)};
 }
 
 // x = x0 + before(x0) by fixed-point iteration x0 <- x - before(x0): a contraction wherever the
@@ -32,7 +32,7 @@ Vec3 ScatteredShape::material_point(const Vec3& x) const {
 ShapePoint ScatteredShape::at(const ShapeParameter& where, double lambda, const Vec3& reference) const {
   const Vec3 x0 = material_point(reference);
   const Vec3 start = before_ ? (*before_)(x0) : Vec3{};
-  return {x0 + start + lambda * (after_(x0) - start), {}, where, 0.0};
+  return {x0 + start + lambda * ((*after_)(x0) - start), {}, where, 0.0};
 }
 
 }  // namespace hotmesh::geometry

@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "hotmesh/core/input_error.hpp"
+#include "reconstruct/scattered_samples.hpp"
 
 namespace hotmesh::geometry {
 
@@ -82,14 +83,7 @@ std::string format(const Vec3& v) {
   return out.str();
 }
 
-/// Principal axes of a set of points: centroid, directions, RMS extents (largest first) and
-/// the number of extents above both `flatness` times the largest and `noise`.
-struct Hull {
-  Vec3 centroid;
-  std::array<Vec3, 3> axes;
-  std::array<double, 3> extent{};
-  int dimension = 0;
-};
+}  // namespace
 
 Hull affine_hull(const std::vector<Vec3>& points, std::span<const Index> members, double flatness, double noise) {
   Hull hull;
@@ -112,12 +106,13 @@ Hull affine_hull(const std::vector<Vec3>& points, std::span<const Index> members
   return hull;
 }
 
-/// coordinate_precision times the largest |coordinate|: what rounding may have moved a point by.
 double rounding(const std::vector<Vec3>& points, const ScatteredFieldOptions& options) {
   double largest = 0.0;
   for (const Vec3& p : points) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
   return options.coordinate_precision * largest;
 }
+
+namespace {
 
 void check_options(const ScatteredFieldOptions& o) {
   if (o.min_patch_points < 1 || o.max_patch_points < o.min_patch_points) {
@@ -449,9 +444,8 @@ class ScatteredField::Impl::Builder {
   std::vector<Ancestor> ancestors_;
 };
 
-ScatteredField::ScatteredField(std::vector<Vec3> points, std::vector<Vec3> values,
-                               const ScatteredFieldOptions& options) {
-  check_options(options);
+DistinctSamples distinct_finite_samples(std::vector<Vec3> points, std::vector<Vec3> values,
+                                        const ScatteredFieldOptions& options) {
   if (points.size() != values.size()) {
     throw std::invalid_argument("scattered field: " + std::to_string(points.size()) + " points but " +
                                 std::to_string(values.size()) + " values");
@@ -462,10 +456,8 @@ ScatteredField::ScatteredField(std::vector<Vec3> points, std::vector<Vec3> value
                        "that is not a finite number: point " + format(points[i]) + ", value " + format(values[i]));
     }
   }
-  report_.samples = points.size();
+  const std::size_t samples = points.size();
   const std::vector<Index> kept = distinct_samples(points, values, options);
-  report_.points = kept.size();
-  report_.merged_duplicates = points.size() - kept.size();
   if (kept.size() < points.size()) {
     for (std::size_t j = 0; j < kept.size(); ++j) {
       points[j] = points[kept[j]];
@@ -474,6 +466,18 @@ ScatteredField::ScatteredField(std::vector<Vec3> points, std::vector<Vec3> value
     points.resize(kept.size());
     values.resize(kept.size());
   }
+  return {std::move(points), std::move(values), samples - kept.size()};
+}
+
+ScatteredField::ScatteredField(std::vector<Vec3> sample_points, std::vector<Vec3> sample_values,
+                               const ScatteredFieldOptions& options) {
+  check_options(options);
+  report_.samples = sample_points.size();
+  DistinctSamples distinct = distinct_finite_samples(std::move(sample_points), std::move(sample_values), options);
+  std::vector<Vec3>& points = distinct.points;
+  const std::vector<Vec3>& values = distinct.values;
+  report_.points = points.size();
+  report_.merged_duplicates = distinct.merged;
   std::vector<Index> all(points.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Index>(i);
   if (points.size() < 3) {

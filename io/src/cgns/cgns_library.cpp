@@ -23,11 +23,14 @@ std::recursive_mutex library_mutex;
 /// Set in the child of check_in_child, whose only thread has the library to itself: the
 /// mutex it inherits is held by a thread of the parent (that no longer exists there).
 bool in_checking_child = false;
+}  // namespace
 
 std::unique_lock<std::recursive_mutex> library_lock() {
   if (in_checking_child) return {};
   return std::unique_lock<std::recursive_mutex>(library_mutex);
 }
+
+namespace {
 /// A node's data type as cgio_get_data_type writes it: two characters and a NUL from HDF5,
 /// but from a damaged ADF file the whole 32-character field, unterminated (fuzz_cgns).
 using DataType = std::array<char, 64>;

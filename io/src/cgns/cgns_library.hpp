@@ -27,6 +27,10 @@
 
 namespace hotmesh::io::cgns {
 
+/// The process-wide lock on the library's global state (File holds it while open); the
+/// node-level calls (cgns_io.h) share that state and take it too.
+std::unique_lock<std::recursive_mutex> library_lock();
+
 /// An open CGNS file (HDF5 or ADF, as the library finds it); closed by the destructor.
 class File {
  public:

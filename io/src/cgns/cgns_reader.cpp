@@ -20,6 +20,7 @@ void read_base(const File& file, RawMesh& raw) {
   if (bases > 1) spdlog::warn("{}: {} bases; hotmesh reads the first only", file.name(), bases);
   Label name{};
   file.check(cg_base_read(file.fn(), raw.base, name, &raw.dimension, &raw.physical_dimension), "reading base 1");
+  raw.base_name = name;
   if (raw.dimension != 2 && raw.dimension != 3) {
     throw InputError::in(file.name(), fmt::format("base '{}' has cell dimension {}: hotmesh moves 2D (triangle and "
                                                   "quad) and 3D (tetrahedron, pyramid, prism and hex) meshes",

@@ -49,6 +49,7 @@ struct RawBc {
 struct RawMesh {
   std::string file;
   int base = 1, dimension = 3, physical_dimension = 3;
+  std::string base_name;  ///< of base `base`
   std::vector<geometry::Vec3> points;  ///< every zone's nodes, zone after zone
   mesh::ElementList cells;             ///< in raw node ids
   std::vector<ZoneRecord> zones;

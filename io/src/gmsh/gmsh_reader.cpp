@@ -2,13 +2,16 @@
 // hands $Entities / $Nodes / $Elements to the reader of the file's version (2.2 or 4.1),
 // skips sections it does not need, and assembles the mesh (MeshBuilder): cells are the
 // elements of the highest dimension d, physical groups of dimension d become cell groups and
-// those of dimension d-1 patches, named by $PhysicalNames.
+// those of dimension d-1 patches, named by $PhysicalNames (an unnamed group by its tag).
 #include "gmsh/gmsh_reader.hpp"
+
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "gmsh/gmsh_format.hpp"
 #include "hotmesh/core/input_error.hpp"
@@ -153,40 +156,36 @@ void MeshBuilder::set_last_membership(int dimension, std::uint32_t set, std::siz
 
 MeshBuilder::Groups MeshBuilder::groups_of(int dimension) const {
   const Elements& e = elements_[static_cast<std::size_t>(dimension)];
-  std::map<int, std::size_t> first_use;  // tag -> where first used (kUnused: named only)
+  std::set<int> tags;  // used by elements of this dimension, or named
   for (std::size_t set = 0; set < e.first_use.size(); ++set) {
-    if (e.first_use[set] == kUnused) continue;
-    for (int tag : sets_[set]) {
-      const auto [it, added] = first_use.try_emplace(tag, e.first_use[set]);
-      if (!added) it->second = std::min(it->second, e.first_use[set]);
-    }
+    if (e.first_use[set] != kUnused) tags.insert(sets_[set].begin(), sets_[set].end());
   }
   for (auto it = names_.lower_bound({dimension, std::numeric_limits<int>::min()});
        it != names_.end() && it->first.first == dimension; ++it) {
-    first_use.try_emplace(it->first.second, kUnused);
+    tags.insert(it->first.second);
   }
   Groups groups;
-  std::map<int, std::size_t> index;
-  for (const auto& [tag, at] : first_use) {
-    index[tag] = groups.tags.size();
-    groups.tags.push_back(tag);
-    groups.first_use.push_back(at);
-  }
+  groups.tags.assign(tags.begin(), tags.end());
   groups.of_set.resize(sets_.size());
   for (std::size_t set = 0; set < e.first_use.size(); ++set) {
     if (e.first_use[set] == kUnused) continue;
-    for (int tag : sets_[set]) groups.of_set[set].push_back(index.at(tag));
+    for (int tag : sets_[set]) {
+      const auto at = std::lower_bound(groups.tags.begin(), groups.tags.end(), tag);
+      groups.of_set[set].push_back(static_cast<std::size_t>(at - groups.tags.begin()));
+    }
   }
   return groups;
 }
 
-const std::string& MeshBuilder::name_of(int dimension, int tag, std::size_t first_use, const char* why) const {
+std::string MeshBuilder::name_of(int dimension, int tag, const char* kind) const {
   const auto it = names_.find({dimension, tag});
-  if (it == names_.end()) {
-    scanner_.fail_at(first_use, "physical group " + std::to_string(tag) + " (dimension " + std::to_string(dimension) +
-                                    ") has no name in $PhysicalNames; " + why);
-  }
-  return it->second.name;
+  if (it != names_.end() && !it->second.name.empty()) return it->second.name;
+  // Gmsh leaves a group unnamed unless told (`Physical Volume(101) = {...}`), or names it ""; its
+  // tag is how its own tools refer to it, and how the case file may.
+  std::string name = std::to_string(tag);
+  spdlog::warn("{}: physical group {} (dimension {}) has {} in $PhysicalNames: its {} is named '{}'",
+               scanner_.source(), tag, dimension, it == names_.end() ? "no name" : "an empty name", kind, name);
+  return name;
 }
 
 mesh::Mesh MeshBuilder::finish() {
@@ -205,8 +204,7 @@ mesh::Mesh MeshBuilder::finish() {
   for (std::size_t g = 0; g < cell_groups.tags.size(); ++g) {
     mesh::CellGroup& group = mesh_.cell_groups[g];
     group.tag = cell_groups.tags[g];
-    group.name = name_of(d, group.tag, cell_groups.first_use[g],
-                         "hotmesh keeps cell groups by name (give it one, e.g. Physical Volume(\"fluid\", tag))");
+    group.name = name_of(d, group.tag, "cell group");
   }
   for (std::size_t c = 0; c < cells.sets.size(); ++c) {
     for (std::size_t g : cell_groups.of_set[cells.sets[c]]) {
@@ -220,7 +218,7 @@ mesh::Mesh MeshBuilder::finish() {
   for (std::size_t p = 0; p < patch_groups.tags.size(); ++p) {
     mesh::Patch& patch = mesh_.patches[p];
     patch.tag = patch_groups.tags[p];
-    patch.name = name_of(d - 1, patch.tag, patch_groups.first_use[p], "hotmesh assigns boundary roles by patch name");
+    patch.name = name_of(d - 1, patch.tag, "patch");
   }
   for (std::size_t f = 0; f < faces.sets.size(); ++f) {
     for (std::size_t p : patch_groups.of_set[faces.sets[f]]) {
@@ -236,7 +234,9 @@ mesh::Mesh MeshBuilder::finish() {
       const std::string message = "physical groups " + std::to_string(it->second) + " and " +
                                   std::to_string(patch.tag) + " (dimension " + std::to_string(d - 1) +
                                   ") are both named '" + patch.name + "'; patch names must be unique";
-      scanner_.fail_at(names_.at({d - 1, patch.tag}).at, message);
+      // One of the two has its name in $PhysicalNames (a tag names the other, or both are named).
+      const auto named = names_.find({d - 1, patch.tag});
+      scanner_.fail_at(named != names_.end() ? named->second.at : names_.at({d - 1, it->second}).at, message);
     }
   }
 

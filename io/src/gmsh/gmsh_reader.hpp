@@ -93,18 +93,19 @@ class MeshBuilder {
     std::string name;
     std::size_t at = 0;
   };
-  /// Physical tags used by elements of `dimension` (plus named ones), with where each
-  /// was first used, and for each set the indices (into that list) of its tags.
+  /// Physical tags used by elements of `dimension` (plus named ones), ascending, and for
+  /// each set the indices (into that list) of its tags.
   struct Groups {
     std::vector<int> tags;
-    std::vector<std::size_t> first_use;
     std::vector<std::vector<std::size_t>> of_set;
   };
 
   [[noreturn]] void undefined_node(std::int64_t tag, std::size_t at) const;
   void note_use(Elements& e, std::uint32_t set, std::size_t at);
   Groups groups_of(int dimension) const;
-  const std::string& name_of(int dimension, int tag, std::size_t first_use, const char* what) const;
+  /// The group's name in $PhysicalNames, or (none, or empty) its tag, with a warning; `kind`
+  /// ("patch", "cell group") names what the group becomes.
+  std::string name_of(int dimension, int tag, const char* kind) const;
 
   Scanner& scanner_;
   bool nodes_read_ = false;

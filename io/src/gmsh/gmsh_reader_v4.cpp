@@ -42,6 +42,17 @@ int binary_int(Scanner& s, const char* what, int low, int high) {
   return value;
 }
 
+/// A physical tag of an entity. Gmsh writes -t for an entity it put in group t with the
+/// opposite orientation (`Physical Surface(t) = CombinedBoundary{...}`) and reads the group as t:
+/// so does hotmesh. Zero is no group's tag.
+int physical_group(Scanner& s, std::size_t at, std::int64_t value) {
+  if (value == 0 || value < -kMaxInt || value > kMaxInt) {
+    s.fail_at(at, "physical tag " + std::to_string(value) + " is out of range (1 to " + std::to_string(kMaxInt) +
+                      ", or its negative)");
+  }
+  return static_cast<int>(value < 0 ? -value : value);
+}
+
 /// One entity of $Entities: its tag and physical tags (bounding box and boundary skipped).
 void read_entity(Scanner& s, MeshBuilder& b, EntityGroups& entities, int dimension, std::vector<int>& physical) {
   physical.clear();
@@ -53,7 +64,10 @@ void read_entity(Scanner& s, MeshBuilder& b, EntityGroups& entities, int dimensi
     double box[6];
     s.binary_values(box, dimension == 0 ? 3 : 6, "entity bounding box");
     const std::size_t n = binary_count(s, "number of physical tags", 4);
-    for (std::size_t k = 0; k < n; ++k) physical.push_back(binary_int(s, "physical tag", 1, kMaxInt));
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t tag_at = s.position();
+      physical.push_back(physical_group(s, tag_at, s.binary_value<std::int32_t>("physical tag")));
+    }
     if (dimension > 0) {
       const std::size_t bounding = binary_count(s, "number of bounding entities", 4);
       s.need(4 * bounding, "bounding entity tags");
@@ -65,7 +79,10 @@ void read_entity(Scanner& s, MeshBuilder& b, EntityGroups& entities, int dimensi
     tag = s.small_integer("entity tag", kMinInt, kMaxInt);
     for (int k = 0; k < (dimension == 0 ? 3 : 6); ++k) s.real("entity coordinate");
     const std::size_t n = s.count("number of physical tags", 2);
-    for (std::size_t k = 0; k < n; ++k) physical.push_back(s.small_integer("physical tag", 1, kMaxInt));
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t tag_at = s.position();
+      physical.push_back(physical_group(s, tag_at, s.integer("physical tag")));
+    }
     if (dimension > 0) {
       const std::size_t bounding = s.count("number of bounding entities", 2);
       for (std::size_t k = 0; k < bounding; ++k) s.integer("bounding entity tag");

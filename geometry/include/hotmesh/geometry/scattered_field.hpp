@@ -1,6 +1,7 @@
 // hotmesh geometry: a vector field known at scattered points (the FEM nodes of a wall, in
 // cartesian x, y, z) interpolated anywhere near them. A prescribed 3D patch without CAD takes
-// its nodes' deflections from this (issue 23, item 0).
+// its nodes' deflections from this at degree 2 and more (issue 23, item 0); at degree 1 from
+// the linear interpolation of linear_field.hpp, which does not overshoot at kinks.
 //
 // Method: partition-of-unity interpolation with local polyharmonic radial basis functions
 // (Wendland, "Fast evaluation of radial basis functions: methods based on partition of unity",
@@ -36,6 +37,7 @@
 #include <vector>
 
 #include "hotmesh/core/vec3.hpp"
+#include "hotmesh/geometry/wall_field.hpp"
 
 namespace hotmesh::geometry {
 
@@ -79,7 +81,7 @@ struct ScatteredFieldReport {
 };
 
 /// A vector field known at scattered points, interpolated anywhere near them (see above).
-class ScatteredField {
+class ScatteredField final : public WallField {
  public:
   /// Throws hotmesh::InputError for a non-finite coordinate or value, duplicates with
   /// different values, or fewer than 3 distinct points not on one line (a field over a surface
@@ -87,10 +89,10 @@ class ScatteredField {
   ScatteredField(std::vector<Vec3> points, std::vector<Vec3> values, const ScatteredFieldOptions& options = {});
 
   /// The interpolated value at x. Const and thread-safe (no state is changed).
-  Vec3 operator()(const Vec3& x) const;
+  Vec3 operator()(const Vec3& x) const override;
 
   /// How far x lies outside every patch's ball, the region the points cover (0 within).
-  double outside(const Vec3& x) const;
+  double outside(const Vec3& x) const override;
 
   const ScatteredFieldReport& report() const { return report_; }
 

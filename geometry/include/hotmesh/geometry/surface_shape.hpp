@@ -22,9 +22,11 @@
 // from one deflection field to the next: S + d0 + lambda (d1 - d0).
 //
 // ScatteredShape is the motion of a prescribed wall without CAD faces: the table's deflections
-// interpolated over the wall by partition-of-unity radial basis functions (scattered_field.hpp:
-// exact at the FEM nodes, linear fields reproduced exactly, smooth). It is a field rather than a
-// surface: a point is its own closest point, and at() moves the material point at `reference`.
+// interpolated over the wall (wall_field.hpp): linearly over a triangulation of the FEM nodes
+// (linear_field.hpp, degree 1), or by partition-of-unity radial basis functions
+// (scattered_field.hpp, higher degrees: exact at the FEM nodes, linear fields reproduced
+// exactly, smooth). It is a field rather than a surface: a point is its own closest point, and
+// at() moves the material point at `reference`.
 #pragma once
 
 #include <array>
@@ -46,6 +48,7 @@
 #include "hotmesh/geometry/surface_fit.hpp"
 #include "hotmesh/geometry/surface_projector.hpp"
 #include "hotmesh/geometry/trim_region.hpp"
+#include "hotmesh/geometry/wall_field.hpp"
 
 namespace hotmesh::geometry {
 
@@ -234,7 +237,7 @@ class ScatteredShape final : public BoundaryShape {
  public:
   /// Stage lambda moves the material point x0 to x0 + before(x0) + lambda (after(x0) -
   /// before(x0)); without `before`, to x0 + lambda after(x0).
-  explicit ScatteredShape(ScatteredField after, std::shared_ptr<const ScatteredField> before = nullptr);
+  explicit ScatteredShape(std::shared_ptr<const WallField> after, std::shared_ptr<const WallField> before = nullptr);
 
   /// p itself; `distance` is how far p lies outside the region the table covers (0 within).
   ShapePoint project(const Vec3& p, double lambda, const ShapeParameter& hint = kNoHint,
@@ -242,14 +245,14 @@ class ScatteredShape final : public BoundaryShape {
   /// The stage-lambda position of the material point that stage 0 has at `reference`.
   ShapePoint at(const ShapeParameter& where, double lambda, const Vec3& reference) const override;
 
-  const ScatteredField& field() const { return after_; }
+  const WallField& field() const { return *after_; }
 
  private:
   /// The cold position x0 with x0 + before(x0) = x (x itself without `before`).
   Vec3 material_point(const Vec3& x) const;
 
-  ScatteredField after_;
-  std::shared_ptr<const ScatteredField> before_;
+  std::shared_ptr<const WallField> after_;
+  std::shared_ptr<const WallField> before_;
 };
 
 }  // namespace hotmesh::geometry

@@ -29,6 +29,7 @@
 #include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/deform/mesh_motion.hpp"
 #include "hotmesh/geometry/cad_model.hpp"
+#include "hotmesh/geometry/linear_field.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/geometry/scattered_field.hpp"
 #include "hotmesh/geometry/surface_shape.hpp"
@@ -41,7 +42,7 @@ namespace hotmesh::setup {
 enum class WallKind {
   curve,      ///< a curve: in the x-y plane (2D) or the meridional curve of a surface of revolution
   faces,      ///< CAD faces with a deflection field each
-  scattered,  ///< the table interpolated over the wall (prescribed, no CAD faces)
+  scattered,  ///< the table interpolated over the wall (prescribed, no CAD faces): linearly (degree 1) or smoothly
 };
 /// The names report.json uses.
 inline constexpr EnumNames<WallKind, 3> kWallKindNames{
@@ -55,7 +56,8 @@ struct ShapeReport {
   /// apply to them.
   geometry::ReconstructionReport reconstruction;
   std::optional<geometry::SurfaceReconstructionReport> faces;  ///< kind faces
-  std::optional<geometry::ScatteredFieldReport> scattered;     ///< kind scattered
+  std::optional<geometry::ScatteredFieldReport> scattered;     ///< kind scattered, degree above 1
+  std::optional<geometry::LinearFieldReport> linear;           ///< kind scattered, degree 1
   /// A curve's deflected shape at the end of the run, densely sampled in its plane ((x, y) in
   /// 2D, (r, z) about the axis in 3D), for pictures; empty for other kinds.
   std::vector<geometry::Vec2> deflected_outline;
