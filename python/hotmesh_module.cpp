@@ -118,7 +118,9 @@ void bind_case(py::module_& m) {
            "The FEM deflection of a patch's wall: nodes (n, 2 or 3) and their displacements, as a table's columns.")
       .def("set_calculix_deflection", &hotmesh::Case::set_calculix_deflection, py::arg("patch"), py::kw_only(),
            py::arg("frd"), py::arg("inp"), py::arg("set"), "The deflection of a patch from CalculiX results.")
-      .def_property("threads", nullptr, &hotmesh::Case::set_threads, "OpenMP threads of the motion; 0: hotmesh chooses")
+      .def_property("threads", nullptr, &hotmesh::Case::set_threads,
+                    "OpenMP threads of the motion, taken by the first deform; 0: the case's solver.threads, "
+                    "else hotmesh chooses")
       .def(
           "deform", [](hotmesh::Case& c, const hotmesh::Result* previous, const py::object& progress) {
             return deform(c, previous, progress);

@@ -122,8 +122,9 @@ class HOTMESH_PUBLIC Case {
   /// Reads and checks a case file (docs/case-file.md) and the tables it names.
   explicit Case(const std::filesystem::path& case_file);
   /// A case built in code: the mesh file and the role of each of its patches ("fixed",
-  /// "sliding", "slip", ...; a prescribed patch needs set_deflection before deform()), moved in
-  /// `increments` increments. Its outputs name it <mesh folder>/<mesh name>.yaml.
+  /// "sliding", "slip", "passive", ...), moved in `increments` increments; read as the case
+  /// file they make, so checked the same way (a `prescribed` patch, whose table is part of its
+  /// role, needs a case file). Messages and reports name it <mesh folder>/<mesh name>.yaml.
   static Case from_mesh(const std::filesystem::path& mesh, const std::vector<std::pair<std::string, std::string>>& roles,
                         int increments = 16);
   Case(Case&&) noexcept;
@@ -150,7 +151,8 @@ class HOTMESH_PUBLIC Case {
   void set_calculix_deflection(const std::string& patch, const std::filesystem::path& frd,
                                const std::filesystem::path& inp, const std::string& node_set);
 
-  /// OpenMP threads of the motion; 0 (the default): hotmesh chooses from the mesh's size.
+  /// OpenMP threads of the motion; 0 (the default): the case's solver.threads, else
+  /// OMP_NUM_THREADS, else as many as the mesh's size pays for. Taken by the first deform().
   void set_threads(int threads);
   /// Called from the motion's thread after each Newton step and increment.
   void set_progress(ProgressCallback progress);
