@@ -24,6 +24,8 @@ packages=(
   libcairo2-dev
   # engine CFD meshes: CGNS (HDF5 and ADF files) and gzipped OpenFOAM polyMesh files
   libcgns-dev zlib1g-dev
+  # the Python module (python/: pybind11, for Debian's Python 3) and its pytest tests
+  pybind11-dev python3-dev python3-pytest
   # tests: GoogleTest, plus real external tools that check our files
   # (gmsh writes every .msh flavour we read; VTK's XML reader is the one ParaView uses)
   libgtest-dev libgmock-dev gmsh python3 python3-vtk9 python3-numpy

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # hotmesh: set up on a fresh Debian machine and run the default case.
 #   1. installs missing Debian packages (scripts/install-deps.sh; as root or through sudo),
-#   2. configures and builds Release in build/,
+#   2. configures and builds Release in build/ (the command, libhotmesh and the Python module),
 #   3. runs hotmesh on the bundled 2D ramp sample (the paper's section 5) and prints where the
 #      outputs are.
 set -euo pipefail
@@ -19,3 +19,4 @@ echo
 echo "hotmesh is built: $(pwd)/$hotmesh"
 echo "outputs of the default case (the paper's 2D ramp) in $(pwd)/$out:"
 echo "  deformed.msh, deformed.vtu (open in ParaView), deformed.png and close-ups, report.json"
+echo "the Python module: PYTHONPATH=$(pwd)/build/python python3 -c 'import hotmesh' (docs/library.md)"

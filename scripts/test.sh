@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # hotmesh: build and run the whole test suite on a fresh Debian machine.
 #   1. installs missing Debian packages (scripts/install-deps.sh),
-#   2. builds Release with warnings as errors in build/ and runs every test with ctest,
+#   2. builds Release with warnings as errors in build/ and runs every test with ctest (the
+#      Python module's pytest tests and the installed package's consumer project among them),
 #   3. builds with clang, AddressSanitizer + UndefinedBehaviorSanitizer, in build-sanitizers/:
 #      the tests, hotmesh and the fuzz targets in one build, runs the tests again (but those
 #      of tests/sanitizer_exclusions.txt, whose larger cases the Release build has run) and
@@ -37,10 +38,12 @@ if ((sanitizers || fuzz)); then
   # One build for both: the libraries the fuzz targets read through carry libFuzzer's coverage
   # hooks too (CMakeLists.txt), the rest only the sanitizers. -O1 and line tables only (-g1:
   # file and line in every report); the tests' and the command line's own files at -O0
-  # (tests/CMakeLists.txt, app/CMakeLists.txt). No benchmarks: they are timed in Release only.
+  # (tests/CMakeLists.txt, app/CMakeLists.txt). No benchmarks: they are timed in Release only;
+  # no Python module: an interpreter cannot load an extension built with AddressSanitizer.
   cmake -S . -B build-sanitizers -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
         -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=ON \
-        -DHOTMESH_WERROR=ON -DHOTMESH_FUZZ=ON -DHOTMESH_TESTS=$((sanitizers ? 1 : 0)) -DHOTMESH_BENCH=OFF
+        -DHOTMESH_WERROR=ON -DHOTMESH_FUZZ=ON -DHOTMESH_TESTS=$((sanitizers ? 1 : 0)) -DHOTMESH_BENCH=OFF \
+        -DHOTMESH_PYTHON=OFF
   cmake --build build-sanitizers -j "$jobs"
 fi
 if ((sanitizers)); then

@@ -7,9 +7,12 @@
 
 #include "reports/cgns_summary.hpp"
 #include "cli/commands.hpp"
-#include "reports/mesh_summary.hpp"
+#include "hotmesh/api/mesh_summary.hpp"
 
 namespace hotmesh::app {
+
+// The reports and checks of the library's run layer (api/).
+using namespace hotmesh::api;  // NOLINT(google-build-using-namespace)
 
 Command add_info_command(CLI::App& parent) {
   struct Options {

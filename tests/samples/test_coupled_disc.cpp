@@ -2,7 +2,8 @@
 // about 5 000 cells, runs the real ccx and hotmesh for two coupling iterations; both meshes are
 // valid, every rotor wall lies on its wall deflected by ccx's results (hotmesh check from the
 // case file), the second iteration restarts from the first and ends where a run straight from
-// the undeformed sector ends; a surface put on the wrong CAD faces is refused with exit code 2.
+// the undeformed sector ends; coupled_loop.py, the loop in Python, moves the sector as it does;
+// a surface put on the wrong CAD faces is refused with exit code 2.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -80,6 +81,33 @@ TEST(CoupledDiscRun, TwoIterationsFromCcxAreValidOnTheDeflectedRotorAndTheRestar
   EXPECT_GT(moved, 1e-5);  // the hotter disc moved the mesh on
   EXPECT_LT(apart, 0.05 * moved);
 }
+
+#ifdef HOTMESH_PYTHON_MODULE_DIR
+// coupled_loop.py, the same loop in Python with the mesh moved in memory (the second iteration
+// from the first one's result, no restart file), writes the meshes run_loop.sh writes.
+TEST(CoupledDiscRun, ThePythonLoopMovesTheSectorInMemoryAsTheCommandsLoopDoes) {
+  if (!test::have_ccx()) GTEST_SKIP() << "ccx (Debian package calculix-ccx) is not installed; scripts/install-deps.sh installs it";
+  const CoupledDisc sample;
+  const auto loop = sample.run_script("run_loop.sh");
+  ASSERT_EQ(loop.exit_code, 0) << loop.output;
+  for (const std::string i : {"1", "2"}) fs::rename(sample.folder / ("case_" + i + "-out"), sample.folder / ("command_" + i + "-out"));
+  fs::copy_file(kSample / "coupled_loop.py", sample.folder / "coupled_loop.py");
+  const auto python = test::run_command("PYTHONPATH=" + shell_quote(HOTMESH_PYTHON_MODULE_DIR) + " " +
+                                        shell_quote(HOTMESH_PYTHON_EXECUTABLE) + " " +
+                                        shell_quote((sample.folder / "coupled_loop.py").string()) + " " +
+                                        shell_quote(sample.folder.string()) + " 2>&1");
+  ASSERT_EQ(python.exit_code, 0) << python.output;
+  EXPECT_THAT(python.output, ::testing::ContainsRegex("iteration 2: [0-9]+ nodes, min scaled Jacobian 0\\.[5-9][0-9]+; "
+                                                      "10 of 10 walls on their deflected walls"));
+  for (const std::string i : {"1", "2"}) {
+    const std::string in_memory = test::read_text(sample.folder / ("case_" + i + "-out") / "deformed.msh");
+    EXPECT_FALSE(in_memory.empty());
+    EXPECT_TRUE(in_memory == test::read_text(sample.folder / ("command_" + i + "-out") / "deformed.msh"))
+        << "iteration " << i << ": the Python loop's deformed.msh differs from run_loop.sh's";
+  }
+  EXPECT_FALSE(sample.report("case_2").contains("restarted_from"));  // in memory, from no file
+}
+#endif
 
 TEST(CoupledDiscRun, ASurfaceOnTheWrongCadFacesIsRefusedNamingItsDeckLine) {
   if (!test::have_ccx()) GTEST_SKIP() << "ccx (Debian package calculix-ccx) is not installed; scripts/install-deps.sh installs it";

@@ -1,6 +1,6 @@
-// hotmesh app: the two-sided distance between mesh patches and their walls, for hotmesh check
+// hotmesh api: the two-sided distance between mesh patches and their walls, for hotmesh check
 // and report.json (see wall_deviation_report.hpp).
-#include "reports/wall_deviation_report.hpp"
+#include "hotmesh/api/wall_deviation_report.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -10,7 +10,7 @@
 #include "hotmesh/geometry/boundary_shapes.hpp"
 #include "hotmesh/geometry/surface_shape.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 namespace {
 
@@ -171,4 +171,4 @@ json wall_deviations_json(const mesh::Mesh& mesh, std::span<const geometry::Vec3
   return list;
 }
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

@@ -1,4 +1,4 @@
-// hotmesh app: the result of `hotmesh check` (distance of each mapped patch's nodes to its
+// hotmesh api: the result of `hotmesh check` (distance of each mapped patch's nodes to its
 // reference shape, and the two-sided distance of its faces) and its three forms: text for people, JSON for scripts, JUnit XML for CI
 // systems (one test case per patch; a patch above the tolerance fails naming its worst node).
 // A check that cannot be made (bad input) still gives CI a JUnit report: one test case in
@@ -13,9 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "hotmesh/core/vec3.hpp"
-#include "reports/wall_deviation_report.hpp"
+#include "hotmesh/api/wall_deviation_report.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 /// Distances of some nodes to a reference shape.
 struct DistanceCheck {
@@ -63,4 +63,4 @@ std::string check_junit(const CheckResult& result);
 /// (or the case file) the check was about.
 std::string check_junit_error(const std::string& subject, const std::string& type, const std::string& message);
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

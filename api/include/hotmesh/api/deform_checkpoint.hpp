@@ -1,4 +1,4 @@
-// hotmesh app: checkpoints of `hotmesh deform` (io/checkpoint_file.hpp). After every accepted
+// hotmesh api: checkpoints of `hotmesh deform` (io/checkpoint_file.hpp). After every accepted
 // increment the run replaces <output>/checkpoint.hmc; `--resume` continues from it. A run that
 // ends (done, or failed with exit code 1) removes it; one that is killed or runs out of memory
 // leaves it, and a new run into that folder is refused unless it resumes or is forced.
@@ -16,7 +16,7 @@
 #include "hotmesh/io/case_file.hpp"
 #include "hotmesh/io/checkpoint_file.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 /// Writes the checkpoints of one run.
 class CheckpointWriter {
@@ -46,4 +46,4 @@ class CheckpointWriter {
 /// if `folder` holds one, unless `force`.
 void refuse_to_replace_checkpoint(const std::filesystem::path& folder, bool force);
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

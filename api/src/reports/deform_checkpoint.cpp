@@ -1,4 +1,5 @@
-#include "reports/deform_checkpoint.hpp"
+// hotmesh api: the checkpoints of `hotmesh deform` (see deform_checkpoint.hpp).
+#include "hotmesh/api/deform_checkpoint.hpp"
 
 #include <chrono>
 #include <system_error>
@@ -7,7 +8,7 @@
 
 #include "hotmesh/core/input_error.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 CheckpointWriter::CheckpointWriter(std::filesystem::path path, const io::Case& c, const mesh::Mesh& mesh,
                                    std::vector<io::InputFingerprint> inputs)
@@ -47,4 +48,4 @@ void refuse_to_replace_checkpoint(const std::filesystem::path& folder, bool forc
                                                     io::kCheckpointName, what));
 }
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

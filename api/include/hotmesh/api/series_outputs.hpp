@@ -1,4 +1,4 @@
-// hotmesh app: the motion as ParaView time series, for a user to scrub through it.
+// hotmesh api: the motion as ParaView time series, for a user to scrub through it.
 //   deformed.pvd  the mesh after every increment: series/mesh_NNNN.vtu (scaled Jacobian,
 //                 inverted flag, patch and displacement from the undeformed mesh)
 //   walls.pvd     the walls its patches follow at the same stages: series/walls_NNNN.vtp
@@ -15,7 +15,7 @@
 #include "hotmesh/mesh/mesh.hpp"
 #include "hotmesh/mesh/solver_quality.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 class SeriesWriter {
  public:
@@ -48,4 +48,4 @@ class SeriesWriter {
   std::vector<Step> steps_;
 };
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

@@ -1,4 +1,4 @@
-// hotmesh app: the two-sided distance between a mesh patch's faces and its wall (issue 20,
+// hotmesh api: the two-sided distance between a mesh patch's faces and its wall (issue 20,
 // item 4), as `hotmesh check` and report.json give it. The node distances of a patch do not
 // see a corner cut by an edge between two nodes; this measures the faces themselves
 // (geometry::wall_deviation: against a curve in the x-y plane in 2D or in the meridional plane
@@ -22,7 +22,7 @@
 #include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/mesh/mesh.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 /// One side of the two-sided distance, with node numbers of the mesh file.
 struct WallSide {
@@ -85,4 +85,4 @@ std::string wall_text(const WallCheck& wall);
 nlohmann::json wall_deviations_json(const mesh::Mesh& mesh, std::span<const geometry::Vec3> points,
                                     const setup::CaseSetup& setup, double lambda, double length_scale);
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

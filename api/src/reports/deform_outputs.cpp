@@ -1,5 +1,6 @@
-#include "reports/deform_outputs.hpp"
-#include "reports/series_outputs.hpp"
+// hotmesh api: what `hotmesh deform` writes to its output folder (see deform_outputs.hpp).
+#include "hotmesh/api/deform_outputs.hpp"
+#include "hotmesh/api/series_outputs.hpp"
 
 #include "hotmesh/parallel/processes.hpp"
 
@@ -19,10 +20,10 @@
 #include "hotmesh/io/gmsh.hpp"
 #include "hotmesh/io/mesh_picture.hpp"
 #include "hotmesh/io/vtu.hpp"
-#include "reports/mesh_summary.hpp"
-#include "reports/wall_deviation_report.hpp"
+#include "hotmesh/api/mesh_summary.hpp"
+#include "hotmesh/api/wall_deviation_report.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 namespace {
 
 /// The quality fields (`fields`) with the displacement and each node's role.
@@ -404,10 +405,10 @@ json failure_json(const mesh::Mesh& mesh, const deform::MotionResult& result) {
 
 }  // namespace
 
-void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
-                  const setup::CaseSetup& setup, const deform::MotionResult& result, const mesh::SolverQuality& solver,
-                  const RunTimings& timings, const RunThreads& threads, RunOutputs& outputs,
-                  const io::CheckpointInfo* resumed) {
+std::string deform_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
+                          const setup::CaseSetup& setup, const deform::MotionResult& result,
+                          const mesh::SolverQuality& solver, const RunTimings& timings, const RunThreads& threads,
+                          const RunOutputs& outputs, const io::CheckpointInfo* resumed) {
   json j;
   j["hotmesh_version"] = HOTMESH_VERSION;
   j["command"] = "deform";
@@ -436,10 +437,18 @@ void write_report(const std::filesystem::path& folder, const io::Case& c, const 
                       {"last_bytes", timings.checkpoint_bytes}};
   j["seconds"] = seconds_json(timings, result.timings);
   j["wall_seconds"] = timings.wall;
-  outputs.files.push_back(folder / "report.json");
   j["outputs"] = json::array();
   for (const auto& f : outputs.files) j["outputs"].push_back(f.string());
-  io::write_file_atomically(folder / "report.json", j.dump(2) + "\n");
+  return j.dump(2) + "\n";
 }
 
-}  // namespace hotmesh::app
+void write_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
+                  const setup::CaseSetup& setup, const deform::MotionResult& result, const mesh::SolverQuality& solver,
+                  const RunTimings& timings, const RunThreads& threads, RunOutputs& outputs,
+                  const io::CheckpointInfo* resumed) {
+  outputs.files.push_back(folder / "report.json");
+  io::write_file_atomically(folder / "report.json",
+                            deform_report(folder, c, loaded, setup, result, solver, timings, threads, outputs, resumed));
+}
+
+}  // namespace hotmesh::api

@@ -1,4 +1,5 @@
-#include "reports/mesh_summary.hpp"
+// hotmesh api: a mesh's summary and quality for reports (see mesh_summary.hpp).
+#include "hotmesh/api/mesh_summary.hpp"
 
 #include <algorithm>
 #include <map>
@@ -8,7 +9,7 @@
 #include "hotmesh/mesh/quality.hpp"
 #include "hotmesh/mesh/solver_quality.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 namespace {
 
@@ -174,4 +175,4 @@ std::string mesh_summary_text(const nlohmann::json& j) {
   return s;
 }
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

@@ -1,5 +1,5 @@
-// hotmesh app: the shapes `hotmesh check` measures mesh patches against (see check_references.hpp).
-#include "reports/check_references.hpp"
+// hotmesh api: the shapes `hotmesh check` measures mesh patches against (see check_references.hpp).
+#include "hotmesh/api/check_references.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -18,7 +18,7 @@
 #include "hotmesh/setup/case_setup.hpp"
 #include "hotmesh/io/deflection_csv.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 namespace {
 
@@ -309,4 +309,4 @@ std::vector<CasePatchReference> case_references(const io::Case& c, const mesh::M
   return references;
 }
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

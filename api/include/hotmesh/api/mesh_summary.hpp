@@ -1,4 +1,4 @@
-// hotmesh app: what a user wants to know about a mesh, as JSON (for `info --json` and the
+// hotmesh api: what a user wants to know about a mesh, as JSON (for `info --json` and the
 // report.json of every run) and as text.
 #pragma once
 
@@ -13,7 +13,7 @@
 #include "hotmesh/mesh/solver_quality.hpp"
 #include "hotmesh/io/mesh_files.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 /// Counts, bounds, patches, cell groups, validation notes and the quality summary.
 nlohmann::json mesh_summary(const io::LoadedMesh& loaded, const std::filesystem::path& file);
@@ -37,4 +37,4 @@ std::string quality_text(const nlohmann::json& quality, const std::string& inden
 /// The summary as aligned text for a terminal.
 std::string mesh_summary_text(const nlohmann::json& summary);
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

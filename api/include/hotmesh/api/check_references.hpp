@@ -1,4 +1,4 @@
-// hotmesh app: what `hotmesh check` measures each mesh patch against. On a 2D mesh a patch is
+// hotmesh api: what `hotmesh check` measures each mesh patch against. On a 2D mesh a patch is
 // mapped to CAD edges, and compared with their curve in the plane z = 0, or, given an axis (an
 // axisymmetric mesh in (z, r)), to CAD faces, compared with their meridional curve as (z, r).
 // Otherwise a patch mapped to CAD faces is compared with the faces as hotmesh deform would take
@@ -27,9 +27,9 @@
 #include "hotmesh/geometry/cad_model.hpp"
 #include "hotmesh/geometry/reconstruction.hpp"
 #include "hotmesh/io/case_file.hpp"
-#include "reports/wall_deviation_report.hpp"
+#include "hotmesh/api/wall_deviation_report.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 /// One shape some nodes are measured against.
 class ReferenceShape {
@@ -87,4 +87,4 @@ struct CasePatchReference {
 /// as hotmesh deform's set-up does.
 std::vector<CasePatchReference> case_references(const io::Case& c, const mesh::Mesh& case_mesh, CaseStage stage);
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

@@ -1,5 +1,5 @@
-// hotmesh app: the motion as ParaView time series (deformed.pvd, walls.pvd).
-#include "reports/series_outputs.hpp"
+// hotmesh api: the motion as ParaView time series (deformed.pvd, walls.pvd).
+#include "hotmesh/api/series_outputs.hpp"
 
 #include <fstream>
 #include <optional>
@@ -10,7 +10,7 @@
 #include "hotmesh/setup/deflected_walls.hpp"
 #include "hotmesh/io/vtu.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 namespace {
 
 constexpr const char* kSeriesFolder = "series";
@@ -94,4 +94,4 @@ void SeriesWriter::write_collections() const {
   write_collection(folder_ / "walls.pvd", walls);
 }
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

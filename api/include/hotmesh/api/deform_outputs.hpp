@@ -1,4 +1,4 @@
-// hotmesh app: what `hotmesh deform` writes to its output folder: deformed.msh and
+// hotmesh api: what `hotmesh deform` writes to its output folder: deformed.msh and
 // deformed.vtu (the final mesh, or the last valid one), failed.vtu when the motion failed,
 // PNG pictures for 2D meshes, and report.json.
 #pragma once
@@ -15,7 +15,7 @@
 #include "hotmesh/io/mesh_files.hpp"
 #include "hotmesh/parallel/threads.hpp"
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 struct RunTimings {
   double read = 0.0;    ///< case, mesh and tables, with validation
@@ -55,6 +55,12 @@ RunOutputs write_outputs(const std::filesystem::path& folder, const io::Case& c,
                          const setup::CaseSetup& setup, const deform::MotionResult& result,
                          const mesh::SolverQuality& solver, bool binary_msh, const io::WriteBackOptions& write_back);
 
+/// The text of report.json (see write_report) listing `outputs` as the files written.
+std::string deform_report(const std::filesystem::path& folder, const io::Case& c, const io::LoadedMesh& loaded,
+                          const setup::CaseSetup& setup, const deform::MotionResult& result,
+                          const mesh::SolverQuality& solver, const RunTimings& timings, const RunThreads& threads,
+                          const RunOutputs& outputs, const io::CheckpointInfo* resumed = nullptr);
+
 /// report.json: status, increments with Newton and PCG iterations, quality, times per phase;
 /// for a resumed run (`resumed`: the checkpoint it continued from) every increment, those of
 /// the interrupted run included.
@@ -71,4 +77,4 @@ deform::LinearSolverChoice linear_solver_of(const io::Case& c, const mesh::Mesh&
 /// The process's peak resident memory (VmHWM), or 0 where /proc does not tell.
 std::uint64_t peak_memory_bytes();
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api

@@ -1,6 +1,6 @@
-// hotmesh app: the report of `hotmesh check` as text, JSON and JUnit XML (see check_report.hpp).
-#include "reports/check_report.hpp"
-#include "reports/mesh_summary.hpp"
+// hotmesh api: the report of `hotmesh check` as text, JSON and JUnit XML (see check_report.hpp).
+#include "hotmesh/api/check_report.hpp"
+#include "hotmesh/api/mesh_summary.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-namespace hotmesh::app {
+namespace hotmesh::api {
 
 namespace {
 
@@ -194,4 +194,4 @@ std::string check_junit_error(const std::string& subject, const std::string& typ
   return x;
 }
 
-}  // namespace hotmesh::app
+}  // namespace hotmesh::api
