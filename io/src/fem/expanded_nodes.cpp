@@ -126,6 +126,7 @@ std::map<std::int64_t, Vec3> DeckDisplacements::of(const std::vector<std::int64_
     std::sort(mine.begin(), mine.end());
     mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
   }
+  if (made.empty()) return out;  // every node in the .frd: the deck's size is not needed
   const double rounding = 2e-5 * detail::deck_size(deck_);  // the six digits of an ASCII .frd
   for (const auto& [node, from_node] : made) {
     Vec3 sum, centre;
