@@ -67,15 +67,15 @@ TEST_F(CcxSuiteFiles, Sc123ResultsWithSixtyStateVariablesPerNodeAreRead) {
 // planestress3.inp:9, `1` alone: ccx puts the node at the origin.
 TEST_F(CcxSuiteFiles, NodeOfTheNumberOnlyIsAtTheOrigin) {
   const InpDeck d = deck("planestress3");
-  EXPECT_EQ(d.nodes.at(1), Vec3(0, 0, 0));
-  EXPECT_EQ(d.nodes.at(2), Vec3(10, 0, 0));
+  EXPECT_EQ(d.nodes.at(1), (Vec3{0, 0, 0}));
+  EXPECT_EQ(d.nodes.at(2), (Vec3{10, 0, 0}));
   EXPECT_EQ(d.kind(), ModelKind::plane);
 }
 
 // shell1.inp:27, `21, 7.5e-01, 1.0, ,0.0`: the empty third coordinate is 0, the fifth field is not read.
 TEST_F(CcxSuiteFiles, EmptyCoordinateIsZeroAndFieldsAfterZAreNotRead) {
   const InpDeck d = deck("shell1");
-  EXPECT_EQ(d.nodes.at(21), Vec3(0.75, 1.0, 0.0));
+  EXPECT_EQ(d.nodes.at(21), (Vec3{0.75, 1.0, 0.0}));
   EXPECT_EQ(d.kind(), ModelKind::solid);  // S8R shells, expanded into C3D20R
   EXPECT_TRUE(d.elements.at(1).expanded);
 }
