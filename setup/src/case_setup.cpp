@@ -253,28 +253,27 @@ class SurfaceBuilder {
     check_cartesian(deflection.samples);
     report.kind = WallKind::scattered;
     std::shared_ptr<const geometry::WallField> after, before;
-    if (deflection.degree == 1) {
-      // linear between the FEM nodes, as a table of linear elements is: no overshoot at kinks
-      auto linear = std::make_shared<const geometry::LinearField>(deflection.samples.points, deflection.samples.deflections);
-      report.reconstruction.used_nodes = linear->report().points;
-      report.reconstruction.merged_duplicates = linear->report().merged_duplicates;
-      report.linear = linear->report();
-      after = std::move(linear);
+    // The deflected field of the table and, on a restart, the previous one, of one kind.
+    const auto fields = [&]<class Field>() {
+      auto field = std::make_shared<const Field>(deflection.samples.points, deflection.samples.deflections);
+      report.reconstruction.used_nodes = field->report().points;
+      report.reconstruction.merged_duplicates = field->report().merged_duplicates;
       if (previous) {
         check_cartesian(previous->samples);
-        before = std::make_shared<const geometry::LinearField>(previous->samples.points, previous->samples.deflections);
+        before = std::make_shared<const Field>(previous->samples.points, previous->samples.deflections);
       }
+      return field;
+    };
+    if (deflection.degree == 1) {
+      // linear between the FEM nodes, as a table of linear elements is: no overshoot at kinks
+      auto linear = fields.template operator()<geometry::LinearField>();
+      report.linear = linear->report();
+      after = std::move(linear);
     } else {
-      auto smooth = std::make_shared<const geometry::ScatteredField>(deflection.samples.points, deflection.samples.deflections);
-      report.reconstruction.used_nodes = smooth->report().points;
-      report.reconstruction.merged_duplicates = smooth->report().merged_duplicates;
+      auto smooth = fields.template operator()<geometry::ScatteredField>();
       report.reconstruction.max_node_residual = smooth->report().max_residual;
       report.scattered = smooth->report();
       after = std::move(smooth);
-      if (previous) {
-        check_cartesian(previous->samples);
-        before = std::make_shared<const geometry::ScatteredField>(previous->samples.points, previous->samples.deflections);
-      }
     }
     return {std::make_shared<geometry::ScatteredShape>(std::move(after), std::move(before)), std::move(report)};
   }
